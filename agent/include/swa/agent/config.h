@@ -1,0 +1,82 @@
+#pragma once
+// Every tunable of the agent in one typed struct. Defaults are the paper's Table I and ../shared/DESIGN.md §3;
+// where a default deliberately differs from the paper, the comment says why.
+
+#include <cstddef>
+#include <string>
+
+namespace swa::agent {
+
+enum class Mode { kSwa, kStandalone, kAnchored };
+enum class CircleFit { kFixedRadius, kAlgebraic };
+
+struct SurroundingsConfig {
+  // Q_o diagonal blocks, per `q_ref_dt_s` of prediction (scaled linearly with the actual step).
+  double q_pos_m2 = 1e-3;
+  double q_vel_m2ps2 = 1e-2;
+  double q_acc_m2ps4 = 1e-1;
+  double q_ref_dt_s = 0.01;          // Table I values are per 100 Hz step
+  double r_det_m2 = 0.1;             // R_o, used when a detection carries no covariance of its own
+  double init_vel_var_m2ps2 = 1.0;   // a new track's velocity prior: neighbours hover or move slowly
+  double init_acc_var_m2ps4 = 0.5;
+  int confirm_hits = 3;              // M hits before a track may be used as a neighbour
+  double track_timeout_s = 1.0;      // confirmed track removed after this long without a detection
+  double tentative_timeout_s = 0.25; // tentative track removed after this long (2.5 MPS periods at 10 Hz)
+  double gate_probability = 0.99;    // chi-square gate (2 dof) for anonymous association
+};
+
+struct FormationConfig {
+  double radius_m = 10.0;          // r
+  int k = 3;                       // neighbours used for the floating frame
+  double sensing_range_m = 40.0;   // tracks farther than this are not neighbours
+  CircleFit circle_fit = CircleFit::kFixedRadius;  // the paper's algebraic fit collapses with k = 3 (DESIGN §3)
+};
+
+struct FocalConfig {
+  double tau_s = 2.8;
+  // Q_f per `q_ref_dt_s`. Table I gives diag(5e-2, 5e-1, 5); DESIGN §3 and the ANEES test show that is
+  // conservative, so the default is scaled by `q_scale` (tuned by tests/unit/test_focal_consistency.cpp).
+  double q_pos_m2 = 5e-2;
+  double q_vel_m2ps2 = 5e-1;
+  double q_acc_m2ps4 = 5.0;
+  double q_scale = 0.3;
+  double q_ref_dt_s = 0.01;
+  double r_pos_m2 = 0.02;          // R_c
+  double r_acc_m2ps4 = 2.25;       // R_a
+  double q_c_mps2 = 6.35;          // tilt (rad) -> lateral acceleration
+  double frame_timeout_s = 2.0;    // without a frame for this long the agent stops trusting dead reckoning
+};
+
+struct ControlConfig {
+  double k_p = 0.5;         // 1/s
+  double k_v = 0.63;        // -
+  double v_max_mps = 2.0;   // saturation of |v_d|
+};
+
+struct AnchorConfig {
+  // Weight of the absolute (GNSS) hold added to the relative command in `anchored` mode.
+  double gain = 0.2;
+  double gnss_min_std_m = 0.05;   // floor for the std a fix reports: a receiver claiming 1 mm is not believed
+};
+
+struct LimitsConfig {
+  std::size_t max_detections = 64;   // a larger detection set is rejected whole
+  int max_target_id = 1'000'000;     // IDs above this are treated as corrupt
+  double max_tilt_rad = 0.8;         // |roll|, |pitch| beyond ~45 deg is not lateral flight
+  double max_abs_position_m = 1e6;   // detections / fixes farther than this are corrupt
+};
+
+struct AgentConfig {
+  Mode mode = Mode::kSwa;
+  SurroundingsConfig surroundings;
+  FormationConfig formation;
+  FocalConfig focal;
+  ControlConfig control;
+  AnchorConfig anchor;
+  LimitsConfig limits;
+};
+
+std::string toString(Mode mode);
+std::string toString(CircleFit fit);
+
+}  // namespace swa::agent
