@@ -1,0 +1,71 @@
+#pragma once
+// The agent facade: stamped IMU, detection and GNSS samples in; velocity commands and diagnostics out. One UAV,
+// one instance. No clock reads, no threads, no globals: the same samples in the same order give bit-identical
+// commands, which is what makes the closed-loop tests and the lockstep simulator reproducible.
+//
+// Ordering: each stream must have strictly increasing stamps (a repeated or older stamp is rejected and counted).
+// Across streams, a sample older than the focal filter (e.g. detections with sensor latency) is applied at the
+// filter's time; the error is neighbour velocity x latency, well below R_c for the 10-100 ms latencies of MPS.
+
+#include "swa/agent/config.h"
+#include "swa/agent/diagnostics.h"
+#include "swa/agent/focal_estimator.h"
+#include "swa/agent/neighbourhood.h"
+#include "swa/agent/samples.h"
+#include "swa/agent/track_bank.h"
+
+namespace swa::agent {
+
+class Agent {
+ public:
+  explicit Agent(const AgentConfig& config);
+
+  // Every IMU sample, accepted or not, is answered with a command (the 100 Hz control step). A rejected sample gets
+  // the previous command again: the command is always finite and within saturation.
+  VelocityCommand onImu(const ImuSample& imu);
+  void onDetections(const DetectionSet& detections);
+  void onGnss(const GnssSample& gnss);
+
+  const Diagnostics& diagnostics() const { return diag_; }
+  const AgentConfig& config() const { return config_; }
+  const TrackBank& bank() const { return bank_; }
+  const FocalEstimator& focal() const { return focal_; }
+  const FocalEstimator& absolute() const { return absolute_; }
+
+ private:
+  bool acceptStamp(StampNs stamp, StampNs& last, bool& seen);
+  bool convertDetections(const DetectionSet& in);
+  void updateFrame(StampNs stamp);
+  Vec2 computeCommand(StampNs stamp);
+  void refreshDiagnostics(StampNs stamp);
+
+  AgentConfig config_;
+  TrackBank bank_;
+  FocalEstimator focal_;     // floating frame (swa, anchored)
+  FocalEstimator absolute_;  // take-off frame from GNSS + IMU (standalone, anchored)
+  Diagnostics diag_;
+
+  Mat2 r_acc_;
+  Mat2 r_pos_;
+  double heading_rad_ = 0.0;
+  bool have_heading_ = false;
+  StampNs last_imu_ns_ = 0, last_det_ns_ = 0, last_gnss_ns_ = 0;
+  bool seen_imu_ = false, seen_det_ = false, seen_gnss_ = false;
+
+  Neighbourhood neighbours_;
+  bool frame_valid_ = false;
+  StampNs last_frame_ns_ = 0;
+  Vec2 frame_centre_ = Vec2::Zero();
+  FitCase fit_case_ = FitCase::kNone;
+
+  bool hold_point_set_ = false;
+  Vec2 hold_point_ = Vec2::Zero();  // take-off position: the first valid GNSS fix
+  StampNs last_valid_gnss_ns_ = 0;
+  bool gnss_valid_ = false;
+
+  Vec2 command_ = Vec2::Zero();
+  std::uint64_t seq_ = 0;
+  std::vector<StableDetection> stable_;  // reused conversion buffer
+};
+
+}  // namespace swa::agent

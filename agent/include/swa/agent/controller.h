@@ -1,0 +1,21 @@
+#pragma once
+// Formation control (paper §III-D with the sign erratum of DESIGN §3.5): v_d = -k_p p - k_v v drives the UAV to
+// the floating-frame origin. The paper's e = -x with v_d = -k e is positive feedback and diverges.
+
+#include "swa/agent/config.h"
+#include "swa/agent/geometry.h"
+
+namespace swa::agent {
+
+inline Vec2 formationVelocity(const Vec2& position, const Vec2& velocity, const ControlConfig& c) {
+  return -c.k_p * position - c.k_v * velocity;
+}
+
+// Scales the vector down to |v| <= v_max keeping its direction; anything non-finite becomes a hover command.
+inline Vec2 saturate(const Vec2& v, double v_max) {
+  if (!isFinite(v)) return Vec2::Zero();
+  const double n = v.norm();
+  return n > v_max ? Vec2(v * (v_max / n)) : v;
+}
+
+}  // namespace swa::agent

@@ -1,0 +1,47 @@
+#pragma once
+// Floating-frame estimator (paper §III-B, DESIGN §3.3): the desired position of the focal UAV is the centre of a
+// circle of radius r through its neighbours. Positions are relative to the focal UAV in its stable frame, so the
+// focal UAV sits at the origin and the result r_c is "where I should be" relative to "where I am".
+
+#include <array>
+#include <cstdint>
+
+#include "swa/agent/config.h"
+#include "swa/agent/geometry.h"
+
+namespace swa::agent {
+
+constexpr int kMaxNeighbours = 16;
+
+struct NeighbourPositions {
+  int count = 0;
+  std::array<Vec2, kMaxNeighbours> position{};  // sorted nearest first
+};
+
+enum class FitCase : std::uint8_t {
+  kNone,             // no neighbours: no frame
+  kOne,              // n = 1
+  kTwo,              // n = 2, the intersection closer to self
+  kTwoFarApart,      // n = 2 farther than 2r apart: midpoint
+  kCoincident,       // neighbours on top of each other or of self: a fixed, documented direction is used
+  kAlgebraic,        // n >= 3, linear least squares (Kasa)
+  kFixedRadius,      // n >= 3, Gauss-Newton with |p_j - c| = r
+  kCollinearFallback // n >= 3 collinear / ill-conditioned algebraic system: the n = 2 solution of the two nearest
+};
+
+struct FrameFit {
+  bool valid = false;
+  Vec2 centre = Vec2::Zero();  // r_c: floating-frame origin relative to self
+  FitCase fit_case = FitCase::kNone;
+  int iterations = 0;          // Gauss-Newton iterations used
+};
+
+FrameFit fitFloatingFrame(const NeighbourPositions& neighbours, double radius, CircleFit method);
+
+// The individual cases, exposed for the tests and the benchmark.
+FrameFit fitOne(const Vec2& p, double radius);
+FrameFit fitTwo(const Vec2& p1, const Vec2& p2, double radius);
+FrameFit fitAlgebraic(const NeighbourPositions& neighbours, double radius);
+FrameFit fitFixedRadius(const NeighbourPositions& neighbours, double radius);
+
+}  // namespace swa::agent

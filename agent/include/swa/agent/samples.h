@@ -1,0 +1,50 @@
+#pragma once
+// What goes into and out of the agent core. Stamps are simulation (or sensor) time in nanoseconds; the core never
+// reads a clock, so the same samples always give the same commands.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "swa/agent/geometry.h"
+
+namespace swa::agent {
+
+using StampNs = std::int64_t;
+constexpr int kAnonymousId = -1;
+
+inline double secondsBetween(StampNs from, StampNs to) { return static_cast<double>(to - from) * 1e-9; }
+
+struct ImuSample {
+  StampNs stamp_ns = 0;
+  double roll_rad = 0.0;
+  double pitch_rad = 0.0;
+  double heading_rad = 0.0;  // body x relative to stable/world x, counter-clockwise
+};
+
+struct Detection {
+  int target_id = kAnonymousId;      // UVDAR-like sensors identify the neighbour; LiDAR-like ones do not
+  Vec2 position_body_m = Vec2::Zero();
+  std::optional<Mat2> covariance_m2;  // body frame; the configured R_o is used when absent
+};
+
+struct DetectionSet {
+  StampNs stamp_ns = 0;
+  std::vector<Detection> detections;
+};
+
+struct GnssSample {
+  StampNs stamp_ns = 0;
+  bool valid = false;
+  Vec2 position_m = Vec2::Zero();  // local navigation frame (aligned with the stable frame)
+  double std_m = 1.0;
+};
+
+struct VelocityCommand {
+  StampNs stamp_ns = 0;           // equals the stamp of the sample that produced it
+  StampNs answered_stamp_ns = 0;  // the IMU sample this command answers (latency and lockstep bookkeeping)
+  std::uint64_t seq = 0;
+  Vec2 velocity_mps = Vec2::Zero();  // stable frame
+};
+
+}  // namespace swa::agent

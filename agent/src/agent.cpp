@@ -1,0 +1,238 @@
+#include "swa/agent/agent.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "swa/agent/controller.h"
+
+namespace swa::agent {
+namespace {
+
+// An anchored UAV adds its absolute hold only while its GNSS is fresh; 1 s is ten missed 10 Hz fixes.
+constexpr double kGnssFreshS = 1.0;
+
+}  // namespace
+
+Agent::Agent(const AgentConfig& config)
+    : config_(config),
+      bank_(config.surroundings),
+      focal_(config.focal),
+      absolute_(config.focal),
+      r_acc_(Mat2::Identity() * config.focal.r_acc_m2ps4),
+      r_pos_(Mat2::Identity() * config.focal.r_pos_m2) {
+  diag_.mode = config.mode;
+  stable_.reserve(config.limits.max_detections);
+}
+
+bool Agent::acceptStamp(StampNs stamp, StampNs& last, bool& seen) {
+  if (seen && stamp <= last) {
+    ++diag_.rejected.out_of_order;
+    return false;
+  }
+  last = stamp;
+  seen = true;
+  return true;
+}
+
+VelocityCommand Agent::onImu(const ImuSample& imu) {
+  const bool finite = std::isfinite(imu.roll_rad) && std::isfinite(imu.pitch_rad) && std::isfinite(imu.heading_rad);
+  const double max_tilt = config_.limits.max_tilt_rad;
+  bool accepted = false;
+  if (!finite) {
+    ++diag_.rejected.nonfinite;
+  } else if (std::abs(imu.roll_rad) > max_tilt || std::abs(imu.pitch_rad) > max_tilt) {
+    ++diag_.rejected.implausible;
+  } else {
+    accepted = acceptStamp(imu.stamp_ns, last_imu_ns_, seen_imu_);
+  }
+
+  if (accepted) {
+    heading_rad_ = imu.heading_rad;
+    have_heading_ = true;
+    // DESIGN §3.4: pitch gives body-x and roll body-y acceleration, rotated into the stable frame by heading.
+    const Vec2 acc = config_.focal.q_c_mps2 * (rotation(imu.heading_rad) * Vec2(imu.pitch_rad, imu.roll_rad));
+    for (FocalEstimator* f : {&focal_, &absolute_}) {
+      f->predictTo(imu.stamp_ns, command_);
+      f->correctAcceleration(acc, r_acc_);
+    }
+    command_ = computeCommand(imu.stamp_ns);
+  }
+
+  VelocityCommand cmd;
+  cmd.stamp_ns = imu.stamp_ns;
+  cmd.answered_stamp_ns = imu.stamp_ns;
+  cmd.seq = ++seq_;
+  cmd.velocity_mps = command_;
+  ++diag_.commands;
+  refreshDiagnostics(accepted ? imu.stamp_ns : diag_.stamp_ns);
+  return cmd;
+}
+
+bool Agent::convertDetections(const DetectionSet& in) {
+  stable_.clear();
+  const Mat2 R = rotation(heading_rad_);
+  const Mat2 default_cov = Mat2::Identity() * config_.surroundings.r_det_m2;
+  const double max_pos = config_.limits.max_abs_position_m;
+  for (const Detection& d : in.detections) {
+    const bool cov_finite = !d.covariance_m2 || d.covariance_m2->allFinite();
+    if (!isFinite(d.position_body_m) || !cov_finite) {
+      ++diag_.rejected.nonfinite;
+      continue;
+    }
+    if (d.target_id != kAnonymousId && (d.target_id < 0 || d.target_id > config_.limits.max_target_id)) {
+      ++diag_.rejected.bad_id;
+      continue;
+    }
+    if (d.position_body_m.norm() > max_pos || (d.covariance_m2 && !isCovariance(*d.covariance_m2))) {
+      ++diag_.rejected.implausible;
+      continue;
+    }
+    StableDetection s;
+    s.target_id = d.target_id;
+    s.position_m = R * d.position_body_m;
+    s.covariance_m2 = d.covariance_m2 ? Mat2(R * *d.covariance_m2 * R.transpose()) : default_cov;
+    stable_.push_back(s);
+  }
+  return true;
+}
+
+void Agent::onDetections(const DetectionSet& in) {
+  if (in.detections.size() > config_.limits.max_detections) {
+    ++diag_.rejected.oversize;
+    return;
+  }
+  if (!have_heading_) {
+    ++diag_.rejected.no_heading;
+    return;
+  }
+  if (!acceptStamp(in.stamp_ns, last_det_ns_, seen_det_)) return;
+  convertDetections(in);
+  bank_.update(in.stamp_ns, stable_);
+  if (config_.mode != Mode::kStandalone) updateFrame(in.stamp_ns);
+  refreshDiagnostics(std::max(diag_.stamp_ns, in.stamp_ns));
+}
+
+void Agent::updateFrame(StampNs stamp) {
+  const FormationConfig& fc = config_.formation;
+  const Neighbourhood next = selectNeighbours(bank_.tracks(), fc.k, fc.sensing_range_m);
+  const FrameFit fit = fitFloatingFrame(next.positions, fc.radius_m, fc.circle_fit);
+  fit_case_ = fit.fit_case;
+  if (!fit.valid) {
+    frame_valid_ = false;
+    neighbours_ = next;
+    return;
+  }
+  const Vec2 z = -fit.centre;  // z_p = -r_c: own position in the floating frame
+  focal_.predictTo(stamp, command_);
+  const bool stale = secondsBetween(last_frame_ns_, stamp) > config_.focal.frame_timeout_s;
+  if (!focal_.initialized()) {
+    focal_.initialize(stamp, z, r_pos_);
+  } else if (stale) {
+    focal_.resetPosition(z, r_pos_);
+    ++diag_.frame_resets;
+  } else if (!next.sameIdsAs(neighbours_)) {
+    // The frame jumps when the neighbour set changes. Where the old neighbours are all still tracked, evaluate the
+    // old frame now and move the estimate by the jump, so the filter never sees it as an innovation; otherwise
+    // restart the position from this measurement.
+    NeighbourPositions old;
+    FrameFit old_fit;
+    if (frame_valid_ && positionsOf(bank_.tracks(), neighbours_, old)) {
+      old_fit = fitFloatingFrame(old, fc.radius_m, fc.circle_fit);
+    }
+    if (old_fit.valid) {
+      focal_.shiftFrame(fit.centre - old_fit.centre);
+      focal_.correctPosition(z, r_pos_);
+      ++diag_.frame_shifts;
+    } else {
+      focal_.resetPosition(z, r_pos_);
+      ++diag_.frame_resets;
+    }
+  } else {
+    focal_.correctPosition(z, r_pos_);
+  }
+  neighbours_ = next;
+  frame_valid_ = true;
+  frame_centre_ = fit.centre;
+  last_frame_ns_ = stamp;
+}
+
+void Agent::onGnss(const GnssSample& g) {
+  if (g.valid) {
+    if (!isFinite(g.position_m) || !std::isfinite(g.std_m)) {
+      ++diag_.rejected.nonfinite;
+      return;
+    }
+    if (g.std_m <= 0.0 || g.position_m.norm() > config_.limits.max_abs_position_m) {
+      ++diag_.rejected.implausible;
+      return;
+    }
+  }
+  if (!acceptStamp(g.stamp_ns, last_gnss_ns_, seen_gnss_)) return;
+  gnss_valid_ = g.valid;
+  if (!g.valid) return;
+  last_valid_gnss_ns_ = g.stamp_ns;
+  if (config_.mode == Mode::kSwa) return;  // the paper's agent never uses GNSS
+
+  const double sigma = std::max(g.std_m, config_.anchor.gnss_min_std_m);
+  const Mat2 R = Mat2::Identity() * (sigma * sigma);
+  if (!hold_point_set_) {
+    hold_point_ = g.position_m;
+    hold_point_set_ = true;
+    absolute_.initialize(g.stamp_ns, Vec2::Zero(), R);
+    return;
+  }
+  absolute_.predictTo(g.stamp_ns, command_);
+  absolute_.correctPosition(g.position_m - hold_point_, R);
+}
+
+Vec2 Agent::computeCommand(StampNs stamp) {
+  const ControlConfig& cc = config_.control;
+  Vec2 v = Vec2::Zero();
+  const bool frame_fresh =
+      focal_.initialized() && secondsBetween(last_frame_ns_, stamp) <= config_.focal.frame_timeout_s;
+  switch (config_.mode) {
+    case Mode::kSwa:
+      if (frame_fresh) v = formationVelocity(focal_.position(), focal_.velocity(), cc);
+      break;
+    case Mode::kStandalone:
+      // The baseline keeps holding its take-off point on dead reckoning after GNSS is gone (and drifts).
+      if (absolute_.initialized()) v = formationVelocity(absolute_.position(), absolute_.velocity(), cc);
+      break;
+    case Mode::kAnchored: {
+      if (frame_fresh) v = formationVelocity(focal_.position(), focal_.velocity(), cc);
+      const bool gnss_fresh = gnss_valid_ && secondsBetween(last_valid_gnss_ns_, stamp) <= kGnssFreshS;
+      if (gnss_fresh && absolute_.initialized()) {
+        v += config_.anchor.gain * formationVelocity(absolute_.position(), absolute_.velocity(), cc);
+      }
+      break;
+    }
+  }
+  return saturate(v, cc.v_max_mps);
+}
+
+void Agent::refreshDiagnostics(StampNs stamp) {
+  diag_.stamp_ns = stamp;
+  const bool standalone = config_.mode == Mode::kStandalone;
+  const FocalEstimator& f = standalone ? absolute_ : focal_;
+  if (!f.initialized()) {
+    diag_.stage = Stage::kInitializing;
+  } else if (!standalone && secondsBetween(last_frame_ns_, stamp) > config_.focal.frame_timeout_s) {
+    diag_.stage = Stage::kLost;
+  } else {
+    diag_.stage = Stage::kTracking;
+  }
+  diag_.position_m = f.position();
+  diag_.velocity_mps = f.velocity();
+  diag_.position_cov_m2 = f.positionCov();
+  diag_.velocity_cov_m2ps2 = f.velocityCov();
+  diag_.frame_valid = frame_valid_;
+  diag_.frame_centre_m = frame_centre_;
+  diag_.fit_case = fit_case_;
+  diag_.neighbour_count = neighbours_.count();
+  diag_.neighbour_ids = neighbours_.ids;
+  diag_.confirmed_tracks = bank_.confirmedCount();
+  diag_.tentative_tracks = bank_.tentativeCount();
+  diag_.gnss_valid = gnss_valid_;
+}
+
+}  // namespace swa::agent

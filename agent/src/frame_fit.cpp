@@ -1,0 +1,154 @@
+#include "swa/agent/frame_fit.h"
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+namespace swa::agent {
+namespace {
+
+// Below this distance two points are treated as one: 1 mm is far below any relative-localisation accuracy.
+constexpr double kCoincidentM = 1e-3;
+// Reciprocal condition number of the 3x3 normal equations below which the algebraic fit is considered collinear.
+constexpr double kMinRcond = 1e-10;
+constexpr int kMaxGaussNewtonIterations = 20;
+constexpr double kGaussNewtonStepTolM = 1e-9;
+
+double fixedRadiusCost(const NeighbourPositions& nb, const Vec2& c, double radius) {
+  double cost = 0.0;
+  for (int j = 0; j < nb.count; ++j) {
+    const double e = (nb.position[j] - c).norm() - radius;
+    cost += e * e;
+  }
+  return cost;
+}
+
+}  // namespace
+
+FrameFit fitOne(const Vec2& p, double radius) {
+  FrameFit fit;
+  fit.valid = true;
+  const double d = p.norm();
+  if (d < kCoincidentM) {
+    // Self on top of the neighbour: any direction is as good as another; pick -x so the result is reproducible.
+    fit.centre = p + Vec2(-radius, 0.0);
+    fit.fit_case = FitCase::kCoincident;
+    return fit;
+  }
+  fit.centre = p - p * (radius / d);  // r from the neighbour along neighbour -> self
+  fit.fit_case = FitCase::kOne;
+  return fit;
+}
+
+FrameFit fitTwo(const Vec2& p1, const Vec2& p2, double radius) {
+  const Vec2 mid = 0.5 * (p1 + p2);
+  const Vec2 half = 0.5 * (p2 - p1);
+  const double h = half.norm();
+  if (h < kCoincidentM) {
+    FrameFit fit = fitOne(mid, radius);
+    fit.fit_case = FitCase::kCoincident;
+    return fit;
+  }
+  FrameFit fit;
+  fit.valid = true;
+  if (h >= radius) {
+    fit.centre = mid;
+    fit.fit_case = FitCase::kTwoFarApart;
+    return fit;
+  }
+  const Vec2 normal = Vec2(-half.y(), half.x()) / h;
+  const double offset = std::sqrt(radius * radius - h * h);
+  const Vec2 a = mid + offset * normal;
+  const Vec2 b = mid - offset * normal;
+  // Ties (self on the line through both neighbours) go to `a`, so the choice is deterministic.
+  fit.centre = (b.squaredNorm() < a.squaredNorm()) ? b : a;
+  fit.fit_case = FitCase::kTwo;
+  return fit;
+}
+
+FrameFit fitAlgebraic(const NeighbourPositions& nb, double radius) {
+  // Normal equations of A [a b c]' = B with rows [x y 1] and x^2 + y^2 - r^2; 3x3, so LDLT is cheap and exact
+  // enough, and its reciprocal condition number tells collinear sets apart.
+  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d AtB = Eigen::Vector3d::Zero();
+  for (int j = 0; j < nb.count; ++j) {
+    const Vec2& p = nb.position[j];
+    const Eigen::Vector3d row(p.x(), p.y(), 1.0);
+    AtA.noalias() += row * row.transpose();
+    AtB += row * (p.squaredNorm() - radius * radius);
+  }
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(AtA);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.rcond() < kMinRcond) {
+    FrameFit fit = fitTwo(nb.position[0], nb.position[1], radius);
+    fit.fit_case = FitCase::kCollinearFallback;
+    return fit;
+  }
+  const Eigen::Vector3d abc = ldlt.solve(AtB);
+  FrameFit fit;
+  fit.valid = abc.allFinite();
+  fit.centre = Vec2(0.5 * abc.x(), 0.5 * abc.y());
+  fit.fit_case = FitCase::kAlgebraic;
+  if (!fit.valid) {
+    fit = fitTwo(nb.position[0], nb.position[1], radius);
+    fit.fit_case = FitCase::kCollinearFallback;
+  }
+  return fit;
+}
+
+FrameFit fitFixedRadius(const NeighbourPositions& nb, double radius) {
+  // Started from the n = 2 point of the two nearest neighbours: from the Kasa centre Gauss-Newton falls into the
+  // mirror solution on the far side of the neighbours and UAVs collide (DESIGN §3.3).
+  FrameFit fit = fitTwo(nb.position[0], nb.position[1], radius);
+  if (fit.fit_case == FitCase::kCoincident) return fit;
+  Vec2 c = fit.centre;
+  double cost = fixedRadiusCost(nb, c, radius);
+  int it = 0;
+  for (; it < kMaxGaussNewtonIterations; ++it) {
+    Mat2 JtJ = Mat2::Zero();
+    Vec2 Jte = Vec2::Zero();
+    for (int j = 0; j < nb.count; ++j) {
+      const Vec2 d = nb.position[j] - c;
+      const double dist = d.norm();
+      if (dist < kCoincidentM) continue;  // gradient undefined on the neighbour itself; the others decide
+      const Vec2 J = -d / dist;          // d(|p - c| - r)/dc
+      JtJ.noalias() += J * J.transpose();
+      Jte += J * (dist - radius);
+    }
+    // A whisker of Levenberg damping keeps the 2x2 solve defined when all residual directions are parallel.
+    JtJ.diagonal().array() += 1e-9 * (1.0 + JtJ.trace());
+    Vec2 step = -JtJ.ldlt().solve(Jte);
+    if (!isFinite(step)) break;
+    // Halve the step until the cost does not increase: plain Gauss-Newton can overshoot near the two-fold ambiguity.
+    double new_cost = fixedRadiusCost(nb, c + step, radius);
+    for (int h = 0; h < 10 && new_cost > cost; ++h) {
+      step *= 0.5;
+      new_cost = fixedRadiusCost(nb, c + step, radius);
+    }
+    if (new_cost > cost) break;
+    c += step;
+    cost = new_cost;
+    if (step.norm() < kGaussNewtonStepTolM) {
+      ++it;
+      break;
+    }
+  }
+  fit.centre = c;
+  fit.iterations = it;
+  fit.fit_case = FitCase::kFixedRadius;
+  return fit;
+}
+
+FrameFit fitFloatingFrame(const NeighbourPositions& nb, double radius, CircleFit method) {
+  switch (nb.count) {
+    case 0:
+      return FrameFit{};
+    case 1:
+      return fitOne(nb.position[0], radius);
+    case 2:
+      return fitTwo(nb.position[0], nb.position[1], radius);
+    default:
+      return method == CircleFit::kAlgebraic ? fitAlgebraic(nb, radius) : fitFixedRadius(nb, radius);
+  }
+}
+
+}  // namespace swa::agent

@@ -1,0 +1,181 @@
+#include "swa/agent/track_bank.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace swa::agent {
+namespace {
+
+// Chi-square quantile with 2 degrees of freedom has a closed form: -2 ln(1 - p).
+double chi2Quantile2Dof(double p) { return -2.0 * std::log1p(-p); }
+
+constexpr double kReinitGateProbability = 1.0 - 1e-6;
+constexpr double kForbiddenCost = 1e9;
+
+}  // namespace
+
+TrackBank::TrackBank(const SurroundingsConfig& config)
+    : config_(config),
+      noise_{config.q_pos_m2, config.q_vel_m2ps2, config.q_acc_m2ps4, config.q_ref_dt_s},
+      gate_(chi2Quantile2Dof(config.gate_probability)),
+      reinit_gate_(chi2Quantile2Dof(kReinitGateProbability)) {
+  tracks_.reserve(kMaxTracks);
+}
+
+const Track* TrackBank::find(int id) const {
+  for (const Track& t : tracks_)
+    if (t.id == id) return &t;
+  return nullptr;
+}
+
+int TrackBank::confirmedCount() const {
+  return static_cast<int>(std::count_if(tracks_.begin(), tracks_.end(), [](const Track& t) { return t.confirmed; }));
+}
+
+int TrackBank::tentativeCount() const { return static_cast<int>(tracks_.size()) - confirmedCount(); }
+
+void TrackBank::predict(Track& track, StampNs stamp) const {
+  const double dt = secondsBetween(track.time_ns, stamp);
+  if (dt <= 0.0) return;
+  Pva::predict(track.estimate, pvaTransition(dt), pvaProcessNoise(noise_, dt));
+  track.time_ns = stamp;
+}
+
+bool TrackBank::correct(Track& track, const StableDetection& det, StampNs stamp) {
+  if (!Pva::correct<2>(track.estimate, positionObservation(), det.position_m, det.covariance_m2)) return false;
+  track.last_detection_ns = stamp;
+  ++track.hits;
+  if (track.hits >= config_.confirm_hits) track.confirmed = true;
+  return true;
+}
+
+int TrackBank::startTrack(const StableDetection& det, StampNs stamp, bool anonymous) {
+  if (tracks_.size() >= kMaxTracks) return -1;
+  Track t;
+  t.id = anonymous ? next_anonymous_id_++ : det.target_id;
+  t.anonymous = anonymous;
+  t.created_ns = stamp;
+  t.last_detection_ns = stamp;
+  t.time_ns = stamp;
+  t.hits = 1;
+  t.confirmed = t.hits >= config_.confirm_hits;
+  t.estimate.x.setZero();
+  segment<pva::Pos>(t.estimate.x) = det.position_m;
+  t.estimate.P.setZero();
+  block<pva::Pos, pva::Pos>(t.estimate.P) = det.covariance_m2;
+  block<pva::Vel, pva::Vel>(t.estimate.P) = Mat2::Identity() * config_.init_vel_var_m2ps2;
+  block<pva::Acc, pva::Acc>(t.estimate.P) = Mat2::Identity() * config_.init_acc_var_m2ps4;
+  tracks_.push_back(t);
+  return t.id;
+}
+
+void TrackBank::associateAnonymous(const std::vector<StableDetection>& dets, StampNs stamp, BankUpdateStats& stats) {
+  anon_tracks_.clear();
+  anon_dets_.clear();
+  for (std::size_t i = 0; i < tracks_.size(); ++i)
+    if (tracks_[i].anonymous) anon_tracks_.push_back(static_cast<int>(i));
+  for (std::size_t j = 0; j < dets.size(); ++j)
+    if (dets[j].target_id == kAnonymousId) anon_dets_.push_back(static_cast<int>(j));
+  if (anon_dets_.empty()) return;
+
+  const int rows = static_cast<int>(anon_tracks_.size());
+  const int cols = static_cast<int>(anon_dets_.size());
+  cost_.assign(static_cast<std::size_t>(rows) * cols, kForbiddenCost);
+  const auto H = positionObservation();
+  for (int r = 0; r < rows; ++r) {
+    const Track& t = tracks_[anon_tracks_[r]];
+    for (int c = 0; c < cols; ++c) {
+      const StableDetection& d = dets[anon_dets_[c]];
+      const Innovation<2> in = Pva::innovation<2>(t.estimate, H, d.position_m, d.covariance_m2);
+      if (in.valid && in.mahalanobis2 <= gate_) cost_[static_cast<std::size_t>(r) * cols + c] = in.mahalanobis2;
+    }
+  }
+  const std::vector<int>& assigned = assignment_.solve(cost_, rows, cols);
+
+  std::vector<char>& taken = scratch_taken_;
+  taken.assign(static_cast<std::size_t>(cols), 0);
+  for (int r = 0; r < rows; ++r) {
+    const int c = assigned[r];
+    if (c < 0 || cost_[static_cast<std::size_t>(r) * cols + c] >= kForbiddenCost) continue;
+    Track& t = tracks_[anon_tracks_[r]];
+    if (correct(t, dets[anon_dets_[c]], stamp)) {
+      ++stats.corrected;
+      last_track_of_detection_[anon_dets_[c]] = t.id;
+      taken[c] = 1;
+    }
+  }
+  // Tracks may be appended below: the indices in anon_tracks_ stay valid because push_back never reorders.
+  for (int c = 0; c < cols; ++c) {
+    if (taken[c]) continue;
+    const int id = startTrack(dets[anon_dets_[c]], stamp, true);
+    if (id < 0) {
+      ++stats.dropped_capacity;
+    } else {
+      ++stats.created;
+      last_track_of_detection_[anon_dets_[c]] = id;
+    }
+  }
+}
+
+BankUpdateStats TrackBank::update(StampNs stamp, const std::vector<StableDetection>& dets) {
+  BankUpdateStats stats;
+  for (Track& t : tracks_) predict(t, stamp);
+  last_track_of_detection_.assign(dets.size(), -1);
+
+  const auto H = positionObservation();
+  for (std::size_t j = 0; j < dets.size(); ++j) {
+    const StableDetection& d = dets[j];
+    if (d.target_id == kAnonymousId) continue;
+    auto it = std::find_if(tracks_.begin(), tracks_.end(),
+                           [&](const Track& t) { return !t.anonymous && t.id == d.target_id; });
+    if (it == tracks_.end()) {
+      const int id = startTrack(d, stamp, false);
+      id < 0 ? ++stats.dropped_capacity : ++stats.created;
+      last_track_of_detection_[j] = id;
+      continue;
+    }
+    const Innovation<2> in = Pva::innovation<2>(it->estimate, H, d.position_m, d.covariance_m2);
+    if (!in.valid || in.mahalanobis2 > reinit_gate_) {
+      // The ID is trusted over the track: restart it where the sensor says the neighbour is, keeping its status.
+      const bool was_confirmed = it->confirmed;
+      const int hits = it->hits;
+      const StampNs created = it->created_ns;
+      tracks_.erase(it);
+      startTrack(d, stamp, false);
+      Track& fresh = tracks_.back();
+      fresh.confirmed = was_confirmed;
+      fresh.hits = hits;
+      fresh.created_ns = created;
+      ++stats.reinitialised;
+      last_track_of_detection_[j] = fresh.id;
+      continue;
+    }
+    if (correct(*it, d, stamp)) {
+      ++stats.corrected;
+      last_track_of_detection_[j] = it->id;
+    }
+  }
+  associateAnonymous(dets, stamp, stats);
+  stats.removed = prune(stamp);
+  return stats;
+}
+
+int TrackBank::predictAndPrune(StampNs stamp) {
+  for (Track& t : tracks_) predict(t, stamp);
+  return prune(stamp);
+}
+
+int TrackBank::prune(StampNs stamp) {
+  const auto before = tracks_.size();
+  const double confirmed_timeout = config_.track_timeout_s;
+  const double tentative_timeout = config_.tentative_timeout_s;
+  tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
+                               [&](const Track& t) {
+                                 const double silent = secondsBetween(t.last_detection_ns, stamp);
+                                 return silent > (t.confirmed ? confirmed_timeout : tentative_timeout);
+                               }),
+                tracks_.end());
+  return static_cast<int>(before - tracks_.size());
+}
+
+}  // namespace swa::agent

@@ -1,0 +1,65 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "swa/agent/agent.h"
+#include "swa/agent/geometry.h"
+
+namespace swa::agent {
+namespace {
+
+TEST(Geometry, NeighbourStraightAheadOfUavHeadingEastIsEast) {
+  // GIVEN a UAV heading east (world x = east, heading 0) and a neighbour 5 m straight ahead in its body frame
+  const Vec2 ahead(5.0, 0.0);
+  // WHEN rotated into the stable frame
+  const Vec2 s = rotation(0.0) * ahead;
+  // THEN it is 5 m east
+  EXPECT_NEAR(s.x(), 5.0, 1e-12);
+  EXPECT_NEAR(s.y(), 0.0, 1e-12);
+}
+
+TEST(Geometry, NeighbourAheadOfUavHeadingNorthIsNorthAndLeftIsWest) {
+  // GIVEN heading pi/2 (body x points north, counter-clockwise from east)
+  const Mat2 R = rotation(M_PI / 2);
+  // THEN ahead maps to north and body-left (+y) to west
+  const Vec2 ahead = R * Vec2(5.0, 0.0);
+  const Vec2 left = R * Vec2(0.0, 3.0);
+  EXPECT_NEAR(ahead.x(), 0.0, 1e-12);
+  EXPECT_NEAR(ahead.y(), 5.0, 1e-12);
+  EXPECT_NEAR(left.x(), -3.0, 1e-12);
+  EXPECT_NEAR(left.y(), 0.0, 1e-12);
+}
+
+TEST(Geometry, AgentRotatesDetectionsByItsImuHeading) {
+  // GIVEN an agent whose IMU reports heading 30 deg, and one identified neighbour 8 m straight ahead
+  Agent agent{AgentConfig{}};
+  const double psi = 30.0 * M_PI / 180.0;
+  agent.onImu({0, 0.0, 0.0, psi});
+  DetectionSet set;
+  set.stamp_ns = 1;
+  set.detections.push_back({7, Vec2(8.0, 0.0), std::nullopt});
+  // WHEN the detection set is processed
+  agent.onDetections(set);
+  // THEN the track sits 8 m along the 30 deg bearing in the stable frame
+  const Track* t = agent.bank().find(7);
+  ASSERT_NE(t, nullptr);
+  EXPECT_NEAR(t->position().x(), 8.0 * std::cos(psi), 1e-9);
+  EXPECT_NEAR(t->position().y(), 8.0 * std::sin(psi), 1e-9);
+}
+
+TEST(Geometry, TiltToAccelerationFollowsDesignConvention) {
+  // GIVEN heading pi/2 and pitch 0.1 rad (body-x acceleration q_c * 0.1 by DESIGN §3.4), no roll
+  AgentConfig cfg;
+  cfg.mode = Mode::kStandalone;
+  Agent agent{cfg};
+  agent.onGnss({0, true, Vec2(0, 0), 0.5});
+  // WHEN many IMU samples arrive (the acceleration state converges to the measurement)
+  for (int k = 1; k <= 300; ++k) agent.onImu({k * 10'000'000LL, 0.0, 0.1, M_PI / 2});
+  // THEN the estimated acceleration points north (+y) with magnitude near q_c * 0.1 = 0.635 m/s^2
+  const Vec2 a = agent.absolute().acceleration();
+  EXPECT_NEAR(a.x(), 0.0, 0.05);
+  EXPECT_NEAR(a.y(), 0.635, 0.1);
+}
+
+}  // namespace
+}  // namespace swa::agent
