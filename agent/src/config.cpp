@@ -1,0 +1,27 @@
+#include "swa/agent/config.h"
+
+namespace swa::agent {
+
+std::string toString(Mode mode) {
+  switch (mode) {
+    case Mode::kSwa:
+      return "swa";
+    case Mode::kStandalone:
+      return "standalone";
+    case Mode::kAnchored:
+      return "anchored";
+  }
+  return "unknown";
+}
+
+std::string toString(CircleFit fit) {
+  switch (fit) {
+    case CircleFit::kFixedRadius:
+      return "fixed_radius";
+    case CircleFit::kAlgebraic:
+      return "algebraic";
+  }
+  return "unknown";
+}
+
+}  // namespace swa::agent

@@ -1,0 +1,552 @@
+// AgentConfig loading, validation, overrides and recording (agent/include/swa/agent/config_io.h).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "swa/agent/config.h"
+#include "swa/agent/config_io.h"
+
+namespace swa::agent {
+namespace {
+
+// Field by field, written out by hand so that a field missing from the parameter table is caught.
+void expectSameConfig(const AgentConfig& a, const AgentConfig& b) {
+  EXPECT_EQ(a.mode, b.mode);
+  EXPECT_EQ(a.surroundings.q_pos_m2, b.surroundings.q_pos_m2);
+  EXPECT_EQ(a.surroundings.q_vel_m2ps2, b.surroundings.q_vel_m2ps2);
+  EXPECT_EQ(a.surroundings.q_acc_m2ps4, b.surroundings.q_acc_m2ps4);
+  EXPECT_EQ(a.surroundings.q_ref_dt_s, b.surroundings.q_ref_dt_s);
+  EXPECT_EQ(a.surroundings.r_det_m2, b.surroundings.r_det_m2);
+  EXPECT_EQ(a.surroundings.init_vel_var_m2ps2, b.surroundings.init_vel_var_m2ps2);
+  EXPECT_EQ(a.surroundings.init_acc_var_m2ps4, b.surroundings.init_acc_var_m2ps4);
+  EXPECT_EQ(a.surroundings.confirm_hits, b.surroundings.confirm_hits);
+  EXPECT_EQ(a.surroundings.track_timeout_s, b.surroundings.track_timeout_s);
+  EXPECT_EQ(a.surroundings.tentative_timeout_s, b.surroundings.tentative_timeout_s);
+  EXPECT_EQ(a.surroundings.gate_probability, b.surroundings.gate_probability);
+  EXPECT_EQ(a.formation.radius_m, b.formation.radius_m);
+  EXPECT_EQ(a.formation.k, b.formation.k);
+  EXPECT_EQ(a.formation.sensing_range_m, b.formation.sensing_range_m);
+  EXPECT_EQ(a.formation.circle_fit, b.formation.circle_fit);
+  EXPECT_EQ(a.focal.tau_s, b.focal.tau_s);
+  EXPECT_EQ(a.focal.q_pos_m2, b.focal.q_pos_m2);
+  EXPECT_EQ(a.focal.q_vel_m2ps2, b.focal.q_vel_m2ps2);
+  EXPECT_EQ(a.focal.q_acc_m2ps4, b.focal.q_acc_m2ps4);
+  EXPECT_EQ(a.focal.q_scale, b.focal.q_scale);
+  EXPECT_EQ(a.focal.q_ref_dt_s, b.focal.q_ref_dt_s);
+  EXPECT_EQ(a.focal.r_pos_m2, b.focal.r_pos_m2);
+  EXPECT_EQ(a.focal.r_acc_m2ps4, b.focal.r_acc_m2ps4);
+  EXPECT_EQ(a.focal.q_c_mps2, b.focal.q_c_mps2);
+  EXPECT_EQ(a.focal.frame_timeout_s, b.focal.frame_timeout_s);
+  EXPECT_EQ(a.control.k_p, b.control.k_p);
+  EXPECT_EQ(a.control.k_v, b.control.k_v);
+  EXPECT_EQ(a.control.v_max_mps, b.control.v_max_mps);
+  EXPECT_EQ(a.anchor.gain, b.anchor.gain);
+  EXPECT_EQ(a.anchor.gnss_min_std_m, b.anchor.gnss_min_std_m);
+  EXPECT_EQ(a.limits.max_detections, b.limits.max_detections);
+  EXPECT_EQ(a.limits.max_target_id, b.limits.max_target_id);
+  EXPECT_EQ(a.limits.max_tilt_rad, b.limits.max_tilt_rad);
+  EXPECT_EQ(a.limits.max_abs_position_m, b.limits.max_abs_position_m);
+}
+
+// Every field different from its default and valid; awkward binary fractions test exact round trips.
+AgentConfig everyFieldChanged() {
+  AgentConfig c;
+  c.mode = Mode::kAnchored;
+  c.surroundings.q_pos_m2 = 0.1 + 0.2;
+  c.surroundings.q_vel_m2ps2 = 1.0 / 3.0;
+  c.surroundings.q_acc_m2ps4 = 2e-7;
+  c.surroundings.q_ref_dt_s = 0.02;
+  c.surroundings.r_det_m2 = 0.05;
+  c.surroundings.init_vel_var_m2ps2 = 2.5;
+  c.surroundings.init_acc_var_m2ps4 = 0.75;
+  c.surroundings.confirm_hits = 5;
+  c.surroundings.track_timeout_s = 1.5;
+  c.surroundings.tentative_timeout_s = 0.4;
+  c.surroundings.gate_probability = 0.999;
+  c.formation.radius_m = 12.345678901234567;
+  c.formation.k = 4;
+  c.formation.sensing_range_m = 55.5;
+  c.formation.circle_fit = CircleFit::kAlgebraic;
+  c.focal.tau_s = 3.1;
+  c.focal.q_pos_m2 = 0.06;
+  c.focal.q_vel_m2ps2 = 0.7;
+  c.focal.q_acc_m2ps4 = 6.0;
+  c.focal.q_scale = 1.0;
+  c.focal.q_ref_dt_s = 0.005;
+  c.focal.r_pos_m2 = 0.03;
+  c.focal.r_acc_m2ps4 = 1.5;
+  c.focal.q_c_mps2 = 9.81;
+  c.focal.frame_timeout_s = 3.0;
+  c.control.k_p = 0.7;
+  c.control.k_v = 0.9;
+  c.control.v_max_mps = 3.0;
+  c.anchor.gain = 0.5;
+  c.anchor.gnss_min_std_m = 0.1;
+  c.limits.max_detections = 128;
+  c.limits.max_target_id = 5000;
+  c.limits.max_tilt_rad = 0.6;
+  c.limits.max_abs_position_m = 2.5e5;
+  return c;
+}
+
+// The ConfigError thrown by `action`; fails the test if none is thrown.
+ConfigError expectConfigError(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const ConfigError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "expected a ConfigError";
+  return ConfigError("<none>", {});
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// The one problem that mentions `key`; fails the test unless exactly one does.
+std::string problemAbout(const ConfigError& error, const std::string& key) {
+  std::vector<std::string> matches;
+  for (const std::string& p : error.problems()) {
+    if (contains(p, key)) matches.push_back(p);
+  }
+  EXPECT_EQ(matches.size(), 1u) << "problems mentioning '" << key << "':\n" << error.what();
+  return matches.empty() ? std::string() : matches.front();
+}
+
+// A file in the temp directory, removed at the end of the test.
+class TempFile {
+ public:
+  explicit TempFile(const std::string& content) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = (std::filesystem::temp_directory_path() /
+             ("swa_test_config_" + std::to_string(::getpid()) + "_" + info->name() + ".yaml"))
+                .string();
+    std::ofstream(path_) << content;
+  }
+  ~TempFile() { std::filesystem::remove(path_); }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// deploy/config/agent.yaml, found from this file's location (tests/unit/test_config.cpp).
+std::string exampleConfigPath() {
+  return (std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "deploy" / "config" / "agent.yaml")
+      .lexically_normal()
+      .string();
+}
+
+// "section.key" for every key line of a YAML text in the layout toYaml writes (two-space nesting).
+std::set<std::string> keysOf(const std::string& yaml) {
+  std::set<std::string> keys;
+  std::istringstream lines(yaml);
+  std::string line;
+  std::string section;
+  while (std::getline(lines, line)) {
+    line = line.substr(0, line.find('#'));
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const bool nested = line.rfind("  ", 0) == 0;
+    const std::string name = line.substr(nested ? 2 : 0, colon - (nested ? 2 : 0));
+    const bool has_value = line.find_first_not_of(' ', colon + 1) != std::string::npos;
+    if (nested) {
+      keys.insert(section + "." + name);
+    } else if (has_value) {
+      keys.insert(name);
+    } else {
+      section = name;
+    }
+  }
+  return keys;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+
+TEST(AgentConfigDefaults, GivenADefaultConfig_ThenItHoldsTableI) {
+  // GIVEN a default-constructed configuration
+  const AgentConfig c;
+  // THEN the values are the paper's Table I (and DESIGN.md §3 where it deliberately deviates)
+  EXPECT_EQ(c.mode, Mode::kSwa);
+  EXPECT_DOUBLE_EQ(c.formation.radius_m, 10.0);
+  EXPECT_EQ(c.formation.k, 3);
+  EXPECT_EQ(c.formation.circle_fit, CircleFit::kFixedRadius);
+  EXPECT_DOUBLE_EQ(c.focal.tau_s, 2.8);
+  EXPECT_DOUBLE_EQ(c.control.k_p, 0.5);
+  EXPECT_DOUBLE_EQ(c.control.k_v, 0.63);
+  EXPECT_DOUBLE_EQ(c.surroundings.q_pos_m2, 1e-3);
+  EXPECT_DOUBLE_EQ(c.surroundings.q_vel_m2ps2, 1e-2);
+  EXPECT_DOUBLE_EQ(c.surroundings.q_acc_m2ps4, 1e-1);
+  EXPECT_DOUBLE_EQ(c.surroundings.r_det_m2, 0.1);
+  EXPECT_DOUBLE_EQ(c.focal.q_pos_m2, 5e-2);
+  EXPECT_DOUBLE_EQ(c.focal.q_vel_m2ps2, 5e-1);
+  EXPECT_DOUBLE_EQ(c.focal.q_acc_m2ps4, 5.0);
+  EXPECT_DOUBLE_EQ(c.focal.q_scale, 0.3);
+  EXPECT_DOUBLE_EQ(c.focal.r_pos_m2, 0.02);
+  EXPECT_DOUBLE_EQ(c.focal.r_acc_m2ps4, 2.25);
+  EXPECT_DOUBLE_EQ(c.focal.q_c_mps2, 6.35);
+  // AND they satisfy the declared bounds and cross-field constraints
+  EXPECT_NO_THROW(validateAgentConfig(c));
+}
+
+TEST(AgentConfigDefaults, GivenTheEnums_ThenToStringGivesTheYamlSpelling) {
+  EXPECT_EQ(toString(Mode::kSwa), "swa");
+  EXPECT_EQ(toString(Mode::kStandalone), "standalone");
+  EXPECT_EQ(toString(Mode::kAnchored), "anchored");
+  EXPECT_EQ(toString(CircleFit::kFixedRadius), "fixed_radius");
+  EXPECT_EQ(toString(CircleFit::kAlgebraic), "algebraic");
+}
+
+TEST(AgentConfigParse, GivenAnEmptyOrCommentOnlyText_WhenParsed_ThenAllDefaults) {
+  expectSameConfig(parseAgentConfig(""), AgentConfig{});
+  expectSameConfig(parseAgentConfig("# nothing set\n\n"), AgentConfig{});
+  // an empty section keeps its defaults too
+  expectSameConfig(parseAgentConfig("formation:\n"), AgentConfig{});
+}
+
+TEST(AgentConfigParse, GivenAPartialFile_WhenLoaded_ThenOnlyItsKeysChange) {
+  // GIVEN a file that sets three keys in two sections and the mode
+  const TempFile file(
+      "mode: standalone\n"
+      "formation:\n"
+      "  radius_m: 12.5\n"
+      "  k: 4\n"
+      "control:\n"
+      "  k_p: 0.8\n");
+  // WHEN it is loaded
+  const AgentConfig loaded = loadAgentConfig(file.path());
+  // THEN those keys have the file's values
+  EXPECT_EQ(loaded.mode, Mode::kStandalone);
+  EXPECT_EQ(loaded.formation.radius_m, 12.5);
+  EXPECT_EQ(loaded.formation.k, 4);
+  EXPECT_EQ(loaded.control.k_p, 0.8);
+  // AND everything else is the default
+  AgentConfig expected;
+  expected.mode = Mode::kStandalone;
+  expected.formation.radius_m = 12.5;
+  expected.formation.k = 4;
+  expected.control.k_p = 0.8;
+  expectSameConfig(loaded, expected);
+}
+
+TEST(AgentConfigParse, GivenNumbersInYamlSpellings_WhenParsed_ThenTheyAreRead) {
+  const AgentConfig c = parseAgentConfig(
+      "surroundings: {q_pos_m2: 2e-3, q_vel_m2ps2: +0.5, confirm_hits: 4.0}\n"
+      "limits: {max_detections: 1024, max_target_id: 1e3}\n");
+  EXPECT_EQ(c.surroundings.q_pos_m2, 2e-3);
+  EXPECT_EQ(c.surroundings.q_vel_m2ps2, 0.5);
+  EXPECT_EQ(c.surroundings.confirm_hits, 4);
+  EXPECT_EQ(c.limits.max_detections, 1024u);
+  EXPECT_EQ(c.limits.max_target_id, 1000);
+}
+
+TEST(AgentConfigParse, GivenAFileWithFiveDistinctProblems_WhenLoaded_ThenOneErrorListsAllFive) {
+  // GIVEN a file with a bad enum, a wrong type, an unknown key, an out-of-range value and a NaN
+  const TempFile file(
+      "mode: swarm\n"
+      "formation:\n"
+      "  radius_m: ten\n"
+      "  raduis_m: 5\n"
+      "control:\n"
+      "  k_p: -1\n"
+      "focal:\n"
+      "  tau_s: .nan\n");
+  // WHEN it is loaded
+  const ConfigError error = expectConfigError([&] { loadAgentConfig(file.path()); });
+  // THEN exactly five problems are reported at once, each naming its key
+  ASSERT_EQ(error.problems().size(), 5u) << error.what();
+  EXPECT_EQ(error.source(), file.path());
+
+  const std::string mode = problemAbout(error, "mode =");
+  EXPECT_TRUE(contains(mode, "'swarm'")) << mode;
+  EXPECT_TRUE(contains(mode, "swa, standalone, anchored")) << mode;
+  EXPECT_TRUE(contains(mode, "line 1")) << mode;
+
+  const std::string radius = problemAbout(error, "formation.radius_m =");
+  EXPECT_TRUE(contains(radius, "'ten' is not a number")) << radius;
+  EXPECT_TRUE(contains(radius, "line 3")) << radius;
+
+  const std::string unknown = problemAbout(error, "formation.raduis_m");
+  EXPECT_TRUE(contains(unknown, "unknown key")) << unknown;
+  EXPECT_TRUE(contains(unknown, "did you mean 'formation.radius_m'?")) << unknown;
+
+  const std::string k_p = problemAbout(error, "control.k_p");
+  EXPECT_TRUE(contains(k_p, "control.k_p = -1 is out of range [0, 20] 1/s")) << k_p;
+  EXPECT_TRUE(contains(k_p, "line 6")) << k_p;
+
+  const std::string tau = problemAbout(error, "focal.tau_s");
+  EXPECT_TRUE(contains(tau, "focal.tau_s = .nan is not a finite number")) << tau;
+
+  // AND what() has one line per problem, each prefixed by the file path
+  std::istringstream lines(error.what());
+  std::string line;
+  std::size_t count = 0;
+  while (std::getline(lines, line)) {
+    EXPECT_EQ(line.rfind(file.path() + ": ", 0), 0u) << line;
+    ++count;
+  }
+  EXPECT_EQ(count, 5u);
+}
+
+TEST(AgentConfigParse, GivenValuesOfTheWrongShape_WhenParsed_ThenEachIsATypeError) {
+  const ConfigError error = expectConfigError([] {
+    parseAgentConfig(
+        "formation:\n"
+        "  radius_m: {value: 10}\n"   // a map where a number is expected
+        "  k: 2.5\n"                  // an integer key given a non-integer
+        "  sensing_range_m: \"40\"\n" // a quoted string is not a number
+        "  circle_fit: [algebraic]\n" // a sequence where a choice is expected
+        "control: 3\n"                // a scalar where a section map is expected
+        "focal:\n"
+        "  tau_s: -.inf\n"            // infinity
+        "  q_scale:\n");              // no value at all
+  });
+  ASSERT_EQ(error.problems().size(), 7u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "formation.radius_m"), "got a map"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.k "), "formation.k = 2.5 is not an integer"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.sensing_range_m"), "is a string"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.circle_fit"), "got a sequence"));
+  EXPECT_TRUE(contains(problemAbout(error, "'control'"), "must be a map"));
+  EXPECT_TRUE(contains(problemAbout(error, "focal.tau_s"), "-.inf is not a finite number"));
+  EXPECT_TRUE(contains(problemAbout(error, "focal.q_scale"), "has no value"));
+}
+
+TEST(AgentConfigParse, GivenOpenAndIntegerBounds_WhenViolated_ThenTheBoundAndUnitAreNamed) {
+  const ConfigError error = expectConfigError([] {
+    parseAgentConfig(
+        "formation: {radius_m: 0, k: 17}\n"
+        "surroundings: {gate_probability: 1, confirm_hits: 0}\n"
+        "limits: {max_detections: 2000}\n");
+  });
+  ASSERT_EQ(error.problems().size(), 5u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "formation.radius_m"), "= 0 is out of range (0, 1000] m"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.k "), "= 17 is out of range [1, 16]"));
+  EXPECT_TRUE(contains(problemAbout(error, "surroundings.gate_probability"), "= 1 is out of range (0, 1)"));
+  EXPECT_TRUE(contains(problemAbout(error, "surroundings.confirm_hits"), "= 0 is out of range [1, 20]"));
+  EXPECT_TRUE(contains(problemAbout(error, "limits.max_detections"), "= 2000 is out of range [1, 1024]"));
+}
+
+TEST(AgentConfigParse, GivenAnUnknownKeyNearAKnownOne_ThenTheHintNamesIt) {
+  // typo in a section name
+  ConfigError error = expectConfigError([] { parseAgentConfig("formaton:\n  radius_m: 5\n"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "unknown key 'formaton' (did you mean 'formation'?)"));
+  // right name in the wrong section
+  error = expectConfigError([] { parseAgentConfig("focal:\n  radius_m: 5\n"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "did you mean 'formation.radius_m'?"));
+  // nothing close: no hint
+  error = expectConfigError([] { parseAgentConfig("control:\n  banana: 1\n"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "unknown key 'control.banana'"));
+  EXPECT_FALSE(contains(error.problems()[0], "did you mean"));
+}
+
+TEST(AgentConfigParse, GivenDuplicateOrDottedKeys_ThenTheyAreRejected) {
+  const ConfigError error = expectConfigError([] {
+    parseAgentConfig(
+        "control:\n  k_p: 0.5\n  k_p: 0.6\n"
+        "formation.radius_m: 12\n");
+  });
+  ASSERT_EQ(error.problems().size(), 2u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "control.k_p"), "duplicate key"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.radius_m"), "must be written nested"));
+}
+
+TEST(AgentConfigParse, GivenViolatedCrossFieldConstraints_ThenTheyAreReportedWithTheFieldErrors) {
+  // GIVEN a tentative timeout longer than the confirmed-track timeout, a sensing range inside the formation
+  // radius, and an unrelated out-of-range value
+  const ConfigError error = expectConfigError([] {
+    parseAgentConfig(
+        "surroundings: {track_timeout_s: 0.5, tentative_timeout_s: 0.8}\n"
+        "formation: {radius_m: 50}\n"
+        "control: {v_max_mps: 0}\n");
+  });
+  // THEN all three are in the same error
+  ASSERT_EQ(error.problems().size(), 3u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "surroundings.tentative_timeout_s"),
+                       "surroundings.tentative_timeout_s = 0.8 must be <= surroundings.track_timeout_s = 0.5"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.sensing_range_m"),
+                       "formation.radius_m = 50 must be < formation.sensing_range_m = 40"));
+  EXPECT_TRUE(contains(problemAbout(error, "control.v_max_mps"), "(0, 50] m/s"));
+}
+
+TEST(AgentConfigParse, GivenARelationWhoseFieldIsInvalid_ThenOnlyTheFieldErrorIsReported) {
+  const ConfigError error =
+      expectConfigError([] { parseAgentConfig("surroundings: {track_timeout_s: -1, tentative_timeout_s: 0.8}\n"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "surroundings.track_timeout_s = -1 is out of range (0, 60] s"));
+}
+
+TEST(AgentConfigParse, GivenInvalidYaml_ThenTheErrorGivesLineAndColumn) {
+  const ConfigError error = expectConfigError([] { parseAgentConfig("formation:\n  radius_m: [10\n", "bad.yaml"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "invalid YAML at line ")) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], ", column ")) << error.what();
+  EXPECT_EQ(std::string(error.what()).rfind("bad.yaml: ", 0), 0u) << error.what();
+}
+
+TEST(AgentConfigParse, GivenATopLevelThatIsNotAMap_ThenItIsRejected) {
+  ConfigError error = expectConfigError([] { parseAgentConfig("just a string\n"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "top level must be a map")) << error.what();
+  error = expectConfigError([] { parseAgentConfig("- formation\n- control\n"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "got a sequence")) << error.what();
+}
+
+TEST(AgentConfigLoad, GivenAMissingFile_ThenTheErrorNamesThePath) {
+  const std::string path = "/nonexistent/swa/agent.yaml";
+  const ConfigError error = expectConfigError([&] { loadAgentConfig(path); });
+  ASSERT_EQ(error.problems().size(), 1u);
+  EXPECT_EQ(error.source(), path);
+  EXPECT_EQ(std::string(error.what()), path + ": configuration file does not exist");
+}
+
+TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEveryKey) {
+  // GIVEN deploy/config/agent.yaml
+  const std::string path = exampleConfigPath();
+  ASSERT_TRUE(std::filesystem::exists(path)) << path;
+  // WHEN it is loaded
+  const AgentConfig loaded = loadAgentConfig(path);
+  // THEN it is exactly the default configuration
+  expectSameConfig(loaded, AgentConfig{});
+  EXPECT_EQ(toYaml(loaded), toYaml(AgentConfig{}));
+  // AND it spells out every key (so it documents all of them), none missing and none extra
+  std::ifstream file(path);
+  const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
+  EXPECT_EQ(keysOf(text).size(), 35u);
+}
+
+TEST(AgentConfigOverride, GivenSetArguments_WhenApplied_ThenTheyOverrideTheFileValues) {
+  // GIVEN a config loaded from text
+  const AgentConfig base = parseAgentConfig("formation: {radius_m: 12}\n");
+  // WHEN --set arguments are applied
+  const AgentConfig c =
+      applyOverrides(base, {"formation.k=2", "formation.radius_m=8.5", "mode=anchored", "formation.circle_fit=algebraic",
+                            "limits.max_detections=32"});
+  // THEN they win, and the rest is untouched
+  AgentConfig expected;
+  expected.formation.k = 2;
+  expected.formation.radius_m = 8.5;
+  expected.mode = Mode::kAnchored;
+  expected.formation.circle_fit = CircleFit::kAlgebraic;
+  expected.limits.max_detections = 32;
+  expectSameConfig(c, expected);
+}
+
+TEST(AgentConfigOverride, GivenOverridesThatOnlyTogetherSatisfyARelation_ThenTheyAreAccepted) {
+  // raising the tentative timeout above the default track timeout is fine once the latter is raised too
+  const AgentConfig c = applyOverrides(AgentConfig{},
+                                       {"surroundings.tentative_timeout_s=2", "surroundings.track_timeout_s=3"});
+  EXPECT_EQ(c.surroundings.tentative_timeout_s, 2.0);
+  EXPECT_EQ(c.surroundings.track_timeout_s, 3.0);
+}
+
+TEST(AgentConfigOverride, GivenBadSetArguments_ThenAllAreReportedTogether) {
+  // GIVEN one malformed entry, one unknown key, one out-of-range value, one wrong type, one bad enum
+  const std::vector<std::string> args = {"formationk2", "formation.kk=2", "control.k_p=-1", "formation.k=two",
+                                         "mode=swarm", "focal.tau_s=3.0"};
+  // WHEN they are applied
+  const ConfigError error = expectConfigError([&] { applyOverrides(AgentConfig{}, args); });
+  // THEN one error lists the five problems, prefixed by --set
+  ASSERT_EQ(error.problems().size(), 5u) << error.what();
+  EXPECT_EQ(error.source(), "--set");
+  EXPECT_TRUE(contains(problemAbout(error, "formationk2"), "malformed override 'formationk2'; expected key=value"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.kk"), "did you mean 'formation.k'?"));
+  EXPECT_TRUE(contains(problemAbout(error, "control.k_p"), "control.k_p = -1 is out of range [0, 20] 1/s"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.k ="), "'two' is not a number"));
+  EXPECT_TRUE(contains(problemAbout(error, "mode"), "expected one of: swa, standalone, anchored"));
+  EXPECT_EQ(std::string(error.what()).rfind("--set: ", 0), 0u);
+}
+
+TEST(AgentConfigOverride, GivenASingleBadOverride_ThenTheConfigIsUnchanged) {
+  AgentConfig c;
+  applyOverride(c, "focal.q_scale", "1");
+  EXPECT_EQ(c.focal.q_scale, 1.0);
+
+  const ConfigError error = expectConfigError([&] { applyOverride(c, "formation.sensing_range_m", "5"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "must be < formation.sensing_range_m = 5"));
+  EXPECT_EQ(c.formation.sensing_range_m, 40.0);
+
+  const ConfigError section = expectConfigError([&] { applyOverride(c, "formation", "3"); });
+  ASSERT_EQ(section.problems().size(), 1u);
+  EXPECT_TRUE(contains(section.problems()[0], "'formation' is a group of parameters"));
+}
+
+TEST(AgentConfigYaml, GivenAConfigWithEveryFieldChanged_WhenDumpedAndParsed_ThenItIsIdentical) {
+  // GIVEN a valid configuration that differs from the defaults in every field
+  const AgentConfig original = everyFieldChanged();
+  ASSERT_NO_THROW(validateAgentConfig(original));
+  // WHEN it is written with toYaml and read back
+  const std::string yaml = toYaml(original);
+  const AgentConfig reread = parseAgentConfig(yaml, "toYaml");
+  // THEN every field is bit-identical and the dump is stable
+  expectSameConfig(reread, original);
+  EXPECT_EQ(toYaml(reread), yaml);
+  EXPECT_NE(yaml, toYaml(AgentConfig{}));
+  // AND the dump is readable: nested keys, enum spellings, reals that YAML 1.1 readers see as floats
+  EXPECT_TRUE(contains(yaml, "mode: anchored")) << yaml;
+  EXPECT_TRUE(contains(yaml, "\nformation:\n  radius_m: 12.3456789012345")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  circle_fit: algebraic")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  q_acc_m2ps4: 2.0e-07")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  max_detections: 128")) << yaml;
+}
+
+TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
+  const std::string yaml = toYaml(AgentConfig{});
+  EXPECT_EQ(keysOf(yaml).size(), 35u);
+  EXPECT_TRUE(contains(yaml, "k_p: 0.5")) << yaml;
+  EXPECT_TRUE(contains(yaml, "# 1/s")) << yaml;
+  expectSameConfig(parseAgentConfig(yaml), AgentConfig{});
+}
+
+TEST(AgentConfigValidate, GivenAnInvalidConfigBuiltInCode_ThenValidationListsEveryViolation) {
+  AgentConfig c;
+  c.formation.k = 0;
+  c.control.k_v = std::nan("");
+  c.limits.max_detections = 0;
+  const ConfigError error = expectConfigError([&] { validateAgentConfig(c, "scenario"); });
+  ASSERT_EQ(error.problems().size(), 3u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "formation.k"), "= 0 is out of range [1, 16]"));
+  EXPECT_TRUE(contains(problemAbout(error, "control.k_v"), "is not a finite number"));
+  EXPECT_TRUE(contains(problemAbout(error, "limits.max_detections"), "= 0 is out of range [1, 1024]"));
+}
+
+TEST(AgentConfigHelp, GivenTheParameterTable_ThenTheHelpListsEveryKeyWithUnitDefaultAndRange) {
+  const std::string help = describeParameters();
+  for (const std::string& key : keysOf(toYaml(AgentConfig{}))) {
+    EXPECT_TRUE(contains(help, key + " ")) << key;
+  }
+  // one line per parameter: key, type, unit, default, range, meaning
+  std::istringstream lines(help);
+  std::string line;
+  std::string radius_line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("formation.radius_m ", 0) == 0) radius_line = line;
+  }
+  ASSERT_FALSE(radius_line.empty()) << help;
+  std::istringstream fields(radius_line);
+  std::string key, type, unit, default_value, range_lo, range_hi;
+  fields >> key >> type >> unit >> default_value >> range_lo >> range_hi;
+  EXPECT_EQ(type, "real");
+  EXPECT_EQ(unit, "m");
+  EXPECT_EQ(default_value, "10");
+  EXPECT_EQ(range_lo + " " + range_hi, "(0, 1000]");
+  EXPECT_TRUE(contains(help, "fixed_radius|algebraic"));
+}
+
+}  // namespace
+}  // namespace swa::agent
