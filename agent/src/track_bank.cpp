@@ -70,51 +70,64 @@ int TrackBank::startTrack(const StableDetection& det, StampNs stamp, bool anonym
 }
 
 void TrackBank::associateAnonymous(const std::vector<StableDetection>& dets, StampNs stamp, BankUpdateStats& stats) {
-  anon_tracks_.clear();
-  anon_dets_.clear();
-  for (std::size_t i = 0; i < tracks_.size(); ++i)
-    if (tracks_[i].anonymous) anon_tracks_.push_back(static_cast<int>(i));
+  free_dets_.clear();
   for (std::size_t j = 0; j < dets.size(); ++j)
-    if (dets[j].target_id == kAnonymousId) anon_dets_.push_back(static_cast<int>(j));
-  if (anon_dets_.empty()) return;
+    if (dets[j].target_id == kAnonymousId) free_dets_.push_back(static_cast<int>(j));
+  if (free_dets_.empty()) return;
 
+  // Confirmed tracks choose first, tentative ones get what is left: otherwise a fresh clutter track, whose broad
+  // covariance makes every detection look close in Mahalanobis terms, steals a real neighbour's detections.
+  for (const bool confirmed_pass : {true, false}) {
+    anon_tracks_.clear();
+    for (std::size_t i = 0; i < tracks_.size(); ++i)
+      if (tracks_[i].anonymous && tracks_[i].confirmed == confirmed_pass) anon_tracks_.push_back(static_cast<int>(i));
+    assignPass(dets, stamp, stats);
+  }
+  for (const int j : free_dets_) {
+    const int id = startTrack(dets[j], stamp, true);
+    if (id < 0) {
+      ++stats.dropped_capacity;
+    } else {
+      ++stats.created;
+      last_track_of_detection_[j] = id;
+    }
+  }
+}
+
+void TrackBank::assignPass(const std::vector<StableDetection>& dets, StampNs stamp, BankUpdateStats& stats) {
   const int rows = static_cast<int>(anon_tracks_.size());
-  const int cols = static_cast<int>(anon_dets_.size());
+  const int cols = static_cast<int>(free_dets_.size());
+  if (rows == 0 || cols == 0) return;
   cost_.assign(static_cast<std::size_t>(rows) * cols, kForbiddenCost);
   const auto H = positionObservation();
   for (int r = 0; r < rows; ++r) {
     const Track& t = tracks_[anon_tracks_[r]];
     for (int c = 0; c < cols; ++c) {
-      const StableDetection& d = dets[anon_dets_[c]];
+      const StableDetection& d = dets[free_dets_[c]];
       const Innovation<2> in = Pva::innovation<2>(t.estimate, H, d.position_m, d.covariance_m2);
-      if (in.valid && in.mahalanobis2 <= gate_) cost_[static_cast<std::size_t>(r) * cols + c] = in.mahalanobis2;
+      // Gate on the Mahalanobis distance; rank by the negative log-likelihood, which adds ln|S| so a broad track
+      // does not win over a tight one just by being uncertain.
+      if (in.valid && in.mahalanobis2 <= gate_) {
+        cost_[static_cast<std::size_t>(r) * cols + c] = in.mahalanobis2 + std::log(in.S.determinant());
+      }
     }
   }
   const std::vector<int>& assigned = assignment_.solve(cost_, rows, cols);
-
-  std::vector<char>& taken = scratch_taken_;
-  taken.assign(static_cast<std::size_t>(cols), 0);
+  taken_.assign(static_cast<std::size_t>(cols), 0);
   for (int r = 0; r < rows; ++r) {
     const int c = assigned[r];
     if (c < 0 || cost_[static_cast<std::size_t>(r) * cols + c] >= kForbiddenCost) continue;
     Track& t = tracks_[anon_tracks_[r]];
-    if (correct(t, dets[anon_dets_[c]], stamp)) {
+    if (correct(t, dets[free_dets_[c]], stamp)) {
       ++stats.corrected;
-      last_track_of_detection_[anon_dets_[c]] = t.id;
-      taken[c] = 1;
+      last_track_of_detection_[free_dets_[c]] = t.id;
+      taken_[c] = 1;
     }
   }
-  // Tracks may be appended below: the indices in anon_tracks_ stay valid because push_back never reorders.
-  for (int c = 0; c < cols; ++c) {
-    if (taken[c]) continue;
-    const int id = startTrack(dets[anon_dets_[c]], stamp, true);
-    if (id < 0) {
-      ++stats.dropped_capacity;
-    } else {
-      ++stats.created;
-      last_track_of_detection_[anon_dets_[c]] = id;
-    }
-  }
+  int kept = 0;
+  for (int c = 0; c < cols; ++c)
+    if (!taken_[c]) free_dets_[kept++] = free_dets_[c];
+  free_dets_.resize(kept);
 }
 
 BankUpdateStats TrackBank::update(StampNs stamp, const std::vector<StableDetection>& dets) {

@@ -34,14 +34,15 @@ struct FormationConfig {
 
 struct FocalConfig {
   double tau_s = 2.8;
-  // Q_f per `q_ref_dt_s`. Table I gives diag(5e-2, 5e-1, 5); DESIGN §3 and the ANEES test show that is
-  // conservative, so the default is scaled by `q_scale` (tuned by tests/unit/test_focal_consistency.cpp).
-  double q_pos_m2 = 5e-2;
-  double q_vel_m2ps2 = 5e-1;
-  double q_acc_m2ps4 = 5.0;
-  double q_scale = 0.3;
+  // Q_f per `q_ref_dt_s`, scaled by `q_scale`. Table I gives diag(5e-2, 5e-1, 5) and R_c = 0.02; with those the
+  // filter is badly conservative (velocity ANEES ~0.02 for n_x = 2 in the §IV-C scenario). The defaults are tuned
+  // by the ANEES Monte Carlo in tests/unit/test_focal_consistency.cpp against the simulator model of DESIGN §4.
+  double q_pos_m2 = 1e-3;
+  double q_vel_m2ps2 = 1.7e-4;
+  double q_acc_m2ps4 = 0.1;
+  double q_scale = 1.0;
   double q_ref_dt_s = 0.01;
-  double r_pos_m2 = 0.02;          // R_c
+  double r_pos_m2 = 0.03;          // R_c (Table I: 0.02; the frame fit on bank-smoothed tracks is noisier)
   double r_acc_m2ps4 = 2.25;       // R_a
   double q_c_mps2 = 6.35;          // tilt (rad) -> lateral acceleration
   double frame_timeout_s = 2.0;    // without a frame for this long the agent stops trusting dead reckoning

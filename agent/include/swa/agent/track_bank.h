@@ -67,6 +67,7 @@ class TrackBank {
   bool correct(Track& track, const StableDetection& det, StampNs stamp);
   int startTrack(const StableDetection& det, StampNs stamp, bool anonymous);
   void associateAnonymous(const std::vector<StableDetection>& detections, StampNs stamp, BankUpdateStats& stats);
+  void assignPass(const std::vector<StableDetection>& detections, StampNs stamp, BankUpdateStats& stats);
   int prune(StampNs stamp);
 
   SurroundingsConfig config_;
@@ -77,9 +78,9 @@ class TrackBank {
   int next_anonymous_id_ = kFirstAnonymousTrackId;
   std::vector<int> last_track_of_detection_;
   // Association workspace, reused between updates.
-  std::vector<int> anon_tracks_, anon_dets_;
+  std::vector<int> anon_tracks_, free_dets_;
   std::vector<double> cost_;
-  std::vector<char> scratch_taken_;
+  std::vector<char> taken_;
   Assignment assignment_;
 };
 
