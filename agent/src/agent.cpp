@@ -10,6 +10,8 @@ namespace {
 
 // An anchored UAV adds its absolute hold only while its GNSS is fresh; 1 s is ten missed 10 Hz fixes.
 constexpr double kGnssFreshS = 1.0;
+// A rejected IMU sample is answered with the previous command, but only this many times in a row (0.1 s at 100 Hz).
+constexpr int kMaxHeldCommands = 10;
 
 }  // namespace
 
@@ -46,7 +48,12 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
     accepted = acceptStamp(imu.stamp_ns, last_imu_ns_, seen_imu_);
   }
 
+  if (!accepted && ++consecutive_imu_rejects_ >= kMaxHeldCommands) {
+    // The last command was computed from data that is getting old and nothing usable is arriving: hover.
+    command_ = Vec2::Zero();
+  }
   if (accepted) {
+    consecutive_imu_rejects_ = 0;
     heading_rad_ = imu.heading_rad;
     have_heading_ = true;
     // DESIGN §3.4: pitch gives body-x and roll body-y acceleration, rotated into the stable frame by heading.

@@ -1,6 +1,8 @@
 #include "swa/agent/assignment.h"
 
+#include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace swa::agent {
 
@@ -8,6 +10,10 @@ const std::vector<int>& Assignment::solve(const std::vector<double>& cost, int r
   result_.assign(static_cast<std::size_t>(rows), -1);
   if (rows == 0 || cols == 0) return result_;
 
+  // Non-finite costs would make the potentials NaN and the augmenting search never terminate.
+  for (const double c : cost) {
+    if (!std::isfinite(c)) throw std::invalid_argument("Assignment::solve: non-finite cost");
+  }
   // The potential method below needs rows <= cols; solve the transposed problem otherwise.
   const bool transpose = rows > cols;
   const int n = transpose ? cols : rows;

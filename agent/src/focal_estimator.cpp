@@ -8,6 +8,7 @@ namespace {
 // Priors at initialisation: a UAV that loses GNSS may be moving at cruise speed; tilt tells acceleration within R_a.
 constexpr double kInitVelVar = 1.0;  // m^2/s^2
 constexpr double kInitAccVar = 2.25; // m^2/s^4
+constexpr double kMaxPredictionS = 10.0;
 
 }  // namespace
 
@@ -39,7 +40,14 @@ void FocalEstimator::cacheModel(double dt) {
 
 void FocalEstimator::predictTo(StampNs stamp, const Vec2& u) {
   if (!initialized_ || stamp <= time_ns_) return;
-  cacheModel(secondsBetween(time_ns_, stamp));
+  const double dt = secondsBetween(time_ns_, stamp);
+  if (dt > kMaxPredictionS) {
+    // After a sensor gap this long the estimate means nothing (and the covariance would overflow): start over
+    // from the next reference measurement.
+    initialized_ = false;
+    return;
+  }
+  cacheModel(dt);
   Pva::predict(state_, F_, B_, u, Q_);
   time_ns_ = stamp;
 }

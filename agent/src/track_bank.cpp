@@ -34,15 +34,27 @@ int TrackBank::confirmedCount() const {
 
 int TrackBank::tentativeCount() const { return static_cast<int>(tracks_.size()) - confirmedCount(); }
 
-void TrackBank::predict(Track& track, StampNs stamp) const {
+void TrackBank::predict(Track& track, StampNs stamp) {
   const double dt = secondsBetween(track.time_ns, stamp);
   if (dt <= 0.0) return;
-  Pva::predict(track.estimate, pvaTransition(dt), pvaProcessNoise(noise_, dt));
+  // All tracks usually share one step (the MPS period): build F and Q once per distinct dt.
+  if (dt != cached_dt_) {
+    F_ = pvaTransition(dt);
+    Q_ = pvaProcessNoise(noise_, dt);
+    cached_dt_ = dt;
+  }
+  Pva::predict(track.estimate, F_, Q_);
   track.time_ns = stamp;
 }
 
 bool TrackBank::correct(Track& track, const StableDetection& det, StampNs stamp) {
-  if (!Pva::correct<2>(track.estimate, positionObservation(), det.position_m, det.covariance_m2)) return false;
+  const Innovation<2> in =
+      Pva::innovation<2>(track.estimate, positionObservation(), det.position_m, det.covariance_m2);
+  return correct(track, det, in, stamp);
+}
+
+bool TrackBank::correct(Track& track, const StableDetection& det, const Innovation<2>& in, StampNs stamp) {
+  if (!Pva::correct<2>(track.estimate, positionObservation(), det.covariance_m2, in)) return false;
   track.last_detection_ns = stamp;
   ++track.hits;
   if (track.hits >= config_.confirm_hits) track.confirmed = true;
@@ -108,7 +120,9 @@ void TrackBank::assignPass(const std::vector<StableDetection>& dets, StampNs sta
       // Gate on the Mahalanobis distance; rank by the negative log-likelihood, which adds ln|S| so a broad track
       // does not win over a tight one just by being uncertain.
       if (in.valid && in.mahalanobis2 <= gate_) {
-        cost_[static_cast<std::size_t>(r) * cols + c] = in.mahalanobis2 + std::log(in.S.determinant());
+        const double cost = in.mahalanobis2 + std::log(in.S.determinant());
+        // The assignment's arithmetic must stay finite; a non-finite cost can only come from a broken track.
+        if (std::isfinite(cost)) cost_[static_cast<std::size_t>(r) * cols + c] = cost;
       }
     }
   }
@@ -132,6 +146,9 @@ void TrackBank::assignPass(const std::vector<StableDetection>& dets, StampNs sta
 
 BankUpdateStats TrackBank::update(StampNs stamp, const std::vector<StableDetection>& dets) {
   BankUpdateStats stats;
+  // Prune before predicting: a track silent past its timeout is gone anyway, and predicting it across a long
+  // gap would only overflow its covariance.
+  stats.removed = prune(stamp);
   for (Track& t : tracks_) predict(t, stamp);
   last_track_of_detection_.assign(dets.size(), -1);
 
@@ -163,19 +180,19 @@ BankUpdateStats TrackBank::update(StampNs stamp, const std::vector<StableDetecti
       last_track_of_detection_[j] = fresh.id;
       continue;
     }
-    if (correct(*it, d, stamp)) {
+    if (correct(*it, d, in, stamp)) {
       ++stats.corrected;
       last_track_of_detection_[j] = it->id;
     }
   }
   associateAnonymous(dets, stamp, stats);
-  stats.removed = prune(stamp);
   return stats;
 }
 
 int TrackBank::predictAndPrune(StampNs stamp) {
+  const int removed = prune(stamp);
   for (Track& t : tracks_) predict(t, stamp);
-  return prune(stamp);
+  return removed;
 }
 
 int TrackBank::prune(StampNs stamp) {

@@ -21,7 +21,8 @@ class Agent {
   explicit Agent(const AgentConfig& config);
 
   // Every IMU sample, accepted or not, is answered with a command (the 100 Hz control step). A rejected sample gets
-  // the previous command again: the command is always finite and within saturation.
+  // the previous command again, and from the tenth rejected sample in a row a hover command: the command is always
+  // finite and within saturation.
   VelocityCommand onImu(const ImuSample& imu);
   void onDetections(const DetectionSet& detections);
   void onGnss(const GnssSample& gnss);
@@ -64,6 +65,7 @@ class Agent {
   bool gnss_valid_ = false;
 
   Vec2 command_ = Vec2::Zero();
+  int consecutive_imu_rejects_ = 0;
   std::uint64_t seq_ = 0;
   std::vector<StableDetection> stable_;  // reused conversion buffer
 };

@@ -19,11 +19,33 @@ struct StateCov {
 
 template <int NZ>
 struct Innovation {
-  Eigen::Matrix<double, NZ, 1> y;      // z - Hx
-  Eigen::Matrix<double, NZ, NZ> S;     // HPH' + R
-  double mahalanobis2 = 0.0;           // y' S^-1 y
-  bool valid = false;                  // S positive definite
+  Eigen::Matrix<double, NZ, 1> y;       // z - Hx
+  Eigen::Matrix<double, NZ, NZ> S;      // HPH' + R
+  Eigen::Matrix<double, NZ, NZ> S_inv;  // valid only when `valid`
+  double mahalanobis2 = 0.0;            // y' S^-1 y
+  bool valid = false;                   // S positive definite
 };
+
+// Inverse of a symmetric positive-definite matrix; false when it is not positive definite. Measurements here are 1-
+// or 2-D, where the closed form is exact and several times cheaper than a factorisation.
+template <int N>
+bool invertSpd(const Eigen::Matrix<double, N, N>& S, Eigen::Matrix<double, N, N>& S_inv) {
+  if constexpr (N == 1) {
+    if (!(S(0, 0) > 0.0)) return false;
+    S_inv(0, 0) = 1.0 / S(0, 0);
+    return true;
+  } else if constexpr (N == 2) {
+    const double det = S(0, 0) * S(1, 1) - S(0, 1) * S(1, 0);
+    if (!(S(0, 0) > 0.0) || !(det > 0.0)) return false;
+    S_inv << S(1, 1) / det, -S(0, 1) / det, -S(1, 0) / det, S(0, 0) / det;
+    return true;
+  } else {
+    const Eigen::LDLT<Eigen::Matrix<double, N, N>> ldlt(S);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().array() > 0.0).all()) return false;
+    S_inv = ldlt.solve(Eigen::Matrix<double, N, N>::Identity());
+    return true;
+  }
+}
 
 template <int NX, int NU = 1>
 struct Lkf {
@@ -34,14 +56,12 @@ struct Lkf {
 
   static void predict(StateCov<NX>& s, const Mat& F, const Mat& Q) {
     s.x = F * s.x;
-    s.P = F * s.P * F.transpose() + Q;
-    symmetrise(s.P);
+    propagateCovariance(s.P, F, Q);
   }
 
   static void predict(StateCov<NX>& s, const Mat& F, const InputMat& B, const Input& u, const Mat& Q) {
     s.x = F * s.x + B * u;
-    s.P = F * s.P * F.transpose() + Q;
-    symmetrise(s.P);
+    propagateCovariance(s.P, F, Q);
   }
 
   template <int NZ>
@@ -50,11 +70,32 @@ struct Lkf {
                                    const Eigen::Matrix<double, NZ, NZ>& R) {
     Innovation<NZ> in;
     in.y = z - H * s.x;
-    in.S = H * s.P * H.transpose() + R;
-    const Eigen::LDLT<Eigen::Matrix<double, NZ, NZ>> ldlt(in.S);
-    in.valid = ldlt.info() == Eigen::Success && ldlt.isPositive() && (ldlt.vectorD().array() > 0.0).all();
-    in.mahalanobis2 = in.valid ? in.y.dot(ldlt.solve(in.y)) : 0.0;
+    in.S.noalias() = H * s.P * H.transpose();
+    in.S += R;
+    in.valid = invertSpd<NZ>(in.S, in.S_inv);
+    in.mahalanobis2 = in.valid ? in.y.dot(in.S_inv * in.y) : 0.0;
     return in;
+  }
+
+  // Applies a correction whose innovation was computed (and possibly gated) by the caller.
+  // Joseph form, expanded so it costs O(n^2 m) instead of O(n^3): with A = (I - KH)P,
+  // (I - KH) P (I - KH)' + K R K' = A - (A H') K' + K R K'.
+  template <int NZ>
+  static bool correct(StateCov<NX>& s, const Eigen::Matrix<double, NZ, NX>& H, const Eigen::Matrix<double, NZ, NZ>& R,
+                      const Innovation<NZ>& in) {
+    if (!in.valid) return false;
+    const Eigen::Matrix<double, NZ, NX> HP = H * s.P;
+    // K = P H' S^-1 = (S^-1 H P)' because S and P are symmetric.
+    const Eigen::Matrix<double, NX, NZ> K = (in.S_inv * HP).transpose();
+    s.x.noalias() += K * in.y;
+    Mat A = s.P;
+    A.noalias() -= K * HP;
+    const Eigen::Matrix<double, NX, NZ> AHt = A * H.transpose();
+    s.P = A;
+    s.P.noalias() -= AHt * K.transpose();
+    s.P.noalias() += K * R * K.transpose();
+    symmetrise(s.P);
+    return true;
   }
 
   // Returns false (and leaves the state untouched) when the innovation covariance is not positive definite.
@@ -62,29 +103,21 @@ struct Lkf {
   static bool correct(StateCov<NX>& s, const Eigen::Matrix<double, NZ, NX>& H,
                       const Eigen::Matrix<double, NZ, 1>& z, const Eigen::Matrix<double, NZ, NZ>& R,
                       Innovation<NZ>* out = nullptr) {
-    using HMat = Eigen::Matrix<double, NZ, NX>;
-    const HMat HP = H * s.P;
-    const Eigen::Matrix<double, NZ, NZ> S = HP * H.transpose() + R;
-    const Eigen::LDLT<Eigen::Matrix<double, NZ, NZ>> ldlt(S);
-    const bool ok = ldlt.info() == Eigen::Success && ldlt.isPositive() && (ldlt.vectorD().array() > 0.0).all();
-    const Eigen::Matrix<double, NZ, 1> y = z - H * s.x;
-    if (out != nullptr) {
-      out->y = y;
-      out->S = S;
-      out->valid = ok;
-      out->mahalanobis2 = ok ? y.dot(ldlt.solve(y)) : 0.0;
-    }
-    if (!ok) return false;
-    // K = P H' S^-1, computed as (S^-1 H P)' because S and P are symmetric.
-    const Eigen::Matrix<double, NX, NZ> K = ldlt.solve(HP).transpose();
-    s.x += K * y;
-    const Mat IKH = Mat::Identity() - K * H;
-    s.P = IKH * s.P * IKH.transpose() + K * R * K.transpose();
-    symmetrise(s.P);
-    return true;
+    const Innovation<NZ> in = innovation<NZ>(s, H, z, R);
+    if (out != nullptr) *out = in;
+    return correct<NZ>(s, H, R, in);
   }
 
   static void symmetrise(Mat& P) { P = 0.5 * (P + P.transpose()).eval(); }
+
+ private:
+  static void propagateCovariance(Mat& P, const Mat& F, const Mat& Q) {
+    Mat FP;
+    FP.noalias() = F * P;
+    P.noalias() = FP * F.transpose();
+    P += Q;
+    symmetrise(P);
+  }
 };
 
 }  // namespace swa::agent

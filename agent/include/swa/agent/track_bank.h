@@ -63,8 +63,9 @@ class TrackBank {
   static constexpr std::size_t kMaxTracks = 128;
 
  private:
-  void predict(Track& track, StampNs stamp) const;
+  void predict(Track& track, StampNs stamp);
   bool correct(Track& track, const StableDetection& det, StampNs stamp);
+  bool correct(Track& track, const StableDetection& det, const Innovation<2>& in, StampNs stamp);
   int startTrack(const StableDetection& det, StampNs stamp, bool anonymous);
   void associateAnonymous(const std::vector<StableDetection>& detections, StampNs stamp, BankUpdateStats& stats);
   void assignPass(const std::vector<StableDetection>& detections, StampNs stamp, BankUpdateStats& stats);
@@ -75,6 +76,8 @@ class TrackBank {
   double gate_;          // chi-square(2) quantile of gate_probability
   double reinit_gate_;   // far outside any plausible innovation: the sensor's ID was right, our track was wrong
   std::vector<Track> tracks_;
+  double cached_dt_ = -1.0;
+  PvaMat F_, Q_;
   int next_anonymous_id_ = kFirstAnonymousTrackId;
   std::vector<int> last_track_of_detection_;
   // Association workspace, reused between updates.
