@@ -169,13 +169,15 @@ void Agent::onGnss(const GnssSample& g) {
       ++diag_.rejected.nonfinite;
       return;
     }
-    if (g.std_m <= 0.0 || g.position_m.norm() > config_.limits.max_abs_position_m) {
+    if (g.std_m <= 0.0 || g.std_m * g.std_m > kMaxVariance ||
+        g.position_m.norm() > config_.limits.max_abs_position_m) {
       ++diag_.rejected.implausible;
       return;
     }
   }
   if (!acceptStamp(g.stamp_ns, last_gnss_ns_, seen_gnss_)) return;
   gnss_valid_ = g.valid;
+  diag_.gnss_valid = g.valid;
   if (!g.valid) return;
   last_valid_gnss_ns_ = g.stamp_ns;
   if (config_.mode == Mode::kSwa) return;  // the paper's agent never uses GNSS

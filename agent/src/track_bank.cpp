@@ -120,7 +120,7 @@ void TrackBank::assignPass(const std::vector<StableDetection>& dets, StampNs sta
       // Gate on the Mahalanobis distance; rank by the negative log-likelihood, which adds ln|S| so a broad track
       // does not win over a tight one just by being uncertain.
       if (in.valid && in.mahalanobis2 <= gate_) {
-        const double cost = in.mahalanobis2 + std::log(in.S.determinant());
+        const double cost = in.mahalanobis2 + std::log(in.S(0, 0) * in.S(1, 1) - in.S(0, 1) * in.S(1, 0));
         // The assignment's arithmetic must stay finite; a non-finite cost can only come from a broken track.
         if (std::isfinite(cost)) cost_[static_cast<std::size_t>(r) * cols + c] = cost;
       }

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include <Eigen/Core>
-#include <Eigen/LU>  // determinant()
 
 namespace swa::agent {
 
@@ -23,10 +22,15 @@ inline Mat2 rotation(double psi) {
 inline bool isFinite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
 inline bool isFinite(const Mat2& m) { return m.allFinite(); }
 
-// Symmetric and positive definite, judged on the 2x2 determinant and trace.
+// Largest variance a sensor may claim (1e6 m std): beyond it the products in the filters overflow, and such a
+// measurement carries no information anyway.
+constexpr double kMaxVariance = 1e12;
+
+// Symmetric, positive definite and not absurdly large, judged on the 2x2 determinant.
 inline bool isCovariance(const Mat2& m) {
+  const double det = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0);
   return m.allFinite() && std::abs(m(0, 1) - m(1, 0)) <= 1e-9 * (1.0 + m.cwiseAbs().maxCoeff()) && m(0, 0) > 0.0 &&
-         m.determinant() > 0.0;
+         m(0, 0) <= kMaxVariance && m(1, 1) <= kMaxVariance && std::isfinite(det) && det > 0.0;
 }
 
 }  // namespace swa::agent

@@ -13,7 +13,13 @@ namespace swa::agent {
 using StampNs = std::int64_t;
 constexpr int kAnonymousId = -1;
 
-inline double secondsBetween(StampNs from, StampNs to) { return static_cast<double>(to - from) * 1e-9; }
+// Saturates instead of overflowing when the stamps are more than ~292 years apart (corrupt input): such a gap is
+// "very long" for every timeout and prediction guard that reads it.
+inline double secondsBetween(StampNs from, StampNs to) {
+  StampNs diff = 0;
+  if (__builtin_sub_overflow(to, from, &diff)) return to > from ? 1e300 : -1e300;
+  return static_cast<double>(diff) * 1e-9;
+}
 
 struct ImuSample {
   StampNs stamp_ns = 0;
