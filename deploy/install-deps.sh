@@ -3,10 +3,11 @@
 # already present are not touched, and apt is not contacted at all when nothing is missing.
 set -euo pipefail
 
+# libgmock-dev: Debian's GTestConfig.cmake declares the gmock targets too and fails to import without it.
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake
   libeigen3-dev libyaml-cpp-dev
-  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
+  libfastrtps-dev libfastcdr-dev fastddsgen
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

@@ -75,7 +75,7 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
   return cmd;
 }
 
-bool Agent::convertDetections(const DetectionSet& in) {
+void Agent::convertDetections(const DetectionSet& in) {
   stable_.clear();
   const Mat2 R = rotation(heading_rad_);
   const Mat2 default_cov = Mat2::Identity() * config_.surroundings.r_det_m2;
@@ -100,7 +100,6 @@ bool Agent::convertDetections(const DetectionSet& in) {
     s.covariance_m2 = d.covariance_m2 ? Mat2(R * *d.covariance_m2 * R.transpose()) : default_cov;
     stable_.push_back(s);
   }
-  return true;
 }
 
 void Agent::onDetections(const DetectionSet& in) {

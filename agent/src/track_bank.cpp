@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace swa::agent {
 namespace {
@@ -64,7 +65,13 @@ bool TrackBank::correct(Track& track, const StableDetection& det, const Innovati
 int TrackBank::startTrack(const StableDetection& det, StampNs stamp, bool anonymous) {
   if (tracks_.size() >= kMaxTracks) return -1;
   Track t;
-  t.id = anonymous ? next_anonymous_id_++ : det.target_id;
+  t.id = det.target_id;
+  if (anonymous) {
+    t.id = next_anonymous_id_;
+    // Wraps after ~1.1e9 tracks (years of clutter at 10 Hz); by then every early id is long gone.
+    next_anonymous_id_ = next_anonymous_id_ == std::numeric_limits<int>::max() ? kFirstAnonymousTrackId
+                                                                                 : next_anonymous_id_ + 1;
+  }
   t.anonymous = anonymous;
   t.created_ns = stamp;
   t.last_detection_ns = stamp;

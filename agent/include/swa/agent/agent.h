@@ -35,7 +35,7 @@ class Agent {
 
  private:
   bool acceptStamp(StampNs stamp, StampNs& last, bool& seen);
-  bool convertDetections(const DetectionSet& in);
+  void convertDetections(const DetectionSet& in);
   void updateFrame(StampNs stamp);
   Vec2 computeCommand(StampNs stamp);
   void refreshDiagnostics(StampNs stamp);
