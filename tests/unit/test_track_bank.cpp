@@ -1,4 +1,5 @@
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <random>
 
@@ -133,6 +134,8 @@ TEST(TrackBank, AnonymousAssociationWithClutterIsRightFor99PercentAndNeverConfir
     for (const Track& t : bank.tracks()) clutter_confirmed_scans += (t.confirmed && owner[t.id] == kClutter);
   }
 
+  std::cout << "right track for " << right << " of " << true_dets << " true detections; " << clutter_dets
+            << " clutter detections\n";
   // THEN >= 99 % of true detections went to their own target's track and no clutter track was ever confirmed
   ASSERT_GT(true_dets, 8000);
   ASSERT_GT(clutter_dets, 300);  // the test really exercised clutter
