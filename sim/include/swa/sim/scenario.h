@@ -1,0 +1,86 @@
+#pragma once
+// One scenario file describes a whole run: the swarm, the world, the sensors and the agents' parameters. Defaults
+// are DESIGN §4 (the simulator model) and the paper's GNSS-loss experiment. Units are in the names.
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "swa/agent/config.h"
+
+namespace swa::sim {
+
+enum class ClockMode { kLockstep, kRealtime };
+enum class HeadingMode { kRandom, kZero };
+enum class MpsNoiseModel { kIsotropic, kRangeBearing };
+
+struct FormationSetup {
+  double spacing_m = 10.0;         // initial neighbour spacing; also the agents' formation.radius_m unless overridden
+  double position_jitter_m = 1.0;  // initial position error around the lattice slots
+};
+
+struct DynamicsSetup {
+  double rate_hz = 100.0;
+  double velocity_lag_s = 1.0;     // first-order response of velocity to the command
+  double speed_limit_mps = 5.0;
+  double failsafe_timeout_s = 0.5; // commands older than this: the UAV brakes to hover
+  HeadingMode heading = HeadingMode::kRandom;
+  double heading_rate_std_radps = 0.0;  // per-UAV constant turn rate (0 = constant heading)
+};
+
+struct WindSetup {
+  double gust_std = 0.2;           // m/s^2, per-UAV Ornstein-Uhlenbeck acceleration
+  double gust_corr_s = 5.0;
+  double common_std = 0.0;         // m/s^2, the same OU gust for every UAV (moves the swarm as a block)
+  double common_corr_s = 20.0;
+};
+
+struct ImuSetup {
+  double rate_hz = 100.0;
+  double bias_std = 0.05;          // m/s^2 of derived acceleration, constant per UAV
+  double noise_std = 1.5;          // m/s^2 white (sqrt of R_a)
+  double heading_noise_std_rad = 0.005;
+};
+
+struct MpsSetup {
+  double rate_hz = 10.0;
+  double range_m = 40.0;
+  double fov_deg = 360.0;
+  MpsNoiseModel noise_model = MpsNoiseModel::kIsotropic;
+  double noise_var_m2 = 0.1;       // isotropic model (R_o)
+  double range_std_m = 0.2;        // range/bearing model
+  double bearing_std_rad = 0.01;
+  double miss_probability = 0.05;
+  double clutter_rate = 0.0;       // mean false positives per scan, uniform in the sensing disc
+  bool ids = true;
+  double latency_s = 0.0;
+};
+
+struct GnssSetup {
+  double rate_hz = 10.0;
+  double std_m = 0.5;
+  double dropout_start_s = 10.0;   // every UAV loses GNSS at this time ...
+  double dropout_end_s = std::numeric_limits<double>::infinity();  // ... until this time
+  std::vector<int> keep_uavs;      // UAVs that never lose GNSS (e.g. one anchored member)
+};
+
+struct ClockSetup {
+  ClockMode mode = ClockMode::kLockstep;
+  double speed = 1.0;              // realtime factor
+};
+
+struct Scenario {
+  int uav_count = 8;
+  std::uint64_t seed = 1;
+  double duration_s = 120.0;
+  FormationSetup formation;
+  DynamicsSetup dynamics;
+  WindSetup wind;
+  ImuSetup imu;
+  MpsSetup mps;
+  GnssSetup gnss;
+  ClockSetup clock;
+  agent::AgentConfig agent;
+};
+
+}  // namespace swa::sim
