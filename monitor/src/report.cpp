@@ -1,0 +1,204 @@
+#include "swa/monitor/report.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <string>
+#include <system_error>
+
+namespace swa::monitor {
+namespace {
+
+void appendCsv(std::string& out, double v) {
+  if (!out.empty()) out += ',';
+  out += formatNumber(v);
+}
+
+std::string jsonNumber(double v) { return std::isfinite(v) ? formatNumber(v) : std::string("null"); }
+
+// Summary keys are plain identifiers, but a caller-supplied key in aggregate() is escaped so it cannot break the
+// document.
+std::string jsonString(const std::string& s) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out = "\"";
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (u < 0x20) {
+      out += "\\u00";
+      out += kHex[u >> 4];
+      out += kHex[u & 0xF];
+    } else {
+      out += c;
+    }
+  }
+  out += '"';
+  return out;
+}
+
+}  // namespace
+
+TimeSeriesRow toRow(const StepMetrics& step) {
+  TimeSeriesRow row;
+  row.t_s = step.t_s;
+  row.d_nb_m = step.geometry.mean_neighbor_distance_m;
+  row.centroid_x_m = step.geometry.centroid_m.x();
+  row.centroid_y_m = step.geometry.centroid_m.y();
+  row.drift_mps = step.drift_mps;
+  row.min_sep_m = step.geometry.min_separation_m;
+  row.collisions = step.collisions;
+  row.spread_m = step.geometry.spread_m;
+  row.groups = step.geometry.groups;
+  row.formation_error_m = step.geometry.formation_error_m;
+  row.nees_pos = step.nees.position;
+  row.nees_vel = step.nees.velocity;
+  return row;
+}
+
+const std::string& csvHeader() {
+  static const std::string header =
+      "t_s,d_nb_m,centroid_x_m,centroid_y_m,drift_mps,min_sep_m,collisions,spread_m,groups,formation_error_m,"
+      "nees_pos,nees_vel";
+  return header;
+}
+
+std::string formatCsvRow(const TimeSeriesRow& row) {
+  std::string out;
+  appendCsv(out, row.t_s);
+  appendCsv(out, row.d_nb_m);
+  appendCsv(out, row.centroid_x_m);
+  appendCsv(out, row.centroid_y_m);
+  appendCsv(out, row.drift_mps);
+  appendCsv(out, row.min_sep_m);
+  out += ',' + std::to_string(row.collisions);
+  appendCsv(out, row.spread_m);
+  out += ',' + std::to_string(row.groups);
+  appendCsv(out, row.formation_error_m);
+  appendCsv(out, row.nees_pos);
+  appendCsv(out, row.nees_vel);
+  return out;
+}
+
+std::string formatNumber(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  std::array<char, 32> buf{};
+  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value);
+  if (result.ec != std::errc()) return "nan";  // cannot happen with 32 chars; never print garbage
+  return std::string(buf.data(), result.ptr);
+}
+
+std::vector<NamedValue> summaryFields(const Summary& s) {
+  auto d = [](auto v) { return static_cast<double>(v); };
+  return {
+      {"steps", d(s.steps)},
+      {"duration_s", s.duration_s},
+      {"window_start_s", s.window_start_s},
+      {"window_duration_s", s.window_duration_s},
+      {"uav_count", d(s.uav_count)},
+      {"mean_neighbor_distance_m", s.mean_neighbor_distance_m},
+      {"formation_error_m", s.formation_error_m},
+      {"min_separation_m", s.min_separation_m},
+      {"collisions", d(s.collisions)},
+      {"drift_velocity_mps", s.drift_velocity_mps},
+      {"centroid_displacement_m", s.centroid_displacement_m},
+      {"uav_displacement_m", s.uav_displacement_m},
+      {"drift_speed_max_mps", s.drift_speed_max_mps},
+      {"groups", d(s.groups)},
+      {"spread_m", s.spread_m},
+      {"anees_position", s.anees_position},
+      {"anees_velocity", s.anees_velocity},
+      {"anees_agents", d(s.anees_agents)},
+      {"anees_band_low", s.anees_band_low},
+      {"anees_band_high", s.anees_band_high},
+      {"anees_position_in_band", s.anees_position_in_band},
+      {"anees_velocity_in_band", s.anees_velocity_in_band},
+      {"nees_steps", d(s.nees_steps)},
+      {"nees_samples", d(s.nees_samples)},
+      {"nees_skipped_unknown_id", d(s.nees_skipped_unknown_id)},
+      {"nees_skipped_invalid", d(s.nees_skipped_invalid)},
+  };
+}
+
+std::string toJson(const Summary& summary) {
+  std::string out = "{";
+  bool first = true;
+  for (const NamedValue& f : summaryFields(summary)) {
+    out += first ? "\n  " : ",\n  ";
+    first = false;
+    out += jsonString(f.key) + ": " + jsonNumber(f.value);
+  }
+  out += "\n}\n";
+  return out;
+}
+
+const Statistic* Aggregate::find(std::string_view key) const {
+  for (const Statistic& s : metrics) {
+    if (s.key == key) return &s;
+  }
+  return nullptr;
+}
+
+Aggregate aggregate(const std::vector<std::vector<NamedValue>>& runs) {
+  Aggregate agg;
+  agg.runs = static_cast<int>(runs.size());
+  std::map<std::string, std::size_t> index;
+  std::vector<std::vector<double>> values;
+  for (const std::vector<NamedValue>& run : runs) {
+    for (const NamedValue& f : run) {
+      auto it = index.find(f.key);
+      if (it == index.end()) {
+        it = index.emplace(f.key, agg.metrics.size()).first;
+        agg.metrics.push_back(Statistic{f.key});
+        values.emplace_back();
+      }
+      if (std::isfinite(f.value)) values[it->second].push_back(f.value);
+    }
+  }
+  for (std::size_t k = 0; k < agg.metrics.size(); ++k) {
+    Statistic& st = agg.metrics[k];
+    const std::vector<double>& v = values[k];
+    st.runs = static_cast<int>(v.size());
+    if (v.empty()) continue;
+    double sum = 0.0;
+    st.min = v.front();
+    st.max = v.front();
+    for (const double x : v) {
+      sum += x;
+      st.min = std::min(st.min, x);
+      st.max = std::max(st.max, x);
+    }
+    st.mean = sum / static_cast<double>(v.size());
+    double sq = 0.0;
+    for (const double x : v) sq += (x - st.mean) * (x - st.mean);
+    st.std = v.size() > 1 ? std::sqrt(sq / static_cast<double>(v.size() - 1)) : 0.0;
+  }
+  return agg;
+}
+
+Aggregate aggregate(const std::vector<Summary>& runs) {
+  std::vector<std::vector<NamedValue>> fields;
+  fields.reserve(runs.size());
+  for (const Summary& s : runs) fields.push_back(summaryFields(s));
+  return aggregate(fields);
+}
+
+std::string toJson(const Aggregate& aggregate) {
+  std::string out = "{\n  \"runs\": " + std::to_string(aggregate.runs) + ",\n  \"metrics\": {";
+  bool first = true;
+  for (const Statistic& s : aggregate.metrics) {
+    out += first ? "\n    " : ",\n    ";
+    first = false;
+    out += jsonString(s.key) + ": {\"runs\": " + std::to_string(s.runs) + ", \"mean\": " + jsonNumber(s.mean) +
+           ", \"std\": " + jsonNumber(s.std) + ", \"min\": " + jsonNumber(s.min) + ", \"max\": " + jsonNumber(s.max) +
+           "}";
+  }
+  out += first ? "}\n}\n" : "\n  }\n}\n";
+  return out;
+}
+
+}  // namespace swa::monitor
