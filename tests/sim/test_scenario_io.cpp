@@ -1,0 +1,501 @@
+// Scenario loading, validation, overrides and recording (sim/include/swa/sim/scenario_io.h).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "swa/agent/config_io.h"
+#include "swa/sim/scenario.h"
+#include "swa/sim/scenario_io.h"
+
+namespace swa::sim {
+namespace {
+
+using agent::ConfigError;
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+ConfigError expectConfigError(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const ConfigError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "expected a ConfigError";
+  return ConfigError("<none>", {});
+}
+
+// The one problem that mentions `part` (fails if none or several do).
+std::string problemAbout(const ConfigError& error, const std::string& part) {
+  std::string found;
+  int count = 0;
+  for (const std::string& problem : error.problems()) {
+    if (contains(problem, part)) {
+      found = problem;
+      ++count;
+    }
+  }
+  EXPECT_EQ(count, 1) << "problems mentioning '" << part << "':\n" << error.what();
+  return found;
+}
+
+std::string scenarioDir() {
+  return (std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "deploy" / "scenarios")
+      .string();
+}
+
+class TempFile {
+ public:
+  explicit TempFile(const std::string& text) {
+    path_ = (std::filesystem::temp_directory_path() /
+             ("swa_scenario_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++) + ".yaml"))
+                .string();
+    std::ofstream(path_) << text;
+  }
+  ~TempFile() { std::filesystem::remove(path_); }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  static inline int counter_ = 0;
+  std::string path_;
+};
+
+std::string yamlOf(const Scenario& s) { return scenarioToYaml(s); }
+
+// Valid, and different from the defaults in every field; awkward binary fractions test exact round trips.
+Scenario everyFieldChanged() {
+  Scenario s;
+  s.uav_count = 12;
+  s.seed = 18446744073709551615ULL;
+  s.duration_s = 300.5;
+  s.formation.spacing_m = 1.0 / 3.0 + 12.0;
+  s.formation.position_jitter_m = 0.1 + 0.2;
+  s.dynamics.rate_hz = 200.0;
+  s.dynamics.velocity_lag_s = 0.7;
+  s.dynamics.speed_limit_mps = 4.25;
+  s.dynamics.failsafe_timeout_s = 0.3;
+  s.dynamics.heading = HeadingMode::kZero;
+  s.dynamics.heading_rate_std_radps = 0.01;
+  s.wind.gust_std = 0.35;
+  s.wind.gust_corr_s = 7.5;
+  s.wind.common_std = 0.05;
+  s.wind.common_corr_s = 30.0;
+  s.imu.rate_hz = 50.0;
+  s.imu.bias_std = 0.15;
+  s.imu.noise_std = 1.2;
+  s.imu.heading_noise_std_rad = 2e-7;
+  s.mps.rate_hz = 20.0;
+  s.mps.range_m = 55.0;
+  s.mps.fov_deg = 120.0;
+  s.mps.noise_model = MpsNoiseModel::kRangeBearing;
+  s.mps.noise_var_m2 = 0.2;
+  s.mps.range_std_m = 0.3;
+  s.mps.bearing_std_rad = 0.02;
+  s.mps.miss_probability = 0.1;
+  s.mps.clutter_rate = 0.4;
+  s.mps.ids = false;
+  s.mps.latency_s = 0.05;
+  s.gnss.rate_hz = 5.0;
+  s.gnss.std_m = 0.7;
+  s.gnss.dropout_start_s = 0.0;
+  s.gnss.dropout_end_s = 95.5;
+  s.gnss.keep_uavs = {0, 11};
+  s.clock.mode = ClockMode::kRealtime;
+  s.clock.speed = 2.5;
+  s.agent.mode = agent::Mode::kAnchored;
+  s.agent.formation.k = 2;
+  s.agent.formation.circle_fit = agent::CircleFit::kAlgebraic;
+  s.agent.formation.radius_m = 11.0;  // deliberately not the spacing
+  s.agent.focal.q_scale = 0.3;
+  s.agent.surroundings.tentative_timeout_s = 0.4;
+  return s;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+
+TEST(ScenarioDefaults, GivenADefaultScenario_ThenItHoldsDesignSection4AndThePaperDropout) {
+  // GIVEN a default-constructed scenario
+  const Scenario s;
+  // THEN it is DESIGN §4 and the paper's GNSS-loss experiment
+  EXPECT_EQ(s.uav_count, 8);
+  EXPECT_EQ(s.seed, 1u);
+  EXPECT_EQ(s.duration_s, 120.0);
+  EXPECT_EQ(s.dynamics.rate_hz, 100.0);
+  EXPECT_EQ(s.dynamics.velocity_lag_s, 1.0);
+  EXPECT_EQ(s.wind.gust_std, 0.2);
+  EXPECT_EQ(s.wind.gust_corr_s, 5.0);
+  EXPECT_EQ(s.imu.rate_hz, 100.0);
+  EXPECT_EQ(s.imu.bias_std, 0.05);
+  EXPECT_EQ(s.mps.rate_hz, 10.0);
+  EXPECT_EQ(s.mps.range_m, 40.0);
+  EXPECT_EQ(s.mps.miss_probability, 0.05);
+  EXPECT_TRUE(s.mps.ids);
+  EXPECT_EQ(s.gnss.rate_hz, 10.0);
+  EXPECT_EQ(s.gnss.dropout_start_s, 10.0);
+  EXPECT_TRUE(std::isinf(s.gnss.dropout_end_s));
+  EXPECT_TRUE(s.gnss.keep_uavs.empty());
+  EXPECT_EQ(s.clock.mode, ClockMode::kLockstep);
+  // AND an empty (or comment-only, or empty-section) text parses to exactly these defaults
+  EXPECT_EQ(yamlOf(parseScenario("", "<empty>")), yamlOf(s));
+  EXPECT_EQ(yamlOf(parseScenario("# nothing\n\nwind:\nagent:\n", "<comments>")), yamlOf(s));
+  // AND the default agent radius equals the default spacing, so "radius follows spacing" changes nothing
+  EXPECT_EQ(s.agent.formation.radius_m, s.formation.spacing_m);
+}
+
+TEST(ScenarioFiles, GivenEachShippedScenario_WhenLoaded_ThenItHasTheIntendedValues) {
+  const std::string dir = scenarioDir();
+  ASSERT_TRUE(std::filesystem::is_directory(dir)) << dir;
+
+  // dropout_4: the paper's dropout with 4 UAVs
+  const Scenario d4 = loadScenario(dir + "/dropout_4.yaml");
+  EXPECT_EQ(d4.uav_count, 4);
+  EXPECT_EQ(d4.duration_s, 120.0);
+  EXPECT_EQ(d4.gnss.dropout_start_s, 10.0);
+  EXPECT_TRUE(std::isinf(d4.gnss.dropout_end_s));
+  EXPECT_TRUE(d4.gnss.keep_uavs.empty());
+  EXPECT_EQ(d4.agent.mode, agent::Mode::kSwa);
+  EXPECT_EQ(d4.agent.formation.radius_m, 10.0);
+
+  // dropout_8: the default scenario, every key spelled out
+  const Scenario d8 = loadScenario(dir + "/dropout_8.yaml");
+  EXPECT_EQ(d8.uav_count, 8);
+  EXPECT_EQ(yamlOf(d8), yamlOf(Scenario{}));
+
+  // swarm_16
+  const Scenario s16 = loadScenario(dir + "/swarm_16.yaml");
+  EXPECT_EQ(s16.uav_count, 16);
+  EXPECT_EQ(s16.gnss.dropout_start_s, 10.0);
+  EXPECT_EQ(s16.agent.mode, agent::Mode::kSwa);
+
+  // anonymous_8: no IDs, clutter = 5 % of 8 detections
+  const Scenario an = loadScenario(dir + "/anonymous_8.yaml");
+  EXPECT_EQ(an.uav_count, 8);
+  EXPECT_FALSE(an.mps.ids);
+  EXPECT_EQ(an.mps.clutter_rate, 0.4);
+  EXPECT_EQ(an.agent.mode, agent::Mode::kSwa);
+
+  // anchored_8: UAV 0 keeps GNSS, agents in anchored mode
+  const Scenario anc = loadScenario(dir + "/anchored_8.yaml");
+  EXPECT_EQ(anc.uav_count, 8);
+  EXPECT_EQ(anc.agent.mode, agent::Mode::kAnchored);
+  EXPECT_EQ(anc.gnss.keep_uavs, std::vector<int>{0});
+
+  // AND there are exactly these five, and each one round-trips through its dump
+  int count = 0;
+  for (const auto& file : std::filesystem::directory_iterator(dir)) {
+    if (file.path().extension() != ".yaml") continue;
+    ++count;
+    const Scenario loaded = loadScenario(file.path().string());
+    EXPECT_EQ(yamlOf(parseScenario(yamlOf(loaded), "dump")), yamlOf(loaded)) << file.path();
+  }
+  EXPECT_EQ(count, 5);
+}
+
+TEST(ScenarioOverride, GivenASetOfEachRequiredKey_WhenApplied_ThenExactlyThatFieldChanges) {
+  struct Case {
+    std::string set;
+    std::function<void(Scenario&)> expect;
+  };
+  const std::vector<Case> cases = {
+      {"uav_count=16", [](Scenario& s) { s.uav_count = 16; }},
+      {"seed=18446744073709551615", [](Scenario& s) { s.seed = std::numeric_limits<std::uint64_t>::max(); }},
+      {"duration_s=600", [](Scenario& s) { s.duration_s = 600.0; }},
+      // the agents' desired spacing follows the formation spacing (it was not given explicitly)
+      {"formation.spacing_m=12.5",
+       [](Scenario& s) {
+         s.formation.spacing_m = 12.5;
+         s.agent.formation.radius_m = 12.5;
+       }},
+      {"agent.mode=standalone", [](Scenario& s) { s.agent.mode = agent::Mode::kStandalone; }},
+      {"agent.k=2", [](Scenario& s) { s.agent.formation.k = 2; }},
+      {"agent.circle_fit=algebraic", [](Scenario& s) { s.agent.formation.circle_fit = agent::CircleFit::kAlgebraic; }},
+      {"imu.bias_std=0.15", [](Scenario& s) { s.imu.bias_std = 0.15; }},
+      {"mps.ids=false", [](Scenario& s) { s.mps.ids = false; }},
+      {"mps.miss_probability=0.2", [](Scenario& s) { s.mps.miss_probability = 0.2; }},
+      {"gnss.dropout_start_s=0", [](Scenario& s) { s.gnss.dropout_start_s = 0.0; }},
+      {"wind.gust_std=0.5", [](Scenario& s) { s.wind.gust_std = 0.5; }},
+  };
+  for (const Case& c : cases) {
+    // GIVEN the default scenario file and one --set
+    // WHEN it is loaded with the override
+    const Scenario loaded = loadScenario(scenarioDir() + "/dropout_8.yaml", {c.set});
+    // THEN the result is the defaults with exactly that field changed (the dump holds every field)
+    Scenario expected;
+    c.expect(expected);
+    EXPECT_EQ(yamlOf(loaded), yamlOf(expected)) << "--set " << c.set;
+    EXPECT_NE(yamlOf(loaded), yamlOf(Scenario{})) << "--set " << c.set;
+  }
+}
+
+TEST(ScenarioOverride, GivenSeveralSets_ThenTheyApplyInOrderAndOverrideTheFile) {
+  // GIVEN a file, and overrides that only together satisfy a rule, plus a repeated key
+  const Scenario s = parseScenario("uav_count: 4\ngnss: {keep_uavs: [3]}\n", "<text>",
+                                   {"dynamics.rate_hz=200", "imu.rate_hz=200", "uav_count=6", "uav_count=5",
+                                    "gnss.keep_uavs=[0, 4]", "gnss.dropout_end_s=60", "agent.focal.q_scale=0.5"});
+  // THEN the last value of each key wins and relations are checked on the final values
+  EXPECT_EQ(s.uav_count, 5);
+  EXPECT_EQ(s.dynamics.rate_hz, 200.0);
+  EXPECT_EQ(s.imu.rate_hz, 200.0);
+  EXPECT_EQ(s.gnss.keep_uavs, (std::vector<int>{0, 4}));
+  EXPECT_EQ(s.gnss.dropout_end_s, 60.0);
+  EXPECT_EQ(s.agent.focal.q_scale, 0.5);
+}
+
+TEST(ScenarioParse, GivenAFileWithManyDistinctProblems_WhenLoaded_ThenOneErrorListsThemAll) {
+  // GIVEN a file with an unknown key, a wrong type, an out-of-range value, a non-finite value, a bad enum, a bad
+  // agent value, an unknown agent key, a keep_uavs index outside the swarm and a sensor rate that does not divide
+  const TempFile file(
+      "uav_count: 4\n"
+      "duraton_s: 60\n"
+      "formation:\n"
+      "  spacing_m: ten\n"
+      "mps:\n"
+      "  miss_probability: 1.0\n"
+      "  noise_model: lidar\n"
+      "imu:\n"
+      "  rate_hz: 30\n"
+      "wind:\n"
+      "  gust_std: .nan\n"
+      "gnss:\n"
+      "  keep_uavs: [0, 7]\n"
+      "agent:\n"
+      "  k: 0\n"
+      "  focal:\n"
+      "    q_scal: 2\n");
+  // WHEN it is loaded, with two bad overrides as well
+  const ConfigError error =
+      expectConfigError([&] { loadScenario(file.path(), {"clock.mode=fast", "seed"}); });
+  // THEN one error lists every problem, each naming its key (and, for the file, where it is)
+  EXPECT_EQ(error.source(), file.path());
+  EXPECT_EQ(error.problems().size(), 11u) << error.what();
+  EXPECT_EQ(problemAbout(error, "duraton_s"),
+            "unknown key 'duraton_s' (did you mean 'duration_s'?) (line 2, column 1)");
+  EXPECT_TRUE(contains(problemAbout(error, "formation.spacing_m"), "'ten' is not a number; expected a number in m"));
+  EXPECT_TRUE(contains(problemAbout(error, "formation.spacing_m"), "(line 4, column 14)"));
+  EXPECT_EQ(problemAbout(error, "miss_probability"),
+            "mps.miss_probability = 1.0 is out of range [0, 1) (line 6, column 21)");
+  EXPECT_TRUE(contains(problemAbout(error, "noise_model"), "expected one of: isotropic, range_bearing"));
+  EXPECT_TRUE(contains(problemAbout(error, "imu.rate_hz"), "must divide dynamics.rate_hz = 100 Hz exactly"));
+  EXPECT_TRUE(contains(problemAbout(error, "gust_std"), "wind.gust_std = .nan is not a finite number"));
+  EXPECT_TRUE(contains(problemAbout(error, "keep_uavs"), "lists UAV 7, but the UAV indices are 0..3"));
+  EXPECT_EQ(problemAbout(error, "agent.k"), "agent.k = 0 is out of range [1, 16] (line 15, column 6)");
+  EXPECT_TRUE(contains(problemAbout(error, "q_scal"), "did you mean 'agent.focal.q_scale'?"));
+  EXPECT_TRUE(contains(problemAbout(error, "clock.mode"), "'fast' is not valid; expected one of: lockstep, realtime"));
+  EXPECT_TRUE(contains(problemAbout(error, "clock.mode"), "(from --set clock.mode=fast)"));
+  EXPECT_TRUE(contains(problemAbout(error, "'seed'"), "malformed override 'seed'; expected key=value"));
+  // AND what() prefixes every line with the file
+  EXPECT_EQ(std::string(error.what()).rfind(file.path() + ": ", 0), 0u);
+}
+
+TEST(ScenarioParse, GivenValuesOfTheWrongShapeOrType_ThenEachIsReported) {
+  const ConfigError error = expectConfigError([] {
+    parseScenario(
+        "uav_count: 2.5\n"
+        "seed: -1\n"
+        "duration_s: \"60\"\n"
+        "mps: {ids: yes, fov_deg: 0}\n"
+        "gnss: {keep_uavs: 0, dropout_start_s: .inf}\n"
+        "clock: 3\n"
+        "agent: {mode: [swa]}\n",
+        "<text>");
+  });
+  EXPECT_EQ(error.problems().size(), 9u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "uav_count ="), "uav_count = 2.5 is not an integer"));
+  EXPECT_TRUE(contains(problemAbout(error, "seed"), "seed = -1 is out of range [0, 18446744073709551615]"));
+  EXPECT_TRUE(contains(problemAbout(error, "duration_s"), "is a string"));
+  EXPECT_TRUE(contains(problemAbout(error, "mps.ids"), "expected true or false"));
+  EXPECT_TRUE(contains(problemAbout(error, "fov_deg"), "mps.fov_deg = 0 is out of range (0, 360] deg"));
+  EXPECT_TRUE(contains(problemAbout(error, "keep_uavs"), "must be a list of UAV indices"));
+  EXPECT_TRUE(contains(problemAbout(error, "dropout_start_s"), "is not a finite number"));
+  EXPECT_TRUE(contains(problemAbout(error, "'clock'"), "must be a map of parameters, got a scalar"));
+  EXPECT_TRUE(contains(problemAbout(error, "agent.mode"), "got a sequence"));
+}
+
+TEST(ScenarioParse, GivenDropoutEnd_ThenOnlyItAcceptsInfinityAndItMustFollowTheStart) {
+  // .inf or left out: never restored
+  EXPECT_TRUE(std::isinf(parseScenario("gnss: {dropout_end_s: .inf}\n", "<t>").gnss.dropout_end_s));
+  EXPECT_TRUE(std::isinf(parseScenario("gnss: {dropout_start_s: 5}\n", "<t>").gnss.dropout_end_s));
+  EXPECT_EQ(parseScenario("gnss: {dropout_end_s: 30}\n", "<t>").gnss.dropout_end_s, 30.0);
+  // no other key takes infinity, and -inf is not "never"
+  const ConfigError error = expectConfigError(
+      [] { parseScenario("duration_s: .inf\ngnss: {dropout_end_s: -.inf}\n", "<t>"); });
+  EXPECT_EQ(error.problems().size(), 2u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "duration_s"), "is not a finite number"));
+  EXPECT_TRUE(contains(problemAbout(error, "dropout_end_s"), "or .inf"));
+  // an empty outage window is a mistake
+  const ConfigError window =
+      expectConfigError([] { parseScenario("gnss: {dropout_start_s: 20, dropout_end_s: 20}\n", "<t>"); });
+  ASSERT_EQ(window.problems().size(), 1u) << window.what();
+  EXPECT_TRUE(contains(window.problems()[0], "gnss.dropout_end_s = 20 s must be > gnss.dropout_start_s = 20 s"));
+}
+
+TEST(ScenarioParse, GivenAShortcutAndItsLongForm_ThenItIsAConflict) {
+  // GIVEN a file that sets the neighbour count twice, once by the shortcut, and the fit twice too
+  const ConfigError error = expectConfigError([] {
+    parseScenario(
+        "agent:\n"
+        "  k: 2\n"
+        "  formation:\n"
+        "    k: 4\n"
+        "    circle_fit: algebraic\n"
+        "  circle_fit: fixed_radius\n",
+        "<text>");
+  });
+  // THEN each pair is one problem naming both spellings
+  ASSERT_EQ(error.problems().size(), 2u) << error.what();
+  EXPECT_EQ(problemAbout(error, "formation.k'"),
+            "'agent.formation.k' and 'agent.k' set the same parameter ('agent.k' is a shortcut for "
+            "'agent.formation.k'); give only one (line 4, column 5)");
+  EXPECT_TRUE(contains(problemAbout(error, "circle_fit"), "'agent.circle_fit' and 'agent.formation.circle_fit'"));
+
+  // AND either form alone is fine, and a --set of either form replaces the file's value without a conflict
+  EXPECT_EQ(parseScenario("agent: {k: 2}\n", "<t>").agent.formation.k, 2);
+  EXPECT_EQ(parseScenario("agent: {formation: {k: 2}}\n", "<t>").agent.formation.k, 2);
+  EXPECT_EQ(parseScenario("agent: {formation: {k: 2}}\n", "<t>", {"agent.k=4"}).agent.formation.k, 4);
+  EXPECT_EQ(parseScenario("agent: {k: 2}\n", "<t>", {"agent.formation.k=5"}).agent.formation.k, 5);
+  EXPECT_EQ(parseScenario("agent: {circle_fit: algebraic}\n", "<t>").agent.formation.circle_fit,
+            agent::CircleFit::kAlgebraic);
+}
+
+TEST(ScenarioParse, GivenSensorRates_ThenEachMustDivideTheDynamicsRate) {
+  // GIVEN rates that divide 100 Hz (every step, every 2nd, every 50th) THEN they are accepted
+  const Scenario ok = parseScenario("imu: {rate_hz: 50}\nmps: {rate_hz: 2}\ngnss: {rate_hz: 0.5}\n", "<t>");
+  EXPECT_EQ(ok.imu.rate_hz, 50.0);
+  EXPECT_EQ(ok.gnss.rate_hz, 0.5);
+  // GIVEN three that do not (not a whole number of steps, or faster than the simulation)
+  const ConfigError error = expectConfigError(
+      [] { parseScenario("imu: {rate_hz: 30}\nmps: {rate_hz: 7}\ngnss: {rate_hz: 200}\n", "<t>"); });
+  // THEN each is reported with the arithmetic
+  ASSERT_EQ(error.problems().size(), 3u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "imu.rate_hz"), "100 / 30 = 3.333 is not a whole number"));
+  EXPECT_TRUE(contains(problemAbout(error, "mps.rate_hz"), "must divide dynamics.rate_hz = 100 Hz exactly"));
+  EXPECT_TRUE(contains(problemAbout(error, "gnss.rate_hz"), "100 / 200 = 0.5"));
+  // AND changing the simulation rate re-judges them
+  EXPECT_NO_THROW(parseScenario("dynamics: {rate_hz: 120}\nimu: {rate_hz: 30}\nmps: {rate_hz: 10}\n"
+                                "gnss: {rate_hz: 10}\n",
+                                "<t>"));
+  const ConfigError changed =
+      expectConfigError([] { parseScenario("", "<t>", {"dynamics.rate_hz=150"}); });
+  ASSERT_EQ(changed.problems().size(), 1u) << changed.what();  // imu 100 Hz; mps and gnss 10 Hz divide 150 Hz
+  EXPECT_TRUE(contains(changed.problems()[0], "imu.rate_hz = 100 Hz must divide dynamics.rate_hz = 150 Hz"));
+}
+
+TEST(ScenarioParse, GivenNoExplicitRadius_ThenTheAgentRadiusFollowsTheSpacing) {
+  // GIVEN a spacing and no agent radius THEN the agents aim for the spacing
+  EXPECT_EQ(parseScenario("formation: {spacing_m: 15}\n", "<t>").agent.formation.radius_m, 15.0);
+  EXPECT_EQ(parseScenario("", "<t>", {"formation.spacing_m=7.5"}).agent.formation.radius_m, 7.5);
+  // GIVEN an explicit radius (file or --set) THEN it wins over the spacing
+  const Scenario given = parseScenario("formation: {spacing_m: 15}\nagent: {formation: {radius_m: 12}}\n", "<t>");
+  EXPECT_EQ(given.formation.spacing_m, 15.0);
+  EXPECT_EQ(given.agent.formation.radius_m, 12.0);
+  EXPECT_EQ(parseScenario("formation: {spacing_m: 15}\n", "<t>", {"agent.formation.radius_m=9"})
+                .agent.formation.radius_m,
+            9.0);
+  // AND a derived radius that breaks the agent's own rule says where it came from
+  const ConfigError error = expectConfigError(
+      [] { parseScenario("formation: {spacing_m: 30}\nagent: {formation: {sensing_range_m: 25}}\n", "<t>"); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0],
+                       "agent.formation.radius_m (= formation.spacing_m) = 30 must be < "
+                       "agent.formation.sensing_range_m = 25"))
+      << error.what();
+}
+
+TEST(ScenarioParse, GivenKeepUavs_ThenIndicesMustBeInsideTheSwarmAndDistinct) {
+  EXPECT_EQ(parseScenario("uav_count: 3\ngnss: {keep_uavs: [2, 0]}\n", "<t>").gnss.keep_uavs,
+            (std::vector<int>{2, 0}));
+  const ConfigError error =
+      expectConfigError([] { parseScenario("uav_count: 3\ngnss: {keep_uavs: [1, 1, 3, x]}\n", "<t>"); });
+  EXPECT_EQ(error.problems().size(), 1u) << error.what();  // the element that is not a number blocks the list
+  EXPECT_TRUE(contains(problemAbout(error, "keep_uavs[3]"), "'x' is not a number"));
+  const ConfigError range =
+      expectConfigError([] { parseScenario("uav_count: 3\ngnss: {keep_uavs: [1, 1, 3]}\n", "<t>"); });
+  EXPECT_EQ(range.problems().size(), 2u) << range.what();
+  EXPECT_TRUE(contains(problemAbout(range, "more than once"), "UAV 1"));
+  EXPECT_TRUE(contains(problemAbout(range, "lists UAV 3"), "(uav_count = 3)"));
+}
+
+TEST(ScenarioParse, GivenMisplacedKeys_ThenTheHintNamesTheRightPlace) {
+  const ConfigError error = expectConfigError([] {
+    parseScenario("mode: anchored\nimu: {gust_std: 1}\nagent: {formation: {raduis_m: 5}}\nwind.gust_std: 1\n",
+                  "<t>", {"agent.formation=3", "agent.kk=2"});
+  });
+  EXPECT_EQ(error.problems().size(), 6u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "'mode'"), "did you mean 'agent.mode'?"));
+  EXPECT_TRUE(contains(problemAbout(error, "imu.gust_std"), "did you mean 'wind.gust_std'?"));
+  EXPECT_TRUE(contains(problemAbout(error, "raduis_m"), "did you mean 'agent.formation.radius_m'?"));
+  EXPECT_TRUE(contains(problemAbout(error, "dotted key"), "must be written nested"));
+  EXPECT_TRUE(contains(problemAbout(error, "group of parameters"), "'agent.formation'"));
+  EXPECT_TRUE(contains(problemAbout(error, "agent.kk"), "did you mean 'agent.k'?"));
+}
+
+TEST(ScenarioLoad, GivenAMissingFileOrBrokenYaml_ThenTheErrorSaysSo) {
+  // missing file: named, and bad overrides are still reported with it
+  const std::string path = "/nonexistent/swa/scenario.yaml";
+  const ConfigError missing = expectConfigError([&] { loadScenario(path, {"uav_count=0"}); });
+  EXPECT_EQ(missing.source(), path);
+  ASSERT_EQ(missing.problems().size(), 2u) << missing.what();
+  EXPECT_EQ(missing.problems()[0], "scenario file does not exist");
+  EXPECT_TRUE(contains(missing.problems()[1], "uav_count = 0 is out of range [1, 256] (from --set uav_count=0)"));
+  // YAML syntax error: line and column
+  const ConfigError syntax = expectConfigError([] { parseScenario("uav_count: 4\nwind: [1, 2\n", "bad.yaml"); });
+  ASSERT_EQ(syntax.problems().size(), 1u) << syntax.what();
+  EXPECT_TRUE(contains(syntax.problems()[0], "invalid YAML at line ")) << syntax.what();
+  EXPECT_EQ(std::string(syntax.what()).rfind("bad.yaml: invalid YAML at line", 0), 0u);
+  // a top level that is not a map, and two documents
+  EXPECT_TRUE(contains(expectConfigError([] { parseScenario("- 1\n", "<t>"); }).what(), "must be a map"));
+  EXPECT_TRUE(
+      contains(expectConfigError([] { parseScenario("a: 1\n---\nb: 2\n", "<t>"); }).what(), "2 YAML documents"));
+}
+
+TEST(ScenarioYaml, GivenAScenarioWithEveryFieldChanged_WhenDumpedAndParsed_ThenItIsIdentical) {
+  // GIVEN a valid scenario that differs from the defaults everywhere
+  const Scenario original = everyFieldChanged();
+  // WHEN it is written and read back
+  const std::string yaml = scenarioToYaml(original);
+  const Scenario reread = parseScenario(yaml, "dump");
+  // THEN the dump of the result is the same text, bit for bit, and differs from the defaults
+  EXPECT_EQ(scenarioToYaml(reread), yaml);
+  EXPECT_NE(yaml, scenarioToYaml(Scenario{}));
+  EXPECT_EQ(reread.seed, original.seed);
+  EXPECT_EQ(reread.formation.spacing_m, original.formation.spacing_m);
+  EXPECT_EQ(reread.gnss.keep_uavs, original.gnss.keep_uavs);
+  EXPECT_EQ(reread.agent.formation.radius_m, 11.0);  // written explicitly, so not replaced by the spacing
+  // AND it reads like a scenario file
+  EXPECT_TRUE(contains(yaml, "uav_count: 12")) << yaml;
+  EXPECT_TRUE(contains(yaml, "\nmps:\n")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  ids: false")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  keep_uavs: [0, 11]")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  mode: realtime")) << yaml;
+  EXPECT_TRUE(contains(yaml, "\nagent:")) << yaml;
+  EXPECT_TRUE(contains(yaml, "\n  formation:\n    radius_m: 11.0")) << yaml;
+  // AND the defaults round-trip too, including the infinite dropout end
+  const std::string defaults = scenarioToYaml(Scenario{});
+  EXPECT_TRUE(contains(defaults, "dropout_end_s: .inf")) << defaults;
+  EXPECT_EQ(scenarioToYaml(parseScenario(defaults, "dump")), defaults);
+}
+
+TEST(ScenarioHelp, GivenTheParameterDescription_ThenItListsEveryKeyAndTheAgentTable) {
+  const std::string help = describeScenarioParameters();
+  for (const char* key : {"uav_count", "seed", "duration_s", "formation.spacing_m", "dynamics.heading", "wind.gust_std",
+                          "imu.bias_std", "mps.ids", "mps.miss_probability", "mps.noise_model", "gnss.dropout_start_s",
+                          "gnss.dropout_end_s", "gnss.keep_uavs", "clock.mode", "agent.k", "agent.circle_fit",
+                          "formation.circle_fit", "focal.q_scale"}) {
+    EXPECT_TRUE(contains(help, key)) << key;
+  }
+  EXPECT_TRUE(contains(help, "must each divide dynamics.rate_hz")) << help;
+}
+
+}  // namespace
+}  // namespace swa::sim
