@@ -59,7 +59,7 @@ TEST(AgentInputImu, NonFiniteAttitudeIsCountedAsNonfiniteAndChangesNothing) {
 }
 
 TEST(AgentInputImu, TiltBeyondLimitIsCountedAsImplausibleAndChangesNothing) {
-  // GIVEN two anchored agents tracking on the same stream, max_tilt_rad = 0.8
+  // GIVEN two anchored agents tracking on the same stream, max_tilt_rad (default 1.4)
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
   const double max_tilt = tw.config.limits.max_tilt_rad;
@@ -68,12 +68,12 @@ TEST(AgentInputImu, TiltBeyondLimitIsCountedAsImplausibleAndChangesNothing) {
 
   // WHEN one of them gets finite IMU samples with |roll| or |pitch| just above, and far above, the limit
   std::vector<ImuSample> bad(5);
-  bad[0].roll_rad = std::nextafter(max_tilt, 1.0);
-  bad[1].roll_rad = -1.2;
-  bad[2].pitch_rad = std::nextafter(-max_tilt, -1.0);
+  bad[0].roll_rad = std::nextafter(max_tilt, 10.0);
+  bad[1].roll_rad = -(max_tilt + 0.4);
+  bad[2].pitch_rad = std::nextafter(-max_tilt, -10.0);
   bad[3].pitch_rad = 1e300;
-  bad[4].roll_rad = 0.9;
-  bad[4].pitch_rad = -0.9;
+  bad[4].roll_rad = max_tilt + 0.1;
+  bad[4].pitch_rad = -(max_tilt + 0.1);
   for (ImuSample& s : bad) {
     s.stamp_ns = next;
     s.heading_rad = 0.3;

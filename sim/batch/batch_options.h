@@ -1,0 +1,29 @@
+#pragma once
+// Command line of swa_batch. Parsing is separate from main() so it can be tested and its errors are all reported
+// at once, like the scenario's.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swa/agent/config.h"
+
+namespace swa::batch {
+
+struct BatchOptions {
+  std::string scenario_path;
+  std::vector<std::string> overrides;     // --set k=v, in order
+  int seeds = 1;                          // seeds scenario.seed, scenario.seed + 1, ...
+  int jobs = 1;                           // seeds run in parallel
+  std::string out_dir = "out/batch";
+  std::optional<agent::Mode> compare;     // --compare standalone: the same seeds again in that mode
+  bool help = false;
+  bool list_parameters = false;
+};
+
+// Throws std::invalid_argument listing every problem found.
+BatchOptions parseBatchOptions(const std::vector<std::string>& args);
+std::string batchUsage();
+
+}  // namespace swa::batch

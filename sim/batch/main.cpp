@@ -1,0 +1,151 @@
+// swa_batch: Monte Carlo runs of the simulator with N in-process agent cores. See --help.
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "batch_options.h"
+#include "batch_runner.h"
+#include "swa/agent/config_io.h"
+#include "swa/sim/scenario_io.h"
+
+namespace fs = std::filesystem;
+using namespace swa;
+
+namespace {
+
+constexpr const char* kColumns[] = {"mean_neighbor_distance_m", "min_separation_m", "collisions",
+                                    "drift_velocity_mps",       "uav_displacement_m", "groups",
+                                    "anees_position"};
+
+double field(const monitor::Summary& s, const std::string& key) {
+  for (const auto& f : monitor::summaryFields(s))
+    if (f.key == key) return f.value;
+  return monitor::kNaN;
+}
+
+void printSeed(const batch::RunResult& r) {
+  std::printf("%-10s seed %-6llu d_NB %6.2f m  min_sep %6.2f m  collisions %3.0f  drift %.3f m/s  disp %6.2f m  "
+              "groups %2.0f  ANEES_p %5.2f\n",
+              agent::toString(r.mode).c_str(), static_cast<unsigned long long>(r.seed),
+              field(r.summary, kColumns[0]), field(r.summary, kColumns[1]), field(r.summary, kColumns[2]),
+              field(r.summary, kColumns[3]), field(r.summary, kColumns[4]), field(r.summary, kColumns[5]),
+              field(r.summary, kColumns[6]));
+  std::fflush(stdout);
+}
+
+std::string modeJson(const std::vector<batch::RunResult>& runs) {
+  std::vector<monitor::Summary> summaries;
+  std::ostringstream seeds;
+  seeds << "[";
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    summaries.push_back(runs[i].summary);
+    const std::string body = monitor::toJson(runs[i].summary);  // a flat object "{...}"
+    seeds << (i ? ",\n    " : "\n    ") << "{\"seed\": " << runs[i].seed << ", \"rejected_inputs\": "
+          << runs[i].rejected_inputs << ", " << body.substr(1);
+  }
+  seeds << "\n  ]";
+  std::ostringstream out;
+  out << "{\n  \"mode\": \"" << agent::toString(runs.front().mode) << "\",\n  \"aggregate\": "
+      << monitor::toJson(monitor::aggregate(summaries)) << ",\n  \"seeds\": " << seeds.str() << "\n}";
+  return out.str();
+}
+
+void writeSeries(const fs::path& dir, const std::vector<batch::RunResult>& runs) {
+  fs::create_directories(dir);
+  for (const batch::RunResult& r : runs) {
+    std::ofstream csv(dir / ("seed_" + std::to_string(r.seed) + ".csv"));
+    csv << monitor::csvHeader() << "\n";
+    for (const auto& row : r.series) csv << monitor::formatCsvRow(row) << "\n";
+    if (!csv) throw std::runtime_error("cannot write " + (dir / ("seed_" + std::to_string(r.seed) + ".csv")).string());
+  }
+}
+
+void printAggregate(const std::vector<std::vector<batch::RunResult>>& modes) {
+  std::printf("\n%-26s", "metric (mean ± std)");
+  for (const auto& runs : modes) std::printf("  %-24s", agent::toString(runs.front().mode).c_str());
+  std::printf("\n");
+  std::vector<monitor::Aggregate> aggs;
+  for (const auto& runs : modes) {
+    std::vector<monitor::Summary> s;
+    for (const auto& r : runs) s.push_back(r.summary);
+    aggs.push_back(monitor::aggregate(s));
+  }
+  for (const char* key : kColumns) {
+    std::printf("%-26s", key);
+    for (const auto& a : aggs) {
+      const monitor::Statistic* st = a.find(key);
+      if (st && st->runs > 0) {
+        std::printf("  %10.3f ± %-10.3f", st->mean, st->std);
+      } else {
+        std::printf("  %-24s", "n/a");
+      }
+    }
+    std::printf("\n");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  batch::BatchOptions opt;
+  sim::Scenario scenario;
+  try {
+    opt = batch::parseBatchOptions(std::vector<std::string>(argv + 1, argv + argc));
+    if (opt.help) {
+      std::cout << batch::batchUsage();
+      return 0;
+    }
+    if (opt.list_parameters) {
+      std::cout << sim::describeScenarioParameters();
+      return 0;
+    }
+    scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  }
+
+  try {
+    std::vector<agent::Mode> modes{scenario.agent.mode};
+    if (opt.compare && *opt.compare != scenario.agent.mode) modes.push_back(*opt.compare);
+    std::printf("swa_batch: %s, %d UAVs, %.0f s, seeds %llu..%llu, %d job(s)\n", opt.scenario_path.c_str(),
+                scenario.uav_count, scenario.duration_s, static_cast<unsigned long long>(scenario.seed),
+                static_cast<unsigned long long>(scenario.seed + static_cast<std::uint64_t>(opt.seeds) - 1), opt.jobs);
+    const auto wall0 = std::chrono::steady_clock::now();
+    const std::clock_t cpu0 = std::clock();
+    std::vector<std::vector<batch::RunResult>> results;
+    for (agent::Mode m : modes) {
+      sim::Scenario s = scenario;
+      s.agent.mode = m;
+      results.push_back(batch::runSeeds(s, opt.seeds, opt.jobs, printSeed));
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+    printAggregate(results);
+
+    const fs::path out(opt.out_dir);
+    fs::create_directories(out);
+    std::ofstream json(out / "summary.json");
+    json << "{\n\"scenario\": \"" << opt.scenario_path << "\",\n\"uav_count\": " << scenario.uav_count
+         << ",\n\"duration_s\": " << scenario.duration_s << ",\n\"seeds\": " << opt.seeds << ",\n\"runs\": [\n";
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      json << (i ? ",\n" : "") << modeJson(results[i]);
+      writeSeries(out / agent::toString(results[i].front().mode), results[i]);
+    }
+    json << "\n]\n}\n";
+    std::ofstream(out / "scenario.yaml") << sim::scenarioToYaml(scenario);
+    if (!json) throw std::runtime_error("cannot write " + (out / "summary.json").string());
+    const double simulated = scenario.duration_s * opt.seeds * static_cast<double>(modes.size());
+    std::printf("\n%.0f simulated s in %.2f s wall, %.2f s CPU (%.0fx real time per CPU second); wrote %s\n", simulated,
+                wall, cpu, simulated / std::max(cpu, 1e-9), (out / "summary.json").c_str());
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "swa_batch: " << e.what() << "\n";
+    return 1;
+  }
+}

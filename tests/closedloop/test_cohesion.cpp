@@ -1,0 +1,100 @@
+// DESIGN §5 / issue #3: SWA holds the formation after GNSS is lost, standalone UAVs drift apart.
+
+#include <gtest/gtest.h>
+
+#include "closed_loop_support.h"
+
+namespace swa::batch {
+namespace {
+
+using testing::runSeeds;
+using testing::shipped;
+using testing::Stats;
+
+constexpr double kR = 10.0;
+
+void expectCohesive(const Stats& s, double tolerance_fraction, const char* what) {
+  SCOPED_TRACE(what);
+  EXPECT_NEAR(s.mean("mean_neighbor_distance_m"), kR, tolerance_fraction * kR);
+  EXPECT_EQ(s.max("collisions"), 0.0);
+  EXPECT_LE(s.mean("drift_velocity_mps"), 0.08);
+  EXPECT_EQ(s.max("groups"), 1.0);
+  for (const RunResult& r : s.runs) EXPECT_EQ(r.rejected_inputs, 0u) << "seed " << r.seed;
+}
+
+TEST(ClosedLoopCohesion, FourUavsHoldFormationWithin15Percent) {
+  // GIVEN 4 UAVs, defaults (k = 3: each neighbours all others, which over-constrains the fit), GNSS lost at 10 s
+  // WHEN 10 seeds of 120 s run
+  const Stats s = runSeeds(shipped("dropout_4"));
+  // THEN d_NB at the end is within 15 % of r, no collision, drift <= 0.08 m/s
+  expectCohesive(s, 0.15, "N = 4");
+}
+
+TEST(ClosedLoopCohesion, EightUavsHoldFormationWithin10Percent) {
+  expectCohesive(runSeeds(shipped("dropout_8")), 0.10, "N = 8");
+}
+
+TEST(ClosedLoopCohesion, SixteenUavsHoldFormationWithin10Percent) {
+  expectCohesive(runSeeds(shipped("swarm_16")), 0.10, "N = 16");
+}
+
+TEST(ClosedLoopCohesion, AnonymousDetectionsWithClutterStayCohesive) {
+  // GIVEN LiDAR-like anonymous detections with 0.4 false positives per scan (5 % of 8 detections)
+  expectCohesive(runSeeds(shipped("anonymous_8")), 0.10, "anonymous + clutter");
+}
+
+TEST(ClosedLoopBaseline, StandaloneUavsDriftApart) {
+  // GIVEN the same 8-UAV scenario and seeds, once with SWA and once with the standalone baseline
+  const Stats standalone = runSeeds(shipped("dropout_8", {"agent.mode=standalone"}));
+  // THEN without SWA the neighbour distance grows to >= 1.3 r
+  EXPECT_GE(standalone.mean("mean_neighbor_distance_m"), 1.3 * kR);
+}
+
+TEST(ClosedLoopBaseline, StandaloneDisplacementIsAtLeastThreeTimesSwa) {
+  // GIVEN the same seeds with and without SWA
+  const Stats swa = runSeeds(shipped("dropout_8"));
+  const Stats standalone = runSeeds(shipped("dropout_8", {"agent.mode=standalone"}));
+  // THEN each standalone UAV moves >= 3x as far as a SWA UAV after GNSS loss. Measured: 22.1 m vs 7.34 m = 3.01x,
+  // a thin margin: SWA's own drift (0.061 m/s) sits where DESIGN §5's k = 3 reference does (0.065 m/s).
+  EXPECT_GE(standalone.mean("uav_displacement_m"), 3.0 * swa.mean("uav_displacement_m"));
+}
+
+TEST(ClosedLoopScaling, DriftFallsAsTheSwarmGrows) {
+  // GIVEN independent gusts and IMU biases per UAV
+  // WHEN 4 and 16 UAVs fly the same scenario
+  const Stats four = runSeeds(shipped("dropout_4"));
+  const Stats sixteen = runSeeds(shipped("swarm_16"));
+  // THEN the swarm of 16 drifts slower (the paper's headline; disturbances average out over members)
+  EXPECT_LT(sixteen.mean("drift_velocity_mps"), four.mean("drift_velocity_mps"));
+}
+
+TEST(ClosedLoopFit, PapersAlgebraicFitCollapsesTheFormation) {
+  // GIVEN k = 3 with the paper's algebraic (Kasa) circle fit: with c free, r cancels out of the fit
+  // WHEN 8 UAVs fly
+  const Stats s = runSeeds(shipped("dropout_8", {"agent.circle_fit=algebraic"}));
+  // THEN they collapse onto each other, which is why fixed_radius is the default
+  EXPECT_LT(s.mean("mean_neighbor_distance_m"), 0.3 * kR);
+  EXPECT_GT(s.mean("collisions"), 0.0);
+}
+
+TEST(ClosedLoopAnchored, OneUavKeepingGnssStopsTheSwarmDrifting) {
+  // GIVEN anchored agents and UAV 0 keeping GNSS while the others lose it at 10 s (400 s, see the scenario file)
+  const Stats s = runSeeds(shipped("anchored_8"));
+  // THEN the centroid's net drift is <= 0.01 m/s and the formation still holds
+  EXPECT_LE(s.mean("drift_velocity_mps"), 0.01);
+  expectCohesive(s, 0.10, "anchored");
+}
+
+TEST(ClosedLoopConsistency, FocalAneesInsideTheChi2BandOnTheDefaultScenario) {
+  // GIVEN the default scenario; ANEES is averaged over the 8 agents (K = 8, n = 2) and over time after GNSS loss
+  const Stats s = runSeeds(shipped("dropout_8"));
+  for (const RunResult& r : s.runs) {
+    SCOPED_TRACE(r.seed);
+    // THEN each seed's ANEES of position lies in its 95 % band
+    EXPECT_GE(r.summary.anees_position, r.summary.anees_band_low);
+    EXPECT_LE(r.summary.anees_position, r.summary.anees_band_high);
+  }
+}
+
+}  // namespace
+}  // namespace swa::batch
