@@ -23,7 +23,8 @@ std::string batchUsage() {
 
 Runs the simulator and one SWA agent core per UAV in one process, deterministically per seed, seeds in parallel.
 Prints one line per finished seed and an aggregate table; writes DIR/summary.json (aggregate and per seed) and
-DIR/<mode>/seed_<S>.csv (time series, one row per 100 ms).
+DIR/<mode>/seed_<S>.csv (time series, one row per 100 ms) and DIR/<mode>/seed_<S>_events.csv (GNSS loss,
+collisions, failsafe).
 
   --scenario FILE   scenario YAML (see deploy/scenarios/)
   --set key=value   override any scenario key, e.g. --set uav_count=16 --set agent.k=2 (repeatable)

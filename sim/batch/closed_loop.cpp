@@ -33,6 +33,7 @@ RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& option
   if (score_estimates) input.estimates.resize(static_cast<std::size_t>(n));
 
   while (true) {
+    result.events.insert(result.events.end(), world.events().begin(), world.events().end());
     const std::vector<sim::UavSensors>& sensors = world.sensors();
     for (int i = 0; i < n; ++i) {
       agent::Agent& a = agents[static_cast<std::size_t>(i)];

@@ -8,6 +8,7 @@
 #include "swa/monitor/accumulator.h"
 #include "swa/monitor/report.h"
 #include "swa/sim/scenario.h"
+#include "swa/sim/world.h"
 
 namespace swa::batch {
 
@@ -17,6 +18,7 @@ struct RunResult {
   monitor::Summary summary;
   std::vector<monitor::TimeSeriesRow> series;  // one row per metrics sample
   std::uint64_t rejected_inputs = 0;           // summed over agents: should be 0 for simulated sensors
+  std::vector<sim::Event> events;              // everything the world raised (GNSS loss, collisions, failsafe)
 };
 
 struct LoopOptions {

@@ -55,9 +55,26 @@ std::string modeJson(const std::vector<batch::RunResult>& runs) {
   return out.str();
 }
 
+const char* eventName(sim::EventKind k) {
+  switch (k) {
+    case sim::EventKind::kGnssLost: return "gnss_lost";
+    case sim::EventKind::kGnssRestored: return "gnss_restored";
+    case sim::EventKind::kCollision: return "collision";
+    case sim::EventKind::kFailsafeOn: return "failsafe_on";
+    case sim::EventKind::kFailsafeOff: return "failsafe_off";
+  }
+  return "unknown";
+}
+
 void writeSeries(const fs::path& dir, const std::vector<batch::RunResult>& runs) {
   fs::create_directories(dir);
   for (const batch::RunResult& r : runs) {
+    std::ofstream events(dir / ("seed_" + std::to_string(r.seed) + "_events.csv"));
+    events << "t_s,event,uav,other_uav,value\n";
+    for (const sim::Event& e : r.events) {
+      events << monitor::formatNumber(static_cast<double>(e.stamp_ns) * 1e-9) << "," << eventName(e.kind) << ","
+             << e.uav << "," << e.other_uav << "," << monitor::formatNumber(e.value) << "\n";
+    }
     std::ofstream csv(dir / ("seed_" + std::to_string(r.seed) + ".csv"));
     csv << monitor::csvHeader() << "\n";
     for (const auto& row : r.series) csv << monitor::formatCsvRow(row) << "\n";

@@ -79,7 +79,9 @@ TEST(BatchCli, ShortRunWritesSummaryAndSeries) {
     EXPECT_NE(json.find(key), std::string::npos) << key;
   }
   for (const char* mode : {"swa", "standalone"}) {
-    for (const char* seed : {"seed_1.csv", "seed_2.csv"}) EXPECT_TRUE(fs::exists(out / mode / seed)) << mode << seed;
+    for (const char* file : {"seed_1.csv", "seed_2.csv", "seed_1_events.csv", "seed_2_events.csv"}) {
+      EXPECT_TRUE(fs::exists(out / mode / file)) << mode << file;
+    }
   }
   EXPECT_TRUE(fs::exists(out / "scenario.yaml"));
   fs::remove_all(out);
