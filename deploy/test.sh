@@ -5,7 +5,5 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${SWA_BUILD_DIR:-$root/build}
 
-bash "$root/deploy/install-deps.sh"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSWA_WERROR=ON
-cmake --build "$build" -j "$(nproc)"
+bash "$root/deploy/build.sh"
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" "$@"
