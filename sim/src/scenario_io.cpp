@@ -34,7 +34,7 @@ using agent::ConfigError;
 // The parameter table: every scenario field outside `agent` is declared here exactly once. The `agent` section
 // is validated by the agent's own table (swa/agent/config_io.h).
 
-enum class Kind { kReal, kInteger, kSeed, kBool, kChoice, kIndexList };
+enum class Kind { kReal, kInteger, kSeed, kBool, kChoice, kIndexList, kWindowList };
 
 struct Range {
   double min;
@@ -67,6 +67,8 @@ struct Param {
   std::function<void(Scenario&, std::uint64_t)> set_seed;
   std::function<std::vector<int>(const Scenario&)> get_list;
   std::function<void(Scenario&, std::vector<int>)> set_list;
+  std::function<std::vector<GnssWindow>(const Scenario&)> get_windows;
+  std::function<void(Scenario&, std::vector<GnssWindow>)> set_windows;
 };
 
 // `access` is a generic lambda `[](auto& s) -> auto& { return s.section.field; }`, usable on const and mutable
@@ -134,6 +136,18 @@ Param indexList(std::string key, Access access, Range element_range, std::string
   p.meaning = std::move(meaning);
   p.get_list = [access](const Scenario& s) { return access(s); };
   p.set_list = [access](Scenario& s, std::vector<int> v) { access(s) = std::move(v); };
+  return p;
+}
+
+template <class Access>
+Param windowList(std::string key, Access access, std::string meaning) {
+  Param p;
+  p.key = std::move(key);
+  p.kind = Kind::kWindowList;
+  p.unit = "s";
+  p.meaning = std::move(meaning);
+  p.get_windows = [access](const Scenario& s) { return access(s); };
+  p.set_windows = [access](Scenario& s, std::vector<GnssWindow> v) { access(s) = std::move(v); };
   return p;
 }
 
@@ -227,6 +241,8 @@ const std::vector<Param>& parameters() {
       }(),
       indexList("gnss.keep_uavs", [](auto& s) -> auto& { return s.gnss.keep_uavs; }, closed(0, kMaxUavs - 1),
                 "UAVs that never lose GNSS, e.g. [0] for one anchored member; indices in [0, uav_count)"),
+      windowList("gnss.windows", [](auto& s) -> auto& { return s.gnss.windows; },
+                 "extra outages of single UAVs on top of the common one (keep_uavs does not exempt them)"),
 
       choice("clock.mode", [](auto& s) -> auto& { return s.clock.mode; }, kClockModes,
              "lockstep: deterministic, as fast as the agents answer; realtime: wall-clock pacing"),
@@ -257,6 +273,45 @@ const Param* findParam(const std::string& key) {
   }
   return nullptr;
 }
+
+// The fields of one gnss.windows entry, checked like parameters of their own (messages name them
+// "gnss.windows[i].field").
+const Param& windowUavParam() {
+  static const Param p = [] {
+    Param q;
+    q.key = "uav";
+    q.kind = Kind::kInteger;
+    q.range = closed(0, kMaxUavs - 1);
+    return q;
+  }();
+  return p;
+}
+
+const Param& windowStartParam() {
+  static const Param p = [] {
+    Param q;
+    q.key = "start_s";
+    q.unit = "s";
+    q.range = closed(0, kMaxTime_s);
+    return q;
+  }();
+  return p;
+}
+
+const Param& windowEndParam() {
+  static const Param p = [] {
+    Param q;
+    q.key = "end_s";
+    q.unit = "s";
+    q.range = openClosed(0, kMaxTime_s);
+    q.allow_infinity = true;
+    return q;
+  }();
+  return p;
+}
+
+constexpr std::array<const char*, 3> kWindowFields{"uav", "start_s", "end_s"};
+constexpr const char* kWindowExample = "{uav: 3, start_s: 20, end_s: 40}";
 
 // ------------------------------------------------------------------------------------------------------------
 // The agent section: its keys are learnt from the agent's own YAML dump, so they never go out of sync.
@@ -382,11 +437,25 @@ std::string formatList(const std::vector<int>& values) {
   return "[" + join(items, ", ") + "]";
 }
 
+std::string formatWindow(const GnssWindow& w) {
+  return "{uav: " + std::to_string(w.uav) + ", start_s: " + formatYamlReal(w.start_s) +
+         ", end_s: " + formatYamlReal(w.end_s) + "}";
+}
+
+std::string formatWindows(const std::vector<GnssWindow>& windows) {
+  std::vector<std::string> items;
+  for (const GnssWindow& w : windows) items.push_back(formatWindow(w));
+  return "[" + join(items, ", ") + "]";
+}
+
 std::string formatRange(const Param& p) {
   switch (p.kind) {
     case Kind::kChoice:
     case Kind::kBool:
       return join(p.choices, "|");
+    case Kind::kWindowList:
+      return "list of {uav, start_s, end_s}: uav in [0, uav_count), 0 <= start_s < end_s <= " +
+             formatNumber(kMaxTime_s) + " or .inf";
     case Kind::kSeed:
       return "[0, " + std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]";
     case Kind::kReal:
@@ -421,6 +490,8 @@ std::string formatValue(const Param& p, const Scenario& s) {
     }
     case Kind::kIndexList:
       return formatList(p.get_list(s));
+    case Kind::kWindowList:
+      return formatWindows(p.get_windows(s));
   }
   return {};
 }
@@ -441,6 +512,8 @@ const char* typeName(Kind kind) {
       return "choice";
     case Kind::kIndexList:
       return "int list";
+    case Kind::kWindowList:
+      return "window list";
   }
   return "";
 }
@@ -459,6 +532,9 @@ std::string expectation(const Param& p) {
       return "one of: " + join(p.choices, ", ");
     case Kind::kIndexList:
       return "a list of UAV indices such as [0] or [] (indices in [0, uav_count))";
+    case Kind::kWindowList:
+      return std::string("a list of outage windows such as [") + kWindowExample +
+             "] or [] (end_s optional: .inf = never restored)";
   }
   return {};
 }
@@ -808,6 +884,100 @@ void assignList(const Param& p, const Entry& e, Scenario& s, Report& report) {
   if (ok) p.set_list(s, std::move(list));
 }
 
+// One gnss.windows entry: a map of uav, start_s and (optionally) end_s. Reports every problem; nullopt if any.
+std::optional<GnssWindow> readWindow(const YAML::Node& element, const std::string& name,
+                                     const std::function<void(std::string, const YAML::Node&)>& fail) {
+  if (!element.IsMap()) {
+    fail(name + " must be a map such as " + kWindowExample + ", got " + nodeKindName(element), element);
+    return std::nullopt;
+  }
+  bool ok = true;
+  std::set<std::string> seen;
+  std::optional<double> uav;
+  std::optional<double> start_s;
+  std::optional<double> end_s;
+  std::optional<YAML::Node> end_node;  // copy-constructed only: assigning a YAML::Node writes through
+  for (const auto& item : element) {
+    const YAML::Node& key_node = item.first;
+    const YAML::Node& value = item.second;
+    if (!key_node.IsScalar()) {
+      ok = false;
+      fail("a key in " + name + " is " + nodeKindName(key_node) + ", not a name; expected uav, start_s, end_s",
+           key_node);
+      continue;
+    }
+    const std::string& field = key_node.Scalar();
+    const std::string field_name = name + "." + field;
+    const auto field_fail = [&](std::string message) {
+      ok = false;
+      fail(std::move(message), value);
+    };
+    if (std::find(kWindowFields.begin(), kWindowFields.end(), field) == kWindowFields.end()) {
+      ok = false;
+      std::string message = "unknown key '" + field + "' in " + name;
+      std::size_t best_distance = 3;  // suggest only within an edit distance of 2
+      std::string best;
+      for (const char* candidate : kWindowFields) {
+        const std::size_t distance = editDistance(field, candidate);
+        if (distance < best_distance) {
+          best_distance = distance;
+          best = candidate;
+        }
+      }
+      if (!best.empty()) message += " (did you mean '" + best + "'?)";
+      fail(message + "; expected uav, start_s and optionally end_s", key_node);
+      continue;
+    }
+    if (!seen.insert(field).second) {
+      ok = false;
+      fail("duplicate key '" + field_name + "'", key_node);
+      continue;
+    }
+    if (field == "uav") {
+      uav = readNumber(windowUavParam(), value, field_name, field_fail);
+    } else if (field == "start_s") {
+      start_s = readNumber(windowStartParam(), value, field_name, field_fail);
+    } else {
+      end_s = readNumber(windowEndParam(), value, field_name, field_fail);
+      end_node.emplace(value);
+    }
+  }
+  for (const char* required : {"uav", "start_s"}) {
+    if (seen.count(required) == 0) {
+      ok = false;
+      fail(name + " has no " + required + "; expected a map such as " + kWindowExample, element);
+    }
+  }
+  if (start_s && end_s && !(*end_s > *start_s)) {
+    ok = false;
+    fail(name + ".end_s = " + formatNumber(*end_s) + " s must be > " + name + ".start_s = " +
+             formatNumber(*start_s) + " s: the outage would be empty (leave end_s out for one that never ends)",
+         *end_node);
+  }
+  if (!ok || !uav || !start_s) return std::nullopt;
+  GnssWindow window;
+  window.uav = static_cast<int>(*uav);
+  window.start_s = *start_s;
+  if (end_s) window.end_s = *end_s;
+  return window;
+}
+
+void assignWindows(const Param& p, const Entry& e, Scenario& s, Report& report) {
+  std::vector<GnssWindow> windows;
+  bool ok = true;
+  std::size_t index = 0;
+  for (const YAML::Node& element : e.value) {
+    const std::string name = p.key + "[" + std::to_string(index++) + "]";
+    const auto fail = [&](std::string message, const YAML::Node& at) {
+      ok = false;
+      const std::string where = e.from_file && !locationOf(at).empty() ? locationOf(at) : e.where;
+      report.addFor(p.key, std::move(message) + where);
+    };
+    if (auto window = readWindow(element, name, fail)) windows.push_back(*window);
+  }
+  if (ok) p.set_windows(s, std::move(windows));
+}
+
 // Assigns the value of a scenario (non-agent) entry, or reports why it cannot.
 void assign(const Param& p, const Entry& e, Scenario& s, Report& report) {
   const auto fail = [&](std::string message) { report.addFor(p.key, std::move(message) + e.where); };
@@ -816,6 +986,10 @@ void assign(const Param& p, const Entry& e, Scenario& s, Report& report) {
   if (p.kind == Kind::kIndexList) {
     if (!value.IsSequence()) return fail(p.key + " must be " + expectation(p) + ", got " + nodeKindName(value));
     return assignList(p, e, s, report);
+  }
+  if (p.kind == Kind::kWindowList) {
+    if (!value.IsSequence()) return fail(p.key + " must be " + expectation(p) + ", got " + nodeKindName(value));
+    return assignWindows(p, e, s, report);
   }
   if (!value.IsScalar()) return fail(p.key + " must be " + expectation(p) + ", got " + nodeKindName(value));
   const std::string& text = value.Scalar();
@@ -842,6 +1016,7 @@ void assign(const Param& p, const Entry& e, Scenario& s, Report& report) {
       if (const auto v = readNumber(p, value, p.key, fail)) p.set_number(s, *v);
       return;
     case Kind::kIndexList:
+    case Kind::kWindowList:
       return;
   }
 }
@@ -884,6 +1059,16 @@ void checkRelations(const Scenario& s, Report& report) {
       } else if (!listed.insert(id).second) {
         report.add("gnss.keep_uavs lists UAV " + std::to_string(id) + " more than once");
       }
+    }
+  }
+
+  if (ok({"gnss.windows", "uav_count"})) {
+    for (std::size_t i = 0; i < s.gnss.windows.size(); ++i) {
+      const int id = s.gnss.windows[i].uav;
+      if (id >= 0 && id < s.uav_count) continue;
+      report.add("gnss.windows[" + std::to_string(i) + "].uav = " + std::to_string(id) +
+                 " is not a UAV of the swarm: the UAV indices are 0.." + std::to_string(s.uav_count - 1) +
+                 " (uav_count = " + std::to_string(s.uav_count) + ")");
     }
   }
 
@@ -1123,6 +1308,9 @@ std::string scenarioToYaml(const Scenario& scenario) {
       case Kind::kIndexList:
         comment = "UAV indices in [0, uav_count)";
         break;
+      case Kind::kWindowList:
+        comment = "per-UAV outages {uav, start_s, end_s} (end_s .inf = never restored)";
+        break;
       case Kind::kReal:
       case Kind::kInteger:
       case Kind::kSeed:
@@ -1131,8 +1319,14 @@ std::string scenarioToYaml(const Scenario& scenario) {
         break;
     }
     const std::string indent = section.empty() ? "" : "  ";
-    lines.push_back(
-        {indent + p.key.substr(dot == std::string::npos ? 0 : dot + 1) + ": " + formatValue(p, scenario), comment});
+    const std::string name = p.key.substr(dot == std::string::npos ? 0 : dot + 1);
+    if (p.kind == Kind::kWindowList && !p.get_windows(scenario).empty()) {
+      // One window per line, so a long list does not push every comment to the right.
+      lines.push_back({indent + name + ":", comment});
+      for (const GnssWindow& w : p.get_windows(scenario)) lines.push_back({indent + "  - " + formatWindow(w), ""});
+      continue;
+    }
+    lines.push_back({indent + name + ": " + formatValue(p, scenario), comment});
   }
 
   std::size_t width = 0;
@@ -1184,6 +1378,10 @@ std::string describeScenarioParameters() {
       "  - gnss.dropout_end_s > gnss.dropout_start_s; gnss.dropout_end_s may be .inf (never restored), the only\n"
       "    key that accepts infinity.\n"
       "  - gnss.keep_uavs: distinct UAV indices in [0, uav_count).\n"
+      "  - gnss.windows: extra outages of single UAVs, e.g. [{uav: 3, start_s: 20, end_s: 40}, {uav: 5, start_s: 0}]\n"
+      "    (--set gnss.windows='[...]' replaces the whole list). uav in [0, uav_count), 0 <= start_s < end_s;\n"
+      "    end_s may be .inf or left out (never restored). A UAV has no GNSS inside the common window (unless it\n"
+      "    is in keep_uavs) or inside any of its own windows; windows may overlap.\n"
       "  - formation.spacing_m < mps.range_m.\n"
       "\nAgent parameters: the 'agent:' section takes the agent configuration layout below (e.g. agent.mode,\n"
       "agent.formation.k; --set agent.focal.q_scale=2). Shortcuts: agent.k = agent.formation.k and\n"

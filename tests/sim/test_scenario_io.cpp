@@ -111,6 +111,7 @@ Scenario everyFieldChanged() {
   s.gnss.dropout_start_s = 0.0;
   s.gnss.dropout_end_s = 95.5;
   s.gnss.keep_uavs = {0, 11};
+  s.gnss.windows = {{3, 20.0, 40.0}, {11, 0.1 + 0.2, std::numeric_limits<double>::infinity()}, {3, 35.5, 1e5}};
   s.clock.mode = ClockMode::kRealtime;
   s.clock.speed = 2.5;
   s.agent.mode = agent::Mode::kAnchored;
@@ -145,6 +146,7 @@ TEST(ScenarioDefaults, GivenADefaultScenario_ThenItHoldsDesignSection4AndThePape
   EXPECT_EQ(s.gnss.dropout_start_s, 10.0);
   EXPECT_TRUE(std::isinf(s.gnss.dropout_end_s));
   EXPECT_TRUE(s.gnss.keep_uavs.empty());
+  EXPECT_TRUE(s.gnss.windows.empty());
   EXPECT_EQ(s.clock.mode, ClockMode::kLockstep);
   // AND an empty (or comment-only, or empty-section) text parses to exactly these defaults
   EXPECT_EQ(yamlOf(parseScenario("", "<empty>")), yamlOf(s));
@@ -225,6 +227,8 @@ TEST(ScenarioOverride, GivenASetOfEachRequiredKey_WhenApplied_ThenExactlyThatFie
       {"mps.miss_probability=0.2", [](Scenario& s) { s.mps.miss_probability = 0.2; }},
       {"gnss.dropout_start_s=0", [](Scenario& s) { s.gnss.dropout_start_s = 0.0; }},
       {"wind.gust_std=0.5", [](Scenario& s) { s.wind.gust_std = 0.5; }},
+      {"gnss.windows=[{uav: 3, start_s: 20, end_s: 40}, {uav: 5, start_s: 0}]",
+       [](Scenario& s) { s.gnss.windows = {{3, 20.0, 40.0}, {5, 0.0, std::numeric_limits<double>::infinity()}}; }},
   };
   for (const Case& c : cases) {
     // GIVEN the default scenario file and one --set
@@ -426,6 +430,141 @@ TEST(ScenarioParse, GivenKeepUavs_ThenIndicesMustBeInsideTheSwarmAndDistinct) {
   EXPECT_TRUE(contains(problemAbout(range, "lists UAV 3"), "(uav_count = 3)"));
 }
 
+TEST(ScenarioGnssWindows, GivenPerUavWindowsInTheFileOrASet_WhenLoaded_ThenEachIsKeptAsWritten) {
+  const double inf = std::numeric_limits<double>::infinity();
+  // GIVEN windows in block and flow style, one without end_s, one with an explicit .inf, two overlapping ones
+  const Scenario s = parseScenario(
+      "uav_count: 6\n"
+      "gnss:\n"
+      "  windows:\n"
+      "    - {uav: 3, start_s: 20, end_s: 40}\n"
+      "    - uav: 5\n"
+      "      start_s: 0\n"
+      "    - {uav: 3, start_s: 30.5, end_s: .inf}\n",
+      "<t>");
+  // THEN they are read in order, a missing end_s meaning never restored
+  ASSERT_EQ(s.gnss.windows.size(), 3u);
+  EXPECT_EQ(s.gnss.windows[0].uav, 3);
+  EXPECT_EQ(s.gnss.windows[0].start_s, 20.0);
+  EXPECT_EQ(s.gnss.windows[0].end_s, 40.0);
+  EXPECT_EQ(s.gnss.windows[1].uav, 5);
+  EXPECT_EQ(s.gnss.windows[1].start_s, 0.0);
+  EXPECT_EQ(s.gnss.windows[1].end_s, inf);
+  EXPECT_EQ(s.gnss.windows[2].start_s, 30.5);
+  EXPECT_EQ(s.gnss.windows[2].end_s, inf);
+  // AND the common window is untouched
+  EXPECT_EQ(s.gnss.dropout_start_s, 10.0);
+
+  // WHEN a --set gives the list THEN it replaces the file's whole list; [] clears it
+  const std::string file = "uav_count: 6\ngnss: {windows: [{uav: 1, start_s: 2}, {uav: 2, start_s: 3}]}\n";
+  const Scenario replaced = parseScenario(file, "<t>", {"gnss.windows=[{uav: 4, start_s: 1.5, end_s: 2.5}]"});
+  ASSERT_EQ(replaced.gnss.windows.size(), 1u);
+  EXPECT_EQ(replaced.gnss.windows[0].uav, 4);
+  EXPECT_EQ(replaced.gnss.windows[0].start_s, 1.5);
+  EXPECT_EQ(replaced.gnss.windows[0].end_s, 2.5);
+  EXPECT_TRUE(parseScenario(file, "<t>", {"gnss.windows=[]"}).gnss.windows.empty());
+  // AND the UAV check uses the final uav_count (a --set may grow the swarm to fit the windows)
+  EXPECT_EQ(parseScenario("uav_count: 2\ngnss: {windows: [{uav: 7, start_s: 1}]}\n", "<t>", {"uav_count=8"})
+                .gnss.windows.size(),
+            1u);
+}
+
+TEST(ScenarioGnssWindows, GivenManyBrokenWindows_WhenLoaded_ThenOneErrorListsEveryProblem) {
+  // GIVEN a file whose window entries are wrong in many ways
+  const TempFile file(
+      "uav_count: 4\n"
+      "gnss:\n"
+      "  windows:\n"
+      "    - {uav: 1, start_s: -1}\n"
+      "    - {uav: 2, start_s: 30, end_s: 30}\n"
+      "    - {uav: 0, start: 5}\n"
+      "    - {uav: \"2\", start_s: .inf}\n"
+      "    - 3\n"
+      "    - {start_s: 1, end_s: [2]}\n"
+      "    - {uav: 1, start_s: 2, uav: 3}\n"
+      "    - {uav: 1.5, start_s: 2, end_s: 1}\n");
+  // WHEN it is loaded
+  const ConfigError error = expectConfigError([&] { loadScenario(file.path()); });
+  // THEN one error lists every problem, each naming the entry and where it is
+  EXPECT_EQ(error.problems().size(), 12u) << error.what();
+  EXPECT_EQ(problemAbout(error, "windows[0]"),
+            "gnss.windows[0].start_s = -1 is out of range [0, 1e+06] s (line 4, column 25)");
+  EXPECT_EQ(problemAbout(error, "windows[1]"),
+            "gnss.windows[1].end_s = 30 s must be > gnss.windows[1].start_s = 30 s: the outage would be empty "
+            "(leave end_s out for one that never ends) (line 5, column 36)");
+  EXPECT_TRUE(contains(problemAbout(error, "'start'"),
+                       "unknown key 'start' in gnss.windows[2] (did you mean 'start_s'?)"));
+  EXPECT_TRUE(contains(problemAbout(error, "gnss.windows[2] has no start_s"), "(line 6, column 7)"));
+  EXPECT_TRUE(contains(problemAbout(error, "windows[3].uav"), "gnss.windows[3].uav = \"2\" is a string"));
+  EXPECT_TRUE(contains(problemAbout(error, "windows[3].start_s"), "= .inf is not a finite number"));
+  EXPECT_TRUE(contains(problemAbout(error, "windows[4]"), "gnss.windows[4] must be a map such as {uav: 3, "
+                                                          "start_s: 20, end_s: 40}, got a scalar (line 8, column 7)"));
+  EXPECT_TRUE(contains(problemAbout(error, "gnss.windows[5] has no uav"), "expected a map such as"));
+  EXPECT_TRUE(contains(problemAbout(error, "windows[5].end_s"), "must be a number in s within (0, 1e+06] or "
+                                                                ".inf, got a sequence"));
+  EXPECT_TRUE(contains(problemAbout(error, "duplicate"), "duplicate key 'gnss.windows[6].uav'"));
+  EXPECT_TRUE(contains(problemAbout(error, "windows[7].uav"), "gnss.windows[7].uav = 1.5 is not an integer"));
+  EXPECT_TRUE(contains(problemAbout(error, "windows[7].end_s"), "end_s = 1 s must be > gnss.windows[7].start_s = 2 s"));
+}
+
+TEST(ScenarioGnssWindows, GivenWindowsForUavsOutsideTheSwarmOrOfTheWrongShape_ThenEachIsReported) {
+  // GIVEN well-formed windows, two of them for UAVs the swarm does not have
+  const ConfigError outside = expectConfigError([] {
+    parseScenario("uav_count: 4\ngnss: {windows: [{uav: 4, start_s: 1}, {uav: 2, start_s: 1}, {uav: 7, start_s: 0}]}\n",
+                  "<t>");
+  });
+  // THEN each is named against uav_count
+  ASSERT_EQ(outside.problems().size(), 2u) << outside.what();
+  EXPECT_EQ(problemAbout(outside, "windows[0]"),
+            "gnss.windows[0].uav = 4 is not a UAV of the swarm: the UAV indices are 0..3 (uav_count = 4)");
+  EXPECT_TRUE(contains(problemAbout(outside, "windows[2]"), "uav = 7 is not a UAV of the swarm"));
+
+  // GIVEN a single window instead of a list THEN the shape is reported
+  const ConfigError shape = expectConfigError([] { parseScenario("gnss: {windows: {uav: 1, start_s: 2}}\n", "<t>"); });
+  ASSERT_EQ(shape.problems().size(), 1u) << shape.what();
+  EXPECT_EQ(shape.problems()[0],
+            "gnss.windows must be a list of outage windows such as [{uav: 3, start_s: 20, end_s: 40}] or [] (end_s "
+            "optional: .inf = never restored), got a map (line 1, column 17)");
+  // GIVEN a --set whose window is wrong in two ways THEN both are reported, located at the --set
+  const std::string set = "gnss.windows=[{uav: 1, start_s: x, stop_s: 3}]";
+  const ConfigError bad_set = expectConfigError([&] { parseScenario("", "<t>", {set}); });
+  ASSERT_EQ(bad_set.problems().size(), 2u) << bad_set.what();
+  EXPECT_EQ(problemAbout(bad_set, "'x'"),
+            "gnss.windows[0].start_s = 'x' is not a number; expected a number in s within [0, 1e+06] (from --set " +
+                set + ")");
+  EXPECT_TRUE(contains(problemAbout(bad_set, "unknown key"), "unknown key 'stop_s' in gnss.windows[0]"));
+  // GIVEN a --set that is not YAML THEN that is the problem
+  const ConfigError not_yaml = expectConfigError([] { parseScenario("", "<t>", {"gnss.windows=[{uav: 1"}); });
+  ASSERT_EQ(not_yaml.problems().size(), 1u) << not_yaml.what();
+  EXPECT_TRUE(contains(not_yaml.problems()[0], "gnss.windows = '[{uav: 1' is not a valid YAML value"));
+}
+
+TEST(ScenarioFiles, GivenTheCommentedWindowsExampleOfDropout8_WhenUncommented_ThenItLoads) {
+  // GIVEN dropout_8.yaml with its commented gnss.windows example uncommented
+  std::ifstream in(scenarioDir() + "/dropout_8.yaml");
+  std::string text;
+  bool found = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line == "  # windows:") {
+      line = "  windows:";
+      found = true;
+    } else if (line.rfind("  #   - ", 0) == 0) {
+      line = "    - " + line.substr(8);
+    }
+    text += line + '\n';
+  }
+  ASSERT_TRUE(found);
+  // WHEN it is parsed THEN it is the default scenario plus those windows
+  const Scenario s = parseScenario(text, "dropout_8 with windows");
+  ASSERT_EQ(s.gnss.windows.size(), 2u);
+  EXPECT_EQ(s.gnss.windows[0].uav, 3);
+  EXPECT_EQ(s.gnss.windows[1].uav, 5);
+  EXPECT_TRUE(std::isinf(s.gnss.windows[1].end_s));
+  Scenario without = s;
+  without.gnss.windows.clear();
+  EXPECT_EQ(yamlOf(without), yamlOf(Scenario{}));
+}
+
 TEST(ScenarioParse, GivenMisplacedKeys_ThenTheHintNamesTheRightPlace) {
   const ConfigError error = expectConfigError([] {
     parseScenario("mode: anchored\nimu: {gust_std: 1}\nagent: {formation: {raduis_m: 5}}\nwind.gust_std: 1\n",
@@ -471,18 +610,31 @@ TEST(ScenarioYaml, GivenAScenarioWithEveryFieldChanged_WhenDumpedAndParsed_ThenI
   EXPECT_EQ(reread.seed, original.seed);
   EXPECT_EQ(reread.formation.spacing_m, original.formation.spacing_m);
   EXPECT_EQ(reread.gnss.keep_uavs, original.gnss.keep_uavs);
+  ASSERT_EQ(reread.gnss.windows.size(), original.gnss.windows.size());
+  for (std::size_t i = 0; i < original.gnss.windows.size(); ++i) {
+    EXPECT_EQ(reread.gnss.windows[i].uav, original.gnss.windows[i].uav) << i;
+    EXPECT_EQ(reread.gnss.windows[i].start_s, original.gnss.windows[i].start_s) << i;
+    EXPECT_EQ(reread.gnss.windows[i].end_s, original.gnss.windows[i].end_s) << i;
+  }
   EXPECT_EQ(reread.agent.formation.radius_m, 11.0);  // written explicitly, so not replaced by the spacing
   // AND it reads like a scenario file
   EXPECT_TRUE(contains(yaml, "uav_count: 12")) << yaml;
   EXPECT_TRUE(contains(yaml, "\nmps:\n")) << yaml;
   EXPECT_TRUE(contains(yaml, "  ids: false")) << yaml;
   EXPECT_TRUE(contains(yaml, "  keep_uavs: [0, 11]")) << yaml;
+  EXPECT_TRUE(contains(yaml, "\n  windows:  ")) << yaml;  // followed by the aligned comment
+  EXPECT_TRUE(contains(yaml,
+                       "\n    - {uav: 3, start_s: 20.0, end_s: 40.0}\n"
+                       "    - {uav: 11, start_s: 0.30000000000000004, end_s: .inf}\n"
+                       "    - {uav: 3, start_s: 35.5, end_s: 1.0e+05}\n"))
+      << yaml;
   EXPECT_TRUE(contains(yaml, "  mode: realtime")) << yaml;
   EXPECT_TRUE(contains(yaml, "\nagent:")) << yaml;
   EXPECT_TRUE(contains(yaml, "\n  formation:\n    radius_m: 11.0")) << yaml;
   // AND the defaults round-trip too, including the infinite dropout end
   const std::string defaults = scenarioToYaml(Scenario{});
   EXPECT_TRUE(contains(defaults, "dropout_end_s: .inf")) << defaults;
+  EXPECT_TRUE(contains(defaults, "\n  windows: []  ")) << defaults;
   EXPECT_EQ(scenarioToYaml(parseScenario(defaults, "dump")), defaults);
 }
 
@@ -490,11 +642,12 @@ TEST(ScenarioHelp, GivenTheParameterDescription_ThenItListsEveryKeyAndTheAgentTa
   const std::string help = describeScenarioParameters();
   for (const char* key : {"uav_count", "seed", "duration_s", "formation.spacing_m", "dynamics.heading", "wind.gust_std",
                           "imu.bias_std", "mps.ids", "mps.miss_probability", "mps.noise_model", "gnss.dropout_start_s",
-                          "gnss.dropout_end_s", "gnss.keep_uavs", "clock.mode", "agent.k", "agent.circle_fit",
-                          "formation.circle_fit", "focal.q_scale"}) {
+                          "gnss.dropout_end_s", "gnss.keep_uavs", "gnss.windows", "clock.mode", "agent.k",
+                          "agent.circle_fit", "formation.circle_fit", "focal.q_scale"}) {
     EXPECT_TRUE(contains(help, key)) << key;
   }
   EXPECT_TRUE(contains(help, "must each divide dynamics.rate_hz")) << help;
+  EXPECT_TRUE(contains(help, "gnss.windows: extra outages of single UAVs")) << help;
 }
 
 }  // namespace

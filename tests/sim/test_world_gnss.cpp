@@ -1,7 +1,8 @@
-// GNSS: scheduled dropout, kept UAVs, transition events, fix noise.
+// GNSS: scheduled dropout, kept UAVs, per-UAV windows, transition events, fix noise.
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -61,6 +62,113 @@ TEST(WorldGnss, ValidBeforeDropoutInvalidDuringValidAfterAndKeptUavsKeepIt) {
   EXPECT_EQ(events[2].stamp_ns, 4'000'000'000LL);
   EXPECT_EQ(events[3].kind, EventKind::kGnssRestored);
   EXPECT_EQ(events[3].uav, 2);
+}
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr agent::StampNs kNs = 1'000'000'000LL;
+
+// Per UAV, the [start_ns, end_ns) intervals in which it has no GNSS.
+using Outages = std::vector<std::vector<std::pair<agent::StampNs, agent::StampNs>>>;
+
+// Runs `world` to `end_ns`, checking truth.gnss_valid (and every GNSS sample) against `outages` on every step;
+// returns every event raised, construction included.
+std::vector<Event> runAndCheckOutages(World& world, agent::StampNs end_ns, const Outages& outages) {
+  std::vector<Event> events(world.events());
+  for (;;) {
+    const agent::StampNs t = world.time_ns();
+    for (std::size_t i = 0; i < outages.size(); ++i) {
+      bool expected = true;
+      for (const auto& [start, end] : outages[i]) {
+        if (t >= start && t < end) expected = false;
+      }
+      EXPECT_EQ(world.truth()[i].gnss_valid, expected) << "uav " << i << " t " << t;
+      if (const auto& gnss = world.sensors()[i].gnss) {
+        EXPECT_EQ(gnss->valid, expected) << "uav " << i << " t " << t;
+      }
+    }
+    if (t >= end_ns) break;
+    world.step();
+    events.insert(events.end(), world.events().begin(), world.events().end());
+  }
+  return events;
+}
+
+struct GnssEvent {
+  agent::StampNs stamp_ns;
+  EventKind kind;
+  int uav;
+};
+
+void expectGnssEvents(const std::vector<Event>& events, const std::vector<GnssEvent>& expected) {
+  ASSERT_EQ(events.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(events[i].stamp_ns, expected[i].stamp_ns) << "event " << i;
+    EXPECT_EQ(events[i].kind, expected[i].kind) << "event " << i;
+    EXPECT_EQ(events[i].uav, expected[i].uav) << "event " << i;
+  }
+}
+
+TEST(WorldGnss, GivenAUavWithItsOwnWindow_ThenOnlyItLosesAndRegainsGnssExactlyAtTheEdges) {
+  // GIVEN 3 UAVs with no common dropout, and UAV 1 without GNSS over [1.25 s, 3.7 s)
+  Scenario s = dropoutScenario(3, kInf, kInf);
+  s.gnss.windows = {{1, 1.25, 3.7}};
+  World world(s);
+  // WHEN it runs for 5 s
+  const std::vector<Event> events = runAndCheckOutages(world, 5 * kNs, {{}, {{1'250'000'000LL, 3'700'000'000LL}}, {}});
+  // THEN UAV 1 raises one loss and one restoration, at the window's edges, and the others raise nothing
+  expectGnssEvents(events,
+                   {{1'250'000'000LL, EventKind::kGnssLost, 1}, {3'700'000'000LL, EventKind::kGnssRestored, 1}});
+}
+
+TEST(WorldGnss, GivenOwnWindowsAndTheCommonWindow_ThenAUavIsWithoutGnssInTheirUnion) {
+  // GIVEN a common dropout over [2 s, 4 s) that UAV 3 is kept out of, and own windows:
+  Scenario s = dropoutScenario(5, 2.0, 4.0);
+  s.gnss.keep_uavs = {3};
+  s.gnss.windows = {
+      {0, 3.0, 6.0},   // overlaps the end of the common window
+      {1, 1.0, 2.0},   // ends exactly where the common window starts
+      {2, 5.0, kInf},  // after the common window, never restored
+      {3, 2.5, 3.0},   // kept UAV: keep_uavs does not exempt it from its own window
+      {4, 0.5, 1.5},   // two overlapping windows of one UAV
+      {4, 1.0, 1.8},
+  };
+  World world(s);
+  // WHEN it runs for 7 s
+  const std::vector<Event> events = runAndCheckOutages(world, 7 * kNs,
+                                                       {{{2 * kNs, 6 * kNs}},
+                                                        {{1 * kNs, 4 * kNs}},
+                                                        {{2 * kNs, 4 * kNs}, {5 * kNs, 100 * kNs}},
+                                                        {{2'500'000'000LL, 3 * kNs}},
+                                                        {{500'000'000LL, 1'800'000'000LL}, {2 * kNs, 4 * kNs}}});
+  // THEN GNSS is missing exactly in the union of each UAV's windows, with one event per edge of that union (none
+  // where two windows meet or overlap), in UAV order within a step
+  expectGnssEvents(events, {
+                               {500'000'000LL, EventKind::kGnssLost, 4},
+                               {1 * kNs, EventKind::kGnssLost, 1},
+                               {1'800'000'000LL, EventKind::kGnssRestored, 4},
+                               {2 * kNs, EventKind::kGnssLost, 0},
+                               {2 * kNs, EventKind::kGnssLost, 2},
+                               {2 * kNs, EventKind::kGnssLost, 4},
+                               {2'500'000'000LL, EventKind::kGnssLost, 3},
+                               {3 * kNs, EventKind::kGnssRestored, 3},
+                               {4 * kNs, EventKind::kGnssRestored, 1},
+                               {4 * kNs, EventKind::kGnssRestored, 2},
+                               {4 * kNs, EventKind::kGnssRestored, 4},
+                               {5 * kNs, EventKind::kGnssLost, 2},
+                               {6 * kNs, EventKind::kGnssRestored, 0},
+                           });
+}
+
+TEST(WorldGnss, GivenAnOwnWindowFromTimeZero_ThenTheLossIsReportedAtConstruction) {
+  // GIVEN no common dropout and UAV 2 of 3 without GNSS from t = 0, never restored
+  Scenario s = dropoutScenario(3, kInf, kInf);
+  s.gnss.windows = {{2, 0.0, kInf}};
+  const World world(s);
+  // THEN construction raises exactly its loss, and only its first fix is invalid
+  expectGnssEvents(world.events(), {{0, EventKind::kGnssLost, 2}});
+  EXPECT_TRUE(world.sensors()[0].gnss->valid);
+  EXPECT_TRUE(world.sensors()[1].gnss->valid);
+  EXPECT_FALSE(world.sensors()[2].gnss->valid);
 }
 
 TEST(WorldGnss, LossAtStartIsReportedAtConstruction) {

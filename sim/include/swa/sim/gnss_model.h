@@ -1,6 +1,10 @@
 #pragma once
 // GNSS receiver of one UAV (DESIGN §4): truth + N(0, std^2) per axis while available; unavailable (valid = false)
-// during the scheduled dropout window [dropout_start_s, dropout_end_s) unless the UAV is in keep_uavs.
+// during the common dropout window [dropout_start_s, dropout_end_s) unless the UAV is in keep_uavs, and during
+// each of the UAV's own windows [start_s, end_s) in GnssSetup::windows (whether or not it is in keep_uavs).
+
+#include <utility>
+#include <vector>
 
 #include "swa/agent/geometry.h"
 #include "swa/agent/samples.h"
@@ -22,6 +26,7 @@ class GnssModel {
  private:
   double dropout_start_s_;
   double dropout_end_s_;
+  std::vector<std::pair<double, double>> own_windows_s_;  // this UAV's [start, end) from GnssSetup::windows
   double std_m_;
   bool kept_;
   Rng noise_rng_;

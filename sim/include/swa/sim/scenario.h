@@ -56,12 +56,22 @@ struct MpsSetup {
   double latency_s = 0.0;
 };
 
+// An extra GNSS outage of one UAV: no fix in [start_s, end_s); end_s = +inf means never restored.
+struct GnssWindow {
+  int uav = 0;
+  double start_s = 0.0;
+  double end_s = std::numeric_limits<double>::infinity();
+};
+
 struct GnssSetup {
   double rate_hz = 10.0;
   double std_m = 0.5;
   double dropout_start_s = 10.0;   // every UAV loses GNSS at this time ...
   double dropout_end_s = std::numeric_limits<double>::infinity();  // ... until this time
-  std::vector<int> keep_uavs;      // UAVs that never lose GNSS (e.g. one anchored member)
+  std::vector<int> keep_uavs;      // UAVs that never lose GNSS in the common window (e.g. one anchored member)
+  // Per-UAV outages on top of the common window: a UAV has no GNSS while it is inside the common window (unless
+  // it is in keep_uavs) or inside any of its own windows. Windows may overlap; keep_uavs does not exempt them.
+  std::vector<GnssWindow> windows;
 };
 
 struct ClockSetup {

@@ -23,7 +23,8 @@
 //   - Unless `agent.formation.radius_m` is given, it is set to `formation.spacing_m`.
 //   - `gnss.dropout_end_s` may be `.inf` (or left out): GNSS is never restored. No other key accepts infinity.
 //   - imu/mps/gnss `rate_hz` must each divide `dynamics.rate_hz` exactly; dropout_end_s > dropout_start_s;
-//     `gnss.keep_uavs` are distinct indices in [0, uav_count); formation.spacing_m < mps.range_m.
+//     `gnss.keep_uavs` are distinct indices in [0, uav_count); every `gnss.windows` entry names a UAV in
+//     [0, uav_count) and has end_s > start_s; formation.spacing_m < mps.range_m.
 //
 // Every problem (file, YAML syntax, unknown keys with a did-you-mean, wrong types, bounds with units, non-finite
 // values, invalid choices, malformed or invalid `--set`, cross-field rules) is reported together in one
