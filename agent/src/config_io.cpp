@@ -4,10 +4,7 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cerrno>
-#include <charconv>
-#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,29 +13,31 @@
 #include <limits>
 #include <optional>
 #include <set>
-#include <string_view>
 #include <system_error>
 #include <type_traits>
 #include <utility>
+
+#include "swa/agent/param_text.h"
+#include "swa/agent/param_yaml.h"
 
 namespace swa::agent {
 
 namespace {
 
+using param::closed;
+using param::describeYamlException;
+using param::formatNumber;
+using param::formatYamlReal;
+using param::join;
+using param::nodeKindName;
+using param::open;
+using param::openClosed;
+using param::Range;
+
 // ------------------------------------------------------------------------------------------------------------
 // The parameter table: every tunable of AgentConfig is declared here exactly once.
 
 enum class Kind { kReal, kInteger, kChoice };
-
-struct Range {
-  double min;
-  double max;
-  bool min_open;
-  bool max_open;
-};
-constexpr Range closed(double lo, double hi) { return {lo, hi, false, false}; }      // [lo, hi]
-constexpr Range openClosed(double lo, double hi) { return {lo, hi, true, false}; }   // (lo, hi]
-constexpr Range open(double lo, double hi) { return {lo, hi, true, true}; }          // (lo, hi)
 
 struct Param {
   std::string key;   // dotted, e.g. "formation.radius_m"; top-level keys have no dot
@@ -205,7 +204,7 @@ const Param* findParam(const std::string& key) {
 bool isSection(const std::string& key) {
   const std::string prefix = key + ".";
   return std::any_of(parameters().begin(), parameters().end(),
-                     [&](const Param& p) { return p.key.compare(0, prefix.size(), prefix) == 0; });
+                     [&](const Param& p) { return param::startsWith(p.key, prefix); });
 }
 
 std::vector<std::string> sectionNames() {
@@ -217,34 +216,6 @@ std::vector<std::string> sectionNames() {
     if (std::find(names.begin(), names.end(), section) == names.end()) names.push_back(std::move(section));
   }
   return names;
-}
-
-std::string join(const std::vector<std::string>& items, const std::string& separator) {
-  std::string out;
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    if (i > 0) out += separator;
-    out += items[i];
-  }
-  return out;
-}
-
-// Shortest text that reads back as exactly `v` (locale-independent).
-std::string formatNumber(double v) {
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
-  return std::string(buffer.data(), result.ptr);
-}
-
-// A real as YAML: exact round trip, and always recognisably a float (YAML 1.1 readers such as PyYAML need a
-// '.' in the mantissa and a signed exponent).
-std::string formatYamlReal(double v) {
-  if (std::isnan(v)) return ".nan";
-  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
-  std::string text = formatNumber(v);
-  const auto e = text.find('e');
-  const std::string mantissa = text.substr(0, e);
-  if (mantissa.find('.') == std::string::npos) text.insert(mantissa.size(), ".0");
-  return text;
 }
 
 std::string formatValue(const Param& p, const AgentConfig& config) {
@@ -263,11 +234,7 @@ std::string formatValue(const Param& p, const AgentConfig& config) {
 
 std::string formatRange(const Param& p) {
   if (p.kind == Kind::kChoice) return join(p.choices, "|");
-  const auto bound = [&](double v) {
-    return p.kind == Kind::kInteger ? std::to_string(static_cast<long long>(v)) : formatNumber(v);
-  };
-  return std::string(p.range.min_open ? "(" : "[") + bound(p.range.min) + ", " + bound(p.range.max) +
-         (p.range.max_open ? ")" : "]");
+  return param::formatRange(p.range, p.kind == Kind::kInteger);
 }
 
 std::string unitSuffix(const Param& p) { return p.unit.empty() ? "" : " " + p.unit; }
@@ -296,101 +263,19 @@ std::string expectation(const Param& p) {
   return {};
 }
 
-bool inRange(const Range& r, double v) {
-  const bool above_min = r.min_open ? v > r.min : v >= r.min;
-  const bool below_max = r.max_open ? v < r.max : v <= r.max;
-  return above_min && below_max;
-}
-
 // Why `v` (shown to the user as `shown`) is not a valid value of numeric parameter `p`, if it is not.
 std::optional<std::string> numberProblem(const Param& p, double v, const std::string& shown) {
-  if (!std::isfinite(v)) return p.key + " = " + shown + " is not a finite number";
-  if (p.kind == Kind::kInteger && std::trunc(v) != v) return p.key + " = " + shown + " is not an integer";
-  if (!inRange(p.range, v)) return p.key + " = " + shown + " is out of range " + formatRange(p) + unitSuffix(p);
-  return std::nullopt;
-}
-
-enum class NumberStatus { kOk, kNotANumber, kUnrepresentable };
-
-// A YAML plain scalar as a number: decimal/scientific notation, .inf/-.inf/.nan spellings. Locale-independent.
-NumberStatus parseNumber(const std::string& text, double& value) {
-  if (text == ".nan" || text == ".NaN" || text == ".NAN") {
-    value = std::numeric_limits<double>::quiet_NaN();
-    return NumberStatus::kOk;
-  }
-  for (const char* inf : {".inf", ".Inf", ".INF"}) {
-    if (text == inf || text == std::string("+") + inf) {
-      value = std::numeric_limits<double>::infinity();
-      return NumberStatus::kOk;
-    }
-    if (text == std::string("-") + inf) {
-      value = -std::numeric_limits<double>::infinity();
-      return NumberStatus::kOk;
-    }
-  }
-  std::string_view digits = text;
-  if (!digits.empty() && digits.front() == '+') {
-    digits.remove_prefix(1);
-    if (!digits.empty() && digits.front() == '-') return NumberStatus::kNotANumber;
-  }
-  if (digits.empty()) return NumberStatus::kNotANumber;
-  const char* end = digits.data() + digits.size();
-  const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
-  if (ptr != end) return NumberStatus::kNotANumber;
-  if (ec == std::errc::result_out_of_range) return NumberStatus::kUnrepresentable;
-  if (ec != std::errc()) return NumberStatus::kNotANumber;
-  return NumberStatus::kOk;
-}
-
-// Optimal-string-alignment distance (Levenshtein plus adjacent transpositions), case-insensitive.
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1])) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[a.size()][b.size()];
+  return param::numberProblem(p.key, v, shown, p.kind == Kind::kInteger, p.range, formatRange(p) + unitSuffix(p));
 }
 
 std::string unknownKeyMessage(const std::string& key) {
+  std::vector<std::string> keys;
+  for (const Param& p : parameters()) keys.push_back(p.key);
   std::vector<std::string> candidates = sectionNames();
-  for (const Param& p : parameters()) candidates.push_back(p.key);
-
-  std::string best;
-  std::size_t best_distance = 3;  // suggest only within an edit distance of 2
-  for (const std::string& candidate : candidates) {
-    const std::size_t distance = editDistance(key, candidate);
-    if (distance < best_distance) {
-      best_distance = distance;
-      best = candidate;
-    }
-  }
-  if (best.empty()) {  // right name, wrong section (e.g. "focal.radius_m")?
-    const std::string leaf = key.substr(key.rfind('.') + 1);
-    std::vector<std::string> same_leaf;
-    for (const Param& p : parameters()) {
-      if (p.key.substr(p.key.rfind('.') + 1) == leaf) same_leaf.push_back(p.key);
-    }
-    if (same_leaf.size() == 1) best = same_leaf.front();
-  }
-  std::string message = "unknown key '" + key + "'";
-  if (!best.empty()) message += " (did you mean '" + best + "'?)";
-  return message;
-}
-
-const char* nodeKindName(const YAML::Node& node) {
-  if (node.IsMap()) return "a map";
-  if (node.IsSequence()) return "a sequence";
-  if (node.IsNull()) return "nothing";
-  return "a scalar";
+  candidates.insert(candidates.end(), keys.begin(), keys.end());
+  std::string best = param::closestMatch(key, candidates);
+  if (best.empty()) best = param::sameLeafMatch(key, keys);  // right name, wrong section (e.g. "focal.radius_m")?
+  return param::unknownKeyMessage(key, best);
 }
 
 // ------------------------------------------------------------------------------------------------------------
@@ -401,12 +286,7 @@ class Report {
   explicit Report(bool show_locations) : show_locations_(show_locations) {}
 
   void add(std::string message, const YAML::Node* at = nullptr) {
-    if (show_locations_ && at != nullptr) {
-      const YAML::Mark mark = at->Mark();
-      if (!mark.is_null()) {
-        message += " (line " + std::to_string(mark.line + 1) + ", column " + std::to_string(mark.column + 1) + ")";
-      }
-    }
+    if (show_locations_ && at != nullptr) message += param::locationOf(*at);
     problems_.push_back(std::move(message));
   }
   // A problem with the value of parameter `key`: relations involving it are not checked.
@@ -440,19 +320,8 @@ void assign(const Param& p, const YAML::Node& value, AgentConfig& config, Report
     return;
   }
 
-  // A quoted scalar ("10") or an explicit !!str is a string, not a number.
-  if (value.Tag() == "!" || value.Tag() == "tag:yaml.org,2002:str") {
-    return fail(p.key + " = \"" + text + "\" is a string; expected " + expectation(p));
-  }
   double number = 0.0;
-  switch (parseNumber(text, number)) {
-    case NumberStatus::kNotANumber:
-      return fail(p.key + " = '" + text + "' is not a number; expected " + expectation(p));
-    case NumberStatus::kUnrepresentable:
-      return fail(p.key + " = " + text + " cannot be represented as a double");
-    case NumberStatus::kOk:
-      break;
-  }
+  if (auto problem = param::readNumber(value, p.key, expectation(p), number)) return fail(std::move(*problem));
   if (auto problem = numberProblem(p, number, text)) return fail(std::move(*problem));
   p.set_number(config, number);
 }
@@ -512,14 +381,6 @@ void applyMap(const YAML::Node& map, const std::string& prefix, AgentConfig& con
   }
 }
 
-std::string describeYamlException(const YAML::Exception& e) {
-  std::string message = "invalid YAML";
-  if (!e.mark.is_null()) {
-    message += " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
-  }
-  return message + ": " + e.msg;
-}
-
 // One `--set` entry; problems go to `report`, `config` is modified only if the value is valid.
 void overrideOne(AgentConfig& config, const std::string& key, const std::string& text, Report& report) {
   const Param* p = findParam(key);
@@ -527,7 +388,7 @@ void overrideOne(AgentConfig& config, const std::string& key, const std::string&
     if (isSection(key)) {
       const std::string prefix = key + ".";
       const auto first = std::find_if(parameters().begin(), parameters().end(),
-                                      [&](const Param& q) { return q.key.compare(0, prefix.size(), prefix) == 0; });
+                                      [&](const Param& q) { return param::startsWith(q.key, prefix); });
       report.add("'" + key + "' is a group of parameters, not a parameter; set one of them, e.g. '" + first->key + "'");
     } else {
       report.add(unknownKeyMessage(key));
@@ -645,36 +506,18 @@ void validateAgentConfig(const AgentConfig& config, const std::string& source_na
 
 std::string describeParameters() {
   const AgentConfig defaults;
-  std::vector<std::array<std::string, 6>> rows = {{"key", "type", "unit", "default", "range", "meaning"}};
+  std::vector<std::vector<std::string>> rows = {{"key", "type", "unit", "default", "range", "meaning"}};
   for (const Param& p : parameters()) {
     rows.push_back({p.key, typeName(p.kind), p.unit.empty() ? "-" : p.unit, formatValue(p, defaults),
                     formatRange(p), p.meaning});
   }
-  std::array<std::size_t, 6> width{};
-  for (const auto& row : rows) {
-    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
-  }
-  std::string out =
-      "Agent parameters. In the YAML file a key a.b is written nested (a map 'a:' holding 'b:'); on the command\n"
-      "line use --set a.b=value. Ranges: [ ] includes the bound, ( ) excludes it; '-' = dimensionless.\n\n";
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    std::string line;
-    for (std::size_t c = 0; c < rows[r].size(); ++c) {
-      line += rows[r][c];
-      if (c + 1 < rows[r].size()) line += std::string(width[c] - rows[r][c].size() + 2, ' ');
-    }
-    out += line + '\n';
-    if (r == 0) out += std::string(line.size(), '-') + '\n';
-  }
-  return out;
+  return "Agent parameters. In the YAML file a key a.b is written nested (a map 'a:' holding 'b:'); on the command\n"
+         "line use --set a.b=value. Ranges: [ ] includes the bound, ( ) excludes it; '-' = dimensionless.\n\n" +
+         param::formatTable(rows);
 }
 
 std::string toYaml(const AgentConfig& config) {
-  struct Line {
-    std::string text;
-    std::string comment;
-  };
-  std::vector<Line> lines;
+  std::vector<param::CommentedLine> lines;
   std::string section;
   for (const Param& p : parameters()) {
     const auto dot = p.key.find('.');
@@ -702,17 +545,7 @@ std::string toYaml(const AgentConfig& config) {
     lines.push_back({indent + p.key.substr(dot == std::string::npos ? 0 : dot + 1) + ": " + value, comment});
   }
 
-  std::size_t width = 0;
-  for (const Line& line : lines) {
-    if (!line.comment.empty()) width = std::max(width, line.text.size());
-  }
-  std::string out = "# SWA agent configuration: every parameter, as used\n";
-  for (const Line& line : lines) {
-    out += line.text;
-    if (!line.comment.empty()) out += std::string(width - line.text.size() + 2, ' ') + "# " + line.comment;
-    out += '\n';
-  }
-  return out;
+  return "# SWA agent configuration: every parameter, as used\n" + param::alignComments(lines);
 }
 
 }  // namespace swa::agent

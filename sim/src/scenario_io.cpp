@@ -24,27 +24,33 @@
 #include <type_traits>
 #include <utility>
 
+#include "swa/agent/param_text.h"
+#include "swa/agent/param_yaml.h"
+
 namespace swa::sim {
 
 namespace {
 
 using agent::ConfigError;
+namespace param = agent::param;
+using param::closed;
+using param::closedOpen;
+using param::describeYamlException;
+using param::formatYamlNumber;
+using param::formatYamlReal;
+using param::isQuoted;
+using param::join;
+using param::locationOf;
+using param::nodeKindName;
+using param::openClosed;
+using param::Range;
+using param::startsWith;
 
 // ------------------------------------------------------------------------------------------------------------
 // The parameter table: every scenario field outside `agent` is declared here exactly once. The `agent` section
 // is validated by the agent's own table (swa/agent/config_io.h).
 
 enum class Kind { kReal, kInteger, kSeed, kBool, kChoice, kIndexList, kWindowList };
-
-struct Range {
-  double min;
-  double max;
-  bool min_open;
-  bool max_open;
-};
-constexpr Range closed(double lo, double hi) { return {lo, hi, false, false}; }      // [lo, hi]
-constexpr Range openClosed(double lo, double hi) { return {lo, hi, true, false}; }   // (lo, hi]
-constexpr Range closedOpen(double lo, double hi) { return {lo, hi, false, true}; }   // [lo, hi)
 
 constexpr int kMaxUavs = 256;
 constexpr double kMaxTime_s = 1e6;
@@ -352,10 +358,6 @@ const AgentKeys& agentKeys() {
   return keys;
 }
 
-bool startsWith(const std::string& text, std::string_view prefix) {
-  return text.size() >= prefix.size() && text.compare(0, prefix.size(), prefix) == 0;
-}
-
 bool isAgentKey(const std::string& key) { return startsWith(key, kAgentPrefix); }
 
 // A settable key of the scenario (including the agent shortcuts).
@@ -403,34 +405,6 @@ std::optional<std::string> shortcutOf(const std::string& long_form) {
 // ------------------------------------------------------------------------------------------------------------
 // Formatting.
 
-std::string join(const std::vector<std::string>& items, const std::string& separator) {
-  std::string out;
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    if (i > 0) out += separator;
-    out += items[i];
-  }
-  return out;
-}
-
-// Shortest text that reads back as exactly `v` (locale-independent).
-std::string formatNumber(double v) {
-  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
-  if (std::isnan(v)) return ".nan";
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
-  return std::string(buffer.data(), result.ptr);
-}
-
-// A real as YAML: exact round trip, and always recognisably a float (a '.' in the mantissa, as the agent's dump).
-std::string formatYamlReal(double v) {
-  std::string text = formatNumber(v);
-  if (!std::isfinite(v)) return text;
-  const auto e = text.find('e');
-  const std::string mantissa = text.substr(0, e);
-  if (mantissa.find('.') == std::string::npos) text.insert(mantissa.size(), ".0");
-  return text;
-}
-
 std::string formatList(const std::vector<int>& values) {
   std::vector<std::string> items;
   for (const int v : values) items.push_back(std::to_string(v));
@@ -455,7 +429,7 @@ std::string formatRange(const Param& p) {
       return join(p.choices, "|");
     case Kind::kWindowList:
       return "list of {uav, start_s, end_s}: uav in [0, uav_count), 0 <= start_s < end_s <= " +
-             formatNumber(kMaxTime_s) + " or .inf";
+             formatYamlNumber(kMaxTime_s) + " or .inf";
     case Kind::kSeed:
       return "[0, " + std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]";
     case Kind::kReal:
@@ -463,12 +437,7 @@ std::string formatRange(const Param& p) {
     case Kind::kIndexList:
       break;
   }
-  const bool integral = p.kind != Kind::kReal;
-  const auto bound = [&](double v) {
-    return integral ? std::to_string(static_cast<long long>(v)) : formatNumber(v);
-  };
-  std::string text = std::string(p.range.min_open ? "(" : "[") + bound(p.range.min) + ", " + bound(p.range.max) +
-                     (p.range.max_open ? ")" : "]");
+  std::string text = param::formatRange(p.range, p.kind != Kind::kReal);
   if (p.allow_infinity) text += " or .inf";
   if (p.kind == Kind::kIndexList) text = "list of integers in " + text;
   return text;
@@ -540,63 +509,7 @@ std::string expectation(const Param& p) {
 }
 
 // ------------------------------------------------------------------------------------------------------------
-// Reading values.
-
-bool inRange(const Range& r, double v) {
-  const bool above_min = r.min_open ? v > r.min : v >= r.min;
-  const bool below_max = r.max_open ? v < r.max : v <= r.max;
-  return above_min && below_max;
-}
-
-enum class NumberStatus { kOk, kNotANumber, kUnrepresentable };
-
-// A YAML plain scalar as a number: decimal/scientific notation, .inf/-.inf/.nan spellings. Locale-independent.
-NumberStatus parseNumber(const std::string& text, double& value) {
-  if (text == ".nan" || text == ".NaN" || text == ".NAN") {
-    value = std::numeric_limits<double>::quiet_NaN();
-    return NumberStatus::kOk;
-  }
-  for (const char* inf : {".inf", ".Inf", ".INF"}) {
-    if (text == inf || text == std::string("+") + inf) {
-      value = std::numeric_limits<double>::infinity();
-      return NumberStatus::kOk;
-    }
-    if (text == std::string("-") + inf) {
-      value = -std::numeric_limits<double>::infinity();
-      return NumberStatus::kOk;
-    }
-  }
-  std::string_view digits = text;
-  if (!digits.empty() && digits.front() == '+') {
-    digits.remove_prefix(1);
-    if (!digits.empty() && digits.front() == '-') return NumberStatus::kNotANumber;
-  }
-  if (digits.empty()) return NumberStatus::kNotANumber;
-  const char* end = digits.data() + digits.size();
-  const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
-  if (ptr != end) return NumberStatus::kNotANumber;
-  if (ec == std::errc::result_out_of_range) return NumberStatus::kUnrepresentable;
-  if (ec != std::errc()) return NumberStatus::kNotANumber;
-  return NumberStatus::kOk;
-}
-
-// Optimal-string-alignment distance (Levenshtein plus adjacent transpositions), case-insensitive.
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1])) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[a.size()][b.size()];
-}
+// Unknown keys.
 
 std::string unknownKeyMessage(const std::string& key) {
   std::string best;
@@ -608,51 +521,10 @@ std::string unknownKeyMessage(const std::string& key) {
     std::vector<std::string> candidates = allLeaves();
     for (const std::string& section : sectionNames()) candidates.push_back(section);
     for (const std::string& section : agentKeys().sections) candidates.push_back(std::string(kAgentPrefix) + section);
-    std::size_t best_distance = 3;  // suggest only within an edit distance of 2
-    for (const std::string& candidate : candidates) {
-      const std::size_t distance = editDistance(key, candidate);
-      if (distance < best_distance) {
-        best_distance = distance;
-        best = candidate;
-      }
-    }
+    best = param::closestMatch(key, candidates);
   }
-  if (best.empty()) {  // right name, wrong section (e.g. "imu.gust_std")?
-    const std::string leaf = key.substr(key.rfind('.') + 1);
-    std::vector<std::string> same_leaf;
-    for (const std::string& candidate : allLeaves()) {
-      if (candidate.substr(candidate.rfind('.') + 1) == leaf) same_leaf.push_back(candidate);
-    }
-    if (same_leaf.size() == 1) best = same_leaf.front();
-  }
-  std::string message = "unknown key '" + key + "'";
-  if (!best.empty()) message += " (did you mean '" + best + "'?)";
-  return message;
-}
-
-const char* nodeKindName(const YAML::Node& node) {
-  if (node.IsMap()) return "a map";
-  if (node.IsSequence()) return "a sequence";
-  if (node.IsNull()) return "nothing";
-  return "a scalar";
-}
-
-bool isQuoted(const YAML::Node& scalar) {
-  return scalar.Tag() == "!" || scalar.Tag() == "tag:yaml.org,2002:str";
-}
-
-std::string locationOf(const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  if (mark.is_null()) return {};
-  return " (line " + std::to_string(mark.line + 1) + ", column " + std::to_string(mark.column + 1) + ")";
-}
-
-std::string describeYamlException(const YAML::Exception& e) {
-  std::string message = "invalid YAML";
-  if (!e.mark.is_null()) {
-    message += " at line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1);
-  }
-  return message + ": " + e.msg;
+  if (best.empty()) best = param::sameLeafMatch(key, allLeaves());  // right name, wrong section (e.g. "imu.gust_std")?
+  return param::unknownKeyMessage(key, best);
 }
 
 // ------------------------------------------------------------------------------------------------------------
@@ -806,40 +678,20 @@ void applyOverrides(const std::vector<std::string>& overrides, Entries& entries,
 
 // Why `v` (shown as `shown`) is not a valid value of numeric parameter `p`, if it is not.
 std::optional<std::string> numberProblem(const Param& p, double v, const std::string& name, const std::string& shown) {
-  if (p.allow_infinity && v == std::numeric_limits<double>::infinity()) return std::nullopt;
-  if (!std::isfinite(v)) {
-    return name + " = " + shown + " is not a finite number" +
-           (p.allow_infinity ? "; expected " + expectation(p) : std::string());
+  if (p.allow_infinity && !std::isfinite(v)) {
+    if (v == std::numeric_limits<double>::infinity()) return std::nullopt;
+    return name + " = " + shown + " is not a finite number; expected " + expectation(p);
   }
-  if (p.kind != Kind::kReal && std::trunc(v) != v) return name + " = " + shown + " is not an integer";
-  if (!inRange(p.range, v)) return name + " = " + shown + " is out of range " + formatRange(p) + unitSuffix(p);
-  return std::nullopt;
+  return param::numberProblem(name, v, shown, p.kind != Kind::kReal, p.range, formatRange(p) + unitSuffix(p));
 }
 
 // Reads a plain scalar as a number for parameter `p`; reports and returns nullopt if it is not a valid one.
 std::optional<double> readNumber(const Param& p, const YAML::Node& value, const std::string& name,
                                  const std::function<void(std::string)>& fail) {
-  if (!value.IsScalar()) {
-    fail(name + " must be " + expectation(p) + ", got " + nodeKindName(value));
-    return std::nullopt;
-  }
-  const std::string& text = value.Scalar();
-  if (isQuoted(value)) {
-    fail(name + " = \"" + text + "\" is a string; expected " + expectation(p));
-    return std::nullopt;
-  }
   double number = 0.0;
-  switch (parseNumber(text, number)) {
-    case NumberStatus::kNotANumber:
-      fail(name + " = '" + text + "' is not a number; expected " + expectation(p));
-      return std::nullopt;
-    case NumberStatus::kUnrepresentable:
-      fail(name + " = " + text + " cannot be represented as a double");
-      return std::nullopt;
-    case NumberStatus::kOk:
-      break;
-  }
-  if (auto problem = numberProblem(p, number, name, text)) {
+  auto problem = param::readNumber(value, name, expectation(p), number);
+  if (!problem) problem = numberProblem(p, number, name, value.Scalar());
+  if (problem) {
     fail(std::move(*problem));
     return std::nullopt;
   }
@@ -914,18 +766,10 @@ std::optional<GnssWindow> readWindow(const YAML::Node& element, const std::strin
     };
     if (std::find(kWindowFields.begin(), kWindowFields.end(), field) == kWindowFields.end()) {
       ok = false;
-      std::string message = "unknown key '" + field + "' in " + name;
-      std::size_t best_distance = 3;  // suggest only within an edit distance of 2
-      std::string best;
-      for (const char* candidate : kWindowFields) {
-        const std::size_t distance = editDistance(field, candidate);
-        if (distance < best_distance) {
-          best_distance = distance;
-          best = candidate;
-        }
-      }
-      if (!best.empty()) message += " (did you mean '" + best + "'?)";
-      fail(message + "; expected uav, start_s and optionally end_s", key_node);
+      const std::string best = param::closestMatch(field, {kWindowFields.begin(), kWindowFields.end()});
+      fail("unknown key '" + field + "' in " + name + param::didYouMean(best) +
+               "; expected uav, start_s and optionally end_s",
+           key_node);
       continue;
     }
     if (!seen.insert(field).second) {
@@ -950,8 +794,8 @@ std::optional<GnssWindow> readWindow(const YAML::Node& element, const std::strin
   }
   if (start_s && end_s && !(*end_s > *start_s)) {
     ok = false;
-    fail(name + ".end_s = " + formatNumber(*end_s) + " s must be > " + name + ".start_s = " +
-             formatNumber(*start_s) + " s: the outage would be empty (leave end_s out for one that never ends)",
+    fail(name + ".end_s = " + formatYamlNumber(*end_s) + " s must be > " + name + ".start_s = " +
+             formatYamlNumber(*start_s) + " s: the outage would be empty (leave end_s out for one that never ends)",
          *end_node);
   }
   if (!ok || !uav || !start_s) return std::nullopt;
@@ -1038,15 +882,16 @@ void checkRelations(const Scenario& s, Report& report) {
     std::ostringstream ratio_text;
     ratio_text.precision(4);
     ratio_text << ratio;
-    report.add(std::string(key) + " = " + formatNumber(rate) + " Hz must divide dynamics.rate_hz = " +
-               formatNumber(s.dynamics.rate_hz) + " Hz exactly: the sensor samples every n-th simulation step, and " +
-               formatNumber(s.dynamics.rate_hz) + " / " + formatNumber(rate) + " = " + ratio_text.str() +
+    report.add(std::string(key) + " = " + formatYamlNumber(rate) + " Hz must divide dynamics.rate_hz = " +
+               formatYamlNumber(s.dynamics.rate_hz) +
+               " Hz exactly: the sensor samples every n-th simulation step, and " +
+               formatYamlNumber(s.dynamics.rate_hz) + " / " + formatYamlNumber(rate) + " = " + ratio_text.str() +
                " is not a whole number >= 1");
   }
 
   if (ok({"gnss.dropout_start_s", "gnss.dropout_end_s"}) && !(s.gnss.dropout_end_s > s.gnss.dropout_start_s)) {
-    report.add("gnss.dropout_end_s = " + formatNumber(s.gnss.dropout_end_s) + " s must be > gnss.dropout_start_s = " +
-               formatNumber(s.gnss.dropout_start_s) +
+    report.add("gnss.dropout_end_s = " + formatYamlNumber(s.gnss.dropout_end_s) +
+               " s must be > gnss.dropout_start_s = " + formatYamlNumber(s.gnss.dropout_start_s) +
                " s: the outage would be empty (to run without a dropout, set gnss.dropout_start_s >= duration_s)");
   }
 
@@ -1073,8 +918,8 @@ void checkRelations(const Scenario& s, Report& report) {
   }
 
   if (ok({"formation.spacing_m", "mps.range_m"}) && !(s.formation.spacing_m < s.mps.range_m)) {
-    report.add("formation.spacing_m = " + formatNumber(s.formation.spacing_m) + " m must be < mps.range_m = " +
-               formatNumber(s.mps.range_m) + " m: otherwise no UAV detects its neighbours");
+    report.add("formation.spacing_m = " + formatYamlNumber(s.formation.spacing_m) + " m must be < mps.range_m = " +
+               formatYamlNumber(s.mps.range_m) + " m: otherwise no UAV detects its neighbours");
   }
 }
 
@@ -1287,11 +1132,7 @@ Scenario loadScenario(const std::string& path, const std::vector<std::string>& o
 }
 
 std::string scenarioToYaml(const Scenario& scenario) {
-  struct Line {
-    std::string text;
-    std::string comment;
-  };
-  std::vector<Line> lines;
+  std::vector<param::CommentedLine> lines;
   std::string section;
   for (const Param& p : parameters()) {
     const auto dot = p.key.find('.');
@@ -1329,16 +1170,7 @@ std::string scenarioToYaml(const Scenario& scenario) {
     lines.push_back({indent + name + ": " + formatValue(p, scenario), comment});
   }
 
-  std::size_t width = 0;
-  for (const Line& line : lines) {
-    if (!line.comment.empty()) width = std::max(width, line.text.size());
-  }
-  std::string out = "# SWA scenario: every parameter, as used\n";
-  for (const Line& line : lines) {
-    out += line.text;
-    if (!line.comment.empty()) out += std::string(width - line.text.size() + 2, ' ') + "# " + line.comment;
-    out += '\n';
-  }
+  std::string out = "# SWA scenario: every parameter, as used\n" + param::alignComments(lines);
 
   out += "agent:                          # the agents' configuration (agent.formation.radius_m given explicitly)\n";
   std::istringstream agent_yaml(agent::toYaml(scenario.agent));
@@ -1351,27 +1183,15 @@ std::string scenarioToYaml(const Scenario& scenario) {
 
 std::string describeScenarioParameters() {
   const Scenario defaults;
-  std::vector<std::array<std::string, 6>> rows = {{"key", "type", "unit", "default", "range", "meaning"}};
+  std::vector<std::vector<std::string>> rows = {{"key", "type", "unit", "default", "range", "meaning"}};
   for (const Param& p : parameters()) {
     rows.push_back({p.key, typeName(p.kind), p.unit.empty() ? "-" : p.unit, formatValue(p, defaults),
                     formatRange(p), p.meaning});
   }
-  std::array<std::size_t, 6> width{};
-  for (const auto& row : rows) {
-    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
-  }
   std::string out =
       "Scenario parameters. In the YAML file a key a.b is written nested (a map 'a:' holding 'b:'); on the\n"
-      "command line use --set a.b=value. Ranges: [ ] includes the bound, ( ) excludes it; '-' = dimensionless.\n\n";
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    std::string line;
-    for (std::size_t c = 0; c < rows[r].size(); ++c) {
-      line += rows[r][c];
-      if (c + 1 < rows[r].size()) line += std::string(width[c] - rows[r][c].size() + 2, ' ');
-    }
-    out += line + '\n';
-    if (r == 0) out += std::string(line.size(), '-') + '\n';
-  }
+      "command line use --set a.b=value. Ranges: [ ] includes the bound, ( ) excludes it; '-' = dimensionless.\n\n" +
+      param::formatTable(rows);
   out +=
       "\nRules between parameters:\n"
       "  - imu.rate_hz, mps.rate_hz and gnss.rate_hz must each divide dynamics.rate_hz exactly.\n"
