@@ -1,0 +1,629 @@
+#include "swa/monitor/svg_plot.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <system_error>
+
+namespace swa::monitor {
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kTolerance = 1e-9;  // relative slack when snapping to 1-2-5 steps and tick multiples
+constexpr double kCoordLimit = 1e6;  // pixel coordinates are clamped to this (a clipped far-away point stays short)
+constexpr double kMarginLeft = 64.0;
+constexpr double kMarginRight = 20.0;
+constexpr double kMarginTopTitle = 32.0;
+constexpr double kMarginTopBare = 12.0;
+constexpr double kMarginBottom = 48.0;
+constexpr double kLegendGap = 16.0;
+constexpr double kLegendRow = 18.0;
+constexpr double kLegendSwatch = 24.0;
+constexpr double kCharWidth = 7.0;  // rough advance of a 12 px sans-serif glyph, for sizing the legend
+constexpr long long kMaxTicks = 1000;
+
+// A tick step mantissa × 10^exponent with the mantissa 1, 2 or 5, kept apart so that multiples are exact decimals.
+struct Step {
+  int mantissa = 1;
+  int exponent = 0;
+  double multiple(long long k) const {
+    const double m = static_cast<double>(k) * mantissa;
+    return exponent < 0 ? m / std::pow(10.0, -exponent) : m * std::pow(10.0, exponent);
+  }
+  double value() const { return multiple(1); }
+  int decimals() const { return std::max(0, -exponent); }
+};
+
+Step next(Step s) {
+  if (s.mantissa == 1) return {2, s.exponent};
+  if (s.mantissa == 2) return {5, s.exponent};
+  return {1, s.exponent + 1};
+}
+
+Step previous(Step s) {
+  if (s.mantissa == 5) return {2, s.exponent};
+  if (s.mantissa == 2) return {1, s.exponent};
+  return {5, s.exponent - 1};
+}
+
+// span / (target - 1) rounded up to the 1-2-5 sequence.
+Step roundedUp(double span, int target_ticks) {
+  const double raw = span / std::max(1, target_ticks - 1);
+  if (!(raw > 0.0) || !std::isfinite(raw)) return Step{};
+  int exponent = static_cast<int>(std::floor(std::log10(raw)));
+  const double norm = exponent < 0 ? raw * std::pow(10.0, -exponent) : raw / std::pow(10.0, exponent);
+  int mantissa = 10;
+  if (norm <= 1.0 + kTolerance) {
+    mantissa = 1;
+  } else if (norm <= 2.0 + kTolerance) {
+    mantissa = 2;
+  } else if (norm <= 5.0 + kTolerance) {
+    mantissa = 5;
+  }
+  if (mantissa == 10) {
+    mantissa = 1;
+    ++exponent;
+  }
+  return Step{mantissa, exponent};
+}
+
+// How many ticks `step` gives on [lo, hi]: with the range extended outwards to multiples of the step, or only the
+// multiples inside it.
+long long tickCount(const Step& step, double lo, double hi, bool extend) {
+  const double s = step.value();
+  if (extend) {
+    return static_cast<long long>(std::ceil(hi / s - kTolerance)) -
+           static_cast<long long>(std::floor(lo / s + kTolerance)) + 1;
+  }
+  return static_cast<long long>(std::floor(hi / s + kTolerance)) -
+         static_cast<long long>(std::ceil(lo / s - kTolerance)) + 1;
+}
+
+// The step of the 1-2-5 sequence whose tick count on [lo, hi] is closest to the target. Ties: with an extended range
+// the one that wastes less of it, else the larger step (fewer labels). Candidates: the rounded-up step and its
+// neighbours (two smaller, one larger).
+Step stepFor(double lo, double hi, int target_ticks, bool extend) {
+  const Step up = roundedUp(hi - lo, target_ticks);
+  const std::array<Step, 4> candidates{next(up), up, previous(up), previous(previous(up))};
+  const auto error = [&](const Step& c) { return std::llabs(tickCount(c, lo, hi, extend) - target_ticks); };
+  const auto shown = [&](const Step& c) { return static_cast<double>(tickCount(c, lo, hi, true) - 1) * c.value(); };
+  Step best = candidates.front();
+  for (const Step& c : candidates) {
+    const long long e = error(c);
+    const long long b = error(best);
+    if (e < b || (e == b && extend && shown(c) < shown(best))) best = c;
+  }
+  return best;
+}
+
+// Ticks at the multiples of `step` inside [lo, hi] (with a little slack so an end on a multiple counts).
+std::vector<double> multiplesWithin(const Step& step, double lo, double hi) {
+  const double s = step.value();
+  const long long first = static_cast<long long>(std::ceil(lo / s - kTolerance));
+  const long long last = static_cast<long long>(std::floor(hi / s + kTolerance));
+  std::vector<double> values;
+  for (long long k = first; k <= last && k - first < kMaxTicks; ++k) values.push_back(step.multiple(k));
+  return values;
+}
+
+AxisTicks ticksFromStep(const Step& step, double lo, double hi) {
+  AxisTicks t;
+  t.lo = lo;
+  t.hi = hi;
+  t.step = step.value();
+  t.decimals = step.decimals();
+  t.values = multiplesWithin(step, lo, hi);
+  return t;
+}
+
+// lo < hi, both finite, not collapsed to one double.
+void widenDegenerate(double& lo, double& hi) {
+  if (!std::isfinite(lo) || !std::isfinite(hi)) {
+    lo = 0.0;
+    hi = 1.0;
+    return;
+  }
+  if (lo > hi) std::swap(lo, hi);
+  const double scale = std::max(std::fabs(lo), std::fabs(hi));
+  if (hi - lo <= 1e-12 * scale || hi == lo) {
+    const double d = scale > 0.0 ? 0.1 * scale : 1.0;
+    lo -= d;
+    hi += d;
+  }
+}
+
+std::string px(double v) { return formatFixed(std::clamp(v, -kCoordLimit, kCoordLimit), 2); }
+
+std::size_t codePoints(const std::string& s) {
+  std::size_t n = 0;
+  for (const char c : s) {
+    if ((static_cast<unsigned char>(c) & 0xC0U) != 0x80U) ++n;
+  }
+  return n;
+}
+
+std::string axisTitle(const std::string& label, const std::string& unit) {
+  if (unit.empty()) return label;
+  if (label.empty()) return "[" + unit + "]";
+  return label + " [" + unit + "]";
+}
+
+struct Range {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    if (!std::isfinite(v)) return;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  bool empty() const { return lo > hi; }
+};
+
+enum class LegendKind : unsigned char { kSeries, kBand, kLine, kStart, kEnd };
+
+struct LegendEntry {
+  LegendKind kind;
+  std::string label;
+  std::string colour;
+  bool dashed = false;
+  double opacity = 1.0;
+};
+
+std::string seriesColour(const PlotSeries& s, std::size_t index) {
+  return s.colour.empty() ? paletteColour(index) : s.colour;
+}
+
+bool seriesDashed(const PlotSeries& s, std::size_t index) { return s.dashed || (s.colour.empty() && index >= 10); }
+
+std::vector<LegendEntry> legendEntries(const PlotSpec& spec) {
+  std::vector<LegendEntry> entries;
+  for (std::size_t i = 0; i < spec.series.size(); ++i) {
+    const PlotSeries& s = spec.series[i];
+    if (!s.label.empty()) {
+      entries.push_back({LegendKind::kSeries, s.label, seriesColour(s, i), seriesDashed(s, i), s.opacity});
+    }
+  }
+  for (const PlotBand& b : spec.bands) {
+    if (!b.label.empty()) entries.push_back({LegendKind::kBand, b.label, b.colour, false, b.opacity});
+  }
+  for (const PlotLine& l : spec.lines) {
+    if (!l.label.empty()) entries.push_back({LegendKind::kLine, l.label, l.colour, l.dashed});
+  }
+  if (spec.equal_aspect && !spec.series.empty()) {
+    entries.push_back({LegendKind::kStart, "start", "#333333"});
+    entries.push_back({LegendKind::kEnd, "end", "#333333"});
+  }
+  return entries;
+}
+
+void validateSpec(const PlotSpec& spec) {
+  std::string problems;
+  for (std::size_t i = 0; i < spec.series.size(); ++i) {
+    if (spec.series[i].x.size() != spec.series[i].y.size()) {
+      problems += "series " + std::to_string(i) + " has " + std::to_string(spec.series[i].x.size()) + " x and " +
+                  std::to_string(spec.series[i].y.size()) + " y values; ";
+    }
+  }
+  if (spec.width_px < 200) problems += "width_px must be >= 200; ";
+  if (spec.height_px < 120) problems += "height_px must be >= 120; ";
+  if (spec.target_ticks < 2) problems += "target_ticks must be >= 2; ";
+  if (!spec.equal_aspect) {
+    if (std::isfinite(spec.x_min) && std::isfinite(spec.x_max) && !(spec.x_min < spec.x_max)) {
+      problems += "x_min must be < x_max; ";
+    }
+    if (std::isfinite(spec.y_min) && std::isfinite(spec.y_max) && !(spec.y_min < spec.y_max)) {
+      problems += "y_min must be < y_max; ";
+    }
+  }
+  if (!problems.empty()) {
+    problems.resize(problems.size() - 2);
+    throw std::invalid_argument("PlotSpec: " + problems);
+  }
+}
+
+// Automatic ticks on [lo, hi] extended to the step, then the forced ends (if any) put back as they are.
+AxisTicks axisTicks(Range data, double forced_lo, double forced_hi, bool include_zero, int target_ticks) {
+  if (include_zero) {
+    data.add(0.0);
+  }
+  double lo = data.empty() ? 0.0 : data.lo;
+  double hi = data.empty() ? 1.0 : data.hi;
+  const bool has_lo = std::isfinite(forced_lo);
+  const bool has_hi = std::isfinite(forced_hi);
+  if (has_lo) lo = forced_lo;
+  if (has_hi) hi = forced_hi;
+  if (has_lo && !has_hi && !(hi > lo)) hi = lo + std::max(1.0, 0.1 * std::fabs(lo));
+  if (has_hi && !has_lo && !(lo < hi)) lo = hi - std::max(1.0, 0.1 * std::fabs(hi));
+  widenDegenerate(lo, hi);
+  AxisTicks t = niceTicks(lo, hi, target_ticks);
+  if (has_lo || has_hi) {
+    if (has_lo) t.lo = forced_lo;
+    if (has_hi) t.hi = forced_hi;
+    t = ticksFromStep(stepFor(t.lo, t.hi, target_ticks, false), t.lo, t.hi);
+  }
+  return t;
+}
+
+// Indices of the points of one finite run [begin, end) that are drawn.
+std::vector<std::size_t> thin(const std::vector<double>& sx, const std::vector<double>& sy, std::size_t begin,
+                              std::size_t end) {
+  std::vector<std::size_t> keep;
+  bool monotone = true;
+  for (std::size_t i = begin + 1; i < end; ++i) {
+    if (sx[i] < sx[i - 1]) {
+      monotone = false;
+      break;
+    }
+  }
+  if (monotone) {
+    std::size_t i = begin;
+    while (i < end) {
+      const double column = std::floor(sx[i]);
+      std::size_t j = i;
+      std::size_t lowest = i;
+      std::size_t highest = i;
+      while (j < end && std::floor(sx[j]) == column) {
+        if (sy[j] < sy[lowest]) lowest = j;
+        if (sy[j] > sy[highest]) highest = j;
+        ++j;
+      }
+      std::array<std::size_t, 4> picks{i, lowest, highest, j - 1};
+      std::sort(picks.begin(), picks.end());
+      for (const std::size_t p : picks) {
+        if (keep.empty() || keep.back() != p) keep.push_back(p);
+      }
+      i = j;
+    }
+    return keep;
+  }
+  keep.push_back(begin);
+  for (std::size_t i = begin + 1; i < end; ++i) {
+    const std::size_t last = keep.back();
+    if (std::hypot(sx[i] - sx[last], sy[i] - sy[last]) >= 0.5 || i + 1 == end) keep.push_back(i);
+  }
+  return keep;
+}
+
+std::string dashAttr(bool dashed, const char* pattern) {
+  return dashed ? std::string(" stroke-dasharray=\"") + pattern + "\"" : std::string();
+}
+
+void renderLegendSwatch(std::string& out, const LegendEntry& e, double x, double y) {
+  const std::string colour = escapeXml(e.colour);
+  switch (e.kind) {
+    case LegendKind::kSeries:
+    case LegendKind::kLine:
+      out += "<line x1=\"" + px(x) + "\" y1=\"" + px(y) + "\" x2=\"" + px(x + kLegendSwatch) + "\" y2=\"" + px(y) +
+             "\" stroke=\"" + colour + "\" stroke-width=\"2\"" +
+             (e.opacity < 1.0 ? " stroke-opacity=\"" + formatFixed(std::max(e.opacity, 0.0), 3) + "\"" : "") +
+             dashAttr(e.dashed, e.kind == LegendKind::kSeries ? "6 4" : "5 4") + "/>\n";
+      break;
+    case LegendKind::kBand:
+      out += "<rect x=\"" + px(x) + "\" y=\"" + px(y - 5.0) + "\" width=\"" + px(kLegendSwatch) +
+             "\" height=\"10\" fill=\"" + colour + "\" fill-opacity=\"" + formatFixed(e.opacity, 3) + "\"/>\n";
+      break;
+    case LegendKind::kStart:
+      out += "<circle cx=\"" + px(x + 0.5 * kLegendSwatch) + "\" cy=\"" + px(y) +
+             "\" r=\"4\" fill=\"#ffffff\" stroke=\"" + colour + "\" stroke-width=\"1.5\"/>\n";
+      break;
+    case LegendKind::kEnd:
+      out += "<rect x=\"" + px(x + 0.5 * kLegendSwatch - 3.5) + "\" y=\"" + px(y - 3.5) +
+             "\" width=\"7\" height=\"7\" fill=\"" + colour + "\"/>\n";
+      break;
+  }
+}
+
+}  // namespace
+
+std::string escapeXml(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
+        break;
+    }
+  }
+  return out;
+}
+
+const std::string& paletteColour(std::size_t index) {
+  // matplotlib's tab10: distinguishable, and the first two (blue, orange) read well side by side.
+  static const std::array<std::string, 10> kPalette{"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                                    "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  return kPalette[index % kPalette.size()];
+}
+
+std::string formatFixed(double value, int decimals) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  std::array<char, 64> buf{};
+  if (std::fabs(value) >= 1e15) {
+    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), value);
+    return r.ec == std::errc() ? std::string(buf.data(), r.ptr) : std::string("nan");
+  }
+  const auto r =
+      std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::fixed, std::clamp(decimals, 0, 17));
+  if (r.ec != std::errc()) return "nan";  // cannot happen below 1e15 with 64 chars
+  std::string s(buf.data(), r.ptr);
+  if (s.find('.') != std::string::npos) {
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+  }
+  if (s == "-0") s = "0";
+  return s;
+}
+
+double niceStep(double span, int target_ticks) { return stepFor(0.0, span, target_ticks, true).value(); }
+
+AxisTicks niceTicks(double lo, double hi, int target_ticks) {
+  widenDegenerate(lo, hi);
+  const Step step = stepFor(lo, hi, target_ticks, true);
+  const double s = step.value();
+  const long long first = static_cast<long long>(std::floor(lo / s + kTolerance));
+  const long long last = static_cast<long long>(std::ceil(hi / s - kTolerance));
+  return ticksFromStep(step, step.multiple(first), step.multiple(last));
+}
+
+std::string formatTick(double value, const AxisTicks& ticks) { return formatFixed(value, ticks.decimals); }
+
+PlotLayout layoutPlot(const PlotSpec& spec) {
+  validateSpec(spec);
+  const std::vector<LegendEntry> legend = legendEntries(spec);
+  std::size_t legend_chars = 0;
+  for (const LegendEntry& e : legend) legend_chars = std::max(legend_chars, codePoints(e.label));
+  const double legend_width = legend.empty()
+                                  ? 0.0
+                                  : std::max(spec.legend_width_px, kLegendGap + kLegendSwatch + 6.0 +
+                                                                       kCharWidth * static_cast<double>(legend_chars));
+
+  PlotLayout l;
+  l.legend_px = legend_width;
+  l.left_px = kMarginLeft;
+  l.top_px = spec.title.empty() ? kMarginTopBare : kMarginTopTitle;
+  const double right_margin = kMarginRight + legend_width;
+  l.width_px = std::max(static_cast<double>(spec.width_px), l.left_px + 120.0 + right_margin);
+  l.height_px =
+      std::max(static_cast<double>(spec.height_px), l.top_px + kLegendRow * static_cast<double>(legend.size()) + 12.0);
+  l.right_px = l.width_px - right_margin;
+  l.bottom_px = l.height_px - kMarginBottom;
+
+  Range xr;
+  Range yr;
+  for (const PlotSeries& s : spec.series) {
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
+        xr.add(s.x[i]);
+        yr.add(s.y[i]);
+      }
+    }
+  }
+
+  if (spec.equal_aspect) {
+    if (xr.empty()) {
+      xr.add(0.0);
+      yr.add(0.0);
+    }
+    // 5 % of the larger span as padding, so markers on the edge stay inside; at least 1 unit around a single point.
+    const double pad = std::max(0.05 * std::max(xr.hi - xr.lo, yr.hi - yr.lo), 1e-9);
+    const double x_span = std::max(xr.hi - xr.lo + 2.0 * pad, 2.0);
+    const double y_span = std::max(yr.hi - yr.lo + 2.0 * pad, 2.0);
+    const double w = l.right_px - l.left_px;
+    const double h = l.bottom_px - l.top_px;
+    const double scale = std::min(w / x_span, h / y_span);
+    const double cx = 0.5 * (xr.lo + xr.hi);
+    const double cy = 0.5 * (yr.lo + yr.hi);
+    const double half_w = 0.5 * w / scale;
+    const double half_h = 0.5 * h / scale;
+    // One step for both axes, chosen on the longer one.
+    const double half_long = std::max(half_w, half_h);
+    const double c_long = half_w >= half_h ? cx : cy;
+    const Step step = stepFor(c_long - half_long, c_long + half_long, spec.target_ticks, false);
+    l.x = ticksFromStep(step, cx - half_w, cx + half_w);
+    l.y = ticksFromStep(step, cy - half_h, cy + half_h);
+    return l;
+  }
+
+  for (const PlotBand& b : spec.bands) {
+    yr.add(b.low);
+    yr.add(b.high);
+  }
+  for (const PlotLine& line : spec.lines) {
+    (line.orientation == LineOrientation::kHorizontal ? yr : xr).add(line.value);
+  }
+  l.x = axisTicks(xr, spec.x_min, spec.x_max, false, spec.target_ticks);
+  l.y = axisTicks(yr, spec.y_min, spec.y_max, spec.y_include_zero, spec.target_ticks);
+  return l;
+}
+
+std::string renderSvg(const PlotSpec& spec) {
+  const PlotLayout l = layoutPlot(spec);
+  const double w = l.right_px - l.left_px;
+  const double h = l.bottom_px - l.top_px;
+  std::string out;
+  out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + px(l.width_px) + "\" height=\"" + px(l.height_px) +
+         "\" viewBox=\"0 0 " + px(l.width_px) + " " + px(l.height_px) +
+         "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"12\">\n";
+  out +=
+      "<rect x=\"0\" y=\"0\" width=\"" + px(l.width_px) + "\" height=\"" + px(l.height_px) + "\" fill=\"#ffffff\"/>\n";
+  if (!spec.title.empty()) {
+    out += "<text class=\"title\" x=\"" + px(0.5 * l.width_px) +
+           "\" y=\"20\" text-anchor=\"middle\" font-size=\"14\" font-weight=\"bold\">" + escapeXml(spec.title) +
+           "</text>\n";
+  }
+
+  // Grid, frame, ticks and their labels.
+  out += "<g class=\"grid\" stroke=\"#e6e6e6\" stroke-width=\"1\">\n";
+  for (const double v : l.x.values) {
+    const std::string x = px(l.xToPx(v));
+    out += "<line x1=\"" + x + "\" y1=\"" + px(l.top_px) + "\" x2=\"" + x + "\" y2=\"" + px(l.bottom_px) + "\"/>\n";
+  }
+  for (const double v : l.y.values) {
+    const std::string y = px(l.yToPx(v));
+    out += "<line x1=\"" + px(l.left_px) + "\" y1=\"" + y + "\" x2=\"" + px(l.right_px) + "\" y2=\"" + y + "\"/>\n";
+  }
+  out += "</g>\n";
+  out += "<g class=\"axes\" stroke=\"#333333\" stroke-width=\"1\">\n";
+  out += "<rect x=\"" + px(l.left_px) + "\" y=\"" + px(l.top_px) + "\" width=\"" + px(w) + "\" height=\"" + px(h) +
+         "\" fill=\"none\"/>\n";
+  for (const double v : l.x.values) {
+    const std::string x = px(l.xToPx(v));
+    out += "<line x1=\"" + x + "\" y1=\"" + px(l.bottom_px) + "\" x2=\"" + x + "\" y2=\"" + px(l.bottom_px + 4.0) +
+           "\"/>\n";
+  }
+  for (const double v : l.y.values) {
+    const std::string y = px(l.yToPx(v));
+    out +=
+        "<line x1=\"" + px(l.left_px - 4.0) + "\" y1=\"" + y + "\" x2=\"" + px(l.left_px) + "\" y2=\"" + y + "\"/>\n";
+  }
+  out += "</g>\n";
+  out += "<g class=\"tick-labels\" fill=\"#333333\">\n";
+  for (const double v : l.x.values) {
+    out += "<text class=\"tick-x\" x=\"" + px(l.xToPx(v)) + "\" y=\"" + px(l.bottom_px + 16.0) +
+           "\" text-anchor=\"middle\">" + formatTick(v, l.x) + "</text>\n";
+  }
+  for (const double v : l.y.values) {
+    out += "<text class=\"tick-y\" x=\"" + px(l.left_px - 7.0) + "\" y=\"" + px(l.yToPx(v)) +
+           "\" dy=\"0.35em\" text-anchor=\"end\">" + formatTick(v, l.y) + "</text>\n";
+  }
+  out += "</g>\n";
+  const std::string x_title = axisTitle(spec.x_label, spec.x_unit);
+  const std::string y_title = axisTitle(spec.y_label, spec.y_unit);
+  if (!x_title.empty()) {
+    out += "<text class=\"axis-label\" x=\"" + px(0.5 * (l.left_px + l.right_px)) + "\" y=\"" + px(l.height_px - 12.0) +
+           "\" text-anchor=\"middle\">" + escapeXml(x_title) + "</text>\n";
+  }
+  if (!y_title.empty()) {
+    const std::string cy = px(0.5 * (l.top_px + l.bottom_px));
+    out += "<text class=\"axis-label\" x=\"16\" y=\"" + cy + "\" text-anchor=\"middle\" transform=\"rotate(-90 16 " +
+           cy + ")\">" + escapeXml(y_title) + "</text>\n";
+  }
+
+  // The data, clipped to the plot area by a nested viewport whose user space is the outer one.
+  out += "<svg class=\"plot-area\" x=\"" + px(l.left_px) + "\" y=\"" + px(l.top_px) + "\" width=\"" + px(w) +
+         "\" height=\"" + px(h) + "\" viewBox=\"" + px(l.left_px) + " " + px(l.top_px) + " " + px(w) + " " + px(h) +
+         "\" overflow=\"hidden\">\n";
+  for (const PlotBand& b : spec.bands) {
+    if (!std::isfinite(b.low) || !std::isfinite(b.high)) continue;
+    const double y_top = l.yToPx(std::max(b.low, b.high));
+    const double y_bottom = l.yToPx(std::min(b.low, b.high));
+    out += "<rect class=\"band\" x=\"" + px(l.left_px) + "\" y=\"" + px(y_top) + "\" width=\"" + px(w) +
+           "\" height=\"" + px(y_bottom - y_top) + "\" fill=\"" + escapeXml(b.colour) + "\" fill-opacity=\"" +
+           formatFixed(b.opacity, 3) + "\"/>\n";
+  }
+  for (const PlotLine& line : spec.lines) {
+    if (!std::isfinite(line.value)) continue;
+    std::string coords;
+    if (line.orientation == LineOrientation::kHorizontal) {
+      const std::string y = px(l.yToPx(line.value));
+      coords = "x1=\"" + px(l.left_px) + "\" y1=\"" + y + "\" x2=\"" + px(l.right_px) + "\" y2=\"" + y + "\"";
+    } else {
+      const std::string x = px(l.xToPx(line.value));
+      coords = "x1=\"" + x + "\" y1=\"" + px(l.top_px) + "\" x2=\"" + x + "\" y2=\"" + px(l.bottom_px) + "\"";
+    }
+    out += "<line class=\"ref-line\" " + coords + " stroke=\"" + escapeXml(line.colour) + "\" stroke-width=\"1.5\"" +
+           dashAttr(line.dashed, "5 4") + "/>\n";
+  }
+  bool any_point = false;
+  for (std::size_t si = 0; si < spec.series.size(); ++si) {
+    const PlotSeries& s = spec.series[si];
+    const std::string colour = escapeXml(seriesColour(s, si));
+    const std::string index = std::to_string(si);
+    const std::string opacity = s.opacity < 1.0
+                                    ? " stroke-opacity=\"" + formatFixed(std::max(s.opacity, 0.0), 3) +
+                                          "\" fill-opacity=\"" + formatFixed(std::max(s.opacity, 0.0), 3) + "\""
+                                    : std::string();
+    std::vector<double> sx(s.x.size());
+    std::vector<double> sy(s.y.size());
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]);
+      sx[i] = finite ? l.xToPx(s.x[i]) : kNan;
+      sy[i] = finite ? l.yToPx(s.y[i]) : kNan;
+    }
+    std::size_t i = 0;
+    while (i < sx.size()) {
+      if (std::isnan(sx[i])) {
+        ++i;
+        continue;
+      }
+      std::size_t end = i;
+      while (end < sx.size() && !std::isnan(sx[end])) ++end;
+      any_point = true;
+      if (end - i == 1) {
+        out += "<circle class=\"point\" data-series=\"" + index + "\" cx=\"" + px(sx[i]) + "\" cy=\"" + px(sy[i]) +
+               "\" r=\"2\" fill=\"" + colour + "\"" + opacity + "/>\n";
+      } else {
+        std::string points;
+        for (const std::size_t k : thin(sx, sy, i, end)) {
+          if (!points.empty()) points += ' ';
+          points += px(sx[k]) + "," + px(sy[k]);
+        }
+        out += "<polyline class=\"series\" data-series=\"" + index + "\" fill=\"none\" stroke=\"" + colour +
+               "\" stroke-width=\"" + formatFixed(s.width_px, 2) + "\" stroke-linejoin=\"round\"" + opacity +
+               dashAttr(seriesDashed(s, si), "6 4") + " points=\"" + points + "\"/>\n";
+      }
+      i = end;
+    }
+  }
+  if (spec.equal_aspect) {
+    for (std::size_t si = 0; si < spec.series.size(); ++si) {
+      const PlotSeries& s = spec.series[si];
+      std::size_t first = s.x.size();
+      std::size_t last = s.x.size();
+      for (std::size_t i = 0; i < s.x.size(); ++i) {
+        if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+        if (first == s.x.size()) first = i;
+        last = i;
+      }
+      if (first == s.x.size()) continue;
+      const std::string colour = escapeXml(seriesColour(s, si));
+      const std::string index = std::to_string(si);
+      out += "<circle class=\"start-marker\" data-series=\"" + index + "\" cx=\"" + px(l.xToPx(s.x[first])) +
+             "\" cy=\"" + px(l.yToPx(s.y[first])) + "\" r=\"4\" fill=\"#ffffff\" stroke=\"" + colour +
+             "\" stroke-width=\"1.5\"/>\n";
+      out += "<rect class=\"end-marker\" data-series=\"" + index + "\" x=\"" + px(l.xToPx(s.x[last]) - 3.5) +
+             "\" y=\"" + px(l.yToPx(s.y[last]) - 3.5) + "\" width=\"7\" height=\"7\" fill=\"" + colour + "\"/>\n";
+    }
+  }
+  if (!any_point) {
+    out += "<text class=\"no-data\" x=\"" + px(0.5 * (l.left_px + l.right_px)) + "\" y=\"" +
+           px(0.5 * (l.top_px + l.bottom_px)) + "\" text-anchor=\"middle\" fill=\"#888888\">no data</text>\n";
+  }
+  out += "</svg>\n";
+
+  const std::vector<LegendEntry> legend = legendEntries(spec);
+  if (!legend.empty()) {
+    out += "<g class=\"legend\">\n";
+    const double x = l.right_px + kLegendGap;
+    for (std::size_t i = 0; i < legend.size(); ++i) {
+      const double y = l.top_px + 9.0 + kLegendRow * static_cast<double>(i);
+      renderLegendSwatch(out, legend[i], x, y);
+      out += "<text x=\"" + px(x + kLegendSwatch + 6.0) + "\" y=\"" + px(y) + "\" dy=\"0.35em\">" +
+             escapeXml(legend[i].label) + "</text>\n";
+    }
+    out += "</g>\n";
+  }
+  out += "</svg>\n";
+  return out;
+}
+
+}  // namespace swa::monitor
