@@ -28,6 +28,7 @@ RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& option
   RunResult result;
   result.seed = scenario.seed;
   result.mode = scenario.agent.mode;
+  monitor::TrajectoryRecorder trajectories;
   monitor::StepInput input;
   input.uavs.resize(static_cast<std::size_t>(n));
   if (score_estimates) input.estimates.resize(static_cast<std::size_t>(n));
@@ -56,11 +57,13 @@ RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& option
         }
       }
       result.series.push_back(monitor::toRow(metrics.add(input)));
+      trajectories.add(static_cast<double>(input.stamp_ns) * 1e-9, input.uavs);
     }
     if (world.finished()) break;
     world.step();
   }
   result.summary = metrics.summary();
+  result.trajectories = trajectories.trajectories();
   for (const agent::Agent& a : agents) result.rejected_inputs += a.diagnostics().rejected.total();
   return result;
 }

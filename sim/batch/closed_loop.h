@@ -7,6 +7,7 @@
 
 #include "swa/monitor/accumulator.h"
 #include "swa/monitor/report.h"
+#include "swa/monitor/report_html.h"
 #include "swa/sim/scenario.h"
 #include "swa/sim/world.h"
 
@@ -19,6 +20,7 @@ struct RunResult {
   std::vector<monitor::TimeSeriesRow> series;  // one row per metrics sample
   std::uint64_t rejected_inputs = 0;           // summed over agents: should be 0 for simulated sensors
   std::vector<sim::Event> events;              // everything the world raised (GNSS loss, collisions, failsafe)
+  std::vector<monitor::UavTrajectory> trajectories;  // true positions, one point per UAV every 0.5 s
 };
 
 struct LoopOptions {

@@ -156,10 +156,26 @@ int main(int argc, char** argv) {
     }
     json << "\n]\n}\n";
     std::ofstream(out / "scenario.yaml") << sim::scenarioToYaml(scenario);
+    // The report shows the first seed of every mode side by side (the paper's comparison figure).
+    std::vector<monitor::RunReport> report_runs;
+    for (const auto& runs : results) {
+      const batch::RunResult& r = runs.front();
+      report_runs.push_back({agent::toString(r.mode) + " (seed " + std::to_string(r.seed) + ")", r.summary, r.series,
+                             r.trajectories, ""});
+    }
+    monitor::ReportNotes notes;
+    notes.title = "SWA batch report";
+    notes.scenario = opt.scenario_path;
+    for (int k = 0; k < opt.seeds; ++k) notes.seeds.push_back(scenario.seed + static_cast<std::uint64_t>(k));
+    notes.formation_radius_m = scenario.agent.formation.radius_m;
+    notes.gnss_loss_s = batch::driftWindowStart(scenario) > 0.0 ? batch::driftWindowStart(scenario) : monitor::kNaN;
+    notes.extra.push_back({"plots", "first seed of each mode; summary.json has every seed and the aggregate"});
+    monitor::writeReport((out / "report").string(), report_runs, notes);
     if (!json) throw std::runtime_error("cannot write " + (out / "summary.json").string());
     const double simulated = scenario.duration_s * opt.seeds * static_cast<double>(modes.size());
-    std::printf("\n%.0f simulated s in %.2f s wall, %.2f s CPU (%.0fx real time per CPU second); wrote %s\n", simulated,
-                wall, cpu, simulated / std::max(cpu, 1e-9), (out / "summary.json").c_str());
+    std::printf("\n%.0f simulated s in %.2f s wall, %.2f s CPU (%.0fx real time per CPU second)\nwrote %s and %s\n",
+                simulated, wall, cpu, simulated / std::max(cpu, 1e-9), (out / "summary.json").c_str(),
+                (out / "report" / "report.html").c_str());
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "swa_batch: " << e.what() << "\n";

@@ -84,6 +84,7 @@ TEST(BatchCli, ShortRunWritesSummaryAndSeries) {
     }
   }
   EXPECT_TRUE(fs::exists(out / "scenario.yaml"));
+  EXPECT_TRUE(fs::exists(out / "report" / "report.html"));
   fs::remove_all(out);
 }
 
