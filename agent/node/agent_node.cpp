@@ -1,0 +1,123 @@
+#include "agent_node.h"
+
+#include <chrono>
+#include <cstdio>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/DetectionsPubSubTypes.h>
+#include <swa/msg/GnssFixPubSubTypes.h>
+#include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/VelocitySetpointPubSubTypes.h>
+
+#include "agent_state_msg.h"
+#include "swa/dds/convert.h"
+#include "swa/dds/shutdown.h"
+#include "swa/dds/topics.h"
+
+namespace swa::agent_node {
+namespace {
+
+constexpr agent::StampNs kStatePeriodNs = 100'000'000;  // 10 Hz
+// A detection / GNSS sample waits for the IMU of its step at most this much newer sim time (sample_order.h).
+constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
+
+}  // namespace
+
+AgentNode::AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file)
+    : id_(uav_id), agent_(config), order_(kHoldLimitNs), started_(std::chrono::steady_clock::now()) {
+  participant_ = std::make_unique<dds::Participant>("swa_agent_" + std::to_string(uav_id), domain_id, profiles_file);
+  // Writers first: a command must have somewhere to go as soon as the first IMU sample is processed.
+  cmd_writer_ = participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), "swa_command_writer");
+  state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), "swa_state_writer");
+  participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), "swa_sensor_reader",
+                                           [this](msg::Imu&& m) { queue_.push(Input(std::move(m))); });
+  participant_->reader<msg::DetectionsPubSubType>(dds::topics::detections(id_), "swa_sensor_reader",
+                                                  [this](msg::Detections&& m) { queue_.push(Input(std::move(m))); });
+  participant_->reader<msg::GnssFixPubSubType>(dds::topics::gnss(id_), "swa_sensor_reader",
+                                               [this](msg::GnssFix&& m) { queue_.push(Input(std::move(m))); });
+}
+
+AgentNode::~AgentNode() { participant_.reset(); }
+
+int AgentNode::run() {
+  std::vector<Input> batch;
+  while (!dds::shutdownRequested()) {
+    batch.clear();
+    queue_.drain(batch, std::chrono::milliseconds(100));
+    for (Input& in : batch) {
+      // Stamp read before the sample is moved into the orderer.
+      const auto [stream, stamp] = std::visit(
+          [](const auto& m) {
+            using M = std::decay_t<decltype(m)>;
+            const Stream st = std::is_same_v<M, msg::Imu>          ? Stream::kImu
+                              : std::is_same_v<M, msg::Detections> ? Stream::kDetections
+                                                                   : Stream::kGnss;
+            return std::make_pair(st, m.header().stamp_ns());
+          },
+          in);
+      order_.push(stream, stamp, std::move(in));
+    }
+    while (auto entry = order_.pop()) handle(entry->payload);
+  }
+  return 0;
+}
+
+void AgentNode::handle(Input& in) {
+  const auto self = static_cast<std::uint32_t>(id_);
+  const auto foreign = [&](std::uint32_t named) {
+    if (named == self) return false;
+    if (stats_.foreign++ == 0) {
+      std::fprintf(stderr, "swa_agent %d: dropping a sample addressed to UAV %u (further ones counted silently)\n",
+                   id_, named);
+    }
+    return true;
+  };
+
+  if (const auto* imu = std::get_if<msg::Imu>(&in)) {
+    if (foreign(imu->uav_id())) return;
+    if (stats_.imu++ == 0) {
+      std::fprintf(stderr, "swa_agent %d: first IMU sample (stamp %lld ns, cmd readers %d) %.3f s after start\n", id_,
+                   static_cast<long long>(imu->header().stamp_ns()), cmd_writer_.matched(),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
+    }
+    const agent::VelocityCommand cmd = agent_.onImu(dds::fromMsg(*imu));
+    msg::VelocitySetpoint out = dds::toMsg(cmd, self, ++cmd_seq_, imu->header().seq());
+    if (cmd_writer_.write(out)) {
+      ++stats_.commands;
+    } else {
+      ++stats_.write_failures;
+    }
+    const agent::StampNs stamp = imu->header().stamp_ns();
+    if (!state_due_set_ || stamp >= next_state_ns_) {
+      publishState(stamp);
+      // Next 100 ms boundary after this stamp (floor division, also for negative stamps).
+      agent::StampNs floor = stamp / kStatePeriodNs;
+      if (stamp % kStatePeriodNs < 0) --floor;
+      next_state_ns_ = (floor + 1) * kStatePeriodNs;
+      state_due_set_ = true;
+    }
+  } else if (const auto* det = std::get_if<msg::Detections>(&in)) {
+    if (foreign(det->observer_id())) return;
+    ++stats_.detections;
+    agent_.onDetections(dds::fromMsg(*det));
+  } else if (const auto* gnss = std::get_if<msg::GnssFix>(&in)) {
+    if (foreign(gnss->uav_id())) return;
+    ++stats_.gnss;
+    agent_.onGnss(dds::fromMsg(*gnss));
+  }
+}
+
+void AgentNode::publishState(agent::StampNs stamp_ns) {
+  msg::AgentState state = toStateMsg(agent_.diagnostics(), static_cast<std::uint32_t>(id_), ++state_seq_);
+  state.header().stamp_ns(stamp_ns);  // the IMU sample after which this is the state (also if it was rejected)
+  if (state_writer_.write(state)) {
+    ++stats_.states;
+  } else {
+    ++stats_.write_failures;
+  }
+}
+
+}  // namespace swa::agent_node

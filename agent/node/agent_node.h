@@ -1,0 +1,66 @@
+#pragma once
+// The agent of one UAV as a Fast DDS node: a thin adapter around swa::agent::Agent. Reads only
+// swa/uav<id>/{imu,detections,gnss}, writes only swa/uav<id>/{cmd_vel,state}. Listeners only enqueue; run()'s
+// thread puts the samples in stamp order (sample_order.h), converts them, calls the agent, and publishes:
+//   - one VelocitySetpoint per IMU sample, echoing the IMU's stamp and seq (the lockstep simulator waits for it);
+//   - an AgentState whenever the sample time crosses a 100 ms boundary (10 Hz of sim time, deterministic).
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <variant>
+
+#include <swa/msg/AgentState.h>
+#include <swa/msg/Detections.h>
+#include <swa/msg/GnssFix.h>
+#include <swa/msg/Imu.h>
+#include <swa/msg/VelocitySetpoint.h>
+
+#include "sample_order.h"
+#include "swa/agent/agent.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/sample_queue.h"
+
+namespace swa::agent_node {
+
+struct AgentNodeStats {
+  std::uint64_t imu = 0, detections = 0, gnss = 0;
+  std::uint64_t commands = 0, states = 0;
+  std::uint64_t foreign = 0;         // samples naming another UAV (a wiring error upstream): dropped
+  std::uint64_t write_failures = 0;
+};
+
+class AgentNode {
+ public:
+  // Creates every DDS entity; throws swa::dds::DdsError.
+  AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file);
+  ~AgentNode();
+
+  // Processes samples until swa::dds::shutdownRequested(); returns the process exit status.
+  int run();
+  const AgentNodeStats& stats() const { return stats_; }
+
+ private:
+  using Input = std::variant<msg::Imu, msg::Detections, msg::GnssFix>;
+
+  void handle(Input& in);
+  void publishState(agent::StampNs stamp_ns);
+
+  const int id_;
+  agent::Agent agent_;
+  StampOrderer<Input> order_;
+  std::chrono::steady_clock::time_point started_;
+  AgentNodeStats stats_;
+  std::uint32_t cmd_seq_ = 0, state_seq_ = 0;
+  bool state_due_set_ = false;
+  agent::StampNs next_state_ns_ = 0;
+
+  // The queue outlives the participant, whose listeners push into it.
+  dds::SampleQueue<Input> queue_;
+  std::unique_ptr<dds::Participant> participant_;
+  dds::Writer<msg::VelocitySetpoint> cmd_writer_;
+  dds::Writer<msg::AgentState> state_writer_;
+};
+
+}  // namespace swa::agent_node

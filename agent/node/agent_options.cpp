@@ -1,0 +1,91 @@
+#include "agent_options.h"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "swa/dds/options.h"
+
+namespace swa::agent_node {
+
+AgentOptions parseAgentOptions(const std::vector<std::string>& args) {
+  AgentOptions o;
+  std::vector<std::string> problems;
+  bool have_id = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string key = args[i];
+    std::optional<std::string> inline_value;
+    if (const auto eq = key.find('='); key.rfind("--", 0) == 0 && eq != std::string::npos) {
+      inline_value = key.substr(eq + 1);
+      key = key.substr(0, eq);
+    }
+    const auto value = [&]() -> std::optional<std::string> {
+      if (inline_value) return inline_value;
+      if (i + 1 < args.size()) return args[++i];
+      problems.push_back(key + " needs a value");
+      return std::nullopt;
+    };
+    if (key == "--help" || key == "-h") {
+      o.help = true;
+    } else if (key == "--parameters") {
+      o.list_parameters = true;
+    } else if (key == "--id") {
+      if (const auto v = value()) {
+        const auto id = dds::parseInteger(*v, 0, kMaxUavId);
+        if (!id) {
+          problems.push_back("--id '" + *v + "' is not a UAV id (an integer in [0, " + std::to_string(kMaxUavId) +
+                             "])");
+        } else {
+          o.id = static_cast<int>(*id);
+          have_id = true;
+        }
+      }
+    } else if (key == "--config") {
+      if (const auto v = value()) {
+        if (v->empty()) problems.push_back("--config needs a file name");
+        o.config_path = *v;
+      }
+    } else if (key == "--set") {
+      if (const auto v = value()) o.overrides.push_back(*v);
+    } else if (key == "--domain") {
+      if (const auto v = value()) o.domain = *v;
+    } else {
+      problems.push_back("unknown argument '" + args[i] + "' (see --help)");
+    }
+  }
+  if (!have_id && !o.help && !o.list_parameters && problems.empty()) problems.push_back("--id is required");
+  if (!problems.empty()) {
+    std::ostringstream msg;
+    for (std::size_t k = 0; k < problems.size(); ++k) msg << (k ? "\n" : "") << problems[k];
+    throw std::invalid_argument(msg.str());
+  }
+  return o;
+}
+
+std::string agentUsage() {
+  return R"(swa_agent: the SWA agent of one UAV as a Fast DDS process.
+
+Usage: swa_agent --id I [--config FILE] [--set key=value]... [--domain D]
+
+Reads only   swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss
+Writes only  swa/uav<I>/cmd_vel (one VelocitySetpoint per IMU sample, echoing its stamp and seq)
+             swa/uav<I>/state   (AgentState diagnostics, 10 Hz of sample time)
+
+Options:
+  --id I            UAV index, 0..9999 (required); participant name swa_agent_<I>
+  --config FILE     agent parameters (YAML, layout of deploy/config/agent.yaml); default: built-in defaults.
+                    `swa_sim --export-agent-config FILE` writes the one a scenario implies.
+  --set key=value   override one parameter, e.g. --set formation.k=2 (repeatable, applied in order)
+  --domain D        DDS domain id 0..232 (default: $SWA_DOMAIN, else 0)
+  --parameters      list every agent parameter (key, unit, bounds, default) and exit
+  -h, --help        this text
+
+Environment:
+  SWA_DOMAIN        domain id when --domain is not given
+  SWA_DDS_PROFILES  Fast DDS XML profiles (default: deploy/dds/profiles.xml of the source tree)
+
+Runs until SIGINT or SIGTERM, then deletes its DDS entities and exits 0.
+Exit status: 0 stopped by a signal; 1 DDS failure; 2 bad arguments or configuration (nothing started).
+)";
+}
+
+}  // namespace swa::agent_node

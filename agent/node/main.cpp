@@ -1,0 +1,71 @@
+// swa_agent: one UAV's agent as a Fast DDS process. See --help (agent_options.cpp).
+
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "agent_node.h"
+#include "agent_options.h"
+#include "swa/agent/config_io.h"
+#include "swa/dds/options.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/shutdown.h"
+
+// Fast DDS declares a global `namespace dds = eprosima::fastdds::dds;`: stay inside namespace swa so `dds::` is ours.
+namespace swa::agent_node {
+namespace {
+
+int agentMain(int argc, char** argv) {
+  // Everything that can be wrong with the arguments or the configuration is found before any DDS entity exists.
+  AgentOptions options;
+  agent::AgentConfig config;
+  int domain = 0;
+  try {
+    options = parseAgentOptions(std::vector<std::string>(argv + 1, argv + argc));
+    if (options.help) {
+      std::fputs(agentUsage().c_str(), stdout);
+      return 0;
+    }
+    if (options.list_parameters) {
+      std::fputs(agent::describeParameters().c_str(), stdout);
+      return 0;
+    }
+    if (!options.config_path.empty()) config = agent::loadAgentConfig(options.config_path);
+    config = agent::applyOverrides(config, options.overrides);
+    domain = dds::resolveDomain(options.domain);
+  } catch (const agent::ConfigError& e) {
+    std::fprintf(stderr, "swa_agent: invalid configuration:\n%s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "swa_agent: %s\n(see swa_agent --help)\n", e.what());
+    return 2;
+  }
+
+  dds::installShutdownHandlers();
+  const std::string profiles = dds::resolveProfilesFile();
+  try {
+    AgentNode node(options.id, config, domain, profiles);
+    std::fprintf(stderr, "swa_agent %d: up on domain %d (mode %s, k = %d), profiles %s\n", options.id, domain,
+                 agent::toString(config.mode).c_str(), config.formation.k, profiles.c_str());
+    dds::acceptShutdownSignals();
+    const int status = node.run();
+    const AgentNodeStats& s = node.stats();
+    std::fprintf(stderr,
+                 "swa_agent %d: stopping on signal %d after %llu IMU, %llu detection, %llu GNSS samples; %llu commands, "
+                 "%llu states, %llu foreign samples, %llu write failures\n",
+                 options.id, dds::shutdownSignal(), static_cast<unsigned long long>(s.imu),
+                 static_cast<unsigned long long>(s.detections), static_cast<unsigned long long>(s.gnss),
+                 static_cast<unsigned long long>(s.commands), static_cast<unsigned long long>(s.states),
+                 static_cast<unsigned long long>(s.foreign), static_cast<unsigned long long>(s.write_failures));
+    return status;
+  } catch (const dds::DdsError& e) {
+    std::fprintf(stderr, "swa_agent %d: DDS error: %s\n", options.id, e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+}  // namespace swa::agent_node
+
+int main(int argc, char** argv) { return swa::agent_node::agentMain(argc, argv); }

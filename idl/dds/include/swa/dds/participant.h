@@ -1,0 +1,156 @@
+#pragma once
+// RAII Fast DDS participant with typed writer / reader helpers, shared by every SWA node.
+//
+//   swa::dds::Participant p("swa_agent_3", domain, swa::dds::resolveProfilesFile());
+//   auto cmd = p.writer<swa::msg::VelocitySetpointPubSubType>(topics::cmdVel(3), "swa_command_writer");
+//   auto imu = p.reader<swa::msg::ImuPubSubType>(topics::imu(3), "swa_sensor_reader",
+//                                                [&](swa::msg::Imu&& m) { queue.push(std::move(m)); });
+//
+// QoS comes only from the XML profiles (deploy/dds/profiles.xml, loaded before anything else); the code names a
+// profile per endpoint and never sets QoS itself. Writer / Reader are non-owning handles, valid while their
+// Participant lives. The participant owns one publisher, one subscriber, the topics, and the reader listeners; its
+// destructor deletes every entity (so no /dev/shm segment survives a clean exit) and only then the listeners.
+// Before deleting, it waits (at most kShutdownAckWaitS) until every writer is acknowledged by its matched readers or
+// the dead ones among them are forgotten (participant lease): Fast DDS 2.9 can hang deleting a reliable writer
+// while it is heartbeating a reader that never answers.
+//
+// Threading: a reader's callback runs on a Fast DDS thread. Keep it to a push into a SampleQueue, and let whatever
+// it captures outlive the Participant.
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TopicDataType.hpp>
+
+namespace swa::dds {
+
+class DdsError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Name of the participant profile every SWA participant is created from.
+constexpr const char* kParticipantProfile = "swa_participant";
+
+// Longest wait for outstanding acknowledgments on destruction: above the profile's 4 s participant lease.
+constexpr double kShutdownAckWaitS = 6.0;
+
+namespace detail {
+int publicationMatched(eprosima::fastdds::dds::DataWriter* writer);
+int subscriptionMatched(eprosima::fastdds::dds::DataReader* reader);
+bool waitForAcknowledgments(eprosima::fastdds::dds::DataWriter* writer, double seconds);
+
+template <class Msg>
+class CallbackListener : public eprosima::fastdds::dds::DataReaderListener {
+ public:
+  explicit CallbackListener(std::function<void(Msg&&)> on_sample) : on_sample_(std::move(on_sample)) {}
+
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
+    eprosima::fastdds::dds::SampleInfo info;
+    Msg msg;
+    while (reader->take_next_sample(&msg, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data) on_sample_(std::move(msg));
+      msg = Msg();
+    }
+  }
+
+ private:
+  std::function<void(Msg&&)> on_sample_;
+};
+}  // namespace detail
+
+template <class Msg>
+class Writer {
+ public:
+  Writer() = default;
+  // False if the middleware refused the sample (e.g. serialisation failed).
+  bool write(Msg& msg) { return writer_->write(&msg); }
+  // Readers currently matched (discovery done both ways as seen from this writer).
+  int matched() const { return detail::publicationMatched(writer_); }
+  // Blocks until every matched reliable reader acknowledged everything written, at most `seconds`.
+  bool waitForAcknowledgments(double seconds) { return detail::waitForAcknowledgments(writer_, seconds); }
+  explicit operator bool() const { return writer_ != nullptr; }
+
+ private:
+  friend class Participant;
+  explicit Writer(eprosima::fastdds::dds::DataWriter* writer) : writer_(writer) {}
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+};
+
+template <class Msg>
+class Reader {
+ public:
+  Reader() = default;
+  int matched() const { return detail::subscriptionMatched(reader_); }
+  explicit operator bool() const { return reader_ != nullptr; }
+
+ private:
+  friend class Participant;
+  explicit Reader(eprosima::fastdds::dds::DataReader* reader) : reader_(reader) {}
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+};
+
+class Participant {
+ public:
+  // Loads `profiles_file` (once per process; a second Participant must name the same file), then creates the
+  // participant `name` on `domain_id` from the profile kParticipantProfile. Throws DdsError with a readable reason.
+  Participant(const std::string& name, int domain_id, const std::string& profiles_file);
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  // A writer on `topic_name` (created on first use, type registered on first use) with the QoS of the XML
+  // data_writer profile `profile`. Throws DdsError.
+  template <class PubSubType>
+  Writer<typename PubSubType::type> writer(const std::string& topic_name, const std::string& profile) {
+    eprosima::fastdds::dds::DataWriter* w = createWriter(topic(topic_name, new PubSubType()), profile);
+    writers_.push_back(w);
+    return Writer<typename PubSubType::type>(w);
+  }
+
+  // A reader whose every valid sample is handed to `on_sample` on a middleware thread.
+  template <class PubSubType>
+  Reader<typename PubSubType::type> reader(const std::string& topic_name, const std::string& profile,
+                                           std::function<void(typename PubSubType::type&&)> on_sample) {
+    using Msg = typename PubSubType::type;
+    auto listener = std::make_unique<detail::CallbackListener<Msg>>(std::move(on_sample));
+    eprosima::fastdds::dds::DataReader* r = createReader(topic(topic_name, new PubSubType()), profile, listener.get());
+    listeners_.push_back(std::move(listener));
+    return Reader<Msg>(r);
+  }
+
+  const std::string& name() const { return name_; }
+  int domainId() const { return domain_id_; }
+
+ private:
+  // Takes ownership of `type`.
+  eprosima::fastdds::dds::Topic* topic(const std::string& topic_name, eprosima::fastdds::dds::TopicDataType* type);
+  eprosima::fastdds::dds::DataWriter* createWriter(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
+  eprosima::fastdds::dds::DataReader* createReader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
+                                                   eprosima::fastdds::dds::DataReaderListener* listener);
+
+  // Declared first, destroyed last: the listeners outlive the readers that call them.
+  std::vector<std::unique_ptr<eprosima::fastdds::dds::DataReaderListener>> listeners_;
+  std::string name_;
+  int domain_id_ = 0;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  std::vector<eprosima::fastdds::dds::DataWriter*> writers_;
+};
+
+}  // namespace swa::dds

@@ -1,0 +1,22 @@
+#pragma once
+// Topic names of the SWA system (DESIGN §1). Per-UAV topics carry the UAV index in the name so DDS Security
+// permissions can be written per UAV: agent i may read only swa/uav<i>/{detections,imu,gnss} and write only
+// swa/uav<i>/{cmd_vel,state}. The monitor-only topics are global.
+
+#include <string>
+
+namespace swa::dds::topics {
+
+inline std::string uavPrefix(int uav) { return "swa/uav" + std::to_string(uav) + "/"; }
+
+inline std::string detections(int uav) { return uavPrefix(uav) + "detections"; }
+inline std::string imu(int uav) { return uavPrefix(uav) + "imu"; }
+inline std::string gnss(int uav) { return uavPrefix(uav) + "gnss"; }
+inline std::string cmdVel(int uav) { return uavPrefix(uav) + "cmd_vel"; }
+inline std::string state(int uav) { return uavPrefix(uav) + "state"; }
+
+inline const char* const kTruth = "swa/truth";
+inline const char* const kEvents = "swa/events";
+inline const char* const kClock = "swa/clock";
+
+}  // namespace swa::dds::topics

@@ -1,0 +1,143 @@
+#include "swa/dds/participant.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
+#include <fastdds/dds/core/status/SubscriptionMatchedStatus.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+namespace swa::dds {
+
+namespace fdds = eprosima::fastdds::dds;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+namespace detail {
+
+int publicationMatched(fdds::DataWriter* writer) {
+  fdds::PublicationMatchedStatus status;
+  if (writer == nullptr || writer->get_publication_matched_status(status) != ReturnCode_t::RETCODE_OK) return 0;
+  return status.current_count;
+}
+
+int subscriptionMatched(fdds::DataReader* reader) {
+  fdds::SubscriptionMatchedStatus status;
+  if (reader == nullptr || reader->get_subscription_matched_status(status) != ReturnCode_t::RETCODE_OK) return 0;
+  return status.current_count;
+}
+
+bool waitForAcknowledgments(fdds::DataWriter* writer, double seconds) {
+  if (writer == nullptr) return false;
+  return writer->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(seconds)) == ReturnCode_t::RETCODE_OK;
+}
+
+}  // namespace detail
+
+namespace {
+
+// Profiles must be loaded before the first default QoS is read (FASTDDS-NOTES), and only once per process.
+void loadProfilesOnce(const std::string& file) {
+  static std::mutex mutex;
+  static std::string loaded;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (!loaded.empty()) {
+    if (loaded != file) throw DdsError("XML profiles already loaded from " + loaded + ", cannot switch to " + file);
+    return;
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw DdsError("DDS XML profiles file not found: " + file + " (set SWA_DDS_PROFILES to override)");
+  }
+  if (fdds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(file) != ReturnCode_t::RETCODE_OK) {
+    throw DdsError("cannot load DDS XML profiles from " + file + " (see the Fast DDS XML parser error above)");
+  }
+  loaded = file;
+}
+
+}  // namespace
+
+Participant::Participant(const std::string& name, int domain_id, const std::string& profiles_file)
+    : name_(name), domain_id_(domain_id) {
+  loadProfilesOnce(profiles_file);
+  auto* factory = fdds::DomainParticipantFactory::get_instance();
+  fdds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile(kParticipantProfile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw DdsError(std::string("participant profile '") + kParticipantProfile + "' missing in " + profiles_file);
+  }
+  qos.name(name);
+  participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos);
+  if (participant_ == nullptr) {
+    throw DdsError("cannot create DDS participant '" + name + "' on domain " + std::to_string(domain_id));
+  }
+  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    participant_->delete_contained_entities();
+    factory->delete_participant(participant_);
+    throw DdsError("cannot create publisher/subscriber for participant '" + name + "'");
+  }
+}
+
+Participant::~Participant() {
+  // See the header: no writer may still be heartbeating an unresponsive reader when it is deleted.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kShutdownAckWaitS);
+  for (fdds::DataWriter* w : writers_) {
+    const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    if (!detail::waitForAcknowledgments(w, std::max(left, 0.0))) {
+      std::fprintf(stderr, "%s: writer on %s still unacknowledged after %.0f s; deleting anyway\n", name_.c_str(),
+                   w->get_topic()->get_name().c_str(), kShutdownAckWaitS);
+    }
+  }
+  // Then every entity (readers stop calling their listeners); the listeners die after this body.
+  participant_->delete_contained_entities();
+  fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+fdds::Topic* Participant::topic(const std::string& topic_name, fdds::TopicDataType* type) {
+  fdds::TypeSupport support(type);  // owns `type` from here on
+  const std::string type_name = support.get_type_name();
+  if (participant_->find_type(type_name).empty() && support.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+    throw DdsError("cannot register type " + type_name);
+  }
+  auto it = topics_.find(topic_name);
+  if (it != topics_.end()) {
+    if (it->second->get_type_name() != type_name) {
+      throw DdsError("topic " + topic_name + " already exists with type " + it->second->get_type_name());
+    }
+    return it->second;
+  }
+  fdds::Topic* t = participant_->create_topic(topic_name, type_name, fdds::TOPIC_QOS_DEFAULT);
+  if (t == nullptr) throw DdsError("cannot create topic " + topic_name);
+  topics_.emplace(topic_name, t);
+  return t;
+}
+
+fdds::DataWriter* Participant::createWriter(fdds::Topic* topic, const std::string& profile) {
+  fdds::DataWriterQos qos;
+  if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw DdsError("data_writer profile '" + profile + "' missing in the DDS XML profiles");
+  }
+  fdds::DataWriter* w = publisher_->create_datawriter(topic, qos);
+  if (w == nullptr) throw DdsError("cannot create writer on " + topic->get_name() + " with profile " + profile);
+  return w;
+}
+
+fdds::DataReader* Participant::createReader(fdds::Topic* topic, const std::string& profile,
+                                            fdds::DataReaderListener* listener) {
+  fdds::DataReaderQos qos;
+  if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw DdsError("data_reader profile '" + profile + "' missing in the DDS XML profiles");
+  }
+  fdds::DataReader* r = subscriber_->create_datareader(topic, qos, listener);
+  if (r == nullptr) throw DdsError("cannot create reader on " + topic->get_name() + " with profile " + profile);
+  return r;
+}
+
+}  // namespace swa::dds

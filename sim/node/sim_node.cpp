@@ -1,0 +1,409 @@
+#include "sim_node.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include <swa/msg/ClockPubSubTypes.h>
+#include <swa/msg/DetectionsPubSubTypes.h>
+#include <swa/msg/GnssFixPubSubTypes.h>
+#include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SwarmTruthPubSubTypes.h>
+#include <swa/msg/VelocitySetpointPubSubTypes.h>
+
+#include "swa/dds/convert.h"
+#include "swa/dds/shutdown.h"
+#include "swa/dds/topics.h"
+#include "swa/sim/timing.h"
+
+namespace swa::sim_node {
+namespace {
+
+// Longest single wait in a loop, so a signal is noticed quickly.
+constexpr auto kPollPeriod = std::chrono::milliseconds(100);
+
+msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq) {
+  msg::Header h;
+  h.stamp_ns(stamp_ns);
+  h.seq(seq);
+  return h;
+}
+
+const char* clockModeName(sim::ClockMode m) { return m == sim::ClockMode::kLockstep ? "lockstep" : "realtime"; }
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int domain_id,
+                 const std::string& profiles_file)
+    : scenario_(scenario),
+      options_(options),
+      world_(scenario),
+      n_(world_.uav_count()),
+      lockstep_(n_),
+      rt_alive_(static_cast<std::size_t>(n_), true),
+      rt_last_answer_(static_cast<std::size_t>(n_)),
+      rt_last_applied_(static_cast<std::size_t>(n_)),
+      imu_seq_(static_cast<std::size_t>(n_), 0),
+      det_seq_(static_cast<std::size_t>(n_), 0),
+      gnss_seq_(static_cast<std::size_t>(n_), 0),
+      side_written_(static_cast<std::size_t>(n_), false) {
+  if (!options_.truth_out.empty()) {
+    truth_csv_.open(options_.truth_out);
+    if (!truth_csv_) throw std::runtime_error("cannot write --truth-out " + options_.truth_out);
+    truth_csv_ << "step,t_ns,uav,x_m,y_m,vx_mps,vy_mps,ax_mps2,ay_mps2,heading_rad,agent_alive,gnss_valid,failsafe\n";
+    truth_csv_ << std::setprecision(17);
+  }
+
+  participant_ = std::make_unique<dds::Participant>("swa_sim", domain_id, profiles_file);
+  events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
+  truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
+  clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
+  for (int i = 0; i < n_; ++i) {
+    imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
+    det_.push_back(participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), "swa_sensor_writer"));
+    gnss_.push_back(participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), "swa_sensor_writer"));
+    cmd_.push_back(participant_->reader<msg::VelocitySetpointPubSubType>(
+        dds::topics::cmdVel(i), "swa_command_reader",
+        [this, i](msg::VelocitySetpoint&& m) { queue_.push(Answer{i, std::move(m)}); }));
+  }
+}
+
+SimNode::~SimNode() { participant_.reset(); }
+
+bool SimNode::awaitDiscovery() {
+  const auto t0 = Clock::now();
+  const auto deadline = t0 + seconds(options_.startup_timeout_s);
+  std::fprintf(stderr, "swa_sim: waiting for %d agent(s) on domain %d (startup timeout %.0f s)\n", n_,
+               participant_->domainId(), options_.startup_timeout_s);
+  std::vector<std::string> missing;
+  while (!dds::shutdownRequested()) {
+    missing.clear();
+    for (int i = 0; i < n_; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (imu_[k].matched() < 1) missing.push_back(dds::topics::imu(i) + " (no reader)");
+      if (det_[k].matched() < 1) missing.push_back(dds::topics::detections(i) + " (no reader)");
+      if (gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
+      if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
+    }
+    if (missing.empty()) {
+      summary_.discovery_s = secondsSince(t0);
+      std::fprintf(stderr, "swa_sim: all %d agent(s) discovered in %.2f s\n", n_, summary_.discovery_s);
+      return true;
+    }
+    if (Clock::now() >= deadline) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (dds::shutdownRequested()) return false;
+  std::ostringstream list;
+  for (std::size_t k = 0; k < missing.size() && k < 12; ++k) list << "\n  " << missing[k];
+  if (missing.size() > 12) list << "\n  ... and " << missing.size() - 12 << " more";
+  std::fprintf(stderr, "swa_sim: discovery incomplete after %.0f s; unmatched endpoints:%s\n",
+               options_.startup_timeout_s, list.str().c_str());
+  return false;
+}
+
+int SimNode::run() {
+  if (!awaitDiscovery()) {
+    if (dds::shutdownRequested()) std::fprintf(stderr, "swa_sim: interrupted before the first step\n");
+    publishEvent(msg::EVENT_SCENARIO_END, msg::ALL_UAVS, -1, 0.0,
+                 dds::shutdownRequested() ? "interrupted before start" : "discovery timeout");
+    events_.waitForAcknowledgments(1.0);
+    return 1;
+  }
+  const auto t0 = Clock::now();
+  if (scenario_.clock.mode == sim::ClockMode::kLockstep) {
+    runLockstep();
+  } else {
+    runRealtime();
+  }
+  summary_.completed = world_.finished() && !dds::shutdownRequested();
+  summary_.wall_time_s = secondsSince(t0);
+  summary_.steps = world_.step_index();
+  summary_.sim_time_s = sim::stampSeconds(world_.time_ns());
+  summary_.collisions = world_.collisions();
+  for (int i = 0; i < n_; ++i) {
+    if (!agentAlive(i)) summary_.dead_at_end.push_back(i);
+  }
+  if (last_truth_step_ != world_.step_index()) publishTruth();
+  publishEvent(msg::EVENT_SCENARIO_END, msg::ALL_UAVS, -1, 0.0, summary_.completed ? "completed" : "interrupted");
+  // Give late readers of the last samples a moment; events are TRANSIENT_LOCAL anyway.
+  events_.waitForAcknowledgments(2.0);
+  truth_.waitForAcknowledgments(2.0);
+  if (truth_csv_.is_open()) truth_csv_.flush();
+  std::fprintf(stderr,
+               "swa_sim: %s %s run of %d UAVs: %lld steps, %.1f s sim in %.2f s wall (x%.1f), %d collision(s), "
+               "%llu dead / %llu rejoined agent event(s), %llu ignored command(s)\n",
+               summary_.completed ? "completed" : "INTERRUPTED", clockModeName(scenario_.clock.mode), n_,
+               static_cast<long long>(summary_.steps), summary_.sim_time_s, summary_.wall_time_s,
+               summary_.wall_time_s > 0 ? summary_.sim_time_s / summary_.wall_time_s : 0.0, summary_.collisions,
+               static_cast<unsigned long long>(summary_.agent_dead_events),
+               static_cast<unsigned long long>(summary_.agent_rejoined_events),
+               static_cast<unsigned long long>(summary_.ignored_commands));
+  return summary_.completed ? 0 : 1;
+}
+
+void SimNode::runLockstep() {
+  const double startup_s = std::max(options_.agent_timeout_s, options_.startup_timeout_s);
+  while (!dds::shutdownRequested()) {
+    publishStepOutputs();
+    lockstep_.begin(publishSensors());
+    drainLockstep(Clock::duration::zero());  // answers of dead agents are looked at even if nobody is waited for
+    // An agent that never answered may still be matching our writers (discovery is not symmetric): it gets the
+    // startup timeout, not the agent timeout, for its first answer.
+    const double timeout_s = lockstep_.waitingForNewcomer() ? startup_s : options_.agent_timeout_s;
+    const auto deadline = Clock::now() + seconds(timeout_s);
+    while (!lockstep_.complete() && !dds::shutdownRequested()) {
+      const auto now = Clock::now();
+      if (now >= deadline) break;
+      drainLockstep(std::min<Clock::duration>(deadline - now, kPollPeriod));
+    }
+    if (dds::shutdownRequested()) break;
+    for (const int i : lockstep_.expire()) {
+      ++summary_.agent_dead_events;
+      std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d did not answer within %.3f s: dead, UAV %d on failsafe\n",
+                   sim::stampSeconds(world_.time_ns()), i, timeout_s, i);
+      publishEvent(msg::EVENT_AGENT_DEAD, i, -1, timeout_s, "no answer within the agent timeout");
+    }
+    awaitSensorAcks(deadline);
+    if (world_.finished()) break;
+    world_.step();
+  }
+}
+
+void SimNode::awaitSensorAcks(Clock::time_point deadline) {
+  // The agent orders its inputs by stamp (sample_order.h), which reproduces the closed loop only if this step's
+  // detections and GNSS fix are in its queue before the next step's IMU sample. DDS orders samples per topic, not
+  // across topics (a repaired loss on one topic, or another transport path, lets the next IMU overtake them), so
+  // wait until each live agent has acknowledged them: an RTPS acknowledgment follows the reader's listener call.
+  // Bounded by the step's deadline, so a stalled agent costs at most one agent timeout per step.
+  for (int i = 0; i < n_; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!side_written_[k] || !lockstep_.alive(i)) continue;
+    const auto remaining_s = [&] {
+      return std::max(0.0, std::chrono::duration<double>(deadline - Clock::now()).count());
+    };
+    if (!det_[k].waitForAcknowledgments(remaining_s()) || !gnss_[k].waitForAcknowledgments(remaining_s())) {
+      ++summary_.unacknowledged_sensor_steps;
+    }
+  }
+}
+
+void SimNode::drainLockstep(Clock::duration wait) {
+  batch_.clear();
+  queue_.drain(batch_, wait);
+  for (const Answer& a : batch_) {
+    if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav)) {
+      ++summary_.ignored_commands;
+      continue;
+    }
+    switch (lockstep_.onAnswer(a.uav, a.setpoint.answered_stamp_ns())) {
+      case Verdict::kApply:
+        apply(a);
+        break;
+      case Verdict::kRejoin:
+        apply(a);
+        ++summary_.agent_rejoined_events;
+        std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n",
+                     sim::stampSeconds(world_.time_ns()), a.uav);
+        publishEvent(msg::EVENT_AGENT_REJOINED, a.uav, -1, 0.0, "answering again");
+        break;
+      case Verdict::kIgnore:
+        ++summary_.ignored_commands;
+        break;
+    }
+  }
+}
+
+void SimNode::runRealtime() {
+  const double speed = scenario_.clock.speed;
+  const auto start = Clock::now();
+  for (auto& t : rt_last_answer_) t = start;
+  const agent::StampNs dt_ns = sim::stepPeriodNs(scenario_.dynamics.rate_hz);
+  const auto timeout = seconds(options_.agent_timeout_s);
+  while (!dds::shutdownRequested()) {
+    publishStepOutputs();
+    publishSensors();
+    if (world_.finished()) break;
+    const auto target = start + seconds(sim::stampSeconds(world_.time_ns() + dt_ns) / speed);
+    do {
+      const auto now = Clock::now();
+      drainRealtime(now < target ? std::min<Clock::duration>(target - now, kPollPeriod) : Clock::duration::zero());
+    } while (Clock::now() < target && !dds::shutdownRequested());
+    const auto now = Clock::now();
+    for (int i = 0; i < n_; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (rt_alive_[k] && now - rt_last_answer_[k] > timeout) {
+        rt_alive_[k] = false;
+        ++summary_.agent_dead_events;
+        std::fprintf(stderr, "swa_sim: t = %.2f s: no setpoint from agent %d for %.3f s: dead, UAV %d on failsafe\n",
+                     sim::stampSeconds(world_.time_ns()), i, options_.agent_timeout_s, i);
+        publishEvent(msg::EVENT_AGENT_DEAD, i, -1, options_.agent_timeout_s, "no setpoint within the agent timeout");
+      }
+    }
+    world_.step();
+  }
+}
+
+void SimNode::drainRealtime(Clock::duration wait) {
+  batch_.clear();
+  queue_.drain(batch_, wait);
+  const agent::StampNs now_ns = world_.time_ns();
+  for (const Answer& a : batch_) {
+    const auto k = static_cast<std::size_t>(a.uav);
+    const agent::StampNs answered = a.setpoint.answered_stamp_ns();
+    // The latest setpoint wins; answers from the future belong to a previous run (replayed command history).
+    const bool newer = !rt_last_applied_[k] || answered > *rt_last_applied_[k];
+    if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav) || !newer || answered > now_ns) {
+      ++summary_.ignored_commands;
+      continue;
+    }
+    rt_last_applied_[k] = answered;
+    rt_last_answer_[k] = Clock::now();
+    apply(a);
+    if (!rt_alive_[k]) {
+      rt_alive_[k] = true;
+      ++summary_.agent_rejoined_events;
+      std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n", sim::stampSeconds(now_ns),
+                   a.uav);
+      publishEvent(msg::EVENT_AGENT_REJOINED, a.uav, -1, 0.0, "answering again");
+    }
+  }
+}
+
+void SimNode::apply(const Answer& a) {
+  world_.command(a.uav, dds::fromMsg(a.setpoint));
+  ++summary_.applied_commands;
+}
+
+bool SimNode::agentAlive(int uav) const {
+  return scenario_.clock.mode == sim::ClockMode::kLockstep ? lockstep_.alive(uav)
+                                                             : rt_alive_[static_cast<std::size_t>(uav)];
+}
+
+void SimNode::publishStepOutputs() {
+  for (const sim::Event& e : world_.events()) {
+    switch (e.kind) {
+      case sim::EventKind::kGnssLost:
+        publishEvent(msg::EVENT_GNSS_LOST, e.uav, -1, 0.0, "GNSS lost");
+        break;
+      case sim::EventKind::kGnssRestored:
+        publishEvent(msg::EVENT_GNSS_RESTORED, e.uav, -1, 0.0, "GNSS restored");
+        break;
+      case sim::EventKind::kCollision:
+        publishEvent(msg::EVENT_COLLISION, e.uav, e.other_uav, e.value, "collision (value: distance, m)");
+        break;
+      case sim::EventKind::kFailsafeOn:
+        publishEvent(msg::EVENT_FAILSAFE, e.uav, -1, e.value, "failsafe on (value: setpoint age, s)");
+        break;
+      case sim::EventKind::kFailsafeOff:
+        publishEvent(msg::EVENT_FAILSAFE, e.uav, -1, 0.0, "failsafe off");
+        break;
+    }
+  }
+  if (world_.step_index() % options_.truth_every == 0 || world_.finished()) publishTruth();
+  msg::Clock tick;
+  tick.header(header(world_.time_ns(), ++clock_seq_));
+  tick.step(static_cast<std::uint64_t>(world_.step_index()));
+  tick.sim_time_ns(world_.time_ns());
+  tick.step_period_ns(sim::stepPeriodNs(scenario_.dynamics.rate_hz));
+  if (!clock_.write(tick)) ++summary_.write_failures;
+}
+
+std::vector<std::optional<agent::StampNs>> SimNode::publishSensors() {
+  std::vector<std::optional<agent::StampNs>> imu_stamps(static_cast<std::size_t>(n_));
+  const std::vector<sim::UavSensors>& sensors = world_.sensors();
+  for (int i = 0; i < n_; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto id = static_cast<std::uint32_t>(i);
+    const sim::UavSensors& s = sensors[k];
+    side_written_[k] = s.detections.has_value() || s.gnss.has_value();
+    // The closed loop's equal-stamp order (IMU, detections, GNSS); the agent restores it whatever the arrival order.
+    if (s.imu) {
+      msg::Imu m = dds::toMsg(*s.imu, id, ++imu_seq_[k]);
+      if (imu_[k].write(m)) {
+        imu_stamps[k] = s.imu->stamp_ns;
+      } else {
+        ++summary_.write_failures;
+      }
+    }
+    if (s.detections) {
+      msg::Detections m = dds::toMsg(*s.detections, id, ++det_seq_[k]);
+      if (!det_[k].write(m)) ++summary_.write_failures;
+    }
+    if (s.gnss) {
+      msg::GnssFix m = dds::toMsg(*s.gnss, id, ++gnss_seq_[k]);
+      if (!gnss_[k].write(m)) ++summary_.write_failures;
+    }
+  }
+  return imu_stamps;
+}
+
+void SimNode::publishTruth() {
+  last_truth_step_ = world_.step_index();
+  msg::SwarmTruth m;
+  m.header(header(world_.time_ns(), ++truth_seq_));
+  for (const sim::UavTruth& t : world_.truth()) {
+    msg::UavTruth u;
+    u.id(static_cast<std::uint32_t>(t.id));
+    u.x_m(t.position_m.x());
+    u.y_m(t.position_m.y());
+    u.vx_mps(t.velocity_mps.x());
+    u.vy_mps(t.velocity_mps.y());
+    u.ax_mps2(t.acceleration_mps2.x());
+    u.ay_mps2(t.acceleration_mps2.y());
+    u.heading_rad(t.heading_rad);
+    u.alive(agentAlive(t.id));
+    u.gnss_valid(t.gnss_valid);
+    m.uavs().push_back(u);
+    if (truth_csv_.is_open()) {
+      truth_csv_ << world_.step_index() << ',' << world_.time_ns() << ',' << t.id << ',' << t.position_m.x() << ','
+                 << t.position_m.y() << ',' << t.velocity_mps.x() << ',' << t.velocity_mps.y() << ','
+                 << t.acceleration_mps2.x() << ',' << t.acceleration_mps2.y() << ',' << t.heading_rad << ','
+                 << (agentAlive(t.id) ? 1 : 0) << ',' << (t.gnss_valid ? 1 : 0) << ',' << (t.failsafe ? 1 : 0)
+                 << '\n';
+    }
+  }
+  if (!truth_.write(m)) ++summary_.write_failures;
+}
+
+void SimNode::publishEvent(msg::EventKind kind, int uav, int other, double value, const std::string& text) {
+  msg::ScenarioEvent e;
+  e.header(header(world_.time_ns(), ++event_seq_));
+  e.kind(kind);
+  e.uav_id(uav);
+  e.other_uav_id(other);
+  e.value(value);
+  e.text(text);
+  if (!events_.write(e)) ++summary_.write_failures;
+}
+
+std::string SimNode::summaryJson() const {
+  std::ostringstream o;
+  o << std::setprecision(17);
+  o << "{\n  \"completed\": " << (summary_.completed ? "true" : "false") << ",\n  \"clock_mode\": \""
+    << clockModeName(scenario_.clock.mode) << "\",\n  \"uav_count\": " << n_ << ",\n  \"seed\": " << scenario_.seed
+    << ",\n  \"steps\": " << summary_.steps << ",\n  \"sim_time_s\": " << summary_.sim_time_s
+    << ",\n  \"wall_time_s\": " << summary_.wall_time_s << ",\n  \"discovery_s\": " << summary_.discovery_s
+    << ",\n  \"collisions\": " << summary_.collisions << ",\n  \"applied_commands\": " << summary_.applied_commands
+    << ",\n  \"ignored_commands\": " << summary_.ignored_commands
+    << ",\n  \"unacknowledged_sensor_steps\": " << summary_.unacknowledged_sensor_steps
+    << ",\n  \"agent_dead_events\": " << summary_.agent_dead_events
+    << ",\n  \"agent_rejoined_events\": " << summary_.agent_rejoined_events << ",\n  \"dead_at_end\": [";
+  for (std::size_t k = 0; k < summary_.dead_at_end.size(); ++k) o << (k ? ", " : "") << summary_.dead_at_end[k];
+  o << "],\n  \"write_failures\": " << summary_.write_failures << "\n}\n";
+  return o.str();
+}
+
+}  // namespace swa::sim_node

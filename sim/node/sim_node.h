@@ -1,0 +1,110 @@
+#pragma once
+// The simulated world as a Fast DDS node: a thin adapter around swa::sim::World. Publishes each UAV's sensor samples
+// on its own topics, reads the agents' setpoints, steps the world in lockstep with the agents (or in real time),
+// and publishes ground truth, scenario events and the clock. No model code here: the world is sim::World, the
+// lockstep bookkeeping is lockstep.h.
+
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <swa/msg/Clock.h>
+#include <swa/msg/Detections.h>
+#include <swa/msg/GnssFix.h>
+#include <swa/msg/Imu.h>
+#include <swa/msg/ScenarioEvent.h>
+#include <swa/msg/SwarmTruth.h>
+#include <swa/msg/VelocitySetpoint.h>
+
+#include "lockstep.h"
+#include "sim_options.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/sample_queue.h"
+#include "swa/sim/scenario.h"
+#include "swa/sim/world.h"
+
+namespace swa::sim_node {
+
+struct SimSummary {
+  bool completed = false;        // reached the scenario's duration (false: interrupted)
+  std::int64_t steps = 0;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;      // from the first step to the end (discovery excluded)
+  double discovery_s = 0.0;
+  int collisions = 0;
+  std::uint64_t applied_commands = 0;
+  std::uint64_t ignored_commands = 0;  // stale, duplicate, or naming the wrong UAV
+  std::uint64_t unacknowledged_sensor_steps = 0;  // lockstep: detections / GNSS not acknowledged in time
+  std::uint64_t agent_dead_events = 0;
+  std::uint64_t agent_rejoined_events = 0;
+  std::vector<int> dead_at_end;
+  std::uint64_t write_failures = 0;
+};
+
+class SimNode {
+ public:
+  // Creates every DDS entity; throws swa::dds::DdsError. Opens --truth-out (throws std::runtime_error).
+  SimNode(const sim::Scenario& scenario, const SimOptions& options, int domain_id, const std::string& profiles_file);
+  ~SimNode();
+
+  // Waits for discovery, runs the scenario, publishes EVENT_SCENARIO_END. Returns the process exit status.
+  int run();
+  const SimSummary& summary() const { return summary_; }
+  std::string summaryJson() const;
+
+ private:
+  struct Answer {
+    int uav = 0;  // whose cmd_vel reader received it
+    msg::VelocitySetpoint setpoint;
+  };
+  using Clock = std::chrono::steady_clock;
+
+  bool awaitDiscovery();
+  void runLockstep();
+  void runRealtime();
+  void publishStepOutputs();  // world events, truth (when due), clock
+  std::vector<std::optional<agent::StampNs>> publishSensors();
+  void publishTruth();
+  void publishEvent(msg::EventKind kind, int uav, int other, double value, const std::string& text);
+  void awaitSensorAcks(Clock::time_point deadline);
+  void drainLockstep(Clock::duration wait);
+  void drainRealtime(Clock::duration wait);
+  void apply(const Answer& a);
+  bool agentAlive(int uav) const;
+
+  sim::Scenario scenario_;
+  SimOptions options_;
+  sim::World world_;
+  int n_;
+  LockstepTracker lockstep_;
+  SimSummary summary_;
+
+  // Realtime liveness.
+  std::vector<bool> rt_alive_;
+  std::vector<Clock::time_point> rt_last_answer_;
+  std::vector<std::optional<agent::StampNs>> rt_last_applied_;
+
+  std::vector<std::uint32_t> imu_seq_, det_seq_, gnss_seq_;
+  std::vector<bool> side_written_;  // detections or GNSS published to that UAV this step
+  std::uint32_t truth_seq_ = 0, event_seq_ = 0, clock_seq_ = 0;
+  std::int64_t last_truth_step_ = -1;
+  std::ofstream truth_csv_;
+  std::vector<Answer> batch_;
+
+  // The queue outlives the participant, whose listeners push into it.
+  dds::SampleQueue<Answer> queue_;
+  std::unique_ptr<dds::Participant> participant_;
+  std::vector<dds::Writer<msg::Imu>> imu_;
+  std::vector<dds::Writer<msg::Detections>> det_;
+  std::vector<dds::Writer<msg::GnssFix>> gnss_;
+  std::vector<dds::Reader<msg::VelocitySetpoint>> cmd_;
+  dds::Writer<msg::SwarmTruth> truth_;
+  dds::Writer<msg::ScenarioEvent> events_;
+  dds::Writer<msg::Clock> clock_;
+};
+
+}  // namespace swa::sim_node

@@ -1,0 +1,28 @@
+#pragma once
+// Command line of swa_sim. Parsing is separate from main() so it can be tested; every problem is reported at once.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace swa::sim_node {
+
+struct SimOptions {
+  std::string scenario_path;            // --scenario FILE (required)
+  std::vector<std::string> overrides;   // --set key=value, in order
+  std::optional<std::string> domain;    // --domain D (else SWA_DOMAIN, else 0)
+  double agent_timeout_s = 2.0;         // lockstep: wall time to wait for an answer before an agent is dead
+  double startup_timeout_s = 60.0;      // wall time to wait for every agent's endpoints to be discovered
+  int truth_every = 10;                 // publish swa/truth every N steps (and at the last step)
+  std::string truth_out;                // --truth-out FILE: every published truth sample as CSV
+  std::string summary_out;              // --summary-out FILE: JSON summary of the run
+  std::string export_agent_config;      // --export-agent-config FILE: write the agents' config and exit
+  bool help = false;
+  bool list_parameters = false;
+};
+
+// Accepts "--opt value" and "--opt=value". Throws std::invalid_argument listing every problem, one per line.
+SimOptions parseSimOptions(const std::vector<std::string>& args);
+std::string simUsage();
+
+}  // namespace swa::sim_node

@@ -1,0 +1,191 @@
+#pragma once
+// Helpers for tests that run the SWA processes: a child process that is always reaped (SIGTERM, then SIGKILL),
+// a janitor that removes the Fast DDS shared-memory files our processes leave behind when they die by a signal,
+// and small file helpers. POSIX only.
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace swa::testing {
+
+namespace fs = std::filesystem;
+using SteadyClock = std::chrono::steady_clock;
+
+inline std::string readFile(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A child process (fork + execve, stdout and stderr into `log`, this process's environment plus `extra_env`
+// "KEY=value" entries, which win). The destructor never leaves it running: SIGTERM, up to 5 s for a clean exit, then
+// SIGKILL, and it is always reaped.
+class Child {
+ public:
+  Child(const std::vector<std::string>& argv, const fs::path& log, const std::vector<std::string>& extra_env = {})
+      : log_(log) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    std::vector<std::string> env_strings = extra_env;
+    for (char** e = environ; *e != nullptr; ++e) {
+      const std::string entry = *e;
+      const std::string key = entry.substr(0, entry.find('=') + 1);
+      bool overridden = false;
+      for (const std::string& x : extra_env) overridden = overridden || x.rfind(key, 0) == 0;
+      if (!overridden) env_strings.push_back(entry);
+    }
+    std::vector<char*> env;
+    for (std::string& e : env_strings) env.push_back(e.data());
+    env.push_back(nullptr);
+    const std::string log_path = log.string();
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      // Only async-signal-safe calls between fork and exec (the parent may have DDS threads).
+      const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (fd >= 0) {
+        ::dup2(fd, STDOUT_FILENO);
+        ::dup2(fd, STDERR_FILENO);
+        ::close(fd);
+      }
+      ::execve(args[0], args.data(), env.data());
+      ::_exit(127);
+    }
+  }
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+  ~Child() { stop(); }
+
+  pid_t pid() const { return pid_; }
+  const fs::path& log() const { return log_; }
+  void signal(int sig) const {
+    if (pid_ > 0 && !status_) ::kill(pid_, sig);
+  }
+
+  // Exit status (128 + signal if killed by one), or nullopt if still running after `seconds`.
+  std::optional<int> wait(double seconds) {
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(seconds);
+    while (!status_) {
+      int raw = 0;
+      const pid_t r = ::waitpid(pid_, &raw, WNOHANG);
+      if (r == pid_) {
+        status_ = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+      } else if (r < 0) {
+        status_ = -1;
+      } else if (SteadyClock::now() >= deadline) {
+        break;
+      } else {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    }
+    return status_;
+  }
+
+  // SIGTERM, a grace period, SIGKILL. Returns the exit status.
+  int stop(double grace_s = 5.0) {
+    if (pid_ <= 0) return -1;
+    if (!status_) {
+      ::kill(pid_, SIGTERM);
+      if (!wait(grace_s)) {
+        ::kill(pid_, SIGKILL);
+        wait(60.0);
+      }
+    }
+    return status_.value_or(-1);
+  }
+
+ private:
+  pid_t pid_ = -1;
+  fs::path log_;
+  std::optional<int> status_;
+};
+
+// Fast DDS shared-memory files created after construction and no longer in use are ours to remove, like
+// `fastdds shm clean` but restricted to files that did not exist when the test started, so other users' files are
+// never touched. Fast DDS keeps, per segment or port `fastrtps_X`, lock files `fastrtps_X_el` / `fastrtps_X_sl` that
+// its live owner holds with flock(), and a port mutex `sem.fastrtps_X_mutex`. A process that shuts down cleanly
+// leaves nothing; one killed by a signal leaves its segments, and the ports it had opened keep a reference count that
+// never drops to zero (port files without lock files remain even after every other process exited cleanly).
+class ShmJanitor {
+ public:
+  ShmJanitor() : before_(list()) {}
+  ~ShmJanitor() { clean(); }
+  ShmJanitor(const ShmJanitor&) = delete;
+  ShmJanitor& operator=(const ShmJanitor&) = delete;
+
+  // Abandoned files created since construction; removes them when `remove` is set.
+  std::vector<std::string> zombies(bool remove = false) {
+    std::set<std::string> bases;
+    for (const std::string& name : list()) {
+      if (before_.count(name) != 0) continue;
+      std::string base = name;
+      if (base.rfind("sem.", 0) == 0) base = base.substr(4);
+      if (base.rfind("fastrtps_", 0) != 0) continue;
+      for (const char* suffix : {"_el", "_sl", "_mutex"}) {
+        const std::string sfx = suffix;
+        if (base.size() > sfx.size() && base.compare(base.size() - sfx.size(), sfx.size(), sfx) == 0) {
+          base.resize(base.size() - sfx.size());
+          break;
+        }
+      }
+      bases.insert(base);
+    }
+    std::vector<std::string> found;
+    for (const std::string& base : bases) {
+      if (inUse(base)) continue;
+      for (const std::string& f : {base, base + "_el", base + "_sl", "sem." + base + "_mutex"}) {
+        std::error_code ec;
+        if (!fs::exists(kDir / f, ec) || before_.count(f) != 0) continue;
+        found.push_back(f);
+        if (remove) fs::remove(kDir / f, ec);
+      }
+    }
+    return found;
+  }
+
+  std::vector<std::string> clean() { return zombies(true); }
+
+ private:
+  static inline const fs::path kDir = "/dev/shm";
+
+  static std::set<std::string> list() {
+    std::set<std::string> names;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(kDir, ec)) names.insert(e.path().filename().string());
+    return names;
+  }
+
+  // A live owner holds one of the lock files (exclusively or shared): then our exclusive probe fails.
+  static bool inUse(const std::string& base) {
+    for (const char* suffix : {"_el", "_sl"}) {
+      const fs::path lock = kDir / (base + suffix);
+      const int fd = ::open(lock.c_str(), O_WRONLY);
+      if (fd < 0) continue;
+      const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
+      ::close(fd);
+      if (held) return true;
+    }
+    return false;
+  }
+
+  std::set<std::string> before_;
+};
+
+// A DDS domain of our own: derived from the PID (Fast DDS's own tests do the same), never 0, at most 232.
+inline int testDomain(int offset = 0) { return 1 + static_cast<int>((::getpid() + offset) % 200); }
+
+}  // namespace swa::testing

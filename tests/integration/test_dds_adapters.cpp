@@ -1,0 +1,320 @@
+// The pure parts of the DDS adapters, without DDS traffic: sample ordering, lockstep bookkeeping, message
+// conversion, state message, command lines, domain resolution.
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "agent_options.h"
+#include "agent_state_msg.h"
+#include "lockstep.h"
+#include "sample_order.h"
+#include "sim_options.h"
+#include "swa/dds/convert.h"
+#include "swa/dds/options.h"
+#include "swa/dds/sample_queue.h"
+#include "swa/dds/topics.h"
+
+namespace swa {
+namespace {
+
+using agent_node::Stream;
+using Orderer = agent_node::StampOrderer<int>;
+
+constexpr agent::StampNs kMs = 1'000'000;
+
+std::vector<int> drain(Orderer& o) {
+  std::vector<int> out;
+  while (auto e = o.pop()) out.push_back(e->payload);
+  return out;
+}
+
+// ---- StampOrderer: every arrival order of one step gives the closed loop's order ------------------------------
+
+TEST(StampOrderer, EqualStampsGoImuThenDetectionsThenGnssWhateverTheArrivalOrder) {
+  // GIVEN the three samples of one step arriving GNSS first, IMU last
+  Orderer o(1000 * kMs);
+  o.push(Stream::kGnss, 100 * kMs, 3);
+  o.push(Stream::kDetections, 100 * kMs, 2);
+  // THEN nothing leaves before the IMU sample of that step is there
+  EXPECT_TRUE(drain(o).empty());
+  o.push(Stream::kImu, 100 * kMs, 1);
+  // THEN IMU, detections, GNSS
+  EXPECT_EQ(drain(o), (std::vector<int>{1, 2, 3}));
+}
+
+TEST(StampOrderer, ImuLeavesAtOnceAndLateSideSamplesFollowIt) {
+  Orderer o(1000 * kMs);
+  o.push(Stream::kImu, 0, 1);
+  EXPECT_EQ(drain(o), (std::vector<int>{1}));
+  // Detections of the same step arriving after the IMU was processed leave at once.
+  o.push(Stream::kDetections, 0, 2);
+  EXPECT_EQ(drain(o), (std::vector<int>{2}));
+}
+
+TEST(StampOrderer, OlderSideSampleQueuedWithNextImuGoesFirst) {
+  // GIVEN detections of step k and the IMU of step k+1 waiting together
+  Orderer o(1000 * kMs);
+  o.push(Stream::kImu, 0, 1);
+  drain(o);
+  o.push(Stream::kImu, 10 * kMs, 3);
+  o.push(Stream::kDetections, 0, 2);
+  // THEN stamp order
+  EXPECT_EQ(drain(o), (std::vector<int>{2, 3}));
+}
+
+TEST(StampOrderer, WithoutImuSideSamplesLeaveAfterTheHoldLimit) {
+  // GIVEN a sensor setup without IMU
+  Orderer o(1000 * kMs);
+  o.push(Stream::kDetections, 0, 1);
+  o.push(Stream::kDetections, 500 * kMs, 2);
+  EXPECT_TRUE(drain(o).empty());
+  // WHEN a sample more than the hold limit newer arrives
+  o.push(Stream::kGnss, 1600 * kMs, 3);
+  // THEN the ones older than the limit leave, in order
+  EXPECT_EQ(drain(o), (std::vector<int>{1, 2}));
+  EXPECT_EQ(o.size(), 1u);
+}
+
+TEST(StampOrderer, ExtremeStampsDoNotOverflow) {
+  Orderer o(1000 * kMs);
+  o.push(Stream::kDetections, std::numeric_limits<agent::StampNs>::min(), 1);
+  o.push(Stream::kDetections, std::numeric_limits<agent::StampNs>::max(), 2);
+  EXPECT_EQ(drain(o), (std::vector<int>{1}));
+}
+
+// ---- LockstepTracker ------------------------------------------------------------------------------------------
+
+TEST(LockstepTracker, WaitsForEveryLiveAgentWithAnImuSample) {
+  sim_node::LockstepTracker t(3);
+  t.begin({0, 0, std::nullopt});  // UAV 2 has no IMU sample this step: not waited for
+  EXPECT_FALSE(t.complete());
+  EXPECT_EQ(t.onAnswer(0, 0), sim_node::Verdict::kApply);
+  EXPECT_EQ(t.onAnswer(0, 0), sim_node::Verdict::kIgnore);  // duplicate
+  EXPECT_FALSE(t.complete());
+  EXPECT_EQ(t.waitingFor(), (std::vector<int>{1}));
+  EXPECT_EQ(t.onAnswer(1, 5), sim_node::Verdict::kIgnore);  // answers a stamp never sent
+  EXPECT_EQ(t.onAnswer(1, 0), sim_node::Verdict::kApply);
+  EXPECT_TRUE(t.complete());
+  EXPECT_EQ(t.onAnswer(7, 0), sim_node::Verdict::kIgnore);  // unknown UAV
+}
+
+TEST(LockstepTracker, NewcomerThenDeadThenRejoinedWhenCaughtUp) {
+  sim_node::LockstepTracker t(2);
+  // GIVEN step 0 where agent 1 never answers
+  t.begin({0, 0});
+  EXPECT_EQ(t.onAnswer(0, 0), sim_node::Verdict::kApply);
+  EXPECT_TRUE(t.waitingForNewcomer());
+  EXPECT_EQ(t.expire(), (std::vector<int>{1}));
+  EXPECT_FALSE(t.alive(1));
+  EXPECT_EQ(t.aliveCount(), 1);
+  // WHEN steps go on without it
+  t.begin({10, 10});
+  EXPECT_FALSE(t.complete());
+  EXPECT_EQ(t.onAnswer(0, 10), sim_node::Verdict::kApply);
+  EXPECT_TRUE(t.complete());
+  t.begin({20, 20});
+  // THEN an answer older than the previous step is ignored (still catching up) ...
+  EXPECT_EQ(t.onAnswer(1, 0), sim_node::Verdict::kIgnore);
+  EXPECT_FALSE(t.alive(1));
+  // ... an answer to the previous step rejoins it, and it is waited for again from this step on
+  EXPECT_EQ(t.onAnswer(1, 10), sim_node::Verdict::kRejoin);
+  EXPECT_TRUE(t.alive(1));
+  EXPECT_EQ(t.onAnswer(0, 20), sim_node::Verdict::kApply);
+  EXPECT_FALSE(t.complete());
+  EXPECT_FALSE(t.waitingForNewcomer());  // it has answered before: the agent timeout applies
+  EXPECT_EQ(t.onAnswer(1, 20), sim_node::Verdict::kApply);
+  EXPECT_TRUE(t.complete());
+}
+
+TEST(LockstepTracker, DeadAgentAnsweringTheCurrentStepIsDoneForIt) {
+  sim_node::LockstepTracker t(1);
+  t.begin({0});
+  t.expire();
+  t.begin({10});
+  EXPECT_TRUE(t.complete());  // nobody alive to wait for
+  EXPECT_EQ(t.onAnswer(0, 10), sim_node::Verdict::kRejoin);
+  EXPECT_TRUE(t.complete());
+}
+
+// ---- Conversion: bit-exact both ways ---------------------------------------------------------------------------
+
+TEST(Convert, SamplesSurviveTheMessageRoundTripBitForBit) {
+  agent::ImuSample imu{123456789, 0.1234567890123, -1e-17, 3.0 * M_PI};
+  const agent::ImuSample imu2 = dds::fromMsg(dds::toMsg(imu, 3, 7));
+  EXPECT_EQ(imu2.stamp_ns, imu.stamp_ns);
+  EXPECT_EQ(imu2.roll_rad, imu.roll_rad);
+  EXPECT_EQ(imu2.pitch_rad, imu.pitch_rad);
+  EXPECT_EQ(imu2.heading_rad, imu.heading_rad);
+  EXPECT_EQ(dds::toMsg(imu, 3, 7).uav_id(), 3u);
+  EXPECT_EQ(dds::toMsg(imu, 3, 7).header().seq(), 7u);
+
+  agent::DetectionSet det;
+  det.stamp_ns = 42;
+  agent::Detection a;
+  a.target_id = 5;
+  a.position_body_m = agent::Vec2(1.0 / 3.0, -7.25);
+  agent::Detection b;
+  b.target_id = agent::kAnonymousId;
+  b.position_body_m = agent::Vec2(std::nextafter(1.0, 2.0), 0.0);
+  agent::Mat2 c;
+  c << 0.2, 0.01, 0.01, 0.3;
+  b.covariance_m2 = c;
+  det.detections = {a, b};
+  const agent::DetectionSet det2 = dds::fromMsg(dds::toMsg(det, 1, 2));
+  ASSERT_EQ(det2.detections.size(), 2u);
+  EXPECT_EQ(det2.stamp_ns, 42);
+  EXPECT_EQ(det2.detections[0].target_id, 5);
+  EXPECT_EQ(det2.detections[0].position_body_m, a.position_body_m);
+  EXPECT_FALSE(det2.detections[0].covariance_m2.has_value());
+  EXPECT_EQ(det2.detections[1].target_id, agent::kAnonymousId);
+  EXPECT_EQ(det2.detections[1].position_body_m, b.position_body_m);
+  ASSERT_TRUE(det2.detections[1].covariance_m2.has_value());
+  EXPECT_EQ(*det2.detections[1].covariance_m2, c);
+
+  agent::GnssSample g{99, true, agent::Vec2(12.5, -3.0 / 7.0), 0.5};
+  const agent::GnssSample g2 = dds::fromMsg(dds::toMsg(g, 0, 1));
+  EXPECT_EQ(g2.stamp_ns, 99);
+  EXPECT_TRUE(g2.valid);
+  EXPECT_EQ(g2.position_m, g.position_m);
+  EXPECT_EQ(g2.std_m, 0.5);
+
+  agent::VelocityCommand cmd;
+  cmd.stamp_ns = 1000;
+  cmd.answered_stamp_ns = 1000;
+  cmd.velocity_mps = agent::Vec2(0.1, -1.0 / 9.0);
+  const msg::VelocitySetpoint sp = dds::toMsg(cmd, 2, 11, 17);
+  EXPECT_EQ(sp.answered_seq(), 17u);
+  EXPECT_EQ(sp.uav_id(), 2u);
+  const agent::VelocityCommand cmd2 = dds::fromMsg(sp);
+  EXPECT_EQ(cmd2.answered_stamp_ns, 1000);
+  EXPECT_EQ(cmd2.seq, 11u);
+  EXPECT_EQ(cmd2.velocity_mps, cmd.velocity_mps);
+}
+
+TEST(AgentStateMsg, CarriesDiagnosticsAndCutsNeighbourIds) {
+  agent::Diagnostics d;
+  d.stamp_ns = 5;
+  d.mode = agent::Mode::kAnchored;
+  d.stage = agent::Stage::kTracking;
+  d.position_m = agent::Vec2(1, 2);
+  d.position_cov_m2 << 0.1, 0.02, 0.02, 0.3;
+  d.neighbour_count = 3;
+  d.neighbour_ids = {};
+  d.neighbour_ids[0] = 4;
+  d.neighbour_ids[1] = 9;
+  d.neighbour_ids[2] = 1;
+  d.rejected.bad_id = 6;
+  d.commands = 77;
+  const msg::AgentState m = agent_node::toStateMsg(d, 3, 8);
+  EXPECT_EQ(m.uav_id(), 3u);
+  EXPECT_EQ(m.header().seq(), 8u);
+  EXPECT_EQ(m.mode(), msg::MODE_ANCHORED);
+  EXPECT_EQ(m.stage(), msg::STAGE_TRACKING);
+  EXPECT_EQ(m.est_y_m(), 2.0);
+  EXPECT_EQ(m.pos_cov_xy_m2(), 0.02);
+  EXPECT_EQ(m.neighbour_ids(), (std::vector<std::int32_t>{4, 9, 1}));
+  EXPECT_EQ(m.rejected_bad_id(), 6u);
+  EXPECT_EQ(m.commands_sent(), 77u);
+  // More neighbours than the array holds (corrupt count) is cut, never read past the array.
+  d.neighbour_count = 1000;
+  EXPECT_EQ(agent_node::toStateMsg(d, 3, 9).neighbour_ids().size(),
+            std::min<std::size_t>(d.neighbour_ids.size(), agent_node::kMaxStateNeighbourIds));
+}
+
+// ---- Command lines ---------------------------------------------------------------------------------------------
+
+TEST(AgentOptions, ParsesEveryOption) {
+  const auto o = agent_node::parseAgentOptions(
+      {"--id", "3", "--config=a.yaml", "--set", "formation.k=2", "--set", "control.k_p=0.4", "--domain", "7"});
+  EXPECT_EQ(o.id, 3);
+  EXPECT_EQ(o.config_path, "a.yaml");
+  EXPECT_EQ(o.overrides, (std::vector<std::string>{"formation.k=2", "control.k_p=0.4"}));
+  ASSERT_TRUE(o.domain.has_value());
+  EXPECT_EQ(*o.domain, "7");
+  EXPECT_TRUE(agent_node::parseAgentOptions({"--help"}).help);
+}
+
+TEST(AgentOptions, RejectsBadIdsAndReportsEveryProblem) {
+  for (const char* bad : {"-1", "abc", "3.5", "", "10000", " 3", "3x"}) {
+    EXPECT_THROW(agent_node::parseAgentOptions({"--id", bad}), std::invalid_argument) << bad;
+  }
+  EXPECT_THROW(agent_node::parseAgentOptions({}), std::invalid_argument);
+  try {
+    agent_node::parseAgentOptions({"--id", "x", "--frobnicate", "--config"});
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    for (const char* needle : {"--id 'x'", "--frobnicate", "--config needs a value"}) {
+      EXPECT_NE(m.find(needle), std::string::npos) << needle << " missing from: " << m;
+    }
+  }
+}
+
+TEST(SimOptions, ParsesEveryOptionAndReportsEveryProblem) {
+  const auto o = sim_node::parseSimOptions({"--scenario", "s.yaml", "--set", "duration_s=20", "--domain=9",
+                                            "--agent-timeout-s", "0.5", "--startup-timeout-s", "10", "--truth-every",
+                                            "1", "--truth-out", "t.csv", "--summary-out", "s.json"});
+  EXPECT_EQ(o.scenario_path, "s.yaml");
+  EXPECT_EQ(o.overrides, (std::vector<std::string>{"duration_s=20"}));
+  EXPECT_EQ(*o.domain, "9");
+  EXPECT_EQ(o.agent_timeout_s, 0.5);
+  EXPECT_EQ(o.startup_timeout_s, 10.0);
+  EXPECT_EQ(o.truth_every, 1);
+  EXPECT_EQ(o.truth_out, "t.csv");
+  EXPECT_EQ(o.summary_out, "s.json");
+  try {
+    sim_node::parseSimOptions({"--agent-timeout-s", "0", "--truth-every", "0", "--bogus"});
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    for (const char* needle : {"--agent-timeout-s", "--truth-every", "--bogus"}) {
+      EXPECT_NE(m.find(needle), std::string::npos) << needle << " missing from: " << m;
+    }
+  }
+  EXPECT_THROW(sim_node::parseSimOptions({}), std::invalid_argument);  // --scenario is required
+  EXPECT_THROW(sim_node::parseSimOptions({"--agent-timeout-s", "nan", "--scenario", "s"}), std::invalid_argument);
+}
+
+TEST(DomainResolution, CommandLineThenEnvironmentThenZero) {
+  ::unsetenv("SWA_DOMAIN");
+  EXPECT_EQ(dds::resolveDomain(std::nullopt), 0);
+  EXPECT_EQ(dds::resolveDomain(std::string("12")), 12);
+  ::setenv("SWA_DOMAIN", "33", 1);
+  EXPECT_EQ(dds::resolveDomain(std::nullopt), 33);
+  EXPECT_EQ(dds::resolveDomain(std::string("4")), 4);
+  ::setenv("SWA_DOMAIN", "300", 1);
+  EXPECT_THROW(dds::resolveDomain(std::nullopt), std::invalid_argument);
+  ::unsetenv("SWA_DOMAIN");
+  EXPECT_THROW(dds::resolveDomain(std::string("-1")), std::invalid_argument);
+  EXPECT_THROW(dds::resolveDomain(std::string("233")), std::invalid_argument);
+}
+
+TEST(Topics, PerUavNames) {
+  EXPECT_EQ(dds::topics::imu(3), "swa/uav3/imu");
+  EXPECT_EQ(dds::topics::detections(0), "swa/uav0/detections");
+  EXPECT_EQ(dds::topics::gnss(12), "swa/uav12/gnss");
+  EXPECT_EQ(dds::topics::cmdVel(1), "swa/uav1/cmd_vel");
+  EXPECT_EQ(dds::topics::state(1), "swa/uav1/state");
+  EXPECT_STREQ(dds::topics::kTruth, "swa/truth");
+}
+
+TEST(SampleQueue, DrainTakesEverythingInArrivalOrder) {
+  dds::SampleQueue<int> q;
+  std::vector<int> out;
+  EXPECT_FALSE(q.drain(out, std::chrono::milliseconds(0)));
+  q.push(1);
+  q.push(2);
+  EXPECT_TRUE(q.drain(out, std::chrono::milliseconds(0)));
+  EXPECT_EQ(out, (std::vector<int>{1, 2}));
+  q.wake();
+  EXPECT_FALSE(q.drain(out, std::chrono::hours(1)));  // returns at once: woken
+}
+
+}  // namespace
+}  // namespace swa

@@ -1,0 +1,503 @@
+// The swarm as processes over Fast DDS: swa_sim + one swa_agent per UAV on a private domain, observed through a
+// monitor participant in this test (swa/truth, swa/events) and the files swa_sim writes. Every child is reaped and
+// every shared-memory file a killed process leaves is removed on the way out, also when a check fails.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <mutex>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SwarmTruthPubSubTypes.h>
+
+#include "process_support.h"
+#include "swa/agent/agent.h"
+#include "swa/dds/options.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/sample_queue.h"
+#include "swa/dds/topics.h"
+#include "swa/sim/scenario_io.h"
+#include "swa/sim/world.h"
+
+namespace swa::testing {
+namespace {
+
+const std::string kScenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml";
+constexpr double kRunBoundS = 120.0;  // wall-clock bound of one simulator run
+
+struct TruthRow {
+  long long step = 0;
+  long long t_ns = 0;
+  int uav = 0;
+  double x = 0, y = 0, vx = 0, vy = 0;
+};
+
+std::vector<TruthRow> readTruthCsv(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<TruthRow> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+    if (f.size() < 7) continue;
+    TruthRow r;
+    r.step = std::stoll(f[0]);
+    r.t_ns = std::stoll(f[1]);
+    r.uav = std::stoi(f[2]);
+    r.x = std::strtod(f[3].c_str(), nullptr);
+    r.y = std::strtod(f[4].c_str(), nullptr);
+    r.vx = std::strtod(f[5].c_str(), nullptr);
+    r.vy = std::strtod(f[6].c_str(), nullptr);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::vector<TruthRow> lastStep(const std::vector<TruthRow>& rows) {
+  if (rows.empty()) return {};
+  const long long last = rows.back().step;
+  std::vector<TruthRow> out;
+  for (const TruthRow& r : rows) {
+    if (r.step == last) out.push_back(r);
+  }
+  std::sort(out.begin(), out.end(), [](const TruthRow& a, const TruthRow& b) { return a.uav < b.uav; });
+  return out;
+}
+
+// Mean over UAVs of the mean distance to its two nearest neighbours.
+double meanTwoNearest(const std::vector<agent::Vec2>& p) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    std::vector<double> d;
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      if (j != i) d.push_back((p[i] - p[j]).norm());
+    }
+    std::sort(d.begin(), d.end());
+    sum += (d.at(0) + d.at(1)) / 2.0;
+  }
+  return sum / static_cast<double>(p.size());
+}
+
+double minSeparation(const std::vector<agent::Vec2>& p) {
+  double m = 1e300;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = i + 1; j < p.size(); ++j) m = std::min(m, (p[i] - p[j]).norm());
+  }
+  return m;
+}
+
+// "key": number from swa_sim's flat summary JSON; NaN when absent.
+double jsonNumber(const std::string& json, const std::string& key) {
+  const std::regex re("\"" + key + "\": (-?[0-9.eE+-]+|true|false)");
+  std::smatch m;
+  if (!std::regex_search(json, m, re)) return std::nan("");
+  if (m[1] == "true") return 1.0;
+  if (m[1] == "false") return 0.0;
+  return std::strtod(m[1].str().c_str(), nullptr);
+}
+
+// The oracle: the same scenario in one process, samples fed as sim/batch/closed_loop.cpp does.
+std::vector<sim::UavTruth> inProcessFinalTruth(const sim::Scenario& scenario) {
+  sim::World world(scenario);
+  std::vector<agent::Agent> agents(static_cast<std::size_t>(world.uav_count()), agent::Agent(scenario.agent));
+  while (true) {
+    for (int i = 0; i < world.uav_count(); ++i) {
+      agent::Agent& a = agents[static_cast<std::size_t>(i)];
+      const sim::UavSensors& s = world.sensors()[static_cast<std::size_t>(i)];
+      if (s.imu) world.command(i, a.onImu(*s.imu));
+      if (s.detections) a.onDetections(*s.detections);
+      if (s.gnss) a.onGnss(*s.gnss);
+    }
+    if (world.finished()) break;
+    world.step();
+  }
+  return world.truth();
+}
+
+// A participant in this test process that watches what a monitor would: swa/truth, swa/events, swa/uav<i>/state.
+class Monitor {
+ public:
+  Monitor(int domain, int uav_count)
+      : participant_(std::make_unique<dds::Participant>("swa_test_monitor", domain, dds::resolveProfilesFile())) {
+    for (int i = 0; i < uav_count; ++i) {
+      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), "swa_state_reader",
+                                                      [this](msg::AgentState&& a) { states_.push(std::move(a)); });
+    }
+    participant_->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader",
+                                                    [this](msg::SwarmTruth&& t) { truth_.push(std::move(t)); });
+    participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
+                                                       [this](msg::ScenarioEvent&& e) { events_.push(std::move(e)); });
+  }
+  ~Monitor() { participant_.reset(); }
+
+  // Collects what arrived; waits up to `wait` for the first new item.
+  void poll(std::chrono::milliseconds wait = std::chrono::milliseconds(0)) {
+    truth_.drain(truth_seen_, wait);
+    events_.drain(events_seen_, std::chrono::milliseconds(0));
+    states_.drain(states_seen_, std::chrono::milliseconds(0));
+  }
+  // AgentState samples of one UAV, in arrival order.
+  std::vector<msg::AgentState> states(int uav) const {
+    std::vector<msg::AgentState> out;
+    for (const msg::AgentState& a : states_seen_) {
+      if (a.uav_id() == static_cast<std::uint32_t>(uav)) out.push_back(a);
+    }
+    return out;
+  }
+  const std::vector<msg::SwarmTruth>& truth() const { return truth_seen_; }
+  const std::vector<msg::ScenarioEvent>& events() const { return events_seen_; }
+  int count(msg::EventKind kind, int uav = -2) const {
+    return static_cast<int>(std::count_if(events_seen_.begin(), events_seen_.end(), [&](const msg::ScenarioEvent& e) {
+      return e.kind() == kind && (uav == -2 || e.uav_id() == uav);
+    }));
+  }
+  // Waits until an event of that kind about that UAV arrived (false if `bound_s` of wall time pass first).
+  bool waitForEvent(msg::EventKind kind, int uav, double bound_s) {
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(bound_s);
+    while (SteadyClock::now() < deadline) {
+      poll(std::chrono::milliseconds(20));
+      if (count(kind, uav) > 0) return true;
+    }
+    return false;
+  }
+  // Waits until the simulator's truth reaches `t_s` (false if `bound_s` of wall time pass first).
+  bool waitForSimTime(double t_s, double bound_s) {
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(bound_s);
+    while (SteadyClock::now() < deadline) {
+      poll(std::chrono::milliseconds(20));
+      if (!truth_seen_.empty() && static_cast<double>(truth_seen_.back().header().stamp_ns()) * 1e-9 >= t_s) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  // Queues outlive the participant, whose listeners push into them.
+  dds::SampleQueue<msg::SwarmTruth> truth_;
+  dds::SampleQueue<msg::ScenarioEvent> events_;
+  dds::SampleQueue<msg::AgentState> states_;
+  std::vector<msg::SwarmTruth> truth_seen_;
+  std::vector<msg::AgentState> states_seen_;
+  std::vector<msg::ScenarioEvent> events_seen_;
+  std::unique_ptr<dds::Participant> participant_;
+};
+
+// One run: the agent configuration exported from the scenario, N agents, the simulator.
+class SwarmRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("swa_dds_it_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    domain_ = testDomain();
+  }
+
+  void TearDown() override {
+    // Children first (each one SIGTERM, then SIGKILL), the monitor's participant, then leftover shared memory.
+    sim_.reset();
+    agents_.clear();
+    monitor_.reset();
+    const std::vector<std::string> removed = janitor_.clean();
+    if (!removed.empty()) std::cerr << "removed " << removed.size() << " abandoned /dev/shm file(s)\n";
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  std::vector<std::string> simArgs(const std::vector<std::string>& overrides) const {
+    std::vector<std::string> a{SWA_SIM_BINARY, "--scenario", kScenario};
+    for (const std::string& o : overrides) {
+      a.push_back("--set");
+      a.push_back(o);
+    }
+    return a;
+  }
+
+  // Exports the agents' configuration, starts the monitor and `n` agents, then the simulator. `env`: extra
+  // environment of the swa_sim / swa_agent processes (not of the monitor in this process).
+  void start(const std::vector<std::string>& overrides, const std::vector<std::string>& sim_extra, int n = 4,
+             const std::vector<std::string>& env = {}) {
+    std::vector<std::string> exp = simArgs(overrides);
+    exp.insert(exp.end(), {"--export-agent-config", (dir_ / "agent.yaml").string()});
+    Child exporter(exp, dir_ / "export.log");
+    ASSERT_EQ(exporter.wait(30.0), 0) << readFile(dir_ / "export.log");
+
+    monitor_ = std::make_unique<Monitor>(domain_, n);
+    for (int i = 0; i < n; ++i) {
+      agents_.push_back(std::make_unique<Child>(
+          std::vector<std::string>{SWA_AGENT_BINARY, "--id", std::to_string(i), "--config",
+                                   (dir_ / "agent.yaml").string(), "--domain", std::to_string(domain_)},
+          dir_ / ("agent" + std::to_string(i) + ".log"), env));
+    }
+    std::vector<std::string> args = simArgs(overrides);
+    args.insert(args.end(), {"--domain", std::to_string(domain_), "--truth-out", (dir_ / "truth.csv").string(),
+                             "--summary-out", (dir_ / "summary.json").string()});
+    args.insert(args.end(), sim_extra.begin(), sim_extra.end());
+    sim_ = std::make_unique<Child>(args, dir_ / "sim.log", env);
+    started_ = SteadyClock::now();
+  }
+
+  // Waits for the simulator (bounded), then stops the agents. Returns the simulator's exit status.
+  int finish() {
+    const std::optional<int> status = sim_->wait(kRunBoundS);
+    wall_s_ = std::chrono::duration<double>(SteadyClock::now() - started_).count();
+    if (!status) ADD_FAILURE() << "swa_sim still running after " << kRunBoundS << " s: killed";
+    monitor_->poll(std::chrono::milliseconds(200));
+    for (auto& a : agents_) agent_status_.push_back(a->stop(10.0));
+    return status.value_or(-1);
+  }
+
+  void lockstepDropout4(const std::vector<std::string>& overrides, double expected_d_nb_m,
+                        const std::vector<std::string>& env = {});
+
+  std::string logs() const {
+    std::string s = "--- sim.log\n" + readFile(dir_ / "sim.log");
+    for (std::size_t i = 0; i < agents_.size(); ++i) {
+      s += "--- agent" + std::to_string(i) + ".log\n" + readFile(dir_ / ("agent" + std::to_string(i) + ".log"));
+    }
+    return s;
+  }
+
+  ShmJanitor janitor_;  // first member: sees /dev/shm before anything of ours exists
+  fs::path dir_;
+  int domain_ = 0;
+  std::unique_ptr<Monitor> monitor_;
+  std::vector<std::unique_ptr<Child>> agents_;
+  std::unique_ptr<Child> sim_;
+  std::vector<int> agent_status_;
+  SteadyClock::time_point started_;
+  double wall_s_ = 0.0;
+};
+
+// The paper's GNSS-loss scenario with 4 UAVs, 20 s, as 5 processes in lockstep: checks the run, cohesion (mean
+// distance to the 2 nearest neighbours within +-15 % of `expected_d_nb_m`) and bit-equality with the in-process loop.
+void SwarmRun::lockstepDropout4(const std::vector<std::string>& overrides, double expected_d_nb_m,
+                                const std::vector<std::string>& env) {
+  start(overrides, {"--agent-timeout-s", "10"}, 4, env);
+  ASSERT_FALSE(HasFatalFailure());
+  // WHEN the simulator runs to the end
+  const int status = finish();
+  ASSERT_EQ(status, 0) << logs();
+  const std::string summary = readFile(dir_ / "summary.json");
+  std::cout << "lockstep run: " << wall_s_ << " s wall (processes started to sim exit); summary:\n" << summary;
+  RecordProperty("wall_s", std::to_string(wall_s_));
+
+  // THEN every agent shut down cleanly on SIGTERM
+  for (std::size_t i = 0; i < agent_status_.size(); ++i) EXPECT_EQ(agent_status_[i], 0) << "agent " << i;
+
+  // THEN the run completed with every agent answering every step and no collision
+  EXPECT_EQ(jsonNumber(summary, "completed"), 1.0);
+  EXPECT_EQ(jsonNumber(summary, "steps"), 2000.0);
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
+  EXPECT_EQ(jsonNumber(summary, "agent_dead_events"), 0.0) << logs();
+  EXPECT_EQ(jsonNumber(summary, "applied_commands"), 4.0 * 2001.0);
+
+  // THEN the swarm is cohesive at the end
+  const std::vector<TruthRow> final_rows = lastStep(readTruthCsv(dir_ / "truth.csv"));
+  ASSERT_EQ(final_rows.size(), 4u);
+  EXPECT_EQ(final_rows.front().t_ns, 20'000'000'000LL);
+  std::vector<agent::Vec2> p;
+  for (const TruthRow& r : final_rows) p.emplace_back(r.x, r.y);
+  const double d_nb = meanTwoNearest(p);
+  std::cout << "final d_NB (2 nearest) = " << d_nb << " m, min separation = " << minSeparation(p) << " m\n";
+  EXPECT_NEAR(d_nb, expected_d_nb_m, 0.15 * expected_d_nb_m);
+  EXPECT_GT(minSeparation(p), 2.0);
+
+  // THEN the monitor saw the same truth on swa/truth and the events on swa/events
+  ASSERT_FALSE(monitor_->truth().empty());
+  const msg::SwarmTruth& last = monitor_->truth().back();
+  EXPECT_EQ(last.header().stamp_ns(), 20'000'000'000LL);
+  ASSERT_EQ(last.uavs().size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(last.uavs()[i].x_m(), final_rows[i].x);
+    EXPECT_EQ(last.uavs()[i].y_m(), final_rows[i].y);
+    EXPECT_TRUE(last.uavs()[i].alive());
+  }
+  EXPECT_EQ(monitor_->count(msg::EVENT_SCENARIO_END), 1);
+  EXPECT_EQ(monitor_->count(msg::EVENT_GNSS_LOST), 4);  // all four lose GNSS at 10 s
+  EXPECT_EQ(monitor_->count(msg::EVENT_COLLISION), 0);
+  EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD), 0);
+  // THEN every agent published its state at 10 Hz of sim time: 201 states for t = 0, 0.1, ..., 20 s (header.seq
+  // counts them all). The topic is VOLATILE and the simulator does not wait for this monitor, so the first ones may
+  // predate the match; from the first one received on, none is missing.
+  for (int i = 0; i < 4; ++i) {
+    const std::vector<msg::AgentState> st = monitor_->states(i);
+    ASSERT_GE(st.size(), 20u) << "UAV " << i;
+    EXPECT_EQ(st.back().header().seq(), 201u) << "UAV " << i;
+    EXPECT_EQ(st.back().header().seq() - st.front().header().seq() + 1, st.size()) << "UAV " << i;
+    EXPECT_EQ(st.back().header().stamp_ns(), 20'000'000'000LL);
+    EXPECT_EQ(st.back().stage(), msg::STAGE_TRACKING) << "UAV " << i;
+    EXPECT_TRUE(st.back().frame_valid()) << "UAV " << i;
+    EXPECT_GE(st.back().neighbour_ids().size(), 2u) << "UAV " << i;
+    EXPECT_EQ(st.back().commands_sent(), 2001u) << "UAV " << i;
+    EXPECT_EQ(st.back().rejected_out_of_order() + st.back().rejected_nonfinite(), 0u) << "UAV " << i;
+  }
+  // THEN, once our monitor participant is gone too, no process left shared memory behind (a port stays while any
+  // participant that ever sent to it is alive, so this is checked after the monitor)
+  monitor_.reset();
+  const std::vector<std::string> left = janitor_.zombies();
+  EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left.size()
+                            << " /dev/shm file(s), first " << (left.empty() ? "" : left.front());
+
+  // THEN lockstep reproduces the in-process closed loop bit for bit (same scenario, seed, sample order)
+  const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
+  ASSERT_EQ(ref.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(final_rows[i].x, ref[i].position_m.x()) << "UAV " << i;
+    EXPECT_EQ(final_rows[i].y, ref[i].position_m.y()) << "UAV " << i;
+    EXPECT_EQ(final_rows[i].vx, ref[i].velocity_mps.x()) << "UAV " << i;
+    EXPECT_EQ(final_rows[i].vy, ref[i].velocity_mps.y()) << "UAV " << i;
+  }
+}
+
+TEST_F(SwarmRun, LockstepDropout4K2HoldsTenMetresAndEqualsTheInProcessLoop) {
+  // k = 2: every UAV wants its two nearest neighbours at r = 10 m (DESIGN §5: d_NB 10.02 +- 0.14 m at N = 4).
+  lockstepDropout4({"duration_s=20", "agent.k=2"}, 10.0);
+}
+
+TEST_F(SwarmRun, LockstepDropout4AsShippedEqualsTheInProcessLoop) {
+  // The shipped file uses k = 3: with 4 UAVs each one fits a radius-r circle through all three others, which a planar
+  // formation cannot satisfy. For a square of side a the fixed-radius fit balances 2 (a - r)^2 + (a sqrt2 - r)^2,
+  // so a = r (2 + sqrt2) / 4 = 8.54 m, -14.6 % from r: the +-15 % band of 10 m would sit on its edge. The run is
+  // checked against that equilibrium instead (measured: 8.45 m at 20 s, seed 1, identical in process and over DDS).
+  lockstepDropout4({"duration_s=20"}, 10.0 * (2.0 + std::sqrt(2.0)) / 4.0);
+}
+
+TEST_F(SwarmRun, LockstepOverUdpOnlyEqualsTheInProcessLoop) {
+  // GIVEN the shipped profiles with shared memory switched off: every sample crosses UDPv4 (as between hosts or
+  // containers), where lost and repaired datagrams can reorder topics
+  std::string xml = readFile(std::string(SWA_SOURCE_DIR) + "/deploy/dds/profiles.xml");
+  const std::string anchor = "<participant profile_name=\"swa_participant\">\n      <rtps>\n";
+  const std::size_t at = xml.find(anchor);
+  ASSERT_NE(at, std::string::npos) << "participant profile layout changed";
+  xml.insert(at + anchor.size(),
+             "        <userTransports><transport_id>swa_udp_only</transport_id></userTransports>\n"
+             "        <useBuiltinTransports>false</useBuiltinTransports>\n");
+  xml.insert(xml.find("<profiles>") + std::string("<profiles>").size(),
+             "\n    <transport_descriptors><transport_descriptor><transport_id>swa_udp_only</transport_id>"
+             "<type>UDPv4</type></transport_descriptor></transport_descriptors>\n");
+  std::ofstream(dir_ / "udp_only.xml") << xml;
+  // THEN the same bit-exact run as over shared memory
+  lockstepDropout4({"duration_s=20", "agent.k=2"}, 10.0, {"SWA_DDS_PROFILES=" + (dir_ / "udp_only.xml").string()});
+}
+
+TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {
+  // GIVEN a 90 s lockstep run with a short agent timeout
+  start({"duration_s=90"}, {"--agent-timeout-s", "0.3"});
+  ASSERT_FALSE(HasFatalFailure());
+  ASSERT_TRUE(monitor_->waitForSimTime(3.0, 60.0)) << logs();
+  // WHEN agent 2 stalls (SIGSTOP) until the simulator has declared it dead, then resumes
+  agents_[2]->signal(SIGSTOP);
+  const bool declared = monitor_->waitForEvent(msg::EVENT_AGENT_DEAD, 2, 30.0);
+  agents_[2]->signal(SIGCONT);
+  ASSERT_TRUE(declared) << logs();
+  // WHEN agent 3 crashes (SIGKILL)
+  agents_[3]->signal(SIGKILL);
+  // THEN the world goes on and completes
+  const int status = finish();
+  ASSERT_EQ(status, 0) << logs();
+  const std::string summary = readFile(dir_ / "summary.json");
+  std::cout << summary;
+  // THEN both were declared dead, the stalled one rejoined, the crashed one is dead at the end and its UAV
+  // fell back to the failsafe
+  EXPECT_GE(monitor_->count(msg::EVENT_AGENT_DEAD, 2), 1) << logs();
+  EXPECT_GE(monitor_->count(msg::EVENT_AGENT_REJOINED, 2), 1) << logs();
+  EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD, 3), 1) << logs();
+  EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_REJOINED, 3), 0);
+  EXPECT_GE(monitor_->count(msg::EVENT_FAILSAFE, 3), 1);
+  EXPECT_NE(summary.find("\"dead_at_end\": [3]"), std::string::npos) << summary;
+  ASSERT_FALSE(monitor_->truth().empty());
+  EXPECT_FALSE(monitor_->truth().back().uavs().at(3).alive());
+  EXPECT_EQ(agent_status_[2], 0);  // the stalled agent still shuts down cleanly
+}
+
+TEST_F(SwarmRun, RealtimeRunsAtWallClockPace) {
+  // GIVEN a 3 s scenario in realtime mode at speed 1
+  start({"duration_s=3", "clock.mode=realtime"}, {});
+  ASSERT_FALSE(HasFatalFailure());
+  const int status = finish();
+  ASSERT_EQ(status, 0) << logs();
+  const std::string summary = readFile(dir_ / "summary.json");
+  std::cout << summary;
+  // THEN it took about 3 s of wall time (after discovery) and every agent kept answering
+  EXPECT_GE(jsonNumber(summary, "wall_time_s"), 2.95);
+  EXPECT_LT(jsonNumber(summary, "wall_time_s"), 6.0);
+  EXPECT_EQ(jsonNumber(summary, "agent_dead_events"), 0.0) << logs();
+  EXPECT_GT(jsonNumber(summary, "applied_commands"), 4.0 * 250.0);
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
+  EXPECT_EQ(monitor_->count(msg::EVENT_SCENARIO_END), 1);
+}
+
+// ---- Bad input: clear error, exit 2, nothing started -------------------------------------------------------------
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("swa_dds_bad_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Exit status and everything the process printed.
+  std::pair<int, std::string> run(const std::vector<std::string>& argv) {
+    const fs::path log = dir_ / "out.log";
+    Child c(argv, log);
+    const std::optional<int> status = c.wait(30.0);
+    return {status.value_or(-1), readFile(log)};
+  }
+
+  ShmJanitor janitor_;
+  fs::path dir_;
+};
+
+TEST_F(BadInput, MalformedScenarioMakesTheSimulatorExitWithAClearError) {
+  const fs::path bad = dir_ / "bad.yaml";
+  std::ofstream(bad) << "uav_count: -3\nduration_s: [1, 2]\nfrobnicate: 1\n";
+  const auto [status, out] = run({SWA_SIM_BINARY, "--scenario", bad.string(), "--domain", "5"});
+  EXPECT_EQ(status, 2) << out;
+  for (const char* needle : {"invalid scenario", "uav_count", "duration_s", "frobnicate"}) {
+    EXPECT_NE(out.find(needle), std::string::npos) << needle << " missing from:\n" << out;
+  }
+  const auto [status2, out2] = run({SWA_SIM_BINARY, "--scenario", (dir_ / "missing.yaml").string()});
+  EXPECT_EQ(status2, 2) << out2;
+  EXPECT_NE(out2.find("missing.yaml"), std::string::npos) << out2;
+  const auto [status3, out3] = run({SWA_SIM_BINARY, "--scenario", kScenario, "--set", "duration_s=-1"});
+  EXPECT_EQ(status3, 2) << out3;
+  EXPECT_NE(out3.find("duration_s"), std::string::npos) << out3;
+  const auto [status4, out4] = run({SWA_SIM_BINARY, "--scenario", kScenario, "--domain", "999"});
+  EXPECT_EQ(status4, 2) << out4;
+  EXPECT_NE(out4.find("--domain"), std::string::npos) << out4;
+  EXPECT_EQ(run({SWA_SIM_BINARY, "--help"}).first, 0);
+  EXPECT_TRUE(janitor_.zombies().empty());
+}
+
+TEST_F(BadInput, BadIdMakesTheAgentExitWithAClearError) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {SWA_AGENT_BINARY, "--id", "-1"},
+           {SWA_AGENT_BINARY, "--id", "uav3"},
+           {SWA_AGENT_BINARY, "--id", "99999"},
+           {SWA_AGENT_BINARY}}) {
+    const auto [status, out] = run(args);
+    EXPECT_EQ(status, 2) << out;
+    EXPECT_NE(out.find("--id"), std::string::npos) << out;
+  }
+  const auto [status, out] = run({SWA_AGENT_BINARY, "--id", "1", "--set", "formation.k=0", "--set", "nope=1"});
+  EXPECT_EQ(status, 2) << out;
+  EXPECT_NE(out.find("formation.k"), std::string::npos) << out;
+  EXPECT_NE(out.find("nope"), std::string::npos) << out;
+  const auto [status2, out2] = run({SWA_AGENT_BINARY, "--id", "1", "--config", (dir_ / "missing.yaml").string()});
+  EXPECT_EQ(status2, 2) << out2;
+  EXPECT_EQ(run({SWA_AGENT_BINARY, "--help"}).first, 0);
+  EXPECT_TRUE(janitor_.zombies().empty());
+}
+
+}  // namespace
+}  // namespace swa::testing
