@@ -11,19 +11,10 @@ AgentOptions parseAgentOptions(const std::vector<std::string>& args) {
   AgentOptions o;
   std::vector<std::string> problems;
   bool have_id = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string key = args[i];
-    std::optional<std::string> inline_value;
-    if (const auto eq = key.find('='); key.rfind("--", 0) == 0 && eq != std::string::npos) {
-      inline_value = key.substr(eq + 1);
-      key = key.substr(0, eq);
-    }
-    const auto value = [&]() -> std::optional<std::string> {
-      if (inline_value) return inline_value;
-      if (i + 1 < args.size()) return args[++i];
-      problems.push_back(key + " needs a value");
-      return std::nullopt;
-    };
+  dds::ArgWalker walker(args, problems);
+  while (walker.next()) {
+    const std::string& key = walker.key();
+    const auto value = [&walker] { return walker.value(); };
     if (key == "--help" || key == "-h") {
       o.help = true;
     } else if (key == "--parameters") {
@@ -49,7 +40,7 @@ AgentOptions parseAgentOptions(const std::vector<std::string>& args) {
     } else if (key == "--domain") {
       if (const auto v = value()) o.domain = *v;
     } else {
-      problems.push_back("unknown argument '" + args[i] + "' (see --help)");
+      problems.push_back("unknown argument '" + walker.raw() + "' (see --help)");
     }
   }
   if (!have_id && !o.help && !o.list_parameters && problems.empty()) problems.push_back("--id is required");

@@ -10,19 +10,10 @@ namespace swa::sim_node {
 SimOptions parseSimOptions(const std::vector<std::string>& args) {
   SimOptions o;
   std::vector<std::string> problems;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string key = args[i];
-    std::optional<std::string> inline_value;
-    if (const auto eq = key.find('='); key.rfind("--", 0) == 0 && eq != std::string::npos) {
-      inline_value = key.substr(eq + 1);
-      key = key.substr(0, eq);
-    }
-    const auto value = [&]() -> std::optional<std::string> {
-      if (inline_value) return inline_value;
-      if (i + 1 < args.size()) return args[++i];
-      problems.push_back(key + " needs a value");
-      return std::nullopt;
-    };
+  dds::ArgWalker walker(args, problems);
+  while (walker.next()) {
+    const std::string& key = walker.key();
+    const auto value = [&walker] { return walker.value(); };
     const auto real = [&](double& out, double min, double max, const char* what) {
       if (const auto v = value()) {
         if (const auto x = dds::parseReal(*v, min, max)) {
@@ -67,7 +58,7 @@ SimOptions parseSimOptions(const std::vector<std::string>& args) {
     } else if (key == "--export-agent-config") {
       path(o.export_agent_config);
     } else {
-      problems.push_back("unknown argument '" + args[i] + "' (see --help)");
+      problems.push_back("unknown argument '" + walker.raw() + "' (see --help)");
     }
   }
   if (o.scenario_path.empty() && !o.help && !o.list_parameters && problems.empty()) {

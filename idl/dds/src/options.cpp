@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+#include <utility>
 
 #ifndef SWA_DEFAULT_PROFILES_FILE
 #error "SWA_DEFAULT_PROFILES_FILE must be defined by the build"
@@ -53,6 +54,25 @@ int resolveDomain(const std::optional<std::string>& cli_value) {
 std::string resolveProfilesFile() {
   if (const char* env = std::getenv("SWA_DDS_PROFILES"); env != nullptr && *env != '\0') return env;
   return SWA_DEFAULT_PROFILES_FILE;
+}
+
+bool ArgWalker::next() {
+  if (next_ >= args_.size()) return false;
+  index_ = next_++;
+  key_ = args_[index_];
+  inline_value_.reset();
+  if (const auto eq = key_.find('='); key_.rfind("--", 0) == 0 && eq != std::string::npos) {
+    inline_value_ = key_.substr(eq + 1);
+    key_ = key_.substr(0, eq);
+  }
+  return true;
+}
+
+std::optional<std::string> ArgWalker::value() {
+  if (inline_value_) return std::exchange(inline_value_, std::nullopt);
+  if (next_ < args_.size()) return args_[next_++];
+  problems_.push_back(key_ + " needs a value");
+  return std::nullopt;
 }
 
 }  // namespace swa::dds

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace swa::dds {
 
@@ -21,5 +22,25 @@ int resolveDomain(const std::optional<std::string>& cli_value);
 // The XML profiles file: the environment variable SWA_DDS_PROFILES if set and non-empty, else the repository's
 // deploy/dds/profiles.xml (path compiled in). Existence is checked by the Participant.
 std::string resolveProfilesFile();
+
+// Walks command-line arguments given as "--key value" or "--key=value". value() consumes the value of the current
+// key and records "<key> needs a value" in `problems` when there is none, so parsers report every problem at once.
+class ArgWalker {
+ public:
+  ArgWalker(const std::vector<std::string>& args, std::vector<std::string>& problems)
+      : args_(args), problems_(problems) {}
+  bool next();                            // advances to the next argument; false at the end
+  const std::string& key() const { return key_; }
+  const std::string& raw() const { return args_[index_]; }  // the argument as given, e.g. "--x=1"
+  std::optional<std::string> value();
+
+ private:
+  const std::vector<std::string>& args_;
+  std::vector<std::string>& problems_;
+  std::size_t index_ = 0;
+  std::size_t next_ = 0;
+  std::string key_;
+  std::optional<std::string> inline_value_;
+};
 
 }  // namespace swa::dds
