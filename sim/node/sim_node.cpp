@@ -97,6 +97,8 @@ bool SimNode::awaitDiscovery() {
       if (gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
       if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
     }
+    if (truth_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kTruth) + " (monitor)");
+    if (events_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kEvents) + " (monitor)");
     if (missing.empty()) {
       summary_.discovery_s = secondsSince(t0);
       std::fprintf(stderr, "swa_sim: all %d agent(s) discovered in %.2f s\n", n_, summary_.discovery_s);

@@ -51,6 +51,14 @@ SimOptions parseSimOptions(const std::vector<std::string>& args) {
           problems.push_back("--truth-every '" + *v + "' is not a step count in [1, 1000000]");
         }
       }
+    } else if (key == "--wait-monitors") {
+      if (const auto v = value()) {
+        if (const auto n = dds::parseInteger(*v, 0, 64)) {
+          o.wait_monitors = static_cast<int>(*n);
+        } else {
+          problems.push_back("--wait-monitors '" + *v + "' is not a count in [0, 64]");
+        }
+      }
     } else if (key == "--truth-out") {
       path(o.truth_out);
     } else if (key == "--summary-out") {
@@ -96,6 +104,8 @@ Options:
   --domain D                DDS domain id 0..232 (default: $SWA_DOMAIN, else 0)
   --agent-timeout-s T       lockstep: wall seconds to wait for an agent's answer (default 2)
   --startup-timeout-s T     wall seconds to wait for discovery of every agent (default 60)
+  --wait-monitors N         also wait until N readers of swa/truth and swa/events are discovered, so a monitor
+                            sees the run from step 0 (default 0; swa_launch passes 1)
   --truth-every N           publish swa/truth every N steps and at the last step (default 10)
   --truth-out FILE          also write every published truth sample to FILE (CSV, one row per UAV)
   --summary-out FILE        write a JSON summary of the run (steps, collisions, dead agents, wall time)

@@ -17,6 +17,7 @@ struct SimOptions {
   std::string truth_out;                // --truth-out FILE: every published truth sample as CSV
   std::string summary_out;              // --summary-out FILE: JSON summary of the run
   std::string export_agent_config;      // --export-agent-config FILE: write the agents' config and exit
+  int wait_monitors = 0;                // --wait-monitors N: also wait for N readers of swa/truth and swa/events
   bool help = false;
   bool list_parameters = false;
 };
