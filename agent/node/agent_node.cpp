@@ -47,6 +47,12 @@ int AgentNode::run() {
   while (!dds::shutdownRequested()) {
     batch.clear();
     queue_.drain(batch, std::chrono::milliseconds(100));
+    if (batch.empty() && pending_state_ns_) {
+      // Quiet inputs: the simulator has delivered everything of the pending step (it publishes a step's samples
+      // together) and is waiting or has ended.
+      publishState(*pending_state_ns_);
+      pending_state_ns_.reset();
+    }
     for (Input& in : batch) {
       // Stamp read before the sample is moved into the orderer.
       const auto [stream, stamp] = std::visit(
@@ -83,6 +89,11 @@ void AgentNode::handle(Input& in) {
                    static_cast<long long>(imu->header().stamp_ns()), cmd_writer_.matched(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
     }
+    const agent::StampNs stamp = imu->header().stamp_ns();
+    if (pending_state_ns_ && stamp > *pending_state_ns_) {
+      publishState(*pending_state_ns_);
+      pending_state_ns_.reset();
+    }
     const agent::VelocityCommand cmd = agent_.onImu(dds::fromMsg(*imu));
     msg::VelocitySetpoint out = dds::toMsg(cmd, self, ++cmd_seq_, imu->header().seq());
     if (cmd_writer_.write(out)) {
@@ -90,9 +101,8 @@ void AgentNode::handle(Input& in) {
     } else {
       ++stats_.write_failures;
     }
-    const agent::StampNs stamp = imu->header().stamp_ns();
     if (!state_due_set_ || stamp >= next_state_ns_) {
-      publishState(stamp);
+      pending_state_ns_ = stamp;
       // Next 100 ms boundary after this stamp (floor division, also for negative stamps).
       agent::StampNs floor = stamp / kStatePeriodNs;
       if (stamp % kStatePeriodNs < 0) --floor;
@@ -112,7 +122,7 @@ void AgentNode::handle(Input& in) {
 
 void AgentNode::publishState(agent::StampNs stamp_ns) {
   msg::AgentState state = toStateMsg(agent_.diagnostics(), static_cast<std::uint32_t>(id_), ++state_seq_);
-  state.header().stamp_ns(stamp_ns);  // the IMU sample after which this is the state (also if it was rejected)
+  state.header().stamp_ns(stamp_ns);  // the step whose samples have all been processed (also if one was rejected)
   if (state_writer_.write(state)) {
     ++stats_.states;
   } else {

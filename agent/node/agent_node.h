@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -55,6 +56,9 @@ class AgentNode {
   std::uint32_t cmd_seq_ = 0, state_seq_ = 0;
   bool state_due_set_ = false;
   agent::StampNs next_state_ns_ = 0;
+  // The state of a 100 ms boundary step is published once every sample of that step has been processed (before the
+  // next step's IMU, or when the inputs go quiet), so it is the estimate the in-process loop scores at that step.
+  std::optional<agent::StampNs> pending_state_ns_;
 
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Input> queue_;

@@ -4,9 +4,11 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <system_error>
+#include <type_traits>
 
 namespace swa::monitor {
 namespace {
@@ -16,11 +18,56 @@ void appendCsv(std::string& out, double v) {
   out += formatNumber(v);
 }
 
+// The one list of Summary fields, in declaration order: summaryFields reads through it, summaryFromFields writes
+// through it, so the two cannot disagree. `S` is Summary or const Summary.
+template <class S, class F>
+void visitSummary(S& s, F&& f) {
+  f("steps", s.steps);
+  f("duration_s", s.duration_s);
+  f("window_start_s", s.window_start_s);
+  f("window_duration_s", s.window_duration_s);
+  f("uav_count", s.uav_count);
+  f("mean_neighbor_distance_m", s.mean_neighbor_distance_m);
+  f("formation_error_m", s.formation_error_m);
+  f("min_separation_m", s.min_separation_m);
+  f("collisions", s.collisions);
+  f("drift_velocity_mps", s.drift_velocity_mps);
+  f("centroid_displacement_m", s.centroid_displacement_m);
+  f("uav_displacement_m", s.uav_displacement_m);
+  f("drift_speed_max_mps", s.drift_speed_max_mps);
+  f("groups", s.groups);
+  f("spread_m", s.spread_m);
+  f("anees_position", s.anees_position);
+  f("anees_velocity", s.anees_velocity);
+  f("anees_agents", s.anees_agents);
+  f("anees_band_low", s.anees_band_low);
+  f("anees_band_high", s.anees_band_high);
+  f("anees_position_in_band", s.anees_position_in_band);
+  f("anees_velocity_in_band", s.anees_velocity_in_band);
+  f("nees_steps", s.nees_steps);
+  f("nees_samples", s.nees_samples);
+  f("nees_skipped_unknown_id", s.nees_skipped_unknown_id);
+  f("nees_skipped_invalid", s.nees_skipped_invalid);
+}
+
+template <class T>
+void assignField(T& field, double value) {
+  if constexpr (std::is_floating_point_v<T>) {
+    field = value;
+  } else {
+    if (!std::isfinite(value)) return;
+    const double lo = static_cast<double>(std::numeric_limits<T>::lowest());
+    // The largest double below max: converting max itself (2^64 for uint64) back to T would overflow.
+    const double hi = std::nextafter(static_cast<double>(std::numeric_limits<T>::max()), 0.0);
+    field = static_cast<T>(std::clamp(std::round(value), lo, hi));
+  }
+}
+
+}  // namespace
+
 std::string jsonNumber(double v) { return std::isfinite(v) ? formatNumber(v) : std::string("null"); }
 
-// Summary keys are plain identifiers, but a caller-supplied key in aggregate() is escaped so it cannot break the
-// document.
-std::string jsonString(const std::string& s) {
+std::string jsonQuote(std::string_view s) {
   static constexpr char kHex[] = "0123456789abcdef";
   std::string out = "\"";
   for (const char c : s) {
@@ -39,8 +86,6 @@ std::string jsonString(const std::string& s) {
   out += '"';
   return out;
 }
-
-}  // namespace
 
 TimeSeriesRow toRow(const StepMetrics& step) {
   TimeSeriesRow row;
@@ -93,35 +138,22 @@ std::string formatNumber(double value) {
 }
 
 std::vector<NamedValue> summaryFields(const Summary& s) {
-  auto d = [](auto v) { return static_cast<double>(v); };
-  return {
-      {"steps", d(s.steps)},
-      {"duration_s", s.duration_s},
-      {"window_start_s", s.window_start_s},
-      {"window_duration_s", s.window_duration_s},
-      {"uav_count", d(s.uav_count)},
-      {"mean_neighbor_distance_m", s.mean_neighbor_distance_m},
-      {"formation_error_m", s.formation_error_m},
-      {"min_separation_m", s.min_separation_m},
-      {"collisions", d(s.collisions)},
-      {"drift_velocity_mps", s.drift_velocity_mps},
-      {"centroid_displacement_m", s.centroid_displacement_m},
-      {"uav_displacement_m", s.uav_displacement_m},
-      {"drift_speed_max_mps", s.drift_speed_max_mps},
-      {"groups", d(s.groups)},
-      {"spread_m", s.spread_m},
-      {"anees_position", s.anees_position},
-      {"anees_velocity", s.anees_velocity},
-      {"anees_agents", d(s.anees_agents)},
-      {"anees_band_low", s.anees_band_low},
-      {"anees_band_high", s.anees_band_high},
-      {"anees_position_in_band", s.anees_position_in_band},
-      {"anees_velocity_in_band", s.anees_velocity_in_band},
-      {"nees_steps", d(s.nees_steps)},
-      {"nees_samples", d(s.nees_samples)},
-      {"nees_skipped_unknown_id", d(s.nees_skipped_unknown_id)},
-      {"nees_skipped_invalid", d(s.nees_skipped_invalid)},
-  };
+  std::vector<NamedValue> out;
+  visitSummary(s, [&out](const char* key, const auto& value) { out.push_back({key, static_cast<double>(value)}); });
+  return out;
+}
+
+Summary summaryFromFields(const std::vector<NamedValue>& fields) {
+  Summary s;
+  visitSummary(s, [&fields](const char* key, auto& field) {
+    for (const NamedValue& f : fields) {
+      if (f.key == key) {
+        assignField(field, f.value);
+        return;
+      }
+    }
+  });
+  return s;
 }
 
 std::string toJson(const Summary& summary) {
@@ -130,7 +162,7 @@ std::string toJson(const Summary& summary) {
   for (const NamedValue& f : summaryFields(summary)) {
     out += first ? "\n  " : ",\n  ";
     first = false;
-    out += jsonString(f.key) + ": " + jsonNumber(f.value);
+    out += jsonQuote(f.key) + ": " + jsonNumber(f.value);
   }
   out += "\n}\n";
   return out;
@@ -193,7 +225,7 @@ std::string toJson(const Aggregate& aggregate) {
   for (const Statistic& s : aggregate.metrics) {
     out += first ? "\n    " : ",\n    ";
     first = false;
-    out += jsonString(s.key) + ": {\"runs\": " + std::to_string(s.runs) + ", \"mean\": " + jsonNumber(s.mean) +
+    out += jsonQuote(s.key) + ": {\"runs\": " + std::to_string(s.runs) + ", \"mean\": " + jsonNumber(s.mean) +
            ", \"std\": " + jsonNumber(s.std) + ", \"min\": " + jsonNumber(s.min) + ", \"max\": " + jsonNumber(s.max) +
            "}";
   }

@@ -215,11 +215,51 @@ const char* kStyle =
     "table.summary th[scope=row]{text-align:left;font-family:monospace;font-weight:normal}\n"
     "table.summary tbody tr:nth-child(even){background:#fafafa}\n"
     "table.summary td.verdict{text-align:left;max-width:320px}\n"
+    "table.data{border-collapse:collapse;font-size:14px}\n"
+    "table.data th,table.data td{border:1px solid #ddd;padding:3px 10px;text-align:left}\n"
+    "table.data thead th{background:#f2f2f2}\n"
+    "table.data tbody tr:nth-child(even){background:#fafafa}\n"
     "figure{margin:16px 0}\n"
     "figure>svg{max-width:100%;height:auto;border:1px solid #eee}\n"
     "figcaption{font-size:13px;color:#555;max-width:720px}\n"
     ".trajectories{display:flex;flex-wrap:wrap;gap:0 24px}\n"
     "footer{margin-top:2em;font-size:12px;color:#777}\n";
+
+void appendTable(std::string& out, const ReportTable& table, std::size_t index) {
+  out += "<section id=\"table-";
+  appendText(out, fileStem(table.id, index));
+  out += "\">\n<h2>";
+  appendText(out, table.title);
+  out += "</h2>\n";
+  if (!table.note.empty()) {
+    out += "<p>";
+    appendText(out, table.note);
+    out += "</p>\n";
+  }
+  if (table.rows.empty()) {
+    out += "<p>";
+    appendText(out, table.empty_text);
+    out += "</p>\n</section>\n";
+    return;
+  }
+  out += "<table class=\"data\">\n<thead><tr>";
+  for (const std::string& c : table.columns) {
+    out += "<th scope=\"col\">";
+    appendText(out, c);
+    out += "</th>";
+  }
+  out += "</tr></thead>\n<tbody>\n";
+  for (const std::vector<std::string>& row : table.rows) {
+    out += "<tr>";
+    for (std::size_t c = 0; c < std::max(row.size(), table.columns.size()); ++c) {
+      out += "<td>";
+      if (c < row.size()) appendText(out, row[c]);
+      out += "</td>";
+    }
+    out += "</tr>\n";
+  }
+  out += "</tbody>\n</table>\n</section>\n";
+}
 
 }  // namespace
 
@@ -388,6 +428,7 @@ std::string renderReportHtml(const std::vector<RunReport>& runs, const ReportNot
     out += "</tbody>\n</table>\n";
   }
   out += "</section>\n";
+  for (std::size_t t = 0; t < notes.tables.size(); ++t) appendTable(out, notes.tables[t], t);
 
   // Plots: the time plots compare the runs; the trajectory plots sit side by side.
   const std::vector<ReportPlot> plots = reportPlots(runs, notes);

@@ -1,17 +1,10 @@
 #include "closed_loop.h"
 
-#include <cmath>
-
 #include "swa/agent/agent.h"
 #include "swa/monitor/swarm_metrics.h"
 #include "swa/sim/world.h"
 
 namespace swa::batch {
-
-double driftWindowStart(const sim::Scenario& s) {
-  const double t = s.gnss.dropout_start_s;
-  return (std::isfinite(t) && t < s.duration_s) ? t : 0.0;
-}
 
 RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& options) {
   sim::World world(scenario);
@@ -20,7 +13,7 @@ RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& option
 
   monitor::MetricsConfig mc;
   mc.formation_radius_m = scenario.agent.formation.radius_m;
-  mc.window_start_s = driftWindowStart(scenario);
+  mc.window_start_s = sim::driftWindowStart(scenario);
   monitor::MetricsAccumulator metrics(mc);
   // Standalone agents estimate in their take-off frame: there is no floating frame to score them against.
   const bool score_estimates = scenario.agent.mode != agent::Mode::kStandalone;

@@ -29,7 +29,4 @@ struct LoopOptions {
 
 RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& options = {});
 
-// The time from which drift and displacement are measured: GNSS loss if it happens during the run, else 0.
-double driftWindowStart(const sim::Scenario& scenario);
-
 }  // namespace swa::batch

@@ -168,7 +168,7 @@ int main(int argc, char** argv) {
     notes.scenario = opt.scenario_path;
     for (int k = 0; k < opt.seeds; ++k) notes.seeds.push_back(scenario.seed + static_cast<std::uint64_t>(k));
     notes.formation_radius_m = scenario.agent.formation.radius_m;
-    notes.gnss_loss_s = batch::driftWindowStart(scenario) > 0.0 ? batch::driftWindowStart(scenario) : monitor::kNaN;
+    notes.gnss_loss_s = sim::driftWindowStart(scenario) > 0.0 ? sim::driftWindowStart(scenario) : monitor::kNaN;
     notes.extra.push_back({"plots", "first seed of each mode; summary.json has every seed and the aggregate"});
     monitor::writeReport((out / "report").string(), report_runs, notes);
     if (!json) throw std::runtime_error("cannot write " + (out / "summary.json").string());

@@ -22,12 +22,20 @@ void expectCohesive(const Stats& s, double tolerance_fraction, const char* what)
   for (const RunResult& r : s.runs) EXPECT_EQ(r.rejected_inputs, 0u) << "seed " << r.seed;
 }
 
-TEST(ClosedLoopCohesion, FourUavsHoldFormationWithin15Percent) {
-  // GIVEN 4 UAVs, defaults (k = 3: each neighbours all others, which over-constrains the fit), GNSS lost at 10 s
+TEST(ClosedLoopCohesion, FourUavsHoldFormationWithin10Percent) {
+  // GIVEN 4 UAVs with k = 2 (the shipped dropout_4), GNSS lost at 10 s
   // WHEN 10 seeds of 120 s run
   const Stats s = runSeeds(shipped("dropout_4"));
-  // THEN d_NB at the end is within 15 % of r, no collision, drift <= 0.08 m/s
-  expectCohesive(s, 0.15, "N = 4");
+  // THEN d_NB at the end is within 10 % of r, no collision, drift <= 0.08 m/s
+  expectCohesive(s, 0.10, "N = 4");
+}
+
+TEST(ClosedLoopCohesion, FourUavsWithThreeNeighboursSettleShort) {
+  // GIVEN 4 UAVs with k = 3: every UAV fits all three others, and four points in a plane cannot all be r apart
+  const Stats s = runSeeds(shipped("dropout_4", {"agent.k=3"}));
+  // THEN the formation is cohesive but settles short of r (measured 8.55 m = 0.855 r): within 15 %, not 10 %
+  expectCohesive(s, 0.15, "N = 4, k = 3");
+  EXPECT_LT(s.mean("mean_neighbor_distance_m"), 0.9 * kR);
 }
 
 TEST(ClosedLoopCohesion, EightUavsHoldFormationWithin10Percent) {

@@ -47,8 +47,19 @@ struct NamedValue {
 // Every Summary field, in declaration order, under its field name.
 std::vector<NamedValue> summaryFields(const Summary& summary);
 
+// The inverse of summaryFields, for reading a summary back (e.g. from a run's summary.json): every key of
+// summaryFields found in `fields` sets its field; keys not found keep the default of Summary{}, unknown keys are
+// ignored. A count field (steps, collisions, ...) takes a finite value rounded to the nearest integer (negative
+// values clamp to 0 for unsigned counts) and keeps its default for NaN.
+Summary summaryFromFields(const std::vector<NamedValue>& fields);
+
 // A flat JSON object with one member per summaryFields entry.
 std::string toJson(const Summary& summary);
+
+// JSON building blocks with the conventions above: a number in the shortest round-trip form, null when not finite;
+// a string quoted with ", \ and control characters escaped (other bytes, UTF-8 included, pass through).
+std::string jsonNumber(double value);
+std::string jsonQuote(std::string_view text);
 
 // Statistics of one key over the runs where it is finite (count of them in `runs`). std is the sample standard
 // deviation (n - 1); 0 for a single run. All NaN when no run has a finite value.

@@ -4,10 +4,11 @@
 // seed), and the same plots as separate .svg files.
 //
 // Contents: notes (scenario, seeds, version, free-form extras), a summary table with one column per run and one row
-// per summaryFields() key (plus the verdicts), then the plots: d_NB over time of every run with the r ± tolerance
-// band, drift velocity, minimum separation with the collision distance, position NEES per step and the running ANEES
-// with the chi-square band of each run, and one top-down trajectory plot per run. Each run keeps its palette colour
-// in every time plot. All text is HTML-escaped. Output is deterministic (no clock, no locale).
+// per summaryFields() key (plus the verdicts), the caller's tables (events, restarts, ...), then the plots: d_NB over
+// time of every run with the r ± tolerance band, drift velocity, minimum separation with the collision distance,
+// position NEES per step and the running ANEES with the chi-square band of each run, and one top-down trajectory plot
+// per run. Each run keeps its palette colour in every time plot. All text is HTML-escaped. Output is deterministic
+// (no clock, no locale).
 
 #include <cstdint>
 #include <limits>
@@ -66,6 +67,17 @@ struct RunReport {
   std::string verdict;  // free text shown under the run's name, e.g. "PASS: d_NB within 3 % of r"
 };
 
+// A table of text shown in its own section after the summary, e.g. the scenario events or the agent restarts of a
+// run. Cells are plain text (escaped when rendered); a row shorter than `columns` is padded with empty cells.
+struct ReportTable {
+  std::string id;     // section id, reduced to [A-Za-z0-9_-] ("table-<id>")
+  std::string title;  // section heading
+  std::string note;   // paragraph under the heading (e.g. what the times mean); empty: none
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+  std::string empty_text = "None.";  // shown instead of the table when there is no row
+};
+
 struct ReportNotes {
   std::string title = "SWA swarm report";
   std::string scenario;
@@ -77,6 +89,7 @@ struct ReportNotes {
   double nees_dof = 2.0;                                          // expected NEES (reference line on the NEES plot)
   double gnss_loss_s = std::numeric_limits<double>::quiet_NaN();  // vertical line on the time plots (NaN: none)
   std::vector<std::pair<std::string, std::string>> extra;         // further notes, "key: value", in this order
+  std::vector<ReportTable> tables;                                // sections after the summary, in this order
 };
 
 struct ReportPlot {

@@ -2,6 +2,7 @@
 // One scenario file describes a whole run: the swarm, the world, the sensors and the agents' parameters. Defaults
 // are DESIGN §4 (the simulator model) and the paper's GNSS-loss experiment. Units are in the names.
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -92,5 +93,13 @@ struct Scenario {
   ClockSetup clock;
   agent::AgentConfig agent;
 };
+
+// The time from which drift, displacement and ANEES are measured (monitor::MetricsConfig::window_start_s): the
+// common GNSS loss if it happens during the run, else 0. Shared by swa_batch and swa_monitor so both score a run
+// over the same window.
+inline double driftWindowStart(const Scenario& s) {
+  const double t = s.gnss.dropout_start_s;
+  return (std::isfinite(t) && t < s.duration_s) ? t : 0.0;
+}
 
 }  // namespace swa::sim

@@ -1,0 +1,66 @@
+#include "combine.h"
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <system_error>
+
+#include "run_files.h"
+#include "run_report.h"
+#include "swa/sim/scenario_io.h"
+
+namespace swa::monitor_node {
+
+int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& err) {
+  std::optional<sim::Scenario> scenario;
+  std::vector<RunRecord> runs;
+  JsonValue combined = JsonValue::object();
+  JsonValue list = JsonValue::array();
+  try {
+    if (!options.scenario_path.empty()) scenario = sim::loadScenario(options.scenario_path, options.overrides);
+    for (const CombineInput& input : options.combine) {
+      LoadedRun loaded = readRunDir(input.dir);
+      loaded.run.label = input.label;
+      loaded.summary.set("label", JsonValue::string(input.label));
+      list.push(std::move(loaded.summary));
+      runs.push_back(std::move(loaded.run));
+    }
+  } catch (const agent::ConfigError& e) {
+    err << "swa_monitor: invalid scenario:\n" << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    err << "swa_monitor --combine: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  combined.set("runs", std::move(list));
+
+  monitor::ReportNotes notes = reportNotes(runs, "SWA monitor report — comparison");
+  if (scenario) {
+    notes.scenario = options.scenario_path;
+    notes.formation_radius_m = scenario->agent.formation.radius_m;
+    const double loss = sim::driftWindowStart(*scenario);
+    notes.gnss_loss_s = loss > 0.0 ? loss : monitor::kNaN;
+  }
+  if (options.tolerance_given) notes.radius_tolerance = options.tolerance;
+
+  namespace fs = std::filesystem;
+  try {
+    std::error_code ec;
+    fs::create_directories(options.out_dir, ec);
+    if (ec) throw std::runtime_error("cannot create " + options.out_dir + ": " + ec.message());
+    const fs::path summary_path = fs::path(options.out_dir) / kSummaryFile;
+    std::ofstream summary(summary_path, std::ios::binary | std::ios::trunc);
+    summary << combined.dump();
+    summary.close();
+    if (!summary) throw std::runtime_error("cannot write " + summary_path.string());
+    const std::vector<std::string> written = monitor::writeReport(options.out_dir, reportRuns(runs), notes);
+    for (const RunRecord& r : runs) out << "swa_monitor: " << r.label << ": " << verdictText(r.verdict) << "\n";
+    out << "swa_monitor: report " << written.front() << "\n";
+  } catch (const std::exception& e) {
+    err << "swa_monitor --combine: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  return exitCode(runs.front().verdict.outcome);
+}
+
+}  // namespace swa::monitor_node

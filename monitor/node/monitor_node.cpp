@@ -1,0 +1,134 @@
+#include "monitor_node.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <utility>
+#include <vector>
+
+#include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SwarmTruthPubSubTypes.h>
+
+#include "msg_convert.h"
+#include "swa/dds/shutdown.h"
+#include "swa/dds/topics.h"
+
+namespace swa::monitor_node {
+namespace {
+
+// Longest single wait, so a signal or the timeout is noticed quickly.
+constexpr auto kPollPeriod = std::chrono::milliseconds(100);
+
+std::string signalName(int signal) {
+  if (signal == SIGINT) return "SIGINT";
+  if (signal == SIGTERM) return "SIGTERM";
+  return "signal " + std::to_string(signal);
+}
+
+}  // namespace
+
+MonitorNode::MonitorNode(LiveRun& run, const MonitorNodeOptions& options, int domain_id,
+                         const std::string& profiles_file)
+    : run_(run), options_(options), pacer_(isatty(fileno(stderr)) != 0) {
+  participant_ = std::make_unique<dds::Participant>("swa_monitor", domain_id, profiles_file);
+  participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
+                                                     [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
+  participant_->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader",
+                                                  [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
+  if (options_.uav_count) {
+    for (int i = 0; i < *options_.uav_count; ++i) subscribeState(i);
+  } else {
+    readers_from_truth_pending_ = true;
+  }
+  std::fprintf(stderr, "swa_monitor: listening on domain %d for %s\n", domain_id,
+               options_.uav_count ? (std::to_string(*options_.uav_count) + " UAV(s)").c_str()
+                                  : "the UAVs of the first truth sample");
+}
+
+MonitorNode::~MonitorNode() { participant_.reset(); }
+
+void MonitorNode::subscribeState(int uav) {
+  if (!state_readers_.insert(uav).second) return;
+  participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(uav), "swa_state_reader",
+                                                  [this, uav](msg::AgentState&& m) {
+                                                    queue_.push(StateInput{uav, std::move(m)});
+                                                  });
+}
+
+RunEnd MonitorNode::run() {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const auto elapsed = [&t0] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  std::optional<double> end_seen_s;
+  std::vector<Input> batch;
+  RunEnd end;
+  while (true) {
+    batch.clear();
+    queue_.drain(batch, kPollPeriod);
+    for (Input& input : batch) process(input);
+    const double now_s = elapsed();
+    showStatus(now_s, false);
+
+    if (dds::shutdownRequested()) {
+      end = {false, "interrupted by " + signalName(dds::shutdownSignal())};
+      break;
+    }
+    if (const std::optional<EventRecord>& e = run_.endEvent()) {
+      if (!end_seen_s) end_seen_s = now_s;
+      // The last truth sample is stamped like the end event; its states may still be on the way.
+      const bool caught_up =
+          run_.newestTruth() && stampSeconds(*run_.newestTruth()) >= e->t_s - 1e-9 && run_.joinIdle();
+      if (caught_up || now_s - *end_seen_s >= options_.end_grace_s) {
+        end = endFromEvent(*e);
+        break;
+      }
+    } else if (options_.timeout_s > 0.0 && now_s >= options_.timeout_s) {
+      end = {false, "no EVENT_SCENARIO_END within " + monitor::formatNumber(options_.timeout_s) + " s (--timeout-s)"};
+      break;
+    }
+  }
+  showStatus(elapsed(), true);
+  return end;
+}
+
+void MonitorNode::process(Input& input) {
+  if (auto* truth = std::get_if<msg::SwarmTruth>(&input)) {
+    if (readers_from_truth_pending_) {
+      // Without a scenario the swarm's size is only known from the truth. States published before these readers
+      // match are lost (VOLATILE): the first steps then lack those estimates.
+      readers_from_truth_pending_ = false;
+      for (const msg::UavTruth& u : truth->uavs()) {
+        if (u.id() <= 100'000) subscribeState(static_cast<int>(u.id()));
+      }
+    }
+    run_.onTruth(fromTruthMsg(*truth));
+  } else if (auto* state = std::get_if<StateInput>(&input)) {
+    run_.onState(state->topic_uav, fromStateMsg(state->state, options_.formation));
+  } else if (auto* event = std::get_if<msg::ScenarioEvent>(&input)) {
+    if (auto record = fromEventMsg(*event)) {
+      run_.onEvent(std::move(*record));
+    } else {
+      run_.onUnknownEvent();
+    }
+  }
+}
+
+void MonitorNode::showStatus(double wall_s, bool last) {
+  if (options_.quiet) return;
+  if (!pacer_.tty()) {
+    if (pacer_.due(run_.status(), wall_s))
+      std::fprintf(stderr, "swa_monitor: %s\n", formatStatus(run_.status()).c_str());
+    return;
+  }
+  if (!last && !pacer_.due(run_.status(), wall_s)) return;
+  const std::string line = formatStatus(run_.status());
+  const std::size_t pad = status_width_ > line.size() ? status_width_ - line.size() : 0;
+  std::fprintf(stderr, "\r%s%s%s", line.c_str(), std::string(pad, ' ').c_str(), last ? "\n" : "");
+  std::fflush(stderr);
+  status_width_ = line.size();
+}
+
+}  // namespace swa::monitor_node

@@ -1,0 +1,69 @@
+#pragma once
+// The monitor as a Fast DDS node: a thin adapter around LiveRun (live_run.h). Reads swa/truth, swa/events and
+// swa/uav<i>/state, hands every sample to one worker thread (the listeners only push into a queue), converts it
+// and feeds the LiveRun, prints the status line, and decides when the run has ended. No metric is computed here.
+
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <variant>
+
+#include <swa/msg/AgentState.h>
+#include <swa/msg/ScenarioEvent.h>
+#include <swa/msg/SwarmTruth.h>
+
+#include "live_record.h"
+#include "live_run.h"
+#include "status_line.h"
+#include "swa/agent/config.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/sample_queue.h"
+
+namespace swa::monitor_node {
+
+struct MonitorNodeOptions {
+  std::optional<int> uav_count;      // state readers for UAVs 0..N-1; nullopt: for the ids of the first truth sample
+  agent::FormationConfig formation;  // what the agents' states are scored with (LiveRunConfig::formation)
+  double timeout_s = 0.0;            // wall seconds without EVENT_SCENARIO_END before giving up; 0 = never
+  bool quiet = false;
+  // After EVENT_SCENARIO_END, wall seconds to wait for the truth samples and states of the last steps (they travel
+  // on other topics and may arrive after the event).
+  double end_grace_s = 3.0;
+};
+
+class MonitorNode {
+ public:
+  // Creates the participant "swa_monitor" and its readers; throws swa::dds::DdsError. `run` must outlive the node.
+  MonitorNode(LiveRun& run, const MonitorNodeOptions& options, int domain_id, const std::string& profiles_file);
+  ~MonitorNode();
+  MonitorNode(const MonitorNode&) = delete;
+  MonitorNode& operator=(const MonitorNode&) = delete;
+
+  // Feeds the LiveRun until the end event (plus the grace), a signal, or the timeout. Does not call finish().
+  RunEnd run();
+
+ private:
+  struct StateInput {
+    int topic_uav = 0;
+    msg::AgentState state;
+  };
+  using Input = std::variant<msg::SwarmTruth, StateInput, msg::ScenarioEvent>;
+
+  void subscribeState(int uav);
+  void process(Input& input);
+  void showStatus(double wall_s, bool last);
+
+  LiveRun& run_;
+  MonitorNodeOptions options_;
+  StatusPacer pacer_;
+  std::size_t status_width_ = 0;  // length of the line last shown in place (to blank its rest)
+  std::set<int> state_readers_;
+  bool readers_from_truth_pending_ = false;
+
+  // The queue outlives the participant, whose listeners push into it.
+  dds::SampleQueue<Input> queue_;
+  std::unique_ptr<dds::Participant> participant_;
+};
+
+}  // namespace swa::monitor_node

@@ -1,0 +1,130 @@
+#include "run_report.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "swa/monitor/svg_plot.h"
+
+namespace swa::monitor_node {
+namespace {
+
+std::string uavText(int uav) { return uav == kAllUavs ? "all" : std::to_string(uav); }
+
+std::string droppedText(const RunRecord& run) {
+  std::string out;
+  for (const auto& [key, count] : run.counts) {
+    if (key.rfind("dropped_", 0) != 0 || count == 0) continue;
+    std::string name = key.substr(8);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(count);
+  }
+  return out.empty() ? "none" : out;
+}
+
+std::string restartsText(const RunRecord& run) {
+  std::string out = std::to_string(run.restarts.restarts.size());
+  if (run.restarts.malformed_rows > 0) {
+    out += " (" + std::to_string(run.restarts.malformed_rows) + " malformed row(s) in the restart log skipped)";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<monitor::RunReport> reportRuns(const std::vector<RunRecord>& runs) {
+  std::vector<monitor::RunReport> out;
+  for (const RunRecord& r : runs) out.push_back({r.label, r.summary, r.series, r.trajectories, verdictText(r.verdict)});
+  return out;
+}
+
+monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs) {
+  monitor::ReportTable t;
+  t.id = "events";
+  t.title = "Scenario events";
+  const bool many = runs.size() > 1;
+  if (many) t.columns.push_back("run");
+  for (const char* c : {"sim time [s]", "event", "UAV", "other UAV", "value", "detail"}) t.columns.push_back(c);
+  std::size_t total = 0;
+  for (const RunRecord& run : runs) {
+    for (const EventRecord& e : run.events) {
+      if (++total > kMaxTableRows) continue;
+      std::vector<std::string> row;
+      if (many) row.push_back(run.label);
+      row.push_back(monitor::formatFixed(e.t_s, 2));
+      row.push_back(e.kind);
+      row.push_back(uavText(e.uav));
+      row.push_back(e.other_uav < 0 ? "" : std::to_string(e.other_uav));
+      row.push_back(e.value == 0.0 ? "" : monitor::formatReportValue(e.value));
+      row.push_back(e.text);
+      t.rows.push_back(std::move(row));
+    }
+  }
+  t.note =
+      "As published by the simulator on swa/events, at the sim time they took effect. value: separation [m] of a "
+      "collision, setpoint age [s] of a failsafe, agent timeout [s] of a dead agent.";
+  if (total > kMaxTableRows) {
+    t.note += " Only the first " + std::to_string(kMaxTableRows) + " of " + std::to_string(total) +
+              " events are listed; events.csv and summary.json have them all.";
+  }
+  t.empty_text = "No event received.";
+  return t;
+}
+
+monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs) {
+  monitor::ReportTable t;
+  t.id = "restarts";
+  t.title = "Agent restarts";
+  const bool many = runs.size() > 1;
+  if (many) t.columns.push_back("run");
+  for (const char* c : {"wall time [s]", "UAV", "exit status", "restart count", "backoff [s]"}) t.columns.push_back(c);
+  std::size_t total = 0;
+  int malformed = 0;
+  for (const RunRecord& run : runs) {
+    malformed += run.restarts.malformed_rows;
+    for (const AgentRestart& r : run.restarts.restarts) {
+      if (++total > kMaxTableRows) continue;
+      std::vector<std::string> row;
+      if (many) row.push_back(run.label);
+      row.push_back(monitor::formatFixed(r.wall_s, 2));
+      row.push_back(std::to_string(r.uav));
+      row.push_back(r.exit_status);
+      row.push_back(std::to_string(r.restart_count));
+      row.push_back(monitor::formatFixed(r.backoff_s, 2));
+      t.rows.push_back(std::move(row));
+    }
+  }
+  t.note = "From the launcher's restart log; wall time is seconds since the launcher started.";
+  if (malformed > 0) t.note += " " + std::to_string(malformed) + " malformed row(s) skipped (see summary.json).";
+  if (total > kMaxTableRows) t.note += " Only the first " + std::to_string(kMaxTableRows) + " are listed.";
+  t.empty_text = "No agent restart.";
+  return t;
+}
+
+monitor::ReportNotes reportNotes(const std::vector<RunRecord>& runs, const std::string& title) {
+  monitor::ReportNotes notes;
+  notes.title = title;
+  if (!runs.empty()) {
+    const RunRecord& first = runs.front();
+    notes.scenario = first.scenario;
+    notes.formation_radius_m = first.formation_radius_m;
+    notes.radius_tolerance = first.tolerance;
+    notes.collision_distance_m = first.collision_distance_m;
+    notes.gnss_loss_s = first.window_start_s > 0.0 ? first.window_start_s : monitor::kNaN;
+  }
+  for (const RunRecord& run : runs) {
+    if (run.seed && std::find(notes.seeds.begin(), notes.seeds.end(), *run.seed) == notes.seeds.end()) {
+      notes.seeds.push_back(*run.seed);
+    }
+    const std::string prefix = runs.size() > 1 ? run.label + ": " : "";
+    notes.extra.push_back({prefix + "Verdict", verdictText(run.verdict)});
+    notes.extra.push_back({prefix + "Mode", run.mode});
+    notes.extra.push_back({prefix + "End", run.end_reason});
+    notes.extra.push_back({prefix + "Agent restarts", restartsText(run)});
+    notes.extra.push_back({prefix + "Dropped inputs", droppedText(run)});
+  }
+  notes.tables.push_back(eventsTable(runs));
+  notes.tables.push_back(restartsTable(runs));
+  return notes;
+}
+
+}  // namespace swa::monitor_node

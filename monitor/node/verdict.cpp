@@ -1,0 +1,79 @@
+#include "verdict.h"
+
+#include <cmath>
+
+#include "monitor_options.h"
+#include "swa/monitor/svg_plot.h"
+
+namespace swa::monitor_node {
+namespace {
+
+std::string fixed(double v, int decimals) { return monitor::formatFixed(v, decimals); }
+
+}  // namespace
+
+Verdict judge(const VerdictInput& in) {
+  Verdict v;
+  const monitor::Summary& s = in.summary;
+  if (!in.saw_truth) {
+    v.outcome = Outcome::kIncomplete;
+    v.reasons.push_back("no ground truth received");
+    if (!in.completed && !in.end_reason.empty()) v.reasons.push_back("run ended: " + in.end_reason);
+    return v;
+  }
+  if (!in.completed) {
+    v.reasons.push_back("scenario not completed: " + (in.end_reason.empty() ? "no end event" : in.end_reason));
+  }
+
+  const double r = in.formation_radius_m;
+  const double d = s.mean_neighbor_distance_m;
+  if (!std::isfinite(d)) {
+    v.reasons.push_back("final d_NB undefined (fewer than 2 UAVs)");
+  } else if (std::fabs(d - r) > in.tolerance * r) {
+    v.reasons.push_back("final d_NB " + fixed(d, 3) + " m outside r = " + fixed(r, 3) + " m ± " +
+                        fixed(100.0 * in.tolerance, 1) + " % [" + fixed(r * (1.0 - in.tolerance), 3) + ", " +
+                        fixed(r * (1.0 + in.tolerance), 3) + "] m");
+  }
+  if (s.collisions > 0) v.reasons.push_back(std::to_string(s.collisions) + " collision(s)");
+  if (s.groups != 1) v.reasons.push_back(std::to_string(s.groups) + " groups at the end (expected 1)");
+
+  if (!in.completed) {
+    v.outcome = Outcome::kIncomplete;
+  } else {
+    v.outcome = v.reasons.empty() ? Outcome::kPass : Outcome::kFail;
+  }
+  return v;
+}
+
+const char* toString(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::kPass: return "PASS";
+    case Outcome::kFail: return "FAIL";
+    case Outcome::kIncomplete: return "INCOMPLETE";
+  }
+  return "INCOMPLETE";
+}
+
+std::optional<Outcome> parseOutcome(const std::string& text) {
+  for (const Outcome o : {Outcome::kPass, Outcome::kFail, Outcome::kIncomplete}) {
+    if (text == toString(o)) return o;
+  }
+  return std::nullopt;
+}
+
+int exitCode(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::kPass: return kExitPass;
+    case Outcome::kFail: return kExitFail;
+    case Outcome::kIncomplete: return kExitIncomplete;
+  }
+  return kExitIncomplete;
+}
+
+std::string verdictText(const Verdict& verdict) {
+  std::string out = toString(verdict.outcome);
+  for (std::size_t k = 0; k < verdict.reasons.size(); ++k) out += (k == 0 ? ": " : "; ") + verdict.reasons[k];
+  return out;
+}
+
+}  // namespace swa::monitor_node

@@ -1,0 +1,40 @@
+#pragma once
+// The run's verdict and the process exit status that carries it (monitor_options.h ExitCode).
+//   PASS        the scenario completed, final d_NB within r (1 ± tolerance), no collision, one group at the end
+//   FAIL        completed, but at least one of those criteria failed
+//   INCOMPLETE  the scenario did not complete (or no truth was seen at all): the numbers describe a partial run
+// INCOMPLETE wins over FAIL; its reasons still list the criteria that failed on the partial run, for the record.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swa/monitor/accumulator.h"
+
+namespace swa::monitor_node {
+
+enum class Outcome { kPass, kFail, kIncomplete };
+
+struct Verdict {
+  Outcome outcome = Outcome::kIncomplete;
+  std::vector<std::string> reasons;  // empty for PASS
+};
+
+struct VerdictInput {
+  bool completed = false;  // EVENT_SCENARIO_END "completed" received
+  std::string end_reason;  // why the run ended, when not completed
+  bool saw_truth = false;  // at least one step was scored
+  monitor::Summary summary;
+  double formation_radius_m = 10.0;
+  double tolerance = 0.10;
+};
+
+Verdict judge(const VerdictInput& input);
+
+const char* toString(Outcome outcome);                         // "PASS", "FAIL", "INCOMPLETE"
+std::optional<Outcome> parseOutcome(const std::string& text);  // the inverse
+int exitCode(Outcome outcome);
+// "PASS", or "FAIL: reason; reason" (the report's verdict line).
+std::string verdictText(const Verdict& verdict);
+
+}  // namespace swa::monitor_node

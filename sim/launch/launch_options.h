@@ -1,0 +1,32 @@
+#pragma once
+// Command line of swa_launch. Parsing is separate from main() so it can be tested; every problem is reported at once.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swa/agent/config.h"
+
+namespace swa::launch {
+
+struct LaunchOptions {
+  std::string scenario_path;              // --scenario FILE (required)
+  std::vector<std::string> overrides;     // --set key=value, in order; passed to sim, agents' config and monitor
+  std::string out_dir = "out/launch";     // --out DIR
+  std::optional<agent::Mode> compare;     // --compare MODE: a second run in that mode, same seed, one report
+  std::optional<std::string> domain;      // --domain D (else SWA_DOMAIN, else 0)
+  std::string bin_dir;                    // --bin-dir DIR (default: the directory of swa_launch itself)
+  int max_restarts = 5;                   // per agent and run; then the agent stays down
+  double restart_backoff_s = 0.5;         // first restart delay; doubles per restart of the same agent
+  double restart_backoff_max_s = 8.0;
+  double agent_timeout_s = 2.0;           // passed to swa_sim --agent-timeout-s
+  double timeout_s = 0.0;                 // wall bound of each run; 0 = none
+  double grace_s = 10.0;                  // SIGTERM -> SIGKILL grace when stopping children
+  bool help = false;
+};
+
+// Accepts "--opt value" and "--opt=value". Throws std::invalid_argument listing every problem, one per line.
+LaunchOptions parseLaunchOptions(const std::vector<std::string>& args);
+std::string launchUsage();
+
+}  // namespace swa::launch

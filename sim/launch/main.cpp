@@ -1,0 +1,145 @@
+// swa_launch: a scenario as processes (sim, one agent per UAV, monitor), supervised. See --help (launch_options.cpp).
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "child_process.h"
+#include "launch_options.h"
+#include "run_supervisor.h"
+#include "shm_janitor.h"
+#include "swa/agent/config_io.h"
+#include "swa/dds/options.h"
+#include "swa/dds/shutdown.h"
+#include "swa/sim/scenario_io.h"
+
+namespace swa::launch {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path ownDirectory() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::path(".") : self.parent_path();
+}
+
+// Every executable present and runnable, or the list of what is not.
+Binaries findBinaries(const std::string& bin_dir, std::vector<std::string>& problems) {
+  const fs::path dir = bin_dir.empty() ? ownDirectory() : fs::path(bin_dir);
+  Binaries b{(dir / "swa_sim").string(), (dir / "swa_agent").string(), (dir / "swa_monitor").string()};
+  for (const std::string& p : {b.sim, b.agent, b.monitor}) {
+    if (::access(p.c_str(), X_OK) != 0) problems.push_back("no executable " + p + " (build first, or --bin-dir)");
+  }
+  return b;
+}
+
+RunSpec makeSpec(const LaunchOptions& o, const std::string& label, const fs::path& dir,
+                 const std::vector<std::string>& extra_overrides) {
+  RunSpec spec;
+  spec.label = label;
+  spec.dir = dir;
+  spec.overrides = o.overrides;
+  spec.overrides.insert(spec.overrides.end(), extra_overrides.begin(), extra_overrides.end());
+  const sim::Scenario scenario = sim::loadScenario(o.scenario_path, spec.overrides);
+  spec.uav_count = scenario.uav_count;
+  spec.agent_config_yaml = agent::toYaml(scenario.agent);
+  return spec;
+}
+
+int launchMain(int argc, char** argv) {
+  LaunchOptions o;
+  std::vector<RunSpec> runs;
+  Binaries bin;
+  int domain = 0;
+  // Everything that can be wrong is found before any process starts.
+  try {
+    o = parseLaunchOptions(std::vector<std::string>(argv + 1, argv + argc));
+    if (o.help) {
+      std::fputs(launchUsage().c_str(), stdout);
+      return 0;
+    }
+    domain = dds::resolveDomain(o.domain);
+    const sim::Scenario base = sim::loadScenario(o.scenario_path, o.overrides);
+    const fs::path out(o.out_dir);
+    if (o.compare && *o.compare != base.agent.mode) {
+      const std::string first = agent::toString(base.agent.mode);
+      const std::string second = agent::toString(*o.compare);
+      runs.push_back(makeSpec(o, first, out / first, {}));
+      runs.push_back(makeSpec(o, second, out / second, {"agent.mode=" + second}));
+    } else {
+      runs.push_back(makeSpec(o, agent::toString(base.agent.mode), out, {}));
+    }
+    std::vector<std::string> problems;
+    bin = findBinaries(o.bin_dir, problems);
+    if (!problems.empty()) {
+      std::string all;
+      for (const std::string& p : problems) all += (all.empty() ? "" : "\n") + p;
+      throw std::runtime_error(all);
+    }
+  } catch (const agent::ConfigError& e) {
+    std::fprintf(stderr, "swa_launch: invalid scenario:\n%s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "swa_launch: %s\n(see swa_launch --help)\n", e.what());
+    return 2;
+  }
+
+  dds::installShutdownHandlers();
+  dds::acceptShutdownSignals();  // single-threaded: the flag is polled by the supervision loop
+  const ShmJanitor janitor;
+  std::vector<RunOutcome> outcomes;
+  try {
+    for (const RunSpec& spec : runs) {
+      if (dds::shutdownRequested()) break;
+      outcomes.push_back(superviseRun(o, bin, domain, spec));
+      const RunOutcome& r = outcomes.back();
+      std::printf("swa_launch [%s]: %s%s; %d agent restart(s); %s\n", spec.label.c_str(),
+                  r.verdict.empty() ? "no verdict" : r.verdict.c_str(), r.interrupted ? " (interrupted)" : "",
+                  r.restarts, (spec.dir / "report.html").c_str());
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "swa_launch: %s\n", e.what());
+    janitor.clean();
+    return 3;
+  }
+  int status = outcomes.empty() ? 3 : outcomes.front().monitor_status;
+
+  if (runs.size() > 1 && outcomes.size() == runs.size()) {
+    // One report with both runs side by side (the paper's comparison).
+    std::vector<std::string> argv_combine{bin.monitor, "--combine"};
+    for (const RunSpec& r : runs) argv_combine.push_back(r.label + "=" + r.dir.string());
+    argv_combine.push_back("--out");
+    argv_combine.push_back(o.out_dir);
+    argv_combine.push_back("--scenario");
+    argv_combine.push_back(o.scenario_path);
+    for (const std::string& s : o.overrides) {
+      argv_combine.push_back("--set");
+      argv_combine.push_back(s);
+    }
+    ChildProcess combine(argv_combine, (fs::path(o.out_dir) / "combine.log").string());
+    while (combine.running()) ::usleep(20000);
+    const int c = combine.poll().value_or(-1);
+    if (c == 0 || c == 1 || c == 3) {
+      std::printf("swa_launch: comparison report %s\n", (fs::path(o.out_dir) / "report.html").c_str());
+    } else {
+      std::printf("swa_launch: the comparison report failed (%s, see %s)\n", describeStatus(c).c_str(),
+                  (fs::path(o.out_dir) / "combine.log").c_str());
+      if (status == 0) status = 3;
+    }
+  }
+  const std::vector<std::string> removed = janitor.clean();
+  if (!removed.empty()) {
+    std::printf("swa_launch: removed %zu shared-memory file(s) left by killed processes\n", removed.size());
+  }
+  return status;
+}
+
+}  // namespace
+}  // namespace swa::launch
+
+int main(int argc, char** argv) { return swa::launch::launchMain(argc, argv); }

@@ -1,0 +1,267 @@
+#include "run_supervisor.h"
+
+#include <signal.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "child_process.h"
+#include "restart_policy.h"
+#include "swa/dds/shutdown.h"
+
+namespace swa::launch {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr auto kPollPeriod = std::chrono::milliseconds(20);
+// The monitor ends on the simulator's EVENT_SCENARIO_END; this bounds the wait when it never arrives.
+constexpr double kMonitorAfterSimS = 30.0;
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+struct AgentSlot {
+  std::unique_ptr<ChildProcess> process;
+  int restarts = 0;
+  std::optional<Clock::time_point> restart_due;
+  bool given_up = false;
+};
+
+// The "verdict" member of the monitor's flat summary.json, without a JSON parser: our own writer puts it on one line.
+std::string readVerdict(const fs::path& summary) {
+  std::ifstream in(summary);
+  std::string line;
+  const std::string key = "\"verdict\": \"";
+  while (std::getline(in, line)) {
+    const auto at = line.find(key);
+    if (at == std::string::npos) continue;
+    const auto start = at + key.size();
+    const auto end = line.find('"', start);
+    return line.substr(start, end == std::string::npos ? std::string::npos : end - start);
+  }
+  return "";
+}
+
+class Supervisor {
+ public:
+  Supervisor(const LaunchOptions& options, const Binaries& bin, int domain, const RunSpec& spec)
+      : o_(options),
+        bin_(bin),
+        domain_(std::to_string(domain)),
+        spec_(spec),
+        logs_(spec.dir / "logs"),
+        policy_(options.max_restarts, options.restart_backoff_s, options.restart_backoff_max_s),
+        agents_(static_cast<std::size_t>(spec.uav_count)) {}
+
+  RunOutcome run() {
+    prepareDirectory();
+    t0_ = Clock::now();
+    std::printf("swa_launch [%s]: sim + %d agents + monitor on DDS domain %s, logs in %s\n", spec_.label.c_str(),
+                spec_.uav_count, domain_.c_str(), logs_.c_str());
+    std::fflush(stdout);
+    startMonitor();
+    for (int i = 0; i < spec_.uav_count; ++i) startAgent(i);
+    startSim();
+    supervise();
+    stopAll();
+    outcome_.verdict = readVerdict(spec_.dir / "summary.json");
+    return outcome_;
+  }
+
+ private:
+  void prepareDirectory() {
+    std::error_code ec;
+    fs::remove_all(logs_, ec);  // logs of an earlier run in the same directory would be appended to
+    for (const char* stale : {"summary.json", "sim_summary.json"}) fs::remove(spec_.dir / stale, ec);
+    fs::create_directories(logs_);
+    std::ofstream config(spec_.dir / "agent.yaml");
+    config << "# Agent configuration implied by " << o_.scenario_path << " (written by swa_launch)\n"
+           << spec_.agent_config_yaml;
+    std::ofstream restarts(logs_ / "restarts.csv");
+    restarts << "wall_s,uav,exit_status,restart_count,backoff_s\n";
+    if (!config.flush() || !restarts.flush()) throw std::runtime_error("cannot write into " + spec_.dir.string());
+  }
+
+  std::vector<std::string> scenarioArgs() const {
+    std::vector<std::string> a{"--scenario", o_.scenario_path};
+    for (const std::string& s : spec_.overrides) {
+      a.push_back("--set");
+      a.push_back(s);
+    }
+    a.push_back("--domain");
+    a.push_back(domain_);
+    return a;
+  }
+
+  void startMonitor() {
+    std::vector<std::string> argv{bin_.monitor};
+    for (const std::string& a : scenarioArgs()) argv.push_back(a);
+    for (const std::string& a : {std::string("--label"), spec_.label, std::string("--out"), spec_.dir.string(),
+                                 std::string("--restarts"), (logs_ / "restarts.csv").string()}) {
+      argv.push_back(a);
+    }
+    monitor_ = std::make_unique<ChildProcess>(argv, (logs_ / "monitor.log").string());
+  }
+
+  void startSim() {
+    std::vector<std::string> argv{bin_.sim};
+    for (const std::string& a : scenarioArgs()) argv.push_back(a);
+    for (const std::string& a :
+         {std::string("--wait-monitors"), std::string("1"), std::string("--agent-timeout-s"),
+          std::to_string(o_.agent_timeout_s), std::string("--summary-out"), (spec_.dir / "sim_summary.json").string()}) {
+      argv.push_back(a);
+    }
+    sim_ = std::make_unique<ChildProcess>(argv, (logs_ / "sim.log").string());
+  }
+
+  void startAgent(int i) {
+    const fs::path log = logs_ / ("agent_" + std::to_string(i) + ".log");
+    AgentSlot& slot = agents_[static_cast<std::size_t>(i)];
+    if (slot.restarts > 0) {
+      std::ofstream(log, std::ios::app) << "\n==== swa_launch: restart " << slot.restarts << " at " << secondsSince(t0_)
+                                        << " s ====\n";
+    }
+    slot.process = std::make_unique<ChildProcess>(
+        std::vector<std::string>{bin_.agent, "--id", std::to_string(i), "--domain", domain_, "--config",
+                                 (spec_.dir / "agent.yaml").string()},
+        log.string());
+  }
+
+  void requestStop(const char* why) {
+    if (stopping_) return;
+    stopping_ = true;
+    outcome_.interrupted = true;
+    std::printf("swa_launch [%s]: %s: ending the run\n", spec_.label.c_str(), why);
+    std::fflush(stdout);
+    // The simulator first: it publishes EVENT_SCENARIO_END ("interrupted"), so the monitor writes what it has.
+    if (sim_) sim_->signal(SIGTERM);
+  }
+
+  void superviseAgents() {
+    for (int i = 0; i < spec_.uav_count; ++i) {
+      AgentSlot& slot = agents_[static_cast<std::size_t>(i)];
+      if (!slot.process || slot.given_up) continue;
+      const std::optional<int> status = slot.process->poll();
+      if (!status) continue;
+      if (!slot.restart_due) {
+        if (!policy_.allowed(slot.restarts)) {
+          slot.given_up = true;
+          std::printf("swa_launch [%s]: agent %d ended (%s); %d restarts used, leaving it down\n", spec_.label.c_str(),
+                      i, describeStatus(*status).c_str(), slot.restarts);
+          std::fflush(stdout);
+          continue;
+        }
+        const double delay = policy_.delay(slot.restarts);
+        slot.restart_due = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(delay));
+        std::printf("swa_launch [%s]: agent %d ended (%s) at %.1f s; restarting in %.1f s\n", spec_.label.c_str(), i,
+                    describeStatus(*status).c_str(), secondsSince(t0_), delay);
+        std::fflush(stdout);
+        last_exit_[i] = {*status, delay};
+        continue;
+      }
+      if (Clock::now() < *slot.restart_due) continue;
+      slot.restart_due.reset();
+      ++slot.restarts;
+      ++outcome_.restarts;
+      const auto [exit_status, delay] = last_exit_[i];
+      std::ofstream(logs_ / "restarts.csv", std::ios::app)
+          << secondsSince(t0_) << ',' << i << ',' << exit_status << ',' << slot.restarts << ',' << delay << '\n';
+      startAgent(i);
+    }
+  }
+
+  void supervise() {
+    std::optional<Clock::time_point> sim_done_at;
+    while (true) {
+      if (dds::shutdownRequested()) requestStop(dds::shutdownSignal() == SIGINT ? "SIGINT" : "SIGTERM");
+      if (o_.timeout_s > 0.0 && secondsSince(t0_) > o_.timeout_s) requestStop("--timeout-s reached");
+
+      if (!sim_done_at) {
+        if (const auto s = sim_->poll()) {
+          sim_done_at = Clock::now();
+          outcome_.sim_status = *s;
+          if (*s != 0 && !stopping_) {
+            std::printf("swa_launch [%s]: swa_sim ended with %s (see %s)\n", spec_.label.c_str(),
+                        describeStatus(*s).c_str(), (logs_ / "sim.log").c_str());
+          }
+        }
+      }
+      if (const auto m = monitor_->poll()) {
+        if (!sim_done_at) {
+          std::printf("swa_launch [%s]: swa_monitor ended early with %s (see %s)\n", spec_.label.c_str(),
+                      describeStatus(*m).c_str(), (logs_ / "monitor.log").c_str());
+          requestStop("monitor gone");
+        }
+        break;
+      }
+      if (sim_done_at && std::chrono::duration<double>(Clock::now() - *sim_done_at).count() > kMonitorAfterSimS) {
+        std::printf("swa_launch [%s]: no verdict from swa_monitor %.0f s after the simulator ended; stopping it\n",
+                    spec_.label.c_str(), kMonitorAfterSimS);
+        break;
+      }
+      // Restarting makes sense only while the world runs.
+      if (!sim_done_at && !stopping_) superviseAgents();
+      std::fflush(stdout);
+      std::this_thread::sleep_for(kPollPeriod);
+    }
+  }
+
+  // SIGTERM to every child still running, then SIGKILL after the grace period; all reaped.
+  void stopAll() {
+    std::vector<ChildProcess*> all{sim_.get(), monitor_.get()};
+    for (AgentSlot& a : agents_) all.push_back(a.process.get());
+    // The monitor may still be writing its report: it gets the signal last among equals, after the sim.
+    for (ChildProcess* c : all) {
+      if (c != nullptr && c != monitor_.get()) c->signal(SIGTERM);
+    }
+    if (monitor_->running()) monitor_->signal(SIGTERM);
+    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o_.grace_s));
+    while (Clock::now() < deadline) {
+      bool any = false;
+      for (ChildProcess* c : all) any = any || (c != nullptr && c->running());
+      if (!any) break;
+      std::this_thread::sleep_for(kPollPeriod);
+    }
+    for (ChildProcess* c : all) {
+      if (c != nullptr && c->running()) {
+        std::printf("swa_launch [%s]: pid %d did not stop within %.0f s; killing it\n", spec_.label.c_str(),
+                    static_cast<int>(c->pid()), o_.grace_s);
+        c->signal(SIGKILL);
+      }
+    }
+    for (ChildProcess* c : all) {
+      while (c != nullptr && c->running()) std::this_thread::sleep_for(kPollPeriod);
+    }
+    const std::optional<int> m = monitor_->poll();
+    outcome_.monitor_status = (m && (*m == 0 || *m == 1 || *m == 3)) ? *m : 3;
+    if (outcome_.sim_status == -1) outcome_.sim_status = sim_->poll().value_or(-1);
+  }
+
+  const LaunchOptions& o_;
+  const Binaries& bin_;
+  std::string domain_;
+  RunSpec spec_;
+  fs::path logs_;
+  RestartPolicy policy_;
+  Clock::time_point t0_;
+  std::unique_ptr<ChildProcess> sim_, monitor_;
+  std::vector<AgentSlot> agents_;
+  std::map<int, std::pair<int, double>> last_exit_;  // uav -> (exit status, back-off) of the pending restart
+  bool stopping_ = false;
+  RunOutcome outcome_;
+};
+
+}  // namespace
+
+RunOutcome superviseRun(const LaunchOptions& options, const Binaries& bin, int domain, const RunSpec& spec) {
+  return Supervisor(options, bin, domain, spec).run();
+}
+
+}  // namespace swa::launch

@@ -1,0 +1,170 @@
+#pragma once
+// The "no inter-agent communication" audit (DESIGN §1): given every reader and writer seen on a domain, which agent
+// endpoints break the rule that agent I reads only swa/uav<I>/{imu,detections,gnss} (and swa/clock) and writes only
+// swa/uav<I>/{cmd_vel,state}. Pure, no DDS include: test_isolation feeds it what Fast DDS discovery reported,
+// test_isolation_audit feeds it synthetic lists (including planted violations, so the audit is known to fail).
+//
+// An agent is a participant named swa_agent_<I> (agent/node/agent_node.cpp). Participants are told apart by GUID
+// prefix, not by name, so two processes claiming the same name are still audited against each other.
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "swa/dds/topics.h"
+
+namespace swa::testing {
+
+enum class EndpointKind { kReader, kWriter };
+
+struct Endpoint {
+  EndpointKind kind = EndpointKind::kReader;
+  std::string participant;       // the name the participant announced; empty if its announcement was never seen
+  std::string participant_guid;  // GUID prefix of the participant, as text
+  std::string topic;
+  std::string type;
+};
+
+constexpr const char* kAgentNamePrefix = "swa_agent_";
+
+// The UAV index of a participant named swa_agent_<I> (I in decimal as std::to_string writes it); nullopt otherwise.
+inline std::optional<int> agentIndex(const std::string& participant_name) {
+  const std::string prefix = kAgentNamePrefix;
+  if (participant_name.rfind(prefix, 0) != 0) return std::nullopt;
+  const std::string digits = participant_name.substr(prefix.size());
+  if (digits.empty() || digits.size() > 6 || (digits.size() > 1 && digits[0] == '0')) return std::nullopt;
+  if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
+  return std::stoi(digits);
+}
+
+namespace detail {
+
+inline std::string who(const Endpoint& e) {
+  return (e.participant.empty() ? std::string("<unnamed>") : e.participant) + " [" + e.participant_guid + "]";
+}
+
+inline bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+}  // namespace detail
+
+// Every breach of the isolation rules, one readable line each; empty when the endpoints are clean:
+//  - an endpoint whose participant never announced a name (it could be an agent: it cannot be cleared);
+//  - a participant whose name starts with swa_agent_ but is not swa_agent_<I> (an agent that cannot be placed);
+//  - an agent reading swa/truth (ground truth is for the monitor only);
+//  - an agent reading anything outside swa/uav<I>/ other than swa/clock, or writing anything outside swa/uav<I>/;
+//  - an agent reading a topic that another agent participant writes.
+inline std::vector<std::string> auditIsolation(const std::vector<Endpoint>& endpoints) {
+  std::vector<std::string> violations;
+  std::set<std::string> unnamed;
+  for (const Endpoint& e : endpoints) {
+    if (e.participant.empty() && unnamed.insert(e.participant_guid).second) {
+      violations.push_back("participant [" + e.participant_guid + "] has endpoints but never announced its name");
+    }
+  }
+  std::set<std::string> misnamed;
+  for (const Endpoint& e : endpoints) {
+    if (detail::startsWith(e.participant, kAgentNamePrefix) && !agentIndex(e.participant) &&
+        misnamed.insert(e.participant_guid).second) {
+      violations.push_back(detail::who(e) + " is named like an agent but not swa_agent_<I>");
+    }
+  }
+  for (const Endpoint& e : endpoints) {
+    const std::optional<int> id = agentIndex(e.participant);
+    if (!id) continue;
+    const std::string own = dds::topics::uavPrefix(*id);
+    if (e.kind == EndpointKind::kWriter) {
+      if (!detail::startsWith(e.topic, own)) {
+        violations.push_back(detail::who(e) + " writes " + e.topic + ", outside its own namespace " + own);
+      }
+      continue;
+    }
+    if (e.topic == dds::topics::kTruth) {
+      violations.push_back(detail::who(e) + " reads " + e.topic + ": ground truth is for the monitor only");
+    } else if (e.topic != dds::topics::kClock && !detail::startsWith(e.topic, own)) {
+      violations.push_back(detail::who(e) + " reads " + e.topic + ", outside its own namespace " + own +
+                           " and the clock");
+    }
+    for (const Endpoint& w : endpoints) {
+      if (w.kind == EndpointKind::kWriter && w.topic == e.topic && agentIndex(w.participant) &&
+          w.participant_guid != e.participant_guid) {
+        violations.push_back(detail::who(e) + " reads " + e.topic + ", which agent " + detail::who(w) + " writes");
+      }
+    }
+  }
+  return violations;
+}
+
+// Completeness, so that the isolation audit cannot pass on too little: each agent 0..agent_count-1 is exactly one
+// participant, and it has exactly one reader on each of swa/uav<I>/{imu,detections,gnss} (one on swa/clock
+// allowed), exactly one writer on each of swa/uav<I>/{cmd_vel,state}, and nothing else. Agents with an index
+// outside 0..agent_count-1 are reported too.
+inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>& endpoints, int agent_count) {
+  using Key = std::pair<EndpointKind, std::string>;
+  std::map<int, std::map<std::string, std::map<Key, int>>> seen;  // agent -> participant guid -> endpoint -> count
+  for (const Endpoint& e : endpoints) {
+    if (const std::optional<int> id = agentIndex(e.participant)) ++seen[*id][e.participant_guid][{e.kind, e.topic}];
+  }
+  std::vector<std::string> problems;
+  for (const auto& [id, participants] : seen) {
+    if (id >= agent_count) {
+      problems.push_back(kAgentNamePrefix + std::to_string(id) + " is not one of the " +
+                         std::to_string(agent_count) + " agents of this run");
+    }
+  }
+  const auto kindName = [](EndpointKind k) { return k == EndpointKind::kReader ? "reader" : "writer"; };
+  for (int id = 0; id < agent_count; ++id) {
+    const std::string name = kAgentNamePrefix + std::to_string(id);
+    const auto it = seen.find(id);
+    if (it == seen.end()) {
+      problems.push_back(name + " was never discovered with any endpoint");
+      continue;
+    }
+    if (it->second.size() != 1) {
+      problems.push_back(std::to_string(it->second.size()) + " participants are named " + name);
+      continue;
+    }
+    const std::map<Key, int>& have = it->second.begin()->second;
+    const std::map<Key, bool> expected = {  // endpoint -> required
+        {{EndpointKind::kReader, dds::topics::imu(id)}, true},
+        {{EndpointKind::kReader, dds::topics::detections(id)}, true},
+        {{EndpointKind::kReader, dds::topics::gnss(id)}, true},
+        {{EndpointKind::kReader, dds::topics::kClock}, false},
+        {{EndpointKind::kWriter, dds::topics::cmdVel(id)}, true},
+        {{EndpointKind::kWriter, dds::topics::state(id)}, true}};
+    for (const auto& [key, required] : expected) {
+      const auto h = have.find(key);
+      const int count = h == have.end() ? 0 : h->second;
+      if (count == 0 && required) problems.push_back(name + " has no " + kindName(key.first) + " on " + key.second);
+      if (count > 1) {
+        problems.push_back(name + " has " + std::to_string(count) + " " + kindName(key.first) + "s on " + key.second);
+      }
+    }
+    for (const auto& [key, count] : have) {
+      if (expected.count(key) == 0) {
+        problems.push_back(name + " has an unexpected " + kindName(key.first) + " on " + key.second);
+      }
+    }
+  }
+  return problems;
+}
+
+// The endpoints as a table sorted by participant, kind and topic, one line each.
+inline std::string endpointTable(std::vector<Endpoint> endpoints) {
+  std::sort(endpoints.begin(), endpoints.end(), [](const Endpoint& a, const Endpoint& b) {
+    return std::tie(a.participant, a.participant_guid, a.kind, a.topic, a.type) <
+           std::tie(b.participant, b.participant_guid, b.kind, b.topic, b.type);
+  });
+  std::ostringstream out;
+  for (const Endpoint& e : endpoints) {
+    out << "  " << detail::who(e) << "  " << (e.kind == EndpointKind::kReader ? "reads " : "writes") << "  "
+        << e.topic << "  (" << e.type << ")\n";
+  }
+  return out.str();
+}
+
+}  // namespace swa::testing

@@ -1,0 +1,351 @@
+// No inter-agent communication, enforced and proven (DESIGN §1): an observer participant in this test collects,
+// through Fast DDS discovery (DomainParticipantListener on_participant_discovery / on_subscriber_discovery /
+// on_publisher_discovery), every reader and writer of every participant during a swa_sim + 4 swa_agent run on a
+// private domain, and the run fails if any agent reads a topic another agent writes or anything outside its own
+// swa/uav<I>/ namespace and the clock (isolation_audit.h). Every child is reaped and every shared-memory file a
+// killed process leaves is removed on the way out, also when a check fails.
+
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <fastdds/dds/core/status/StatusMask.hpp>
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/rtps/participant/ParticipantDiscoveryInfo.h>
+#include <fastdds/rtps/reader/ReaderDiscoveryInfo.h>
+#include <fastdds/rtps/writer/WriterDiscoveryInfo.h>
+
+#include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/SwarmTruthPubSubTypes.h>
+
+#include "isolation_audit.h"
+#include "process_support.h"
+#include "swa/dds/options.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/topics.h"
+
+namespace swa::testing {
+namespace {
+
+namespace fdds = eprosima::fastdds::dds;
+namespace rtps = eprosima::fastrtps::rtps;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+const std::string kScenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml";
+constexpr int kAgents = 4;
+constexpr double kRunBoundS = 40.0;       // wall-clock bound of the simulator run (measured: 0.6 to 2.5 s)
+constexpr double kLateDiscoveryS = 10.0;  // longest wait for discovery to reach the observer
+
+// Polls `done` every 20 ms for at most `seconds`; its last answer.
+template <class Predicate>
+bool waitFor(Predicate done, double seconds) {
+  const auto deadline = SteadyClock::now() + std::chrono::duration<double>(seconds);
+  while (!done()) {
+    if (SteadyClock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+bool has(const std::vector<Endpoint>& endpoints, const std::string& participant, EndpointKind kind,
+         const std::string& topic) {
+  return std::any_of(endpoints.begin(), endpoints.end(), [&](const Endpoint& e) {
+    return e.participant == participant && e.kind == kind && e.topic == topic;
+  });
+}
+
+// Whether swa_sim's per-UAV endpoints of this run's agents have all been discovered.
+bool simEndpointsSeen(const std::vector<Endpoint>& endpoints) {
+  for (int i = 0; i < kAgents; ++i) {
+    for (const std::string& topic : {dds::topics::imu(i), dds::topics::detections(i), dds::topics::gnss(i)}) {
+      if (!has(endpoints, "swa_sim", EndpointKind::kWriter, topic)) return false;
+    }
+    if (!has(endpoints, "swa_sim", EndpointKind::kReader, dds::topics::cmdVel(i))) return false;
+  }
+  return true;
+}
+
+std::string bulleted(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const std::string& l : lines) s += "  " + l + "\n";
+  return s;
+}
+
+std::string text(const rtps::GuidPrefix_t& prefix) {
+  std::ostringstream s;
+  s << prefix;
+  return s.str();
+}
+
+// Everything discovery reports, keyed by GUID; called on Fast DDS threads. Removals are ignored on purpose: an
+// endpoint that existed at any time during the run is audited.
+class DiscoveryLog : public fdds::DomainParticipantListener {
+ public:
+  void on_participant_discovery(fdds::DomainParticipant* /*self*/, rtps::ParticipantDiscoveryInfo&& info) override {
+    if (info.status != rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT &&
+        info.status != rtps::ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT) {
+      return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    names_[text(info.info.m_guid.guidPrefix)] = info.info.m_participantName.to_string();
+  }
+
+  void on_subscriber_discovery(fdds::DomainParticipant* /*self*/, rtps::ReaderDiscoveryInfo&& info) override {
+    if (info.status == rtps::ReaderDiscoveryInfo::REMOVED_READER) return;
+    record(EndpointKind::kReader, info.info.guid(), info.info.topicName().to_string(),
+           info.info.typeName().to_string());
+  }
+
+  void on_publisher_discovery(fdds::DomainParticipant* /*self*/, rtps::WriterDiscoveryInfo&& info) override {
+    if (info.status == rtps::WriterDiscoveryInfo::REMOVED_WRITER) return;
+    record(EndpointKind::kWriter, info.info.guid(), info.info.topicName().to_string(),
+           info.info.typeName().to_string());
+  }
+
+  std::size_t participantCount() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return names_.size();
+  }
+
+  // Every endpoint seen so far, with the name its participant announced (empty if never announced).
+  std::vector<Endpoint> endpoints() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<Endpoint> out;
+    for (const auto& [guid, e] : endpoints_) {
+      Endpoint x = e;
+      const auto name = names_.find(x.participant_guid);
+      if (name != names_.end()) x.participant = name->second;
+      out.push_back(std::move(x));
+    }
+    return out;
+  }
+
+ private:
+  void record(EndpointKind kind, const rtps::GUID_t& guid, std::string topic, std::string type) {
+    std::ostringstream key;
+    key << guid;
+    std::lock_guard<std::mutex> lock(mutex_);
+    endpoints_[key.str()] = Endpoint{kind, "", text(guid.guidPrefix), std::move(topic), std::move(type)};
+  }
+
+  mutable std::mutex mutex_;
+  std::map<std::string, std::string> names_;         // participant GUID prefix -> announced name
+  std::map<std::string, Endpoint> endpoints_;         // endpoint GUID -> endpoint (participant name resolved later)
+};
+
+// A participant with no endpoints of its own that only listens to discovery, created from the same XML profile as
+// every SWA process (same discovery settings and transports).
+class DiscoveryObserver {
+ public:
+  explicit DiscoveryObserver(int domain) {
+    auto* factory = fdds::DomainParticipantFactory::get_instance();
+    const std::string profiles = dds::resolveProfilesFile();
+    // Profiles before any default QoS is read (FASTDDS-NOTES); loading the same file again is harmless.
+    if (factory->load_XML_profiles_file(profiles) != ReturnCode_t::RETCODE_OK) {
+      throw dds::DdsError("cannot load DDS XML profiles from " + profiles);
+    }
+    fdds::DomainParticipantQos qos;
+    if (factory->get_participant_qos_from_profile(dds::kParticipantProfile, qos) != ReturnCode_t::RETCODE_OK) {
+      throw dds::DdsError(std::string("participant profile '") + dds::kParticipantProfile + "' missing in " + profiles);
+    }
+    qos.name("swa_test_isolation_observer");
+    // The discovery callbacks do not depend on the mask; data callbacks are masked out as FASTDDS-NOTES advises
+    // (this participant has no reader anyway).
+    fdds::StatusMask mask = fdds::StatusMask::all();
+    mask >> fdds::StatusMask::data_on_readers() >> fdds::StatusMask::data_available();
+    participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain), qos, &log_, mask);
+    if (participant_ == nullptr) throw dds::DdsError("cannot create the observer participant on domain " +
+                                                     std::to_string(domain));
+  }
+  ~DiscoveryObserver() { fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_); }
+  DiscoveryObserver(const DiscoveryObserver&) = delete;
+  DiscoveryObserver& operator=(const DiscoveryObserver&) = delete;
+
+  const DiscoveryLog& log() const { return log_; }
+
+ private:
+  DiscoveryLog log_;  // declared first: outlives the participant that calls it
+  fdds::DomainParticipant* participant_ = nullptr;
+};
+
+class IsolationRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("swa_isolation_it_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    // A private domain (100..199, never 0) that is also quiet: anything already on it would pollute the audit, so
+    // the observer listens for a moment first (the profile announces every 1 s) and moves on if it hears anyone.
+    for (int attempt = 0; attempt < 5 && !observer_; ++attempt) {
+      domain_ = 100 + (::getpid() + 37 * attempt) % 100;
+      observer_ = std::make_unique<DiscoveryObserver>(domain_);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+      if (observer_->log().participantCount() != 0) {
+        std::cerr << "domain " << domain_ << " is in use, trying another one\n";
+        observer_.reset();
+      }
+    }
+    ASSERT_TRUE(observer_) << "no quiet DDS domain found";
+  }
+
+  void TearDown() override {
+    // Children first (each one SIGTERM, then SIGKILL), the observer's participant, then leftover shared memory.
+    sim_.reset();
+    agents_.clear();
+    observer_.reset();
+    const std::vector<std::string> removed = janitor_.clean();
+    if (!removed.empty()) std::cerr << "removed " << removed.size() << " abandoned /dev/shm file(s)\n";
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  std::vector<std::string> simArgs() const {
+    return {SWA_SIM_BINARY, "--scenario", kScenario, "--set", "duration_s=10"};
+  }
+
+  std::string logs() const {
+    std::string s = "--- sim.log\n" + readFile(dir_ / "sim.log");
+    for (int i = 0; i < kAgents; ++i) {
+      s += "--- agent" + std::to_string(i) + ".log\n" + readFile(dir_ / ("agent" + std::to_string(i) + ".log"));
+    }
+    return s;
+  }
+
+  ShmJanitor janitor_;  // first member: sees /dev/shm before anything of ours exists
+  fs::path dir_;
+  int domain_ = 0;
+  std::unique_ptr<DiscoveryObserver> observer_;
+  std::vector<std::unique_ptr<Child>> agents_;
+  std::unique_ptr<Child> sim_;
+};
+
+TEST_F(IsolationRun, NoAgentReadsWhatAnotherAgentWritesOrAnythingOutsideItsNamespace) {
+  // GIVEN the observer listening on a private domain, and the agents' configuration exported from the scenario
+  std::vector<std::string> exp = simArgs();
+  exp.insert(exp.end(), {"--export-agent-config", (dir_ / "agent.yaml").string()});
+  Child exporter(exp, dir_ / "export.log");
+  ASSERT_EQ(exporter.wait(30.0), 0) << readFile(dir_ / "export.log");
+
+  // WHEN swa_sim and 4 swa_agent processes run the GNSS-loss scenario for 10 s of simulated time (lockstep). The
+  // simulator starts first and waits for the agents; the agents start once the observer has discovered the
+  // simulator's endpoints (a lockstep run takes well under a second, and the simulator waits for its own view of
+  // the agents, not for ours)
+  const auto started = SteadyClock::now();
+  std::vector<std::string> args = simArgs();
+  args.insert(args.end(), {"--domain", std::to_string(domain_), "--startup-timeout-s", "20", "--agent-timeout-s",
+                           "10", "--summary-out", (dir_ / "summary.json").string()});
+  sim_ = std::make_unique<Child>(args, dir_ / "sim.log");
+  const bool sim_seen = waitFor([&] { return simEndpointsSeen(observer_->log().endpoints()); }, kLateDiscoveryS);
+  for (int i = 0; i < kAgents; ++i) {
+    agents_.push_back(std::make_unique<Child>(
+        std::vector<std::string>{SWA_AGENT_BINARY, "--id", std::to_string(i), "--domain", std::to_string(domain_),
+                                 "--config", (dir_ / "agent.yaml").string()},
+        dir_ / ("agent" + std::to_string(i) + ".log")));
+  }
+  // ... and the observer collects until the simulator exits, then (bounded) until it has every agent endpoint,
+  // then until the agents exit
+  const std::optional<int> sim_status = sim_->wait(kRunBoundS);
+  const double wall_s = std::chrono::duration<double>(SteadyClock::now() - started).count();
+  waitFor([&] { return auditAgentEndpoints(observer_->log().endpoints(), kAgents).empty(); }, kLateDiscoveryS);
+  for (auto& a : agents_) a->signal(SIGTERM);  // together, so their clean shutdowns overlap
+  std::vector<int> agent_status;
+  for (auto& a : agents_) agent_status.push_back(a->stop(10.0));
+  const std::vector<Endpoint> endpoints = observer_->log().endpoints();
+
+  const std::string table = endpointTable(endpoints);
+  std::cout << "domain " << domain_ << ", " << wall_s << " s wall (processes started to sim exit), "
+            << endpoints.size() << " endpoints discovered:\n"
+            << table;
+  RecordProperty("wall_s", std::to_string(wall_s));
+
+  // THEN the run itself was a normal one: the simulator completed and every agent shut down cleanly
+  ASSERT_TRUE(sim_status) << "swa_sim still running after " << kRunBoundS << " s: killed\n" << logs();
+  EXPECT_EQ(*sim_status, 0) << logs();
+  for (int i = 0; i < kAgents; ++i) EXPECT_EQ(agent_status[i], 0) << "agent " << i << "\n" << logs();
+
+  // THEN discovery saw the whole system, so the audit below cannot pass on too little: each agent 0..3 exactly once
+  // with exactly its five endpoints, and the simulator with its endpoints
+  const std::vector<std::string> missing = auditAgentEndpoints(endpoints, kAgents);
+  EXPECT_TRUE(missing.empty()) << "incomplete or unexpected agent endpoints:\n"
+                               << bulleted(missing) << "collected:\n"
+                               << table;
+  EXPECT_TRUE(sim_seen && simEndpointsSeen(endpoints)) << "swa_sim's endpoints not all discovered; collected:\n"
+                                                       << table;
+
+  // THEN no agent reads a topic another agent writes, nor anything outside swa/uav<I>/ but the clock, nor truth
+  const std::vector<std::string> violations = auditIsolation(endpoints);
+  EXPECT_TRUE(violations.empty()) << "isolation violated:\n"
+                                  << bulleted(violations) << "collected:\n"
+                                  << table;
+
+  // THEN, once the observer is gone too, no process left shared memory behind
+  observer_.reset();
+  const std::vector<std::string> left = janitor_.zombies();
+  EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left.size()
+                            << " /dev/shm file(s), first " << (left.empty() ? "" : left.front());
+}
+
+}  // namespace
+}  // namespace swa::testing
+
+namespace swa::testing {
+namespace {
+
+TEST_F(IsolationRun, AuditCatchesARogueParticipantReadingAnotherAgentsOutput) {
+  // GIVEN agent 2 running, and in this process a rogue participant that calls itself swa_agent_1 and reads agent 2's
+  // state and the ground truth (real readers: they match agent 2's and anyone's writers)
+  agents_.push_back(std::make_unique<Child>(
+      std::vector<std::string>{SWA_AGENT_BINARY, "--id", "2", "--domain", std::to_string(domain_)},
+      dir_ / "agent2.log"));
+  auto rogue = std::make_unique<dds::Participant>("swa_agent_1", domain_, dds::resolveProfilesFile());
+  rogue->reader<msg::AgentStatePubSubType>(dds::topics::state(2), "swa_state_reader", [](msg::AgentState&&) {});
+  rogue->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader", [](msg::SwarmTruth&&) {});
+  // WHEN the observer has discovered both
+  const bool seen = waitFor(
+      [&] {
+        const std::vector<Endpoint> e = observer_->log().endpoints();
+        return has(e, "swa_agent_2", EndpointKind::kWriter, dds::topics::state(2)) &&
+               has(e, "swa_agent_1", EndpointKind::kReader, dds::topics::state(2)) &&
+               has(e, "swa_agent_1", EndpointKind::kReader, dds::topics::kTruth);
+      },
+      kLateDiscoveryS);
+  const std::vector<Endpoint> endpoints = observer_->log().endpoints();
+  const std::string table = endpointTable(endpoints);
+  ASSERT_TRUE(seen) << "collected:\n" << table << logs();
+  // THEN the audit names each breach of the rogue, and nothing of agent 2
+  const std::vector<std::string> v = auditIsolation(endpoints);
+  const auto reported = [&](const std::vector<std::string>& needles) {
+    return std::any_of(v.begin(), v.end(), [&](const std::string& line) {
+      return std::all_of(needles.begin(), needles.end(),
+                         [&](const std::string& n) { return line.find(n) != std::string::npos; });
+    });
+  };
+  EXPECT_TRUE(reported({"swa_agent_1", "reads swa/uav2/state", "which agent swa_agent_2"})) << bulleted(v) << table;
+  EXPECT_TRUE(reported({"swa_agent_1", "reads swa/uav2/state", "outside its own namespace swa/uav1/"}))
+      << bulleted(v) << table;
+  EXPECT_TRUE(reported({"swa_agent_1", "reads swa/truth", "ground truth"})) << bulleted(v) << table;
+  EXPECT_EQ(v.size(), 3u) << bulleted(v) << table;
+  // THEN the completeness check finds the rogue's missing endpoints (and the agents that never ran)
+  const std::vector<std::string> c = auditAgentEndpoints(endpoints, 3);
+  EXPECT_NE(bulleted(c).find("swa_agent_1 has no reader on swa/uav1/imu"), std::string::npos) << bulleted(c);
+  EXPECT_NE(bulleted(c).find("swa_agent_0 was never discovered"), std::string::npos) << bulleted(c);
+  EXPECT_EQ(bulleted(c).find("swa_agent_2"), std::string::npos) << bulleted(c);
+  rogue.reset();
+}
+
+}  // namespace
+}  // namespace swa::testing

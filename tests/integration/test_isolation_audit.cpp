@@ -1,0 +1,187 @@
+// The isolation audit of test_isolation on synthetic endpoint lists: a clean swarm passes, and every kind of breach
+// (reading another UAV's topic, reading what another agent writes, writing outside the own namespace, reading
+// ground truth, an incomplete or duplicated agent) is reported, so the integration test can fail.
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "isolation_audit.h"
+#include "swa/dds/topics.h"
+
+namespace swa::testing {
+namespace {
+
+namespace topics = dds::topics;
+constexpr EndpointKind kR = EndpointKind::kReader;
+constexpr EndpointKind kW = EndpointKind::kWriter;
+
+std::string guidOf(const std::string& participant) { return "guid-" + participant; }
+
+Endpoint ep(EndpointKind kind, const std::string& participant, const std::string& topic) {
+  return Endpoint{kind, participant, guidOf(participant), topic, "T"};
+}
+
+// What the shipped processes create: swa_sim with every sensor writer and command reader plus truth / events /
+// clock, a monitor reading truth, events and states, and `n` agents with their five endpoints.
+std::vector<Endpoint> cleanSwarm(int n) {
+  std::vector<Endpoint> e;
+  for (const char* t : {topics::kTruth, topics::kEvents, topics::kClock}) e.push_back(ep(kW, "swa_sim", t));
+  e.push_back(ep(kR, "swa_monitor", topics::kTruth));
+  e.push_back(ep(kR, "swa_monitor", topics::kEvents));
+  for (int i = 0; i < n; ++i) {
+    const std::string agent = "swa_agent_" + std::to_string(i);
+    for (const std::string& t : {topics::imu(i), topics::detections(i), topics::gnss(i)}) {
+      e.push_back(ep(kW, "swa_sim", t));
+      e.push_back(ep(kR, agent, t));
+    }
+    e.push_back(ep(kR, "swa_sim", topics::cmdVel(i)));
+    e.push_back(ep(kW, agent, topics::cmdVel(i)));
+    e.push_back(ep(kW, agent, topics::state(i)));
+    e.push_back(ep(kR, "swa_monitor", topics::state(i)));
+  }
+  return e;
+}
+
+bool mentions(const std::vector<std::string>& lines, const std::vector<std::string>& needles) {
+  return std::any_of(lines.begin(), lines.end(), [&](const std::string& line) {
+    return std::all_of(needles.begin(), needles.end(),
+                       [&](const std::string& n) { return line.find(n) != std::string::npos; });
+  });
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const std::string& l : lines) s += l + "\n";
+  return s;
+}
+
+TEST(IsolationAudit, AgentIndexAcceptsOnlyCanonicalAgentNames) {
+  EXPECT_EQ(agentIndex("swa_agent_0"), 0);
+  EXPECT_EQ(agentIndex("swa_agent_17"), 17);
+  for (const char* name : {"swa_agent_", "swa_agent_01", "swa_agent_-1", "swa_agent_1x", "swa_sim", "agent_1",
+                           "swa_agent_1234567", ""}) {
+    EXPECT_FALSE(agentIndex(name)) << name;
+  }
+}
+
+TEST(IsolationAudit, CleanSwarmHasNoViolationAndIsComplete) {
+  const std::vector<Endpoint> e = cleanSwarm(4);
+  EXPECT_TRUE(auditIsolation(e).empty()) << joined(auditIsolation(e));
+  EXPECT_TRUE(auditAgentEndpoints(e, 4).empty()) << joined(auditAgentEndpoints(e, 4));
+}
+
+TEST(IsolationAudit, ReadingTheClockIsAllowed) {
+  std::vector<Endpoint> e = cleanSwarm(2);
+  e.push_back(ep(kR, "swa_agent_1", topics::kClock));
+  EXPECT_TRUE(auditIsolation(e).empty()) << joined(auditIsolation(e));
+  EXPECT_TRUE(auditAgentEndpoints(e, 2).empty()) << joined(auditAgentEndpoints(e, 2));
+}
+
+TEST(IsolationAudit, PlantedViolationsAreEachReported) {
+  // GIVEN a clean swarm with three planted breaches
+  std::vector<Endpoint> e = cleanSwarm(4);
+  e.push_back(ep(kR, "swa_agent_1", topics::imu(2)));    // another UAV's sensors (written by the simulator)
+  e.push_back(ep(kW, "swa_agent_0", topics::kTruth));    // writing outside its namespace
+  e.push_back(ep(kR, "swa_agent_3", topics::state(2)));  // what another agent writes
+  // WHEN audited
+  const std::vector<std::string> v = auditIsolation(e);
+  // THEN each breach is named, with the participant and the topic
+  EXPECT_TRUE(mentions(v, {"swa_agent_1", "reads swa/uav2/imu", "outside its own namespace swa/uav1/"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_0", "writes swa/truth", "outside its own namespace swa/uav0/"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_3", "reads swa/uav2/state", "outside"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_3", "reads swa/uav2/state", "which agent swa_agent_2"})) << joined(v);
+  EXPECT_EQ(v.size(), 4u) << joined(v);
+  // THEN the completeness check reports the extra endpoints as unexpected
+  const std::vector<std::string> c = auditAgentEndpoints(e, 4);
+  EXPECT_TRUE(mentions(c, {"swa_agent_1", "unexpected reader on swa/uav2/imu"})) << joined(c);
+  EXPECT_TRUE(mentions(c, {"swa_agent_0", "unexpected writer on swa/truth"})) << joined(c);
+  EXPECT_TRUE(mentions(c, {"swa_agent_3", "unexpected reader on swa/uav2/state"})) << joined(c);
+  EXPECT_EQ(c.size(), 3u) << joined(c);
+}
+
+TEST(IsolationAudit, ReadingGroundTruthIsReported) {
+  std::vector<Endpoint> e = cleanSwarm(2);
+  e.push_back(ep(kR, "swa_agent_1", topics::kTruth));
+  const std::vector<std::string> v = auditIsolation(e);
+  ASSERT_EQ(v.size(), 1u) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_1", "reads swa/truth", "ground truth"})) << joined(v);
+}
+
+TEST(IsolationAudit, ReadingATopicAnotherAgentWritesIsReportedEvenInsideTheOwnNamespace) {
+  // GIVEN agent 2 writes into agent 1's namespace, which agent 1 reads
+  std::vector<Endpoint> e = cleanSwarm(3);
+  e.push_back(ep(kW, "swa_agent_2", topics::imu(1)));
+  const std::vector<std::string> v = auditIsolation(e);
+  // THEN both sides are reported: the writer is outside its namespace, the reader reads another agent
+  EXPECT_TRUE(mentions(v, {"swa_agent_2", "writes swa/uav1/imu", "outside"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_1", "reads swa/uav1/imu", "which agent swa_agent_2"})) << joined(v);
+  EXPECT_EQ(v.size(), 2u) << joined(v);
+}
+
+TEST(IsolationAudit, WritingTheClockIsReported) {
+  std::vector<Endpoint> e = cleanSwarm(2);
+  e.push_back(ep(kW, "swa_agent_0", topics::kClock));
+  e.push_back(ep(kR, "swa_agent_1", topics::kClock));
+  const std::vector<std::string> v = auditIsolation(e);
+  EXPECT_TRUE(mentions(v, {"swa_agent_0", "writes swa/clock"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_1", "reads swa/clock", "which agent swa_agent_0"})) << joined(v);
+  EXPECT_EQ(v.size(), 2u) << joined(v);
+}
+
+TEST(IsolationAudit, TwoParticipantsWithOneAgentNameAreAuditedAgainstEachOther) {
+  // GIVEN an impostor also named swa_agent_1 (another GUID prefix) that writes agent 1's sensor topic
+  std::vector<Endpoint> e = cleanSwarm(2);
+  e.push_back(Endpoint{kW, "swa_agent_1", "guid-impostor", topics::gnss(1), "T"});
+  // THEN the real agent 1 reads what another agent participant writes, and agent 1 is not one participant
+  EXPECT_TRUE(mentions(auditIsolation(e), {"swa_agent_1 [guid-swa_agent_1]", "reads swa/uav1/gnss",
+                                           "which agent swa_agent_1 [guid-impostor]"}))
+      << joined(auditIsolation(e));
+  EXPECT_TRUE(mentions(auditAgentEndpoints(e, 2), {"2 participants are named swa_agent_1"}))
+      << joined(auditAgentEndpoints(e, 2));
+}
+
+TEST(IsolationAudit, UnnamedAndMisnamedParticipantsCannotBeCleared) {
+  std::vector<Endpoint> e = cleanSwarm(1);
+  e.push_back(Endpoint{kR, "", "guid-x", topics::imu(0), "T"});
+  e.push_back(Endpoint{kR, "swa_agent_01", "guid-y", topics::imu(0), "T"});
+  const std::vector<std::string> v = auditIsolation(e);
+  EXPECT_TRUE(mentions(v, {"[guid-x]", "never announced its name"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_01", "not swa_agent_<I>"})) << joined(v);
+  EXPECT_EQ(v.size(), 2u) << joined(v);
+}
+
+TEST(IsolationAudit, IncompleteOrExtraAgentsAreReported) {
+  // GIVEN 3 agents expected, agent 1 without its state writer, agent 2 missing, an agent 5 present, agent 0 with
+  // two IMU readers
+  std::vector<Endpoint> e = cleanSwarm(2);
+  e.erase(std::remove_if(e.begin(), e.end(),
+                         [](const Endpoint& x) { return x.participant == "swa_agent_1" && x.topic == topics::state(1); }),
+          e.end());
+  e.push_back(ep(kR, "swa_agent_5", topics::imu(5)));
+  e.push_back(ep(kR, "swa_agent_0", topics::imu(0)));
+  const std::vector<std::string> c = auditAgentEndpoints(e, 3);
+  EXPECT_TRUE(mentions(c, {"swa_agent_1 has no writer on swa/uav1/state"})) << joined(c);
+  EXPECT_TRUE(mentions(c, {"swa_agent_2 was never discovered"})) << joined(c);
+  EXPECT_TRUE(mentions(c, {"swa_agent_5 is not one of the 3 agents"})) << joined(c);
+  EXPECT_TRUE(mentions(c, {"swa_agent_0 has 2 readers on swa/uav0/imu"})) << joined(c);
+  EXPECT_EQ(c.size(), 4u) << joined(c);
+  // THEN the isolation rules themselves still hold for these endpoints
+  EXPECT_TRUE(auditIsolation(e).empty()) << joined(auditIsolation(e));
+}
+
+TEST(IsolationAudit, NothingDiscoveredIsIncomplete) {
+  EXPECT_TRUE(auditIsolation({}).empty());
+  EXPECT_EQ(auditAgentEndpoints({}, 4).size(), 4u);
+}
+
+TEST(IsolationAudit, TableListsEveryEndpointSorted) {
+  const std::string t = endpointTable({ep(kW, "swa_sim", topics::kTruth), ep(kR, "swa_agent_0", topics::imu(0))});
+  EXPECT_LT(t.find("swa_agent_0 [guid-swa_agent_0]  reads   swa/uav0/imu  (T)"), t.find("swa_sim")) << t;
+  EXPECT_NE(t.find("swa_sim [guid-swa_sim]  writes  swa/truth  (T)"), std::string::npos) << t;
+}
+
+}  // namespace
+}  // namespace swa::testing

@@ -1,0 +1,270 @@
+// swa_launch end to end: it starts swa_sim, one swa_agent per UAV and swa_monitor on a private domain, supervises
+// them and exits with the monitor's verdict. Checked from the outside: exit status, the monitor's summary.json, the
+// logs, the restart record, no process left on the domain and no /dev/shm file left behind.
+
+#include <signal.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <mutex>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <swa/msg/AgentStatePubSubTypes.h>
+
+#include "../integration/process_support.h"
+#include "closed_loop.h"
+#include "swa/sim/scenario_io.h"
+#include "swa/dds/options.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/topics.h"
+
+namespace swa::testing {
+namespace {
+
+const std::string kScenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml";
+const std::string kLaunch = SWA_LAUNCH_BINARY;
+
+// A number member of a flat JSON object written by our own writers ("key": value), NaN when absent or null.
+double jsonNumber(const std::string& json, const std::string& key) {
+  const std::regex re("\"" + key + "\"\\s*:\\s*([-+0-9.eE]+|null)");
+  std::smatch m;
+  if (!std::regex_search(json, m, re) || m[1] == "null") return std::nan("");
+  return std::strtod(m[1].str().c_str(), nullptr);
+}
+
+// PIDs of live processes whose command line names DDS domain `domain` (our children all get --domain D).
+std::vector<int> processesOnDomain(int domain) {
+  std::vector<int> pids;
+  const std::string needle = std::string("--domain") + '\0' + std::to_string(domain) + '\0';
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string cmdline = readFile(e.path() / "cmdline");
+    if (cmdline.find("swa_") != std::string::npos && cmdline.find(needle) != std::string::npos &&
+        readFile(e.path() / "stat").find(") Z") == std::string::npos) {
+      pids.push_back(std::stoi(name));
+    }
+  }
+  return pids;
+}
+
+// The pid of the swa_agent process for `uav` on `domain`, or -1.
+int agentPid(int domain, int uav) {
+  const std::string id = std::string("--id") + '\0' + std::to_string(uav) + '\0';
+  for (int pid : processesOnDomain(domain)) {
+    const std::string cmdline = readFile(fs::path("/proc") / std::to_string(pid) / "cmdline");
+    if (cmdline.find("swa_agent") != std::string::npos && cmdline.find(id) != std::string::npos) return pid;
+  }
+  return -1;
+}
+
+class LaunchTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("swa_launch_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    for (int pid : processesOnDomain(domain_)) ::kill(pid, SIGKILL);  // only after a failed check
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  std::vector<std::string> launchArgs(const std::vector<std::string>& extra) const {
+    std::vector<std::string> a{kLaunch, "--scenario", kScenario, "--out", (dir_ / "out").string(), "--domain",
+                               std::to_string(domain_), "--timeout-s", "150"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  }
+
+  // The state of the swarm after the launcher exited: nothing of ours may be left.
+  // `since` (default: the fixture's) names the files that existed before the launcher started: a participant of the
+  // test itself may leave port files that a killed agent kept referenced, which are the test's to clean, not the
+  // launcher's.
+  void expectNothingLeft(ShmJanitor* since = nullptr) {
+    EXPECT_TRUE(processesOnDomain(domain_).empty()) << "processes left on domain " << domain_;
+    std::string left;
+    for (const std::string& f : (since ? *since : janitor_).zombies()) left += " " + f;
+    EXPECT_TRUE(left.empty()) << "the launcher left shared-memory files behind:" << left;
+  }
+
+  ShmJanitor janitor_;  // first: outlives every process the test starts
+  fs::path dir_;
+  int domain_ = testDomain(31);
+};
+
+TEST_F(LaunchTest, MalformedScenarioStartsNothing) {
+  const fs::path bad = dir_ / "bad.yaml";
+  std::ofstream(bad) << "uav_count: -3\nagent:\n  k: many\n";
+  Child c({kLaunch, "--scenario", bad.string(), "--out", (dir_ / "out").string(), "--domain", std::to_string(domain_)},
+          dir_ / "launch.log");
+  EXPECT_EQ(c.wait(30.0), 2);
+  const std::string log = readFile(dir_ / "launch.log");
+  EXPECT_NE(log.find("invalid scenario"), std::string::npos) << log;
+  EXPECT_NE(log.find("uav_count"), std::string::npos) << log;  // every problem named, not just the first
+  EXPECT_NE(log.find("k"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir_ / "out")) << "nothing may be started or written";
+
+  Child unknown({kLaunch, "--scenario", kScenario, "--bogus", "--set", "duration_s=abc"}, dir_ / "launch2.log");
+  EXPECT_EQ(unknown.wait(30.0), 2);
+  const std::string log2 = readFile(dir_ / "launch2.log");
+  EXPECT_NE(log2.find("--bogus"), std::string::npos) << log2;
+  expectNothingLeft();
+}
+
+TEST_F(LaunchTest, FourAgentsSixtySecondsStayCohesive) {
+  Child launch(launchArgs({"--set", "duration_s=60"}), dir_ / "launch.log");
+  const auto status = launch.wait(180.0);
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 0) << log;  // PASS verdict
+
+  const fs::path out = dir_ / "out";
+  const std::string summary = readFile(out / "summary.json");
+  ASSERT_FALSE(summary.empty()) << log;
+  const double d_nb = jsonNumber(summary, "mean_neighbor_distance_m");
+  EXPECT_NEAR(d_nb, 10.0, 1.0) << "d_NB within ±10 % of r = 10 m";
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
+  EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0);
+
+  // The DDS processes and the in-process loop (swa_batch's) agree exactly: lockstep delivers every sample in the
+  // closed loop's order, and each agent publishes its state once all of a step's samples are processed.
+  const batch::RunResult oracle = batch::runClosedLoop(sim::loadScenario(kScenario, {"duration_s=60"}));
+  int compared = 0;
+  for (const monitor::NamedValue& f : monitor::summaryFields(oracle.summary)) {
+    const double dds = jsonNumber(summary, f.key);
+    if (std::isnan(f.value)) {
+      EXPECT_TRUE(std::isnan(dds)) << f.key;
+    } else {
+      EXPECT_EQ(dds, f.value) << f.key;
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 20);
+  for (const char* f : {"report.html", "timeseries.csv", "agent.yaml", "logs/sim.log", "logs/monitor.log",
+                        "logs/agent_0.log", "logs/agent_3.log", "logs/restarts.csv"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  expectNothingLeft();
+}
+
+// Agent 2 is SIGKILLed mid-run. The launcher must restart it; the new process must rebuild its picture of the
+// swarm (state TRACKING with neighbours, seen on its own state topic), and the run must stay cohesive.
+TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
+  constexpr int kVictim = 2;
+  struct Seen {
+    std::mutex m;
+    std::uint32_t last_seq = 0;
+    bool restarted = false;         // the state sequence started over: a new process
+    bool tracking_after = false;    // ... which then tracked its neighbours
+    long long max_stamp_ns = 0;
+  } seen;
+  auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
+  participant->reader<msg::AgentStatePubSubType>(dds::topics::state(kVictim), "swa_state_reader",
+                                                  [&seen](msg::AgentState&& s) {
+                                                    std::lock_guard<std::mutex> lock(seen.m);
+                                                    if (s.header().seq() < seen.last_seq) seen.restarted = true;
+                                                    seen.last_seq = s.header().seq();
+                                                    seen.max_stamp_ns = std::max<long long>(seen.max_stamp_ns,
+                                                                                            s.header().stamp_ns());
+                                                    if (seen.restarted && s.stage() == msg::STAGE_TRACKING &&
+                                                        s.neighbour_ids().size() >= 2) {
+                                                      seen.tracking_after = true;
+                                                    }
+                                                  });
+  // Long enough in simulated time that the swarm runs well after the restart (lockstep runs ~20x real time).
+  ShmJanitor launcher_files;
+  Child launch(launchArgs({"--set", "duration_s=240"}), dir_ / "launch.log");
+  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
+  bool killed = false;
+  while (!killed && SteadyClock::now() < deadline && !launch.wait(0.0)) {
+    {
+      std::lock_guard<std::mutex> lock(seen.m);
+      if (seen.max_stamp_ns >= 20'000'000'000LL) {
+        const int pid = agentPid(domain_, kVictim);
+        ASSERT_GT(pid, 0);
+        ::kill(pid, SIGKILL);
+        killed = true;
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(killed) << readFile(dir_ / "launch.log");
+  // The observer goes as soon as it has seen the rejoin: while it lives it keeps the killed agent's shared-memory
+  // port in use, and the launcher could not remove it at its exit.
+  const auto observe_until = SteadyClock::now() + std::chrono::seconds(120);
+  while (SteadyClock::now() < observe_until && !launch.wait(0.0)) {
+    {
+      std::lock_guard<std::mutex> lock(seen.m);
+      if (seen.tracking_after) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  participant.reset();
+  const auto status = launch.wait(180.0);
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 0) << log;
+  {
+    std::lock_guard<std::mutex> lock(seen.m);
+    EXPECT_TRUE(seen.restarted) << "no state from a new agent 2 process";
+    EXPECT_TRUE(seen.tracking_after) << "the restarted agent never tracked its neighbours again";
+  }
+  const fs::path out = dir_ / "out";
+  const std::string restarts = readFile(out / "logs" / "restarts.csv");
+  EXPECT_TRUE(std::regex_search(restarts, std::regex("\n[0-9.]+,2,137,1,"))) << restarts;  // uav 2, SIGKILL
+  const std::string summary = readFile(out / "summary.json");
+  EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 1.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
+  EXPECT_NEAR(jsonNumber(summary, "mean_neighbor_distance_m"), 10.0, 1.0);
+  EXPECT_NE(readFile(out / "report.html").find("restart"), std::string::npos) << "the restart is not in the report";
+  EXPECT_NE(log.find("agent 2 ended (signal 9"), std::string::npos) << log;
+  expectNothingLeft(&launcher_files);
+}
+
+// SIGTERM to the launcher mid-run: forwarded, the monitor writes what it has (verdict INCOMPLETE = 3), and every
+// process and shared-memory file is gone.
+TEST_F(LaunchTest, SigtermStopsEverythingCleanly) {
+  Child launch(launchArgs({"--set", "clock.mode=realtime", "--set", "duration_s=600"}), dir_ / "launch.log");
+  const fs::path sim_log = dir_ / "out" / "logs" / "sim.log";
+  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
+  while (SteadyClock::now() < deadline && readFile(sim_log).find("discovered") == std::string::npos &&
+         !launch.wait(0.0)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(2));  // let the world run a little
+  launch.signal(SIGTERM);
+  const auto status = launch.wait(60.0);
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 3) << log;
+  const std::string summary = readFile(dir_ / "out" / "summary.json");
+  EXPECT_NE(summary.find("\"completed\": false"), std::string::npos) << summary;
+  expectNothingLeft();
+}
+
+// --compare standalone: the same seed twice, both runs in one report, exit status = the SWA run's verdict.
+TEST_F(LaunchTest, CompareStandaloneWritesOneReport) {
+  Child launch(launchArgs({"--set", "duration_s=30", "--compare", "standalone"}), dir_ / "launch.log");
+  const auto status = launch.wait(180.0);
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 0) << log;
+  const fs::path out = dir_ / "out";
+  EXPECT_TRUE(fs::exists(out / "swa" / "summary.json"));
+  EXPECT_TRUE(fs::exists(out / "standalone" / "summary.json"));
+  const std::string report = readFile(out / "report.html");
+  EXPECT_NE(report.find("swa"), std::string::npos);
+  EXPECT_NE(report.find("standalone"), std::string::npos);
+  expectNothingLeft();
+}
+
+}  // namespace
+}  // namespace swa::testing

@@ -1,0 +1,201 @@
+// Messages -> the monitor's inputs: an AgentState published by the agent node gives exactly the EstimateRecord
+// monitor::estimateFromDiagnostics gives for the agent's own diagnostics (the rule swa_batch scores by); truth and
+// events keep every field; malformed values (unknown enums, NaN, huge ids, too many neighbours) never make an
+// estimate valid.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <limits>
+
+#include "agent_state_msg.h"
+#include "msg_convert.h"
+#include "swa/agent/diagnostics.h"
+
+namespace swa::monitor_node {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+agent::Diagnostics tracking(agent::Mode mode = agent::Mode::kSwa) {
+  agent::Diagnostics d;
+  d.stamp_ns = 12'300'000'000;
+  d.mode = mode;
+  d.stage = agent::Stage::kTracking;
+  d.position_m = agent::Vec2(0.25, -0.5);
+  d.velocity_mps = agent::Vec2(0.01, 0.02);
+  d.position_cov_m2 << 0.04, 0.001, 0.001, 0.05;
+  d.velocity_cov_m2ps2 << 0.002, -0.0001, -0.0001, 0.003;
+  d.frame_valid = true;
+  d.frame_centre_m = agent::Vec2(-0.25, 0.5);
+  d.neighbour_count = 3;
+  d.neighbour_ids[0] = 4;
+  d.neighbour_ids[1] = 1;
+  d.neighbour_ids[2] = 7;
+  return d;
+}
+
+agent::FormationConfig formation(double radius, agent::CircleFit fit) {
+  agent::FormationConfig f;
+  f.radius_m = radius;
+  f.circle_fit = fit;
+  return f;
+}
+
+void expectSameRecord(const monitor::EstimateRecord& a, const monitor::EstimateRecord& b) {
+  EXPECT_EQ(a.valid, b.valid);
+  EXPECT_EQ(a.position_m, b.position_m);
+  EXPECT_EQ(a.position_cov_m2, b.position_cov_m2);
+  EXPECT_EQ(a.velocity_mps, b.velocity_mps);
+  EXPECT_EQ(a.velocity_cov_m2ps2, b.velocity_cov_m2ps2);
+  EXPECT_EQ(a.neighbour_count, b.neighbour_count);
+  EXPECT_EQ(a.neighbour_ids, b.neighbour_ids);
+  EXPECT_EQ(a.radius_m, b.radius_m);
+  EXPECT_EQ(a.circle_fit, b.circle_fit);
+}
+
+TEST(MonitorConvert, StateGivesTheRecordOfTheAgentsOwnDiagnostics) {
+  const agent::FormationConfig f = formation(12.5, agent::CircleFit::kAlgebraic);
+  for (const agent::Mode mode : {agent::Mode::kSwa, agent::Mode::kAnchored, agent::Mode::kStandalone}) {
+    const agent::Diagnostics d = tracking(mode);
+    const StateSample s = fromStateMsg(agent_node::toStateMsg(d, 3, 17), f);
+    EXPECT_EQ(s.uav, 3);
+    EXPECT_EQ(s.stamp_ns, d.stamp_ns);
+    ASSERT_TRUE(s.mode.has_value());
+    EXPECT_EQ(*s.mode, mode);
+    EXPECT_TRUE(s.finite);
+    expectSameRecord(s.estimate, monitor::estimateFromDiagnostics(d, f));
+    EXPECT_EQ(s.estimate.valid, mode != agent::Mode::kStandalone);
+    EXPECT_EQ(s.estimate.radius_m, 12.5);  // from the scenario's formation: the message has no radius
+    EXPECT_EQ(s.estimate.circle_fit, agent::CircleFit::kAlgebraic);
+  }
+}
+
+TEST(MonitorConvert, OnlyATrackedFloatingFrameIsValid) {
+  const agent::FormationConfig f = formation(10.0, agent::CircleFit::kFixedRadius);
+  const auto valid = [&f](const agent::Diagnostics& d) {
+    return fromStateMsg(agent_node::toStateMsg(d, 0, 1), f).estimate.valid;
+  };
+  EXPECT_TRUE(valid(tracking()));
+  agent::Diagnostics d = tracking();
+  d.stage = agent::Stage::kInitializing;
+  EXPECT_FALSE(valid(d));
+  d.stage = agent::Stage::kLost;
+  EXPECT_FALSE(valid(d));
+  d = tracking();
+  d.frame_valid = false;
+  EXPECT_FALSE(valid(d));
+  d = tracking();
+  d.neighbour_count = 0;
+  EXPECT_FALSE(valid(d));
+}
+
+TEST(MonitorConvert, UnknownEnumValuesMakeTheEstimateInvalid) {
+  const agent::FormationConfig f;
+  msg::AgentState m = agent_node::toStateMsg(tracking(), 0, 1);
+  m.mode(static_cast<msg::AgentMode>(42));
+  StateSample s = fromStateMsg(m, f);
+  EXPECT_FALSE(s.mode.has_value());
+  EXPECT_FALSE(s.estimate.valid);
+
+  m = agent_node::toStateMsg(tracking(), 0, 1);
+  m.stage(static_cast<msg::AgentStage>(42));
+  s = fromStateMsg(m, f);
+  EXPECT_TRUE(s.mode.has_value());
+  EXPECT_FALSE(s.estimate.valid);
+}
+
+TEST(MonitorConvert, NonFiniteNumbersMakeTheEstimateInvalid) {
+  const agent::FormationConfig f;
+  for (int field = 0; field < 4; ++field) {
+    msg::AgentState m = agent_node::toStateMsg(tracking(), 0, 1);
+    if (field == 0) m.est_x_m(kNaN);
+    if (field == 1) m.est_vy_mps(std::numeric_limits<double>::infinity());
+    if (field == 2) m.pos_cov_xy_m2(kNaN);
+    if (field == 3) m.vel_cov_yy_m2ps2(kNaN);
+    const StateSample s = fromStateMsg(m, f);
+    EXPECT_FALSE(s.finite) << field;
+    EXPECT_FALSE(s.estimate.valid) << field;
+  }
+}
+
+TEST(MonitorConvert, TooManyNeighboursNeverScoreATruncatedFrame) {
+  msg::AgentState m = agent_node::toStateMsg(tracking(), 0, 1);
+  m.neighbour_ids().assign(40, 1);
+  const StateSample s = fromStateMsg(m, agent::FormationConfig{});
+  EXPECT_EQ(s.estimate.neighbour_count, 40);  // more than kMaxNeighbours: the NEES skips it as invalid
+  monitor::StepInput step;
+  for (int i = 0; i < 2; ++i) step.uavs.push_back({i, agent::Vec2(10.0 * i, 0.0), agent::Vec2::Zero(), true});
+  step.estimates = {s.estimate, monitor::EstimateRecord{}};
+  const monitor::NeesStep nees = monitor::computeNees(step, monitor::FrameVelocity::kNeighbourMean);
+  EXPECT_EQ(nees.evaluated, 0);
+  EXPECT_EQ(nees.skipped_invalid, 1);
+}
+
+TEST(MonitorConvert, HugeUavIdsNeverAliasAUav) {
+  msg::AgentState m = agent_node::toStateMsg(tracking(), 0, 1);
+  m.uav_id(std::numeric_limits<std::uint32_t>::max());
+  EXPECT_EQ(fromStateMsg(m, agent::FormationConfig{}).uav, -1);
+  msg::SwarmTruth t;
+  msg::UavTruth u;
+  u.id(std::numeric_limits<std::uint32_t>::max());
+  t.uavs().push_back(u);
+  EXPECT_EQ(fromTruthMsg(t).uavs.at(0).id, -1);
+}
+
+TEST(MonitorConvert, TruthKeepsEveryUavInTheAirAndTheAgentFlagApart) {
+  msg::SwarmTruth m;
+  m.header().stamp_ns(2'000'000'000);
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    msg::UavTruth u;
+    u.id(i);
+    u.x_m(1.0 + i);
+    u.y_m(-2.0 * i);
+    u.vx_mps(0.5);
+    u.vy_mps(-0.25 * i);
+    u.alive(i != 1);  // the simulator's flag: agent 1 is dead, its UAV hovers on the failsafe
+    m.uavs().push_back(u);
+  }
+  const TruthSample t = fromTruthMsg(m);
+  EXPECT_EQ(t.stamp_ns, 2'000'000'000);
+  ASSERT_EQ(t.uavs.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(t.uavs[i].id, static_cast<int>(i));
+    EXPECT_TRUE(t.uavs[i].alive);  // in the air, so in every metric
+    EXPECT_TRUE(monitor::isPresent(t.uavs[i]));
+    EXPECT_EQ(t.uavs[i].position_m, agent::Vec2(1.0 + static_cast<double>(i), -2.0 * static_cast<double>(i)));
+    EXPECT_EQ(t.uavs[i].velocity_mps, agent::Vec2(0.5, -0.25 * static_cast<double>(i)));
+  }
+  EXPECT_EQ(t.agent_alive, (std::vector<bool>{true, false, true}));
+}
+
+TEST(MonitorConvert, EveryEventKindHasAName) {
+  const std::pair<msg::EventKind, const char*> kinds[] = {
+      {msg::EVENT_GNSS_LOST, "gnss_lost"},      {msg::EVENT_GNSS_RESTORED, "gnss_restored"},
+      {msg::EVENT_AGENT_DEAD, "agent_dead"},    {msg::EVENT_AGENT_REJOINED, "agent_rejoined"},
+      {msg::EVENT_COLLISION, "collision"},      {msg::EVENT_FAILSAFE, "failsafe"},
+      {msg::EVENT_SCENARIO_END, "scenario_end"}};
+  for (const auto& [kind, name] : kinds) {
+    msg::ScenarioEvent m;
+    m.header().stamp_ns(1'500'000'000);
+    m.kind(kind);
+    m.uav_id(2);
+    m.other_uav_id(3);
+    m.value(1.25);
+    m.text("detail, with a comma");
+    const std::optional<EventRecord> e = fromEventMsg(m);
+    ASSERT_TRUE(e.has_value()) << name;
+    EXPECT_EQ(e->kind, name);
+    EXPECT_DOUBLE_EQ(e->t_s, 1.5);
+    EXPECT_EQ(e->uav, 2);
+    EXPECT_EQ(e->other_uav, 3);
+    EXPECT_DOUBLE_EQ(e->value, 1.25);
+    EXPECT_EQ(e->text, "detail, with a comma");
+  }
+  msg::ScenarioEvent unknown;
+  unknown.kind(static_cast<msg::EventKind>(99));
+  EXPECT_FALSE(fromEventMsg(unknown).has_value());
+}
+
+}  // namespace
+}  // namespace swa::monitor_node

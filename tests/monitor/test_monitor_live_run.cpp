@@ -1,0 +1,310 @@
+// LiveRun, the live monitor without DDS: steps go to the metrics in stamp order whatever the arrival order, a dead
+// agent's UAV stays in the metrics, the metrics window comes from the scenario or from the GNSS loss event, and
+// the end event, mode, events and status are what the node and the files need.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "live_config.h"
+#include "live_record.h"
+#include "live_run.h"
+#include "status_line.h"
+
+namespace swa::monitor_node {
+namespace {
+
+constexpr agent::StampNs kStep = 100'000'000;
+
+// Four UAVs on a 10 m square drifting east at 0.1 m/s; agent `dead` (if >= 0) is not alive from step 10 on.
+TruthSample square(int k, int dead = -1) {
+  TruthSample t;
+  t.stamp_ns = k * kStep;
+  const double x0 = 0.01 * k;
+  const agent::Vec2 corners[] = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  for (int i = 0; i < 4; ++i) {
+    monitor::UavTruth u;
+    u.id = i;
+    u.position_m = corners[i] + agent::Vec2(x0, 0.0);
+    u.velocity_mps = agent::Vec2(0.1, 0.0);
+    t.uavs.push_back(u);
+    t.agent_alive.push_back(!(i == dead && k >= 10));
+  }
+  return t;
+}
+
+// A tracking agent estimate, exact except for a small offset, with neighbours = the other three UAVs.
+StateSample estimate(int uav, int k) {
+  StateSample s;
+  s.uav = uav;
+  s.stamp_ns = k * kStep;
+  s.mode = agent::Mode::kSwa;
+  s.estimate.valid = true;
+  s.estimate.position_m = agent::Vec2(0.1, -0.1);
+  s.estimate.position_cov_m2 = agent::Mat2::Identity() * 0.05;
+  s.estimate.velocity_cov_m2ps2 = agent::Mat2::Identity() * 0.01;
+  int n = 0;
+  for (int j = 0; j < 4; ++j) {
+    if (j != uav) s.estimate.neighbour_ids[static_cast<std::size_t>(n++)] = j;
+  }
+  s.estimate.neighbour_count = n;
+  return s;
+}
+
+EventRecord event(double t_s, const char* kind, int uav, const char* text = "") {
+  EventRecord e;
+  e.t_s = t_s;
+  e.kind = kind;
+  e.uav = uav;
+  e.text = text;
+  return e;
+}
+
+LiveRunConfig config(double window_start_s) {
+  LiveRunConfig c;
+  c.metrics.window_start_s = window_start_s;
+  c.mode = agent::Mode::kSwa;
+  return c;
+}
+
+TEST(LiveRun, ScoresStepsInStampOrderWhateverTheArrivalOrder) {
+  LiveRun in_order(config(0.0));
+  LiveRun scrambled(config(0.0));
+  for (int k = 0; k < 30; ++k) {
+    in_order.onTruth(square(k));
+    for (int i = 0; i < 4; ++i) in_order.onState(i, estimate(i, k));
+  }
+  for (int k = 0; k < 30; k += 2) {
+    // States of step k+1 first, then truth k+1, then step k's states, then its truth.
+    for (int i = 3; i >= 0; --i) scrambled.onState(i, estimate(i, k + 1));
+    for (int i = 0; i < 4; ++i) scrambled.onState(i, estimate(i, k));
+    scrambled.onTruth(square(k));
+    scrambled.onTruth(square(k + 1));
+  }
+  in_order.finish();
+  scrambled.finish();
+  ASSERT_EQ(in_order.series().size(), 30u);
+  ASSERT_EQ(scrambled.series().size(), 30u);
+  for (std::size_t k = 0; k < 30; ++k) {
+    EXPECT_EQ(monitor::formatCsvRow(in_order.series()[k]), monitor::formatCsvRow(scrambled.series()[k])) << k;
+  }
+  EXPECT_EQ(monitor::toJson(in_order.summary()), monitor::toJson(scrambled.summary()));
+  EXPECT_EQ(scrambled.joinCounters().missing_states, 0u);
+  EXPECT_EQ(in_order.summary().nees_samples, 4u * 30u);
+}
+
+TEST(LiveRun, DeadAgentsUavStaysInTheMetricsWithoutAnEstimate) {
+  LiveRun run(config(0.0));
+  for (int k = 0; k < 20; ++k) {
+    run.onTruth(square(k, 3));
+    for (int i = 0; i < 4; ++i) {
+      if (i != 3 || k < 10) run.onState(i, estimate(i, k));
+    }
+  }
+  // The join did not wait for the dead agent: every step is scored before finish().
+  EXPECT_TRUE(run.joinIdle());
+  EXPECT_EQ(run.series().size(), 20u);
+  run.finish();
+  const monitor::Summary s = run.summary();
+  EXPECT_EQ(s.uav_count, 4);  // still flying (failsafe hover): still in d_NB, separation, groups
+  EXPECT_EQ(s.nees_samples, 4u * 10u + 3u * 10u);
+  EXPECT_EQ(run.joinCounters().missing_states, 0u);
+  EXPECT_EQ(run.status().live_agents, 3);
+  EXPECT_EQ(run.status().uavs, 4);
+}
+
+TEST(LiveRun, MissingStatesWaitForTheHorizonThenScoreWithoutThem) {
+  LiveRunConfig c = config(0.0);
+  c.join_horizon = 5;
+  LiveRun run(c);
+  for (int k = 0; k < 5; ++k) {
+    run.onTruth(square(k));
+    for (int i = 0; i < 3; ++i) run.onState(i, estimate(i, k));  // agent 3 alive but silent
+  }
+  EXPECT_TRUE(run.series().empty());
+  run.onTruth(square(5));
+  EXPECT_EQ(run.series().size(), 1u);
+  for (int i = 0; i < 3; ++i) run.onState(i, estimate(i, 5));
+  run.finish();
+  EXPECT_EQ(run.series().size(), 6u);
+  EXPECT_EQ(run.joinCounters().missing_states, 6u);
+  EXPECT_EQ(run.summary().nees_samples, 3u * 6u);
+}
+
+TEST(LiveRun, StateOnAnotherUavsTopicIsDropped) {
+  LiveRun run(config(0.0));
+  run.onTruth(square(0));
+  run.onState(1, estimate(0, 0));  // topic of UAV 1 carrying UAV 0's state
+  EXPECT_EQ(run.joinCounters().state_unknown_uav, 1u);
+}
+
+TEST(LiveRun, WithoutEstimateScoringThereIsNoNees) {
+  LiveRunConfig c = config(0.0);
+  c.score_estimates = false;
+  LiveRun run(c);
+  for (int k = 0; k < 3; ++k) {
+    run.onTruth(square(k));
+    for (int i = 0; i < 4; ++i) run.onState(i, estimate(i, k));
+  }
+  run.finish();
+  EXPECT_EQ(run.summary().nees_samples, 0u);
+  EXPECT_TRUE(std::isnan(run.series().back().nees_pos));
+}
+
+TEST(LiveRun, WindowFromScenarioIsUsedAsGiven) {
+  LiveRun run(config(1.0));
+  run.onEvent(event(2.0, event_kind::kGnssLost, kAllUavs));  // ignored: the scenario decides
+  for (int k = 0; k < 30; ++k) run.onTruth(square(k, -1));
+  run.finish();
+  EXPECT_DOUBLE_EQ(run.windowStartS(), 1.0);
+  EXPECT_NEAR(run.summary().window_start_s, 1.0, 1e-9);
+}
+
+TEST(LiveRun, WindowFromTheGnssLossEventWhenThereIsNoScenario) {
+  const auto runWith = [](const std::vector<EventRecord>& events, bool events_last) {
+    LiveRunConfig c = liveRunConfigWithoutScenario();
+    auto run = std::make_unique<LiveRun>(c);
+    if (!events_last) {
+      for (const EventRecord& e : events) run->onEvent(e);
+    }
+    for (int k = 0; k < 40; ++k) run->onTruth(square(k));
+    for (const EventRecord& e : events) {
+      if (events_last) run->onEvent(e);
+    }
+    run->finish();
+    return run;
+  };
+  // The event for all UAVs wins over per-UAV ones; it may arrive after the steps it concerns.
+  auto run = runWith({event(1.5, event_kind::kGnssLost, 2), event(2.0, event_kind::kGnssLost, kAllUavs)}, true);
+  EXPECT_DOUBLE_EQ(run->windowStartS(), 2.0);
+  EXPECT_NEAR(run->summary().window_start_s, 2.0, 1e-9);
+  // Only per-UAV events: the earliest.
+  run = runWith({event(2.5, event_kind::kGnssLost, 1), event(1.5, event_kind::kGnssLost, 2)}, false);
+  EXPECT_DOUBLE_EQ(run->windowStartS(), 1.5);
+  // None: from 0.
+  run = runWith({event(1.0, event_kind::kGnssRestored, 1)}, false);
+  EXPECT_DOUBLE_EQ(run->windowStartS(), 0.0);
+  EXPECT_NEAR(run->summary().window_start_s, 0.0, 1e-9);
+  // The replayed summary is the one a scenario with that window would give.
+  LiveRun direct(config(1.5));
+  for (int k = 0; k < 40; ++k) direct.onTruth(square(k));
+  direct.finish();
+  run = runWith({event(1.5, event_kind::kGnssLost, 0)}, true);
+  EXPECT_EQ(monitor::toJson(run->summary()), monitor::toJson(direct.summary()));
+}
+
+TEST(LiveRun, EndEventModeAndEvents) {
+  LiveRunConfig c = liveRunConfigWithoutScenario();
+  LiveRun run(c);
+  EXPECT_FALSE(run.mode().has_value());
+  run.onTruth(square(0));
+  StateSample s = estimate(0, 0);
+  s.mode = agent::Mode::kAnchored;
+  run.onState(0, s);
+  ASSERT_TRUE(run.mode().has_value());
+  EXPECT_EQ(*run.mode(), agent::Mode::kAnchored);
+  run.onEvent(event(3.0, event_kind::kScenarioEnd, kAllUavs, "completed"));
+  run.onEvent(event(1.0, event_kind::kCollision, 1));
+  run.onEvent(event(4.0, event_kind::kScenarioEnd, kAllUavs, "interrupted"));
+  run.onUnknownEvent();
+  ASSERT_TRUE(run.endEvent().has_value());
+  EXPECT_EQ(run.endEvent()->text, "completed");  // the first one
+  const std::vector<EventRecord> events = run.events();
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].kind, event_kind::kCollision);  // by time
+  EXPECT_EQ(run.unknownEvents(), 1u);
+}
+
+TEST(LiveRun, EndEventMeaning) {
+  EXPECT_TRUE(endFromEvent(event(1, event_kind::kScenarioEnd, kAllUavs, "completed")).completed);
+  const RunEnd interrupted = endFromEvent(event(1, event_kind::kScenarioEnd, kAllUavs, "discovery timeout"));
+  EXPECT_FALSE(interrupted.completed);
+  EXPECT_NE(interrupted.reason.find("discovery timeout"), std::string::npos);
+}
+
+TEST(LiveRun, RunRecordCarriesVerdictCountsAndContext) {
+  const LiveRunConfig c = config(0.0);
+  LiveRun run(c);
+  for (int k = 0; k < 60; ++k) {
+    run.onTruth(square(k));
+    for (int i = 0; i < 4; ++i) run.onState(i, estimate(i, k));
+  }
+  run.onTruth(square(3));  // out of order
+  run.finish();
+  RunContext ctx;
+  ctx.scenario = "s.yaml";
+  ctx.seed = 9;
+  ctx.end = {true, "completed"};
+  ctx.restarts.restarts = {{1.0, 2, "1", 1, 0.5}};
+  const RunRecord r = makeRunRecord(run, c, ctx);
+  EXPECT_EQ(r.label, "swa");  // the mode when no label is given
+  EXPECT_EQ(r.mode, "swa");
+  EXPECT_EQ(r.seed, std::optional<std::uint64_t>(9));
+  EXPECT_EQ(r.verdict.outcome, Outcome::kPass);  // a 10 m square: d_NB = 10 m, one group, no collision
+  EXPECT_EQ(r.series.size(), 60u);
+  EXPECT_EQ(r.restarts.restarts.size(), 1u);
+  bool found = false;
+  for (const auto& [key, n] : r.counts) {
+    if (key == "dropped_truth_out_of_order") {
+      EXPECT_EQ(n, 1u);
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found);
+  ctx.label = "mine";
+  ctx.end = {false, "interrupted by SIGINT"};
+  const RunRecord r2 = makeRunRecord(run, c, ctx);
+  EXPECT_EQ(r2.label, "mine");
+  EXPECT_EQ(r2.verdict.outcome, Outcome::kIncomplete);
+}
+
+TEST(LiveRun, NothingReceivedIsIncomplete) {
+  const LiveRunConfig c = liveRunConfigWithoutScenario();
+  LiveRun run(c);
+  run.finish();
+  const RunRecord r = makeRunRecord(run, c, RunContext{"", "", std::nullopt, 0.1, {true, "completed"}, {}});
+  EXPECT_EQ(r.verdict.outcome, Outcome::kIncomplete);
+  EXPECT_EQ(r.mode, "unknown");
+  EXPECT_TRUE(r.series.empty());
+}
+
+TEST(StatusLine, FormatsTheLatestStep) {
+  LiveStatus s;
+  EXPECT_EQ(formatStatus(s), "waiting for ground truth");
+  s.any_step = true;
+  s.t_s = 12.34;
+  s.d_nb_m = 9.876;
+  s.min_sep_m = monitor::kNaN;
+  s.collisions = 2;
+  s.groups = 1;
+  s.live_agents = 3;
+  s.uavs = 4;
+  EXPECT_EQ(formatStatus(s), "t 12.3 s  d_NB 9.88 m  min sep n/a m  collisions 2  groups 1  agents 3/4 live");
+}
+
+TEST(StatusLine, PacerEveryTenSimSecondsInALogAndByWallTimeOnATerminal) {
+  LiveStatus s;
+  StatusPacer log(false);
+  EXPECT_FALSE(log.due(s, 0.0));  // nothing to say before the first step
+  s.any_step = true;
+  std::vector<double> printed;
+  for (int k = 0; k <= 250; ++k) {
+    s.t_s = 0.1 * k;
+    if (log.due(s, 0.0)) printed.push_back(s.t_s);
+  }
+  ASSERT_EQ(printed.size(), 3u);
+  EXPECT_DOUBLE_EQ(printed[0], 0.0);
+  EXPECT_NEAR(printed[1], 10.0, 0.1 + 1e-9);  // the first step in [10, 20)
+  EXPECT_NEAR(printed[2], 20.0, 0.1 + 1e-9);
+
+  StatusPacer tty(true, 0.25);
+  EXPECT_TRUE(tty.due(s, 0.0));
+  EXPECT_FALSE(tty.due(s, 0.1));
+  EXPECT_TRUE(tty.due(s, 0.3));
+  EXPECT_FALSE(tty.due(s, 0.5));
+}
+
+}  // namespace
+}  // namespace swa::monitor_node

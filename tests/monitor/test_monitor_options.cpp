@@ -1,0 +1,154 @@
+// swa_monitor's command line: defaults, every option in both spellings, the --combine list, and every error
+// (reported together, never the first one only).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "monitor_options.h"
+
+namespace swa::monitor_node {
+namespace {
+
+// The message of the std::invalid_argument parsing throws ("" when it does not throw).
+std::string errorOf(const std::vector<std::string>& args) {
+  try {
+    parseMonitorOptions(args);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+
+TEST(MonitorOptions, DefaultsWithoutArguments) {
+  const MonitorOptions o = parseMonitorOptions({});
+  EXPECT_EQ(o.out_dir, "out/monitor");
+  EXPECT_FALSE(o.out_given);
+  EXPECT_TRUE(o.scenario_path.empty());
+  EXPECT_TRUE(o.overrides.empty());
+  EXPECT_TRUE(o.label.empty());
+  EXPECT_FALSE(o.domain.has_value());
+  EXPECT_TRUE(o.restarts_path.empty());
+  EXPECT_DOUBLE_EQ(o.timeout_s, 0.0);
+  EXPECT_DOUBLE_EQ(o.tolerance, 0.10);
+  EXPECT_FALSE(o.tolerance_given);
+  EXPECT_FALSE(o.quiet);
+  EXPECT_FALSE(o.combineMode());
+  EXPECT_FALSE(o.help);
+}
+
+TEST(MonitorOptions, EveryLiveOptionInBothSpellings) {
+  const MonitorOptions o = parseMonitorOptions({"--out", "/tmp/x", "--scenario=s.yaml", "--set", "duration_s=30",
+                                                "--set=seed=7", "--label", "swa run", "--domain=77", "--restarts",
+                                                "r.csv", "--timeout-s=12.5", "--tolerance", "0.05", "--quiet"});
+  EXPECT_EQ(o.out_dir, "/tmp/x");
+  EXPECT_TRUE(o.out_given);
+  EXPECT_EQ(o.scenario_path, "s.yaml");
+  EXPECT_EQ(o.overrides, (std::vector<std::string>{"duration_s=30", "seed=7"}));
+  EXPECT_EQ(o.label, "swa run");
+  ASSERT_TRUE(o.domain.has_value());
+  EXPECT_EQ(*o.domain, "77");  // validated later by resolveDomain (it also reads SWA_DOMAIN)
+  EXPECT_EQ(o.restarts_path, "r.csv");
+  EXPECT_DOUBLE_EQ(o.timeout_s, 12.5);
+  EXPECT_DOUBLE_EQ(o.tolerance, 0.05);
+  EXPECT_TRUE(o.tolerance_given);
+  EXPECT_TRUE(o.quiet);
+  EXPECT_FALSE(o.combineMode());
+}
+
+TEST(MonitorOptions, HelpWinsOverProblems) {
+  EXPECT_TRUE(parseMonitorOptions({"--help"}).help);
+  EXPECT_TRUE(parseMonitorOptions({"-h", "--bogus"}).help);
+}
+
+TEST(MonitorOptions, CombineListAfterOneFlagAndRepeatedFlags) {
+  const MonitorOptions a = parseMonitorOptions({"--combine", "swa=out/a", "standalone=out/b", "--out", "out/c"});
+  ASSERT_EQ(a.combine.size(), 2u);
+  EXPECT_EQ(a.combine[0].label, "swa");
+  EXPECT_EQ(a.combine[0].dir, "out/a");
+  EXPECT_EQ(a.combine[1].label, "standalone");
+  EXPECT_EQ(a.combine[1].dir, "out/b");
+  EXPECT_TRUE(a.combineMode());
+
+  const MonitorOptions b =
+      parseMonitorOptions({"--combine=x=d1", "--out=o", "--combine", "y=d=2", "--scenario", "s.yaml", "--set", "k=v"});
+  ASSERT_EQ(b.combine.size(), 2u);
+  EXPECT_EQ(b.combine[0].label, "x");
+  EXPECT_EQ(b.combine[1].dir, "d=2");  // only the first '=' separates
+  EXPECT_EQ(b.scenario_path, "s.yaml");
+}
+
+TEST(MonitorOptions, BareArgumentOutsideCombineIsUnknown) {
+  EXPECT_TRUE(contains(errorOf({"swa=out/a"}), "unknown argument 'swa=out/a'"));
+  // The list ends at the next option.
+  EXPECT_TRUE(contains(errorOf({"--combine", "a=b", "--out", "o", "c=d"}), "unknown argument 'c=d'"));
+}
+
+TEST(MonitorOptions, EachErrorIsReported) {
+  EXPECT_TRUE(contains(errorOf({"--frobnicate"}), "unknown argument '--frobnicate'"));
+  EXPECT_TRUE(contains(errorOf({"--out"}), "--out needs a value"));
+  EXPECT_TRUE(contains(errorOf({"--out="}), "--out needs a file name"));
+  EXPECT_TRUE(contains(errorOf({"--scenario="}), "--scenario needs a file name"));
+  EXPECT_TRUE(contains(errorOf({"--restarts", ""}), "--restarts needs a file name"));
+  EXPECT_TRUE(contains(errorOf({"--label="}), "--label needs a name"));
+  EXPECT_TRUE(contains(errorOf({"--set", "a=b"}), "--set needs --scenario"));
+  EXPECT_TRUE(contains(errorOf({"--timeout-s", "-1"}), "--timeout-s '-1' is not a wall time"));
+  EXPECT_TRUE(contains(errorOf({"--timeout-s", "nan"}), "--timeout-s 'nan'"));
+  EXPECT_TRUE(contains(errorOf({"--timeout-s", "5s"}), "--timeout-s '5s'"));
+  EXPECT_TRUE(contains(errorOf({"--tolerance", "0"}), "--tolerance must be > 0"));
+  EXPECT_TRUE(contains(errorOf({"--tolerance", "1.5"}), "--tolerance '1.5' is not a fraction"));
+  EXPECT_TRUE(contains(errorOf({"--combine"}), "--combine needs a value"));
+  EXPECT_TRUE(contains(errorOf({"--combine", "nolabel", "--out", "o"}), "--combine 'nolabel' is not LABEL=DIR"));
+  EXPECT_TRUE(contains(errorOf({"--combine", "=dir", "--out", "o"}), "--combine '=dir' is not LABEL=DIR"));
+  EXPECT_TRUE(contains(errorOf({"--combine", "a=", "--out", "o"}), "--combine 'a=' is not LABEL=DIR"));
+  EXPECT_TRUE(contains(errorOf({"--combine", "a=x"}), "--combine needs --out DIR"));
+  EXPECT_TRUE(contains(errorOf({"--combine", "a=x", "a=y", "--out", "o"}), "label 'a' given twice"));
+  for (const char* live : {"--label", "--domain", "--restarts", "--timeout-s"}) {
+    const std::string e = errorOf({"--combine", "a=x", "--out", "o", live, "1"});
+    EXPECT_TRUE(contains(e, std::string(live) + " applies to the live mode only")) << e;
+  }
+}
+
+TEST(MonitorOptions, AllProblemsTogetherOnePerLine) {
+  const std::string e = errorOf({"--bogus", "--timeout-s", "x", "--set", "a=b", "--tolerance", "2"});
+  EXPECT_TRUE(contains(e, "unknown argument '--bogus'"));
+  EXPECT_TRUE(contains(e, "--timeout-s 'x'"));
+  EXPECT_TRUE(contains(e, "--tolerance '2'"));
+  EXPECT_TRUE(contains(e, "--set needs --scenario"));
+  EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 3);
+}
+
+TEST(MonitorOptions, UsageDocumentsTheContract) {
+  const std::string u = monitorUsage();
+  for (const char* must : {"--out DIR",
+                           "--scenario FILE",
+                           "--set key=value",
+                           "--label NAME",
+                           "--domain D",
+                           "--restarts FILE",
+                           "--timeout-s S",
+                           "--tolerance F",
+                           "--quiet",
+                           "--combine LABEL=DIR",
+                           "wall_s,uav,exit_status,restart_count,backoff_s",
+                           "summary.json",
+                           "timeseries.csv",
+                           "trajectories.csv",
+                           "events.csv",
+                           "report.html",
+                           "0 PASS",
+                           "1 FAIL",
+                           "3 INCOMPLETE",
+                           "2 bad arguments",
+                           "SWA_DOMAIN"}) {
+    EXPECT_TRUE(contains(u, must)) << must;
+  }
+}
+
+}  // namespace
+}  // namespace swa::monitor_node

@@ -1,0 +1,113 @@
+// The launcher's restart log as swa_monitor reads it: missing or empty means no restart, the header may be absent
+// or repeated, CRLF and quoting are tolerated, and every malformed row is counted and described, never fatal.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "restart_log.h"
+
+namespace swa::monitor_node {
+namespace {
+
+RestartLog parse(const std::string& text) {
+  std::istringstream in(text);
+  return parseRestartLog(in);
+}
+
+TEST(RestartLog, MissingFileIsNoRestart) {
+  const RestartLog log = readRestartLog("/nonexistent/swa_monitor_restarts.csv");
+  EXPECT_FALSE(log.found);
+  EXPECT_TRUE(log.restarts.empty());
+  EXPECT_EQ(log.malformed_rows, 0);
+}
+
+TEST(RestartLog, EmptyOrHeaderOnlyIsNoRestart) {
+  for (const std::string text : {"", "\n", "wall_s,uav,exit_status,restart_count,backoff_s\n",
+                                 "wall_s,uav,exit_status,restart_count,backoff_s"}) {
+    const RestartLog log = parse(text);
+    EXPECT_TRUE(log.found);
+    EXPECT_TRUE(log.restarts.empty());
+    EXPECT_EQ(log.malformed_rows, 0);
+  }
+}
+
+TEST(RestartLog, RowsInOrder) {
+  const RestartLog log = parse(
+      "wall_s,uav,exit_status,restart_count,backoff_s\n"
+      "12.5,3,-9,1,0.5\n"
+      "20,3,SIGKILL,2,1\n"
+      "31.25,0,134,1,0.5");  // the last line still being written has no newline, but is complete
+  ASSERT_EQ(log.restarts.size(), 3u);
+  EXPECT_EQ(log.malformed_rows, 0);
+  EXPECT_DOUBLE_EQ(log.restarts[0].wall_s, 12.5);
+  EXPECT_EQ(log.restarts[0].uav, 3);
+  EXPECT_EQ(log.restarts[0].exit_status, "-9");
+  EXPECT_EQ(log.restarts[0].restart_count, 1);
+  EXPECT_DOUBLE_EQ(log.restarts[0].backoff_s, 0.5);
+  EXPECT_EQ(log.restarts[1].exit_status, "SIGKILL");
+  EXPECT_EQ(log.restarts[2].uav, 0);
+  EXPECT_DOUBLE_EQ(log.restarts[2].wall_s, 31.25);
+}
+
+TEST(RestartLog, HeaderOptionalRepeatedCrLfSpacesAndQuotes) {
+  const RestartLog log = parse(
+      "1,0,1,1,0.5\r\n"
+      "wall_s,uav,exit_status,restart_count,backoff_s\r\n"
+      " 2 , 1 ,\"killed, signal 9\", 1 , 1 \r\n"
+      "\r\n");
+  ASSERT_EQ(log.restarts.size(), 2u);
+  EXPECT_EQ(log.malformed_rows, 0);
+  EXPECT_EQ(log.restarts[1].uav, 1);
+  EXPECT_EQ(log.restarts[1].exit_status, "killed, signal 9");
+}
+
+TEST(RestartLog, MalformedRowsAreCountedWithLineAndReason) {
+  const RestartLog log = parse(
+      "wall_s,uav,exit_status,restart_count,backoff_s\n"
+      "1,0,1,1,0.5\n"
+      "1,0,1,1\n"         // 4 fields
+      "x,0,1,1,0.5\n"     // wall_s
+      "1,-2,1,1,0.5\n"    // uav
+      "1,0,,1,0.5\n"      // exit_status
+      "1,0,1,-1,0.5\n"    // restart_count
+      "1,0,1,1,nan\n"     // backoff_s
+      "1,0,\"open,1,1\n"  // quotes
+      "2,1,0,1,0.5\n");
+  EXPECT_EQ(log.restarts.size(), 2u);
+  EXPECT_EQ(log.malformed_rows, 7);
+  ASSERT_EQ(log.problems.size(), 7u);
+  EXPECT_EQ(log.problems[0], "line 3: 4 fields, expected 5");
+  EXPECT_NE(log.problems[1].find("line 4: wall_s 'x'"), std::string::npos);
+  EXPECT_NE(log.problems[2].find("line 5: uav '-2'"), std::string::npos);
+  EXPECT_NE(log.problems[3].find("line 6: exit_status is empty"), std::string::npos);
+  EXPECT_NE(log.problems[4].find("line 7: restart_count '-1'"), std::string::npos);
+  EXPECT_NE(log.problems[5].find("line 8: backoff_s 'nan'"), std::string::npos);
+  EXPECT_EQ(log.problems[6], "line 9: unbalanced quotes");
+}
+
+TEST(RestartLog, ProblemListIsBoundedButTheCountIsNot) {
+  std::string text;
+  for (int k = 0; k < 50; ++k) text += "garbage\n";
+  const RestartLog log = parse(text);
+  EXPECT_EQ(log.malformed_rows, 50);
+  EXPECT_EQ(log.problems.size(), RestartLog::kMaxProblems);
+}
+
+TEST(RestartLog, ReadsAFile) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("swa_restart_log_" + std::to_string(::getpid()) + ".csv");
+  std::ofstream(path) << restartLogHeader() << "\n5,2,1,1,0.5\n";
+  const RestartLog log = readRestartLog(path.string());
+  std::filesystem::remove(path);
+  EXPECT_TRUE(log.found);
+  ASSERT_EQ(log.restarts.size(), 1u);
+  EXPECT_EQ(log.restarts[0].uav, 2);
+}
+
+}  // namespace
+}  // namespace swa::monitor_node

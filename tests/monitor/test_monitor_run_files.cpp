@@ -1,0 +1,302 @@
+// A run directory's files: what the writers produce reads back to the same run (numbers bit for bit, NaN gaps,
+// quoted event text), summary.json carries swa_batch's per-seed keys, and malformed files are refused with the
+// file and line named. Also the small JSON and CSV readers underneath.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "csv_text.h"
+#include "json_value.h"
+#include "run_files.h"
+
+namespace swa::monitor_node {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool sameDouble(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
+
+// A temporary directory removed at the end of the test.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name)
+      : path_(fs::temp_directory_path() / ("swa_monitor_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string str() const { return path_.string(); }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+RunRecord sampleRun() {
+  RunRecord r;
+  r.label = "swa";
+  r.mode = "swa";
+  r.scenario = "deploy/scenarios/dropout_4.yaml";
+  r.seed = 18446744073709551615ull;  // survives the round trip exactly, unlike a double
+  r.completed = true;
+  r.end_reason = "completed";
+  r.verdict.outcome = Outcome::kFail;
+  r.verdict.reasons = {"1 collision(s)", "final d_NB \"odd\" text"};
+  r.formation_radius_m = 12.0;
+  r.tolerance = 0.05;
+  r.window_start_s = 10.0;
+  r.summary.steps = 301;
+  r.summary.duration_s = 30.0;
+  r.summary.mean_neighbor_distance_m = 0.1 + 0.2;  // not a short decimal
+  r.summary.collisions = 1;
+  r.summary.groups = 1;
+  r.summary.anees_position = kNaN;
+  r.summary.nees_samples = 1234;
+  r.counts = {{"truth_samples", 301}, {"dropped_state_late", 2}, {"dropped_truth_duplicate", 0}};
+  r.restarts.found = true;
+  r.restarts.restarts = {{12.5, 3, "-9", 1, 0.5}};
+  r.restarts.malformed_rows = 1;
+  r.restarts.problems = {"line 3: 4 fields, expected 5"};
+  r.events = {{10.0, "gnss_lost", 0, -1, 0.0, "GNSS lost"},
+              {12.34, "collision", 1, 2, 1.4999999999999998, "collision (value: distance, m)"},
+              {13.0, "agent_dead", 3, -1, 2.0, "text with \"quotes\", commas\nand a line break"},
+              {30.0, "scenario_end", kAllUavs, -1, 0.0, "completed"}};
+  for (int k = 0; k < 4; ++k) {
+    monitor::TimeSeriesRow row;
+    row.t_s = 0.1 * k;
+    row.d_nb_m = 10.0 + 1.0 / 3.0 * k;
+    row.centroid_x_m = -0.1 * k;
+    row.collisions = static_cast<std::uint64_t>(k / 2);
+    row.groups = 1 + k % 2;
+    row.nees_pos = k == 0 ? kNaN : 2.0 / 3.0;
+    r.series.push_back(row);
+  }
+  monitor::UavTrajectory a{0, {{0.0, 1.0, 2.0}, {0.5, kNaN, kNaN}, {1.0, 1.5, 2.5}}};
+  monitor::UavTrajectory b{7, {{0.0, -1.0 / 3.0, 0.0}}};
+  r.trajectories = {a, b};
+  return r;
+}
+
+TEST(MonitorJson, ParsesAndPrintsWhatWeWrite) {
+  const JsonValue v = JsonValue::parse(
+      R"({"a": 1, "b": [true, false, null], "c": {"d": "x\"y\\z\n\u00e9\ud83d\ude00"}, "e": -1.5e-3, "f": []})");
+  ASSERT_TRUE(v.isObject());
+  EXPECT_EQ(v.find("a")->asInteger(), 1);
+  EXPECT_EQ(v.find("b")->items().size(), 3u);
+  EXPECT_TRUE(v.find("b")->items()[2].isNull());
+  EXPECT_EQ(*v.find("c")->find("d")->asString(), "x\"y\\z\n\xc3\xa9\xf0\x9f\x98\x80");
+  EXPECT_DOUBLE_EQ(*v.find("e")->asNumber(), -1.5e-3);
+  EXPECT_FALSE(v.find("e")->asInteger().has_value());
+  EXPECT_EQ(v.find("zz"), nullptr);
+  // Printed and parsed again: the same document.
+  EXPECT_EQ(JsonValue::parse(v.dump()).dump(), v.dump());
+  // Number text is kept verbatim.
+  EXPECT_EQ(JsonValue::parse("[18446744073709551615, 0.30000000000000004]").dump(),
+            "[\n  18446744073709551615,\n  0.30000000000000004\n]\n");
+}
+
+TEST(MonitorJson, RejectsMalformedTextWithAPosition) {
+  for (const char* bad : {"", "{", "{\"a\" 1}", "{\"a\": 1,}", "[1 2]", "{\"a\": 1} x", "01", "1.", "-", "tru",
+                          "\"unterminated", "\"bad \\q\"", "\"\\ud800\"", "{\"a\": 1, \"a\": 2}", "\"tab\there\""}) {
+    EXPECT_THROW(JsonValue::parse(bad), JsonError) << bad;
+  }
+  try {
+    JsonValue::parse("{\n  \"a\": ?\n}");
+    FAIL();
+  } catch (const JsonError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2, column 8"), std::string::npos) << e.what();
+  }
+  std::string deep(200, '[');
+  EXPECT_THROW(JsonValue::parse(deep), JsonError);
+}
+
+TEST(MonitorJson, BuildersAndTypedReads) {
+  JsonValue o = JsonValue::object();
+  o.set("n", JsonValue::number(kNaN));  // JSON has no NaN: null
+  o.set("i", JsonValue::integer(-3));
+  o.set("u", JsonValue::unsignedInteger(7));
+  o.set("i", JsonValue::integer(4));  // replaced in place
+  EXPECT_TRUE(o.find("n")->isNull());
+  EXPECT_EQ(o.members().front().first, "n");
+  EXPECT_EQ(o.members()[1].first, "i");
+  EXPECT_EQ(*o.find("i")->asInteger(), 4);
+  EXPECT_FALSE(JsonValue::integer(-1).asUnsigned().has_value());
+  EXPECT_FALSE(JsonValue::string("1").asNumber().has_value());
+  EXPECT_EQ(o.dump(), "{\n  \"n\": null,\n  \"i\": 4,\n  \"u\": 7\n}\n");
+}
+
+TEST(MonitorCsv, SplitsAndQuotes) {
+  EXPECT_EQ(*splitCsvLine("a,b,,c"), (std::vector<std::string>{"a", "b", "", "c"}));
+  EXPECT_EQ(*splitCsvLine(""), (std::vector<std::string>{""}));
+  EXPECT_EQ(*splitCsvLine("\"x, y\",\"he said \"\"hi\"\"\""), (std::vector<std::string>{"x, y", "he said \"hi\""}));
+  EXPECT_FALSE(splitCsvLine("\"open").has_value());
+  EXPECT_FALSE(splitCsvLine("\"closed\"x,y").has_value());
+  EXPECT_EQ(csvField("plain"), "plain");
+  EXPECT_EQ(csvField("a,b"), "\"a,b\"");
+  EXPECT_EQ(csvField("q\"q"), "\"q\"\"q\"");
+  EXPECT_EQ(csvField("two\nlines"), "two lines");
+  EXPECT_EQ(csvField(" padded"), "\" padded\"");
+  for (const std::string s : {"a,b", "q\"q", " x ", "", "\"\""}) EXPECT_EQ(splitCsvLine(csvField(s))->at(0), s);
+  EXPECT_EQ(chompCr("x\r"), "x");
+}
+
+TEST(MonitorRunFiles, SummaryJsonHasTheBatchKeysAndTheMonitorsOwn) {
+  const RunRecord run = sampleRun();
+  const JsonValue j = summaryJson(run);
+  // Every key of swa_batch's per-seed entries (monitor::toJson(Summary)), with the same values.
+  const JsonValue batch = JsonValue::parse(monitor::toJson(run.summary));
+  for (const auto& [key, value] : batch.members()) {
+    const JsonValue* mine = j.find(key);
+    ASSERT_NE(mine, nullptr) << key;
+    EXPECT_EQ(mine->dump(), value.dump()) << key;
+  }
+  for (const char* key : {"label", "mode", "scenario", "seed", "completed", "end_reason", "verdict", "verdict_reasons",
+                          "formation_radius_m", "tolerance", "agent_restarts", "restarts", "events",
+                          "dropped_state_late", "truth_samples"}) {
+    EXPECT_NE(j.find(key), nullptr) << key;
+  }
+  EXPECT_EQ(*j.find("verdict")->asString(), "FAIL");
+  EXPECT_EQ(*j.find("agent_restarts")->asUnsigned(), 1u);
+  EXPECT_EQ(j.find("events")->items().size(), 4u);
+  EXPECT_EQ(*j.find("seed")->asUnsigned(), 18446744073709551615ull);
+}
+
+TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
+  const TempDir dir("roundtrip");
+  const RunRecord in = sampleRun();
+  writeRunFiles(dir.str(), in);
+  const LoadedRun loaded = readRunDir(dir.str());
+  const RunRecord& out = loaded.run;
+
+  EXPECT_EQ(out.label, in.label);
+  EXPECT_EQ(out.mode, in.mode);
+  EXPECT_EQ(out.scenario, in.scenario);
+  EXPECT_EQ(out.seed, in.seed);
+  EXPECT_EQ(out.completed, in.completed);
+  EXPECT_EQ(out.end_reason, in.end_reason);
+  EXPECT_EQ(out.verdict.outcome, in.verdict.outcome);
+  EXPECT_EQ(out.verdict.reasons, in.verdict.reasons);
+  EXPECT_EQ(out.formation_radius_m, in.formation_radius_m);
+  EXPECT_EQ(out.tolerance, in.tolerance);
+  EXPECT_EQ(out.window_start_s, in.window_start_s);
+  const auto fin = monitor::summaryFields(in.summary);
+  const auto fout = monitor::summaryFields(out.summary);
+  ASSERT_EQ(fin.size(), fout.size());
+  for (std::size_t k = 0; k < fin.size(); ++k) EXPECT_TRUE(sameDouble(fin[k].value, fout[k].value)) << fin[k].key;
+  // Only the dropped_* counters are read back (they are what the report shows).
+  EXPECT_EQ(out.counts, (std::vector<std::pair<std::string, std::uint64_t>>{{"dropped_state_late", 2},
+                                                                            {"dropped_truth_duplicate", 0}}));
+  ASSERT_EQ(out.restarts.restarts.size(), 1u);
+  EXPECT_EQ(out.restarts.restarts[0].exit_status, "-9");
+  EXPECT_EQ(out.restarts.restarts[0].uav, 3);
+  EXPECT_EQ(out.restarts.malformed_rows, 1);
+  EXPECT_EQ(out.restarts.problems, in.restarts.problems);
+
+  ASSERT_EQ(out.events.size(), in.events.size());
+  for (std::size_t k = 0; k < in.events.size(); ++k) {
+    EXPECT_EQ(out.events[k].t_s, in.events[k].t_s);
+    EXPECT_EQ(out.events[k].kind, in.events[k].kind);
+    EXPECT_EQ(out.events[k].uav, in.events[k].uav);
+    EXPECT_EQ(out.events[k].other_uav, in.events[k].other_uav);
+    EXPECT_EQ(out.events[k].value, in.events[k].value);
+  }
+  EXPECT_EQ(out.events[2].text, "text with \"quotes\", commas and a line break");  // one record per line
+
+  ASSERT_EQ(out.series.size(), in.series.size());
+  for (std::size_t k = 0; k < in.series.size(); ++k) {
+    EXPECT_EQ(monitor::formatCsvRow(out.series[k]), monitor::formatCsvRow(in.series[k]));
+  }
+  ASSERT_EQ(out.trajectories.size(), 2u);
+  for (std::size_t t = 0; t < 2; ++t) {
+    EXPECT_EQ(out.trajectories[t].id, in.trajectories[t].id);
+    ASSERT_EQ(out.trajectories[t].points.size(), in.trajectories[t].points.size());
+    for (std::size_t p = 0; p < in.trajectories[t].points.size(); ++p) {
+      EXPECT_TRUE(sameDouble(out.trajectories[t].points[p].x_m, in.trajectories[t].points[p].x_m));
+      EXPECT_TRUE(sameDouble(out.trajectories[t].points[p].y_m, in.trajectories[t].points[p].y_m));
+    }
+  }
+  // The summary object as read is the summary as written.
+  EXPECT_EQ(loaded.summary.dump(), summaryJson(in).dump());
+}
+
+TEST(MonitorRunFiles, CrLfFilesReadTheSame) {
+  std::istringstream in("t_s,uav,x_m,y_m\r\n0,1,2,3\r\n\r\n");
+  const auto t = parseTrajectoriesCsv(in, "x.csv");
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].points.at(0).y_m, 3.0);
+}
+
+// The RunFileError message of reading `text` with `reader`, "" when it reads.
+template <class Reader>
+std::string errorOf(Reader reader, const std::string& text) {
+  std::istringstream in(text);
+  try {
+    reader(in, "the.csv");
+  } catch (const RunFileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MonitorRunFiles, MalformedCsvNamesFileAndLine) {
+  const auto series = [](std::istream& in, const std::string& s) { return parseTimeSeriesCsv(in, s); };
+  const auto traj = [](std::istream& in, const std::string& s) { return parseTrajectoriesCsv(in, s); };
+  const auto events = [](std::istream& in, const std::string& s) { return parseEventsCsv(in, s); };
+  const std::string h = monitor::csvHeader() + "\n";
+  EXPECT_EQ(errorOf(series, ""), "the.csv:1: empty file, expected the header '" + monitor::csvHeader() + "'");
+  EXPECT_NE(errorOf(series, "t,d\n").find("the.csv:1: header is not"), std::string::npos);
+  EXPECT_NE(errorOf(series, h + "1,2,3\n").find("the.csv:2: 3 fields, expected 12"), std::string::npos);
+  EXPECT_NE(errorOf(series, h + "0,x,0,0,0,0,0,0,1,0,0,0\n").find("the.csv:2: field 2 'x'"), std::string::npos);
+  EXPECT_NE(errorOf(series, h + "0,1,0,0,0,0,-1,0,1,0,0,0\n").find("collisions '-1'"), std::string::npos);
+  EXPECT_NE(errorOf(series, h + "0,1,0,0,0,0,0,0,1.5,0,0,0\n").find("groups '1.5'"), std::string::npos);
+  EXPECT_EQ(errorOf(series, h + "0,nan,nan,nan,nan,nan,0,nan,0,nan,nan,nan\n"), "");
+  EXPECT_NE(errorOf(traj, "t_s,uav,x_m,y_m\n0,-1,0,0\n").find("the.csv:2: uav '-1'"), std::string::npos);
+  EXPECT_NE(errorOf(traj, "t_s,uav,x_m,y_m\nnan,1,0,0\n").find("t_s 'nan'"), std::string::npos);
+  EXPECT_NE(errorOf(events, "t_s,kind,uav,other_uav,value,text\n1,,0,0,0,x\n").find("empty kind"), std::string::npos);
+  EXPECT_NE(errorOf(events, "t_s,kind,uav,other_uav,value,text\n1,k,0,0,0,\"x\n").find("unbalanced quotes"),
+            std::string::npos);
+  EXPECT_NE(errorOf(events, "t_s,kind,uav,other_uav,value,text\n1,k,a,0,0,x\n").find("not integers"),
+            std::string::npos);
+}
+
+TEST(MonitorRunFiles, MissingOrBrokenFilesAreNamed) {
+  const TempDir dir("broken");
+  const auto errorReading = [&dir] {
+    try {
+      readRunDir(dir.str());
+    } catch (const RunFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(errorReading().find("cannot read " + (dir / "summary.json").string()), std::string::npos);
+  writeRunFiles(dir.str(), sampleRun());
+  fs::remove(dir / "events.csv");
+  EXPECT_NE(errorReading().find("cannot read " + (dir / "events.csv").string()), std::string::npos);
+  std::ofstream(dir / "summary.json") << "{\"label\": \"x\", \"completed\": true}";
+  EXPECT_NE(errorReading().find("summary.json: no member 'verdict'"), std::string::npos);
+  std::ofstream(dir / "summary.json") << "{\"label\": \"x\",";
+  EXPECT_NE(errorReading().find("summary.json: line 1"), std::string::npos);
+  std::ofstream(dir / "summary.json") << "[]";
+  EXPECT_NE(errorReading().find("summary.json: not a JSON object"), std::string::npos);
+  try {
+    readRunDir((dir / "nope").string());
+    FAIL();
+  } catch (const RunFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a directory"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace swa::monitor_node

@@ -1,0 +1,140 @@
+// The run verdict and its exit status: PASS only when the scenario completed with d_NB within the band, no
+// collision and one group; FAIL lists every failed criterion; INCOMPLETE wins whenever the run did not complete.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "monitor_options.h"
+#include "verdict.h"
+
+namespace swa::monitor_node {
+namespace {
+
+VerdictInput good() {
+  VerdictInput in;
+  in.completed = true;
+  in.end_reason = "completed";
+  in.saw_truth = true;
+  in.summary.mean_neighbor_distance_m = 10.3;
+  in.summary.collisions = 0;
+  in.summary.groups = 1;
+  in.formation_radius_m = 10.0;
+  in.tolerance = 0.10;
+  return in;
+}
+
+bool mentions(const Verdict& v, const std::string& what) {
+  for (const std::string& r : v.reasons) {
+    if (r.find(what) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(MonitorVerdict, PassNeedsEveryCriterion) {
+  const Verdict v = judge(good());
+  EXPECT_EQ(v.outcome, Outcome::kPass);
+  EXPECT_TRUE(v.reasons.empty());
+  EXPECT_EQ(verdictText(v), "PASS");
+  EXPECT_EQ(exitCode(v.outcome), 0);
+}
+
+TEST(MonitorVerdict, BandEdgesAreInclusive) {
+  VerdictInput in = good();
+  in.summary.mean_neighbor_distance_m = 9.0;
+  EXPECT_EQ(judge(in).outcome, Outcome::kPass);
+  in.summary.mean_neighbor_distance_m = 11.0;
+  EXPECT_EQ(judge(in).outcome, Outcome::kPass);
+  in.summary.mean_neighbor_distance_m = 11.01;
+  EXPECT_EQ(judge(in).outcome, Outcome::kFail);
+  in.summary.mean_neighbor_distance_m = 8.99;
+  EXPECT_EQ(judge(in).outcome, Outcome::kFail);
+  in.tolerance = 0.2;  // a wider band accepts it
+  EXPECT_EQ(judge(in).outcome, Outcome::kPass);
+}
+
+TEST(MonitorVerdict, EachFailureIsNamed) {
+  VerdictInput in = good();
+  in.summary.mean_neighbor_distance_m = 12.0;
+  Verdict v = judge(in);
+  EXPECT_EQ(v.outcome, Outcome::kFail);
+  EXPECT_TRUE(mentions(v, "final d_NB 12 m outside r = 10 m"));
+  EXPECT_EQ(exitCode(v.outcome), 1);
+
+  in = good();
+  in.summary.collisions = 2;
+  v = judge(in);
+  EXPECT_EQ(v.outcome, Outcome::kFail);
+  EXPECT_TRUE(mentions(v, "2 collision(s)"));
+
+  in = good();
+  in.summary.groups = 3;
+  v = judge(in);
+  EXPECT_TRUE(mentions(v, "3 groups at the end"));
+
+  in = good();
+  in.summary.groups = 0;  // nobody present at the end
+  in.summary.mean_neighbor_distance_m = monitor::kNaN;
+  v = judge(in);
+  EXPECT_EQ(v.outcome, Outcome::kFail);
+  EXPECT_TRUE(mentions(v, "final d_NB undefined"));
+  EXPECT_TRUE(mentions(v, "0 groups"));
+}
+
+TEST(MonitorVerdict, AllFailuresListedTogether) {
+  VerdictInput in = good();
+  in.summary.mean_neighbor_distance_m = 3.0;
+  in.summary.collisions = 1;
+  in.summary.groups = 2;
+  const Verdict v = judge(in);
+  EXPECT_EQ(v.reasons.size(), 3u);
+  EXPECT_EQ(verdictText(v).rfind("FAIL: final d_NB", 0), 0u);
+}
+
+TEST(MonitorVerdict, NotCompletedIsIncompleteEvenIfTheNumbersAreGood) {
+  VerdictInput in = good();
+  in.completed = false;
+  in.end_reason = "interrupted by SIGINT";
+  const Verdict v = judge(in);
+  EXPECT_EQ(v.outcome, Outcome::kIncomplete);
+  EXPECT_TRUE(mentions(v, "scenario not completed: interrupted by SIGINT"));
+  EXPECT_EQ(exitCode(v.outcome), 3);
+}
+
+TEST(MonitorVerdict, IncompleteWinsOverFailAndKeepsTheFailures) {
+  VerdictInput in = good();
+  in.completed = false;
+  in.end_reason = "simulator ended the scenario: discovery timeout";
+  in.summary.collisions = 1;
+  const Verdict v = judge(in);
+  EXPECT_EQ(v.outcome, Outcome::kIncomplete);
+  EXPECT_TRUE(mentions(v, "discovery timeout"));
+  EXPECT_TRUE(mentions(v, "1 collision(s)"));
+}
+
+TEST(MonitorVerdict, NoTruthIsIncompleteEvenWhenTheSimulatorCompleted) {
+  VerdictInput in = good();
+  in.saw_truth = false;
+  Verdict v = judge(in);
+  EXPECT_EQ(v.outcome, Outcome::kIncomplete);
+  EXPECT_TRUE(mentions(v, "no ground truth received"));
+  in.completed = false;
+  in.end_reason = "no EVENT_SCENARIO_END within 5 s (--timeout-s)";
+  v = judge(in);
+  EXPECT_TRUE(mentions(v, "--timeout-s"));
+}
+
+TEST(MonitorVerdict, NamesRoundTripAndExitCodesMatchTheOptions) {
+  for (const Outcome o : {Outcome::kPass, Outcome::kFail, Outcome::kIncomplete}) {
+    ASSERT_TRUE(parseOutcome(toString(o)).has_value());
+    EXPECT_EQ(*parseOutcome(toString(o)), o);
+  }
+  EXPECT_FALSE(parseOutcome("pass").has_value());
+  EXPECT_EQ(exitCode(Outcome::kPass), kExitPass);
+  EXPECT_EQ(exitCode(Outcome::kFail), kExitFail);
+  EXPECT_EQ(exitCode(Outcome::kIncomplete), kExitIncomplete);
+  EXPECT_EQ(kExitBadInput, 2);
+}
+
+}  // namespace
+}  // namespace swa::monitor_node
