@@ -24,6 +24,8 @@ using Clock = std::chrono::steady_clock;
 constexpr auto kPollPeriod = std::chrono::milliseconds(20);
 // The monitor ends on the simulator's EVENT_SCENARIO_END; this bounds the wait when it never arrives.
 constexpr double kMonitorAfterSimS = 30.0;
+// The simulator waits for acknowledgments before it exits (swa::dds::Participant): bounded by about 6 s.
+constexpr double kSimAfterMonitorS = 15.0;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -178,7 +180,7 @@ class Supervisor {
   }
 
   void supervise() {
-    std::optional<Clock::time_point> sim_done_at;
+    std::optional<Clock::time_point> sim_done_at, monitor_done_at;
     while (true) {
       if (dds::shutdownRequested()) requestStop(dds::shutdownSignal() == SIGINT ? "SIGINT" : "SIGTERM");
       if (o_.timeout_s > 0.0 && secondsSince(t0_) > o_.timeout_s) requestStop("--timeout-s reached");
@@ -194,12 +196,20 @@ class Supervisor {
         }
       }
       if (const auto m = monitor_->poll()) {
-        if (!sim_done_at) {
-          std::printf("swa_launch [%s]: swa_monitor ended early with %s (see %s)\n", spec_.label.c_str(),
+        if (sim_done_at) break;
+        if (*m != 0 && *m != 1 && *m != 3) {
+          std::printf("swa_launch [%s]: swa_monitor failed with %s (see %s)\n", spec_.label.c_str(),
                       describeStatus(*m).c_str(), (logs_ / "monitor.log").c_str());
           requestStop("monitor gone");
+          break;
         }
-        break;
+        // A verdict: the monitor has seen the end of the scenario, the simulator is finishing its own shutdown.
+        if (!monitor_done_at) monitor_done_at = Clock::now();
+        if (std::chrono::duration<double>(Clock::now() - *monitor_done_at).count() > kSimAfterMonitorS) {
+          std::printf("swa_launch [%s]: swa_sim still running %.0f s after the monitor's verdict; stopping it\n",
+                      spec_.label.c_str(), kSimAfterMonitorS);
+          break;
+        }
       }
       if (sim_done_at && std::chrono::duration<double>(Clock::now() - *sim_done_at).count() > kMonitorAfterSimS) {
         std::printf("swa_launch [%s]: no verdict from swa_monitor %.0f s after the simulator ended; stopping it\n",
