@@ -1,6 +1,7 @@
 #include "sim_node.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
@@ -43,6 +44,18 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+WallNs wallNs(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+}
+
+// JSON has no NaN: a statistic of an empty set is null.
+std::string jsonReal(double x) {
+  if (!std::isfinite(x)) return "null";
+  std::ostringstream o;
+  o << std::setprecision(17) << x;
+  return o.str();
+}
+
 }  // namespace
 
 SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int domain_id,
@@ -52,6 +65,7 @@ SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int d
       world_(scenario),
       n_(world_.uav_count()),
       lockstep_(n_),
+      latency_(n_),
       rt_alive_(static_cast<std::size_t>(n_), true),
       rt_last_answer_(static_cast<std::size_t>(n_)),
       rt_last_applied_(static_cast<std::size_t>(n_)),
@@ -76,7 +90,7 @@ SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int d
     gnss_.push_back(participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), "swa_sensor_writer"));
     cmd_.push_back(participant_->reader<msg::VelocitySetpointPubSubType>(
         dds::topics::cmdVel(i), "swa_command_reader",
-        [this, i](msg::VelocitySetpoint&& m) { queue_.push(Answer{i, std::move(m)}); }));
+        [this, i](msg::VelocitySetpoint&& m) { queue_.push(Answer{i, std::move(m), Clock::now()}); }));
   }
 }
 
@@ -131,7 +145,8 @@ int SimNode::run() {
     runRealtime();
   }
   summary_.completed = world_.finished() && !dds::shutdownRequested();
-  summary_.wall_time_s = secondsSince(t0);
+  summary_.wall_time_s = secondsSince(t0) - summary_.handshake_s;
+  finishLatency();
   summary_.steps = world_.step_index();
   summary_.sim_time_s = sim::stampSeconds(world_.time_ns());
   summary_.collisions = world_.collisions();
@@ -146,13 +161,18 @@ int SimNode::run() {
   if (truth_csv_.is_open()) truth_csv_.flush();
   std::fprintf(stderr,
                "swa_sim: %s %s run of %d UAVs: %lld steps, %.1f s sim in %.2f s wall (x%.1f), %d collision(s), "
-               "%llu dead / %llu rejoined agent event(s), %llu ignored command(s)\n",
+               "%llu dead / %llu rejoined agent event(s), %llu ignored command(s); loop latency over %llu command(s): "
+               "p50 %.0f us, p99 %.0f us, max %.0f us; %llu late (%.2f %%), %llu missing (%.2f %%)\n",
                summary_.completed ? "completed" : "INTERRUPTED", clockModeName(scenario_.clock.mode), n_,
                static_cast<long long>(summary_.steps), summary_.sim_time_s, summary_.wall_time_s,
                summary_.wall_time_s > 0 ? summary_.sim_time_s / summary_.wall_time_s : 0.0, summary_.collisions,
                static_cast<unsigned long long>(summary_.agent_dead_events),
                static_cast<unsigned long long>(summary_.agent_rejoined_events),
-               static_cast<unsigned long long>(summary_.ignored_commands));
+               static_cast<unsigned long long>(summary_.ignored_commands),
+               static_cast<unsigned long long>(summary_.latency.answered), summary_.latency.p50_us,
+               summary_.latency.p99_us, summary_.latency.max_us, static_cast<unsigned long long>(summary_.latency.late),
+               100.0 * summary_.latency.lateFraction(), static_cast<unsigned long long>(summary_.latency.missing),
+               100.0 * summary_.latency.missingFraction());
   return summary_.completed ? 0 : 1;
 }
 
@@ -160,7 +180,7 @@ void SimNode::runLockstep() {
   const double startup_s = std::max(options_.agent_timeout_s, options_.startup_timeout_s);
   while (!dds::shutdownRequested()) {
     publishStepOutputs();
-    lockstep_.begin(publishSensors());
+    lockstep_.begin(publishSensors(std::nullopt));
     drainLockstep(Clock::duration::zero());  // answers of dead agents are looked at even if nobody is waited for
     // An agent that never answered may still be matching our writers (discovery is not symmetric): it gets the
     // startup timeout, not the agent timeout, for its first answer.
@@ -210,6 +230,7 @@ void SimNode::drainLockstep(Clock::duration wait) {
       ++summary_.ignored_commands;
       continue;
     }
+    recordLatency(a);
     switch (lockstep_.onAnswer(a.uav, a.setpoint.answered_stamp_ns())) {
       case Verdict::kApply:
         apply(a);
@@ -230,15 +251,42 @@ void SimNode::drainLockstep(Clock::duration wait) {
 
 void SimNode::runRealtime() {
   const double speed = scenario_.clock.speed;
-  const auto start = Clock::now();
-  for (auto& t : rt_last_answer_) t = start;
   const agent::StampNs dt_ns = sim::stepPeriodNs(scenario_.dynamics.rate_hz);
   const auto timeout = seconds(options_.agent_timeout_s);
-  while (!dds::shutdownRequested()) {
-    publishStepOutputs();
-    publishSensors();
-    if (world_.finished()) break;
-    const auto target = start + seconds(sim::stampSeconds(world_.time_ns() + dt_ns) / speed);
+
+  // Handshake: the clock starts once every agent has closed the loop once. Discovery is not symmetric: when the
+  // simulator has matched every agent's endpoints, an agent may not have matched the simulator's yet, and samples
+  // written meanwhile reach it (TRANSIENT_LOCAL) only once it has, i.e. late. So step 0's samples are published
+  // untimed, and pacing starts when each agent has answered them (typically within a few ms), or after the startup
+  // timeout (agents still silent are then declared dead by the agent timeout as usual). Step 0 is not in the latency
+  // statistics: its answers measure discovery, not the loop.
+  const auto t_handshake = Clock::now();
+  time_latency_ = false;
+  publishStepOutputs();
+  publishSensors(std::nullopt);
+  const auto handshake_deadline = t_handshake + seconds(options_.startup_timeout_s);
+  const auto everyoneAnswered = [this] {
+    return std::all_of(rt_last_applied_.begin(), rt_last_applied_.end(), [](const auto& a) { return a.has_value(); });
+  };
+  while (!everyoneAnswered() && !dds::shutdownRequested()) {
+    const auto now = Clock::now();
+    if (now >= handshake_deadline) break;
+    drainRealtime(std::min<Clock::duration>(handshake_deadline - now, kPollPeriod));
+  }
+  time_latency_ = true;
+  summary_.handshake_s = secondsSince(t_handshake);
+  if (!everyoneAnswered() && !dds::shutdownRequested()) {
+    std::fprintf(stderr, "swa_sim: not every agent answered step 0 within %.0f s; starting the clock anyway\n",
+                 options_.startup_timeout_s);
+  }
+
+  const auto start = Clock::now();
+  for (auto& t : rt_last_answer_) t = start;
+  const auto scheduledTime = [&](agent::StampNs stamp_ns) {
+    return start + seconds(sim::stampSeconds(stamp_ns) / speed);
+  };
+  while (!world_.finished() && !dds::shutdownRequested()) {
+    const auto target = scheduledTime(world_.time_ns() + dt_ns);  // the next step
     do {
       const auto now = Clock::now();
       drainRealtime(now < target ? std::min<Clock::duration>(target - now, kPollPeriod) : Clock::duration::zero());
@@ -254,8 +302,15 @@ void SimNode::runRealtime() {
         publishEvent(msg::EVENT_AGENT_DEAD, i, -1, options_.agent_timeout_s, "no setpoint within the agent timeout");
       }
     }
+    if (dds::shutdownRequested()) break;
     world_.step();
+    step_lag_.add(wallNs(Clock::now()) - wallNs(target));
+    publishStepOutputs();
+    // This step's IMU samples are answered late once the next step is due.
+    publishSensors(scheduledTime(world_.time_ns() + dt_ns));
   }
+  // The last step's samples are judged like every other: collect their answers until they are due.
+  if (!dds::shutdownRequested()) collectLateAnswers(scheduledTime(world_.time_ns() + dt_ns));
 }
 
 void SimNode::drainRealtime(Clock::duration wait) {
@@ -265,6 +320,7 @@ void SimNode::drainRealtime(Clock::duration wait) {
   for (const Answer& a : batch_) {
     const auto k = static_cast<std::size_t>(a.uav);
     const agent::StampNs answered = a.setpoint.answered_stamp_ns();
+    if (a.setpoint.uav_id() == static_cast<std::uint32_t>(a.uav)) recordLatency(a);
     // The latest setpoint wins; answers from the future belong to a previous run (replayed command history).
     const bool newer = !rt_last_applied_[k] || answered > *rt_last_applied_[k];
     if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav) || !newer || answered > now_ns) {
@@ -282,6 +338,37 @@ void SimNode::drainRealtime(Clock::duration wait) {
       publishEvent(msg::EVENT_AGENT_REJOINED, a.uav, -1, 0.0, "answering again");
     }
   }
+}
+
+void SimNode::collectLateAnswers(Clock::time_point until) {
+  while (!dds::shutdownRequested()) {
+    const auto now = Clock::now();
+    if (now >= until) break;
+    batch_.clear();
+    queue_.drain(batch_, std::min<Clock::duration>(until - now, kPollPeriod));
+    for (const Answer& a : batch_) {
+      if (a.setpoint.uav_id() == static_cast<std::uint32_t>(a.uav)) recordLatency(a);
+    }
+  }
+  // What arrived in time but was not drained yet.
+  batch_.clear();
+  queue_.drain(batch_, Clock::duration::zero());
+  for (const Answer& a : batch_) {
+    if (a.setpoint.uav_id() == static_cast<std::uint32_t>(a.uav)) recordLatency(a);
+  }
+}
+
+void SimNode::recordLatency(const Answer& a) {
+  if (!time_latency_) return;
+  latency_.answered(a.uav, a.setpoint.answered_seq(), a.setpoint.answered_stamp_ns(), wallNs(a.received));
+}
+
+void SimNode::finishLatency() {
+  latency_.finish(wallNs(Clock::now()));
+  summary_.latency = latency_.report();
+  const bool realtime = scenario_.clock.mode == sim::ClockMode::kRealtime;
+  summary_.step_lag_p99_us = realtime ? step_lag_.quantileNs(0.99) * 1e-3 : std::nan("");
+  summary_.step_lag_max_us = realtime ? step_lag_.maxNs() * 1e-3 : std::nan("");
 }
 
 void SimNode::apply(const Answer& a) {
@@ -323,7 +410,8 @@ void SimNode::publishStepOutputs() {
   if (!clock_.write(tick)) ++summary_.write_failures;
 }
 
-std::vector<std::optional<agent::StampNs>> SimNode::publishSensors() {
+std::vector<std::optional<agent::StampNs>> SimNode::publishSensors(std::optional<Clock::time_point> due) {
+  const std::optional<WallNs> due_ns = due ? std::optional<WallNs>(wallNs(*due)) : std::nullopt;
   std::vector<std::optional<agent::StampNs>> imu_stamps(static_cast<std::size_t>(n_));
   const std::vector<sim::UavSensors>& sensors = world_.sensors();
   for (int i = 0; i < n_; ++i) {
@@ -334,7 +422,9 @@ std::vector<std::optional<agent::StampNs>> SimNode::publishSensors() {
     // The closed loop's equal-stamp order (IMU, detections, GNSS); the agent restores it whatever the arrival order.
     if (s.imu) {
       msg::Imu m = dds::toMsg(*s.imu, id, ++imu_seq_[k]);
+      const WallNs published_ns = wallNs(Clock::now());
       if (imu_[k].write(m)) {
+        if (time_latency_) latency_.published(i, imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
         imu_stamps[k] = s.imu->stamp_ns;
       } else {
         ++summary_.write_failures;
@@ -398,13 +488,24 @@ std::string SimNode::summaryJson() const {
     << clockModeName(scenario_.clock.mode) << "\",\n  \"uav_count\": " << n_ << ",\n  \"seed\": " << scenario_.seed
     << ",\n  \"steps\": " << summary_.steps << ",\n  \"sim_time_s\": " << summary_.sim_time_s
     << ",\n  \"wall_time_s\": " << summary_.wall_time_s << ",\n  \"discovery_s\": " << summary_.discovery_s
+    << ",\n  \"handshake_s\": " << summary_.handshake_s
     << ",\n  \"collisions\": " << summary_.collisions << ",\n  \"applied_commands\": " << summary_.applied_commands
     << ",\n  \"ignored_commands\": " << summary_.ignored_commands
     << ",\n  \"unacknowledged_sensor_steps\": " << summary_.unacknowledged_sensor_steps
     << ",\n  \"agent_dead_events\": " << summary_.agent_dead_events
     << ",\n  \"agent_rejoined_events\": " << summary_.agent_rejoined_events << ",\n  \"dead_at_end\": [";
   for (std::size_t k = 0; k < summary_.dead_at_end.size(); ++k) o << (k ? ", " : "") << summary_.dead_at_end[k];
-  o << "],\n  \"write_failures\": " << summary_.write_failures << "\n}\n";
+  const LatencyReport& l = summary_.latency;
+  o << "],\n  \"write_failures\": " << summary_.write_failures
+    << ",\n  \"latency_commands_judged\": " << l.published << ",\n  \"latency_commands_answered\": " << l.answered
+    << ",\n  \"latency_p50_us\": " << jsonReal(l.p50_us) << ",\n  \"latency_p99_us\": " << jsonReal(l.p99_us)
+    << ",\n  \"latency_max_us\": " << jsonReal(l.max_us) << ",\n  \"latency_mean_us\": " << jsonReal(l.mean_us)
+    << ",\n  \"latency_quantile_resolution\": " << jsonReal(LogHistogram::relativeResolution())
+    << ",\n  \"late_commands\": " << l.late << ",\n  \"late_fraction\": " << jsonReal(l.lateFraction())
+    << ",\n  \"missing_answers\": " << l.missing << ",\n  \"missing_fraction\": " << jsonReal(l.missingFraction())
+    << ",\n  \"duplicate_answers\": " << l.duplicates << ",\n  \"unmatched_answers\": " << l.unmatched
+    << ",\n  \"step_lag_p99_us\": " << jsonReal(summary_.step_lag_p99_us)
+    << ",\n  \"step_lag_max_us\": " << jsonReal(summary_.step_lag_max_us) << "\n}\n";
   return o.str();
 }
 

@@ -20,6 +20,7 @@
 #include <swa/msg/SwarmTruth.h>
 #include <swa/msg/VelocitySetpoint.h>
 
+#include "latency_stats.h"
 #include "lockstep.h"
 #include "sim_options.h"
 #include "swa/dds/participant.h"
@@ -33,8 +34,9 @@ struct SimSummary {
   bool completed = false;        // reached the scenario's duration (false: interrupted)
   std::int64_t steps = 0;
   double sim_time_s = 0.0;
-  double wall_time_s = 0.0;      // from the first step to the end (discovery excluded)
+  double wall_time_s = 0.0;      // from the first step to the end (discovery and the realtime handshake excluded)
   double discovery_s = 0.0;
+  double handshake_s = 0.0;      // realtime: from publishing step 0 until every agent answered it
   int collisions = 0;
   std::uint64_t applied_commands = 0;
   std::uint64_t ignored_commands = 0;  // stale, duplicate, or naming the wrong UAV
@@ -43,6 +45,14 @@ struct SimSummary {
   std::uint64_t agent_rejoined_events = 0;
   std::vector<int> dead_at_end;
   std::uint64_t write_failures = 0;
+  // Loop latency: wall time from publishing a UAV's IMU sample to receiving the cmd_vel that answers it (its
+  // answered_seq / answered_stamp_ns), taken in the reader's listener. Late (realtime only): received after the UAV's
+  // next IMU sample was due. Missing: never answered although that deadline passed (lockstep: never answered).
+  LatencyReport latency;
+  // Realtime only: how late the simulator itself stepped and published against its wall-clock schedule (us; NaN in
+  // lockstep). A large lag means the simulator thread, not the agents, is what falls behind.
+  double step_lag_p99_us = 0.0;
+  double step_lag_max_us = 0.0;
 };
 
 class SimNode {
@@ -57,22 +67,27 @@ class SimNode {
   std::string summaryJson() const;
 
  private:
+  using Clock = std::chrono::steady_clock;
   struct Answer {
     int uav = 0;  // whose cmd_vel reader received it
     msg::VelocitySetpoint setpoint;
+    Clock::time_point received;  // when the listener got it (not when this thread drained it)
   };
-  using Clock = std::chrono::steady_clock;
 
   bool awaitDiscovery();
   void runLockstep();
   void runRealtime();
   void publishStepOutputs();  // world events, truth (when due), clock
-  std::vector<std::optional<agent::StampNs>> publishSensors();
+  // `due`: when the UAVs' next IMU samples are due (realtime), for the latency statistics; nullopt in lockstep.
+  std::vector<std::optional<agent::StampNs>> publishSensors(std::optional<Clock::time_point> due);
   void publishTruth();
   void publishEvent(msg::EventKind kind, int uav, int other, double value, const std::string& text);
   void awaitSensorAcks(Clock::time_point deadline);
   void drainLockstep(Clock::duration wait);
   void drainRealtime(Clock::duration wait);
+  void collectLateAnswers(Clock::time_point until);  // realtime, after the last step: statistics only
+  void recordLatency(const Answer& a);
+  void finishLatency();
   void apply(const Answer& a);
   bool agentAlive(int uav) const;
 
@@ -82,6 +97,9 @@ class SimNode {
   int n_;
   LockstepTracker lockstep_;
   SimSummary summary_;
+  CommandLatencyTracker latency_;
+  LogHistogram step_lag_;
+  bool time_latency_ = true;  // false during the realtime handshake (step 0)
 
   // Realtime liveness.
   std::vector<bool> rt_alive_;

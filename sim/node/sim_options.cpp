@@ -94,7 +94,10 @@ Clock (scenario key clock.mode):
             sample, apply the commands, step. An agent silent for --agent-timeout-s is declared dead
             (EVENT_AGENT_DEAD; its UAV falls back to the failsafe) and rejoins (EVENT_AGENT_REJOINED) when it
             answers again. Deterministic: same scenario and seed, same run as swa_batch.
-  realtime  wall-clock pacing at clock.speed; the latest setpoint of each UAV is applied as it arrives.
+  realtime  wall-clock pacing at clock.speed; the latest setpoint of each UAV is applied as it arrives. The
+            clock starts once every agent has answered step 0 (or after --startup-timeout-s). A command is
+            late when it arrives after the UAV's next IMU sample is due (one step period), missing when it
+            never arrives; both are counted in the summary and the last line on stderr.
 Before the first step the simulator waits until every agent's endpoints are discovered (--startup-timeout-s).
 At the end it publishes EVENT_SCENARIO_END and exits 0.
 
@@ -108,7 +111,9 @@ Options:
                             sees the run from step 0 (default 0; swa_launch passes 1)
   --truth-every N           publish swa/truth every N steps and at the last step (default 10)
   --truth-out FILE          also write every published truth sample to FILE (CSV, one row per UAV)
-  --summary-out FILE        write a JSON summary of the run (steps, collisions, dead agents, wall time)
+  --summary-out FILE        write a JSON summary of the run (steps, collisions, dead agents, wall time, loop
+                            latency: p50/p99/max wall time from publishing an IMU sample to receiving the
+                            cmd_vel that answers it, and, in realtime, late commands and missing answers)
   --export-agent-config FILE  write the agent configuration the scenario implies (YAML for swa_agent --config)
                             and exit without starting DDS
   --parameters              list every scenario parameter and exit

@@ -1,0 +1,104 @@
+#pragma once
+// Loop-latency bookkeeping of swa_sim: for every sensor sample the simulator publishes to a UAV (its IMU sample, the
+// one a command answers), the wall time from publication to the reception of the command that answers it, whether
+// that command came after its deadline (realtime: when the UAV's next IMU sample is due), and which samples were
+// never answered. Pure: no DDS, no clock (times are nanoseconds on any monotonic clock, passed in), and no
+// allocation after construction, so it can sit on the simulator's hot path for runs of any length.
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
+
+namespace swa::sim_node {
+
+using WallNs = std::int64_t;  // nanoseconds on a monotonic wall clock
+
+// Counts of non-negative values (nanoseconds) in log-spaced bins: kBinsPerDecade bins per factor of 10 from kLowNs
+// (1 us) to kHighNs (100 s); values below / above go to an underflow / overflow bin. Count, sum, min and max are
+// exact. quantile() returns the geometric centre of the bin holding the requested rank, clamped to [min, max]: it
+// is within relativeResolution() of the true order statistic for values inside the range, and exact for the
+// smallest and largest value. Fixed size (~6.5 KB), no allocation in add().
+class LogHistogram {
+ public:
+  static constexpr int kBinsPerDecade = 100;
+  static constexpr int kDecades = 8;
+  static constexpr double kLowNs = 1e3;   // 1 us
+  static constexpr double kHighNs = 1e11; // 100 s
+  // Half the width of a bin relative to its geometric centre: 10^(1 / (2 * kBinsPerDecade)) - 1, i.e. 1.16 %.
+  static double relativeResolution();
+
+  LogHistogram();
+  void add(WallNs value_ns);
+  void merge(const LogHistogram& other);
+
+  std::uint64_t count() const { return count_; }
+  // q in [0, 1]: the value of rank ceil(q * count) (rank 1 for q = 0). NaN when empty.
+  double quantileNs(double q) const;
+  double minNs() const;   // NaN when empty
+  double maxNs() const;   // NaN when empty
+  double meanNs() const;  // NaN when empty
+
+ private:
+  static constexpr int kBins = kBinsPerDecade * kDecades;
+  double binCentreNs(int bin) const;
+
+  std::vector<std::uint64_t> bins_;  // [0] underflow, [1 .. kBins] in range, [kBins + 1] overflow
+  std::uint64_t count_ = 0;
+  double sum_ns_ = 0.0;
+  WallNs min_ns_ = std::numeric_limits<WallNs>::max();
+  WallNs max_ns_ = std::numeric_limits<WallNs>::min();
+};
+
+// What one run's commands looked like (see CommandLatencyTracker).
+struct LatencyReport {
+  std::uint64_t published = 0;   // samples judged: answered + missing (the last samples, still in time, excluded)
+  std::uint64_t answered = 0;    // samples answered (first answer counted; latency of each in the histogram)
+  std::uint64_t late = 0;        // answered after their deadline
+  std::uint64_t missing = 0;     // never answered although their deadline passed (or evicted unanswered)
+  std::uint64_t duplicates = 0;  // further answers to an already answered sample
+  std::uint64_t unmatched = 0;   // answers naming no sample in the window (older than the window, or foreign)
+  double p50_us = 0.0, p99_us = 0.0, max_us = 0.0, mean_us = 0.0;  // NaN when nothing was answered
+  double lateFraction() const;     // late / published, 0 when nothing was judged
+  double missingFraction() const;  // missing / published, 0 when nothing was judged
+};
+
+// Per UAV, a ring of the last `window` samples published (slot = seq mod window). published() records a sample
+// with its publication time and deadline; answered() matches an answer by (seq, stamp) and records its latency;
+// finish() closes the books. A sample is MISSING when it is evicted from the ring unanswered, or is unanswered at
+// finish() with its deadline passed (samples without a deadline count as missing at finish() if unanswered). An
+// answer is LATE when received after its sample's deadline. Samples with no deadline are never late (lockstep).
+class CommandLatencyTracker {
+ public:
+  CommandLatencyTracker(int uav_count, int window = 512);
+
+  void published(int uav, std::uint32_t seq, std::int64_t stamp_ns, WallNs published_ns,
+                 std::optional<WallNs> due_ns);
+  void answered(int uav, std::uint32_t seq, std::int64_t stamp_ns, WallNs received_ns);
+  // Unanswered samples whose deadline is at or before `now_ns` (or that have none) become missing; those still in
+  // time are dropped from the judgement. Idempotent; published()/answered() after it are undefined.
+  void finish(WallNs now_ns);
+
+  LatencyReport report() const;
+  const LogHistogram& histogram() const { return histogram_; }
+
+ private:
+  struct Slot {
+    bool used = false;
+    bool answered = false;
+    std::uint32_t seq = 0;
+    std::int64_t stamp_ns = 0;
+    WallNs published_ns = 0;
+    bool has_due = false;
+    WallNs due_ns = 0;
+  };
+  Slot* slot(int uav, std::uint32_t seq);
+
+  int uav_count_;
+  int window_;
+  std::vector<Slot> slots_;  // uav_count * window
+  LogHistogram histogram_;
+  std::uint64_t late_ = 0, missing_ = 0, duplicates_ = 0, unmatched_ = 0;
+};
+
+}  // namespace swa::sim_node
