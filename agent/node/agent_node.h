@@ -41,6 +41,7 @@ class AgentNode {
   // Processes samples until swa::dds::shutdownRequested(); returns the process exit status.
   int run();
   const AgentNodeStats& stats() const { return stats_; }
+  const agent::Diagnostics& diagnostics() const { return agent_.diagnostics(); }
 
  private:
   using Input = std::variant<msg::Imu, msg::Detections, msg::GnssFix>;

@@ -58,6 +58,13 @@ int agentMain(int argc, char** argv) {
                  static_cast<unsigned long long>(s.detections), static_cast<unsigned long long>(s.gnss),
                  static_cast<unsigned long long>(s.commands), static_cast<unsigned long long>(s.states),
                  static_cast<unsigned long long>(s.foreign), static_cast<unsigned long long>(s.write_failures));
+    // Where the agent stood at the end: a supervisor (or a person reading the log) sees whether it was flying
+    // relative to its neighbours when it stopped.
+    const agent::Diagnostics& d = node.diagnostics();
+    const char* stage = d.stage == agent::Stage::kTracking ? "tracking" : d.stage == agent::Stage::kLost ? "lost"
+                                                                                                        : "initializing";
+    std::fprintf(stderr, "swa_agent %d: final stage %s, %d confirmed track(s), frame fitted on %d neighbour(s)\n",
+                 options.id, stage, d.confirmed_tracks, d.neighbour_count);
     return status;
   } catch (const dds::DdsError& e) {
     std::fprintf(stderr, "swa_agent %d: DDS error: %s\n", options.id, e.what());

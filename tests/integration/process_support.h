@@ -5,7 +5,6 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,11 +12,12 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "shm_janitor.h"
 
 namespace swa::testing {
 
@@ -114,75 +114,14 @@ class Child {
   std::optional<int> status_;
 };
 
-// Fast DDS shared-memory files created after construction and no longer in use are ours to remove, like
-// `fastdds shm clean` but restricted to files that did not exist when the test started, so other users' files are
-// never touched. Fast DDS keeps, per segment or port `fastrtps_X`, lock files `fastrtps_X_el` / `fastrtps_X_sl` that
-// its live owner holds with flock(), and a port mutex `sem.fastrtps_X_mutex`. A process that shuts down cleanly
-// leaves nothing; one killed by a signal leaves its segments, and the ports it had opened keep a reference count that
-// never drops to zero (port files without lock files remain even after every other process exited cleanly).
-class ShmJanitor {
+// The launcher's janitor (sim/launch/shm_janitor.h: removes only abandoned Fast DDS files created after
+// construction), which in a test also cleans up when it goes out of scope, so a failing check leaves nothing behind.
+class ShmJanitor : public launch::ShmJanitor {
  public:
-  ShmJanitor() : before_(list()) {}
+  ShmJanitor() = default;
   ~ShmJanitor() { clean(); }
   ShmJanitor(const ShmJanitor&) = delete;
   ShmJanitor& operator=(const ShmJanitor&) = delete;
-
-  // Abandoned files created since construction; removes them when `remove` is set.
-  std::vector<std::string> zombies(bool remove = false) {
-    std::set<std::string> bases;
-    for (const std::string& name : list()) {
-      if (before_.count(name) != 0) continue;
-      std::string base = name;
-      if (base.rfind("sem.", 0) == 0) base = base.substr(4);
-      if (base.rfind("fastrtps_", 0) != 0) continue;
-      for (const char* suffix : {"_el", "_sl", "_mutex"}) {
-        const std::string sfx = suffix;
-        if (base.size() > sfx.size() && base.compare(base.size() - sfx.size(), sfx.size(), sfx) == 0) {
-          base.resize(base.size() - sfx.size());
-          break;
-        }
-      }
-      bases.insert(base);
-    }
-    std::vector<std::string> found;
-    for (const std::string& base : bases) {
-      if (inUse(base)) continue;
-      for (const std::string& f : {base, base + "_el", base + "_sl", "sem." + base + "_mutex"}) {
-        std::error_code ec;
-        if (!fs::exists(kDir / f, ec) || before_.count(f) != 0) continue;
-        found.push_back(f);
-        if (remove) fs::remove(kDir / f, ec);
-      }
-    }
-    return found;
-  }
-
-  std::vector<std::string> clean() { return zombies(true); }
-
- private:
-  static inline const fs::path kDir = "/dev/shm";
-
-  static std::set<std::string> list() {
-    std::set<std::string> names;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(kDir, ec)) names.insert(e.path().filename().string());
-    return names;
-  }
-
-  // A live owner holds one of the lock files (exclusively or shared): then our exclusive probe fails.
-  static bool inUse(const std::string& base) {
-    for (const char* suffix : {"_el", "_sl"}) {
-      const fs::path lock = kDir / (base + suffix);
-      const int fd = ::open(lock.c_str(), O_WRONLY);
-      if (fd < 0) continue;
-      const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
-      ::close(fd);
-      if (held) return true;
-    }
-    return false;
-  }
-
-  std::set<std::string> before_;
 };
 
 // A DDS domain of our own: derived from the PID (Fast DDS's own tests do the same), never 0, at most 232.

@@ -156,28 +156,15 @@ TEST_F(LaunchTest, FourAgentsSixtySecondsStayCohesive) {
 }
 
 // Agent 2 is SIGKILLed mid-run. The launcher must restart it; the new process must rebuild its picture of the
-// swarm (state TRACKING with neighbours, seen on its own state topic), and the run must stay cohesive.
+// swarm (it ends tracking its neighbours), and the run must stay cohesive.
 TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
   constexpr int kVictim = 2;
-  struct Seen {
-    std::mutex m;
-    std::uint32_t last_seq = 0;
-    bool restarted = false;         // the state sequence started over: a new process
-    bool tracking_after = false;    // ... which then tracked its neighbours
-    long long max_stamp_ns = 0;
-  } seen;
+  // Only to time the kill: the newest stamp agent 2 has published its state for.
+  std::atomic<long long> newest_stamp_ns{0};
   auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
   participant->reader<msg::AgentStatePubSubType>(dds::topics::state(kVictim), "swa_state_reader",
-                                                  [&seen](msg::AgentState&& s) {
-                                                    std::lock_guard<std::mutex> lock(seen.m);
-                                                    if (s.header().seq() < seen.last_seq) seen.restarted = true;
-                                                    seen.last_seq = s.header().seq();
-                                                    seen.max_stamp_ns = std::max<long long>(seen.max_stamp_ns,
-                                                                                            s.header().stamp_ns());
-                                                    if (seen.restarted && s.stage() == msg::STAGE_TRACKING &&
-                                                        s.neighbour_ids().size() >= 2) {
-                                                      seen.tracking_after = true;
-                                                    }
+                                                  [&newest_stamp_ns](msg::AgentState&& s) {
+                                                    newest_stamp_ns.store(s.header().stamp_ns());
                                                   });
   // Long enough in simulated time that the swarm runs well after the restart (lockstep runs ~20x real time).
   ShmJanitor launcher_files;
@@ -185,38 +172,31 @@ TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
   const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
   bool killed = false;
   while (!killed && SteadyClock::now() < deadline && !launch.wait(0.0)) {
-    {
-      std::lock_guard<std::mutex> lock(seen.m);
-      if (seen.max_stamp_ns >= 20'000'000'000LL) {
-        const int pid = agentPid(domain_, kVictim);
-        ASSERT_GT(pid, 0);
-        ::kill(pid, SIGKILL);
-        killed = true;
-      }
+    if (newest_stamp_ns.load() >= 20'000'000'000LL) {
+      const int pid = agentPid(domain_, kVictim);
+      ASSERT_GT(pid, 0);
+      ::kill(pid, SIGKILL);
+      killed = true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   ASSERT_TRUE(killed) << readFile(dir_ / "launch.log");
-  // The observer goes as soon as it has seen the rejoin: while it lives it keeps the killed agent's shared-memory
-  // port in use, and the launcher could not remove it at its exit.
-  const auto observe_until = SteadyClock::now() + std::chrono::seconds(120);
-  while (SteadyClock::now() < observe_until && !launch.wait(0.0)) {
-    {
-      std::lock_guard<std::mutex> lock(seen.m);
-      if (seen.tracking_after) break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
   participant.reset();
   const auto status = launch.wait(180.0);
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
   EXPECT_EQ(*status, 0) << log;
-  {
-    std::lock_guard<std::mutex> lock(seen.m);
-    EXPECT_TRUE(seen.restarted) << "no state from a new agent 2 process";
-    EXPECT_TRUE(seen.tracking_after) << "the restarted agent never tracked its neighbours again";
-  }
+  // The restarted process tracked its neighbours again: its own final line, after the launcher's restart marker.
+  // (Not checked through this test's participant: in about 1 run in 6 that participant, which had been receiving
+  // from the killed process, received nothing from the new agent 2 process, while the simulator, the monitor and the
+  // other agents did — an open question about Fast DDS 2.9 recorded in the note of issue #4.)
+  const std::string agent_log = readFile(dir_ / "out" / "logs" / "agent_2.log");
+  const std::size_t marker = agent_log.find("==== swa_launch: restart 1");
+  ASSERT_NE(marker, std::string::npos) << agent_log;
+  EXPECT_TRUE(std::regex_search(agent_log.substr(marker),
+                                std::regex("final stage tracking, [0-9]+ confirmed track\\(s\\), frame fitted on [2-9] "
+                                           "neighbour")))
+      << agent_log;
   const fs::path out = dir_ / "out";
   const std::string restarts = readFile(out / "logs" / "restarts.csv");
   EXPECT_TRUE(std::regex_search(restarts, std::regex("\n[0-9.]+,2,137,1,"))) << restarts;  // uav 2, SIGKILL
