@@ -31,6 +31,15 @@ inline std::string readFile(const fs::path& p) {
   return s.str();
 }
 
+// The simulator's and agents' logs of a run directory (sim.log, agent<i>.log), for failure messages.
+inline std::string runLogs(const fs::path& dir, std::size_t agents) {
+  std::string s = "--- sim.log\n" + readFile(dir / "sim.log");
+  for (std::size_t i = 0; i < agents; ++i) {
+    s += "--- agent" + std::to_string(i) + ".log\n" + readFile(dir / ("agent" + std::to_string(i) + ".log"));
+  }
+  return s;
+}
+
 // A child process (fork + execve, stdout and stderr into `log`, this process's environment plus `extra_env`
 // "KEY=value" entries, which win). The destructor never leaves it running: SIGTERM, up to 5 s for a clean exit, then
 // SIGKILL, and it is always reaped.

@@ -258,13 +258,7 @@ class SwarmRun : public ::testing::Test {
   void lockstepDropout4(const std::vector<std::string>& overrides, double expected_d_nb_m,
                         const std::vector<std::string>& env = {});
 
-  std::string logs() const {
-    std::string s = "--- sim.log\n" + readFile(dir_ / "sim.log");
-    for (std::size_t i = 0; i < agents_.size(); ++i) {
-      s += "--- agent" + std::to_string(i) + ".log\n" + readFile(dir_ / ("agent" + std::to_string(i) + ".log"));
-    }
-    return s;
-  }
+  std::string logs() const { return runLogs(dir_, agents_.size()); }
 
   ShmJanitor janitor_;  // first member: sees /dev/shm before anything of ours exists
   fs::path dir_;

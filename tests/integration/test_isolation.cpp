@@ -217,13 +217,7 @@ class IsolationRun : public ::testing::Test {
     return {SWA_SIM_BINARY, "--scenario", kScenario, "--set", "duration_s=10"};
   }
 
-  std::string logs() const {
-    std::string s = "--- sim.log\n" + readFile(dir_ / "sim.log");
-    for (int i = 0; i < kAgents; ++i) {
-      s += "--- agent" + std::to_string(i) + ".log\n" + readFile(dir_ / ("agent" + std::to_string(i) + ".log"));
-    }
-    return s;
-  }
+  std::string logs() const { return runLogs(dir_, static_cast<std::size_t>(kAgents)); }
 
   ShmJanitor janitor_;  // first member: sees /dev/shm before anything of ours exists
   fs::path dir_;
