@@ -2,9 +2,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <thread>
 #include <type_traits>
 #include <utility>
-#include <vector>
 
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/DetectionsPubSubTypes.h>
@@ -21,54 +21,63 @@ namespace swa::agent_node {
 namespace {
 
 constexpr agent::StampNs kStatePeriodNs = 100'000'000;  // 10 Hz
+// Inputs silent this long: the simulator has delivered every sample of the pending step (it publishes a step's
+// samples together) and is waiting or has ended, so the pending state is published.
+constexpr auto kQuietPeriod = std::chrono::milliseconds(100);
+constexpr auto kQuietPoll = std::chrono::milliseconds(20);
 // A detection / GNSS sample waits for the IMU of its step at most this much newer sim time (sample_order.h).
 constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 
 }  // namespace
 
 AgentNode::AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file)
-    : id_(uav_id), agent_(config), order_(kHoldLimitNs), started_(std::chrono::steady_clock::now()) {
+    : id_(uav_id),
+      agent_(config),
+      order_(kHoldLimitNs),
+      started_(std::chrono::steady_clock::now()),
+      last_input_(started_) {
   participant_ = std::make_unique<dds::Participant>("swa_agent_" + std::to_string(uav_id), domain_id, profiles_file);
   // Writers first: a command must have somewhere to go as soon as the first IMU sample is processed.
   cmd_writer_ = participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), "swa_command_writer");
   state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), "swa_state_writer");
   participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), "swa_sensor_reader",
-                                           [this](msg::Imu&& m) { queue_.push(Input(std::move(m))); });
+                                           [this](msg::Imu&& m) { onInput(Input(std::move(m))); });
   participant_->reader<msg::DetectionsPubSubType>(dds::topics::detections(id_), "swa_sensor_reader",
-                                                  [this](msg::Detections&& m) { queue_.push(Input(std::move(m))); });
+                                                  [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
   participant_->reader<msg::GnssFixPubSubType>(dds::topics::gnss(id_), "swa_sensor_reader",
-                                               [this](msg::GnssFix&& m) { queue_.push(Input(std::move(m))); });
+                                               [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
 }
 
 AgentNode::~AgentNode() { participant_.reset(); }
 
 int AgentNode::run() {
-  std::vector<Input> batch;
   while (!dds::shutdownRequested()) {
-    batch.clear();
-    queue_.drain(batch, std::chrono::milliseconds(100));
-    if (batch.empty() && pending_state_ns_) {
-      // Quiet inputs: the simulator has delivered everything of the pending step (it publishes a step's samples
-      // together) and is waiting or has ended.
+    std::this_thread::sleep_for(kQuietPoll);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();
     }
-    for (Input& in : batch) {
-      // Stamp read before the sample is moved into the orderer.
-      const auto [stream, stamp] = std::visit(
-          [](const auto& m) {
-            using M = std::decay_t<decltype(m)>;
-            const Stream st = std::is_same_v<M, msg::Imu>          ? Stream::kImu
-                              : std::is_same_v<M, msg::Detections> ? Stream::kDetections
-                                                                   : Stream::kGnss;
-            return std::make_pair(st, m.header().stamp_ns());
-          },
-          in);
-      order_.push(stream, stamp, std::move(in));
-    }
-    while (auto entry = order_.pop()) handle(entry->payload);
   }
+  participant_.reset();
   return 0;
+}
+
+void AgentNode::onInput(Input&& in) {
+  // Stamp read before the sample is moved into the orderer.
+  const auto [stream, stamp] = std::visit(
+      [](const auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        const Stream st = std::is_same_v<M, msg::Imu>          ? Stream::kImu
+                          : std::is_same_v<M, msg::Detections> ? Stream::kDetections
+                                                               : Stream::kGnss;
+        return std::make_pair(st, m.header().stamp_ns());
+      },
+      in);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  last_input_ = std::chrono::steady_clock::now();
+  order_.push(stream, stamp, std::move(in));
+  while (auto entry = order_.pop()) handle(entry->payload);
 }
 
 void AgentNode::handle(Input& in) {

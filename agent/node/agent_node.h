@@ -1,13 +1,17 @@
 #pragma once
 // The agent of one UAV as a Fast DDS node: a thin adapter around swa::agent::Agent. Reads only
-// swa/uav<id>/{imu,detections,gnss}, writes only swa/uav<id>/{cmd_vel,state}. Listeners only enqueue; run()'s
-// thread puts the samples in stamp order (sample_order.h), converts them, calls the agent, and publishes:
+// swa/uav<id>/{imu,detections,gnss}, writes only swa/uav<id>/{cmd_vel,state}. Samples are processed one at a time,
+// in stamp order (sample_order.h), in the listener that delivers them: handing them to a worker thread cost one more
+// thread wake-up per sample, which with 8 agents on 2 vCPUs added ~35 % to the sensor-to-command latency
+// (BENCHMARKS.md). Fast DDS delivers one transport port's samples on one receive thread; a mutex serialises the
+// processing should samples come in through two (e.g. shared memory and UDP). Per sample the agent:
 //   - one VelocitySetpoint per IMU sample, echoing the IMU's stamp and seq (the lockstep simulator waits for it);
 //   - an AgentState whenever the sample time crosses a 100 ms boundary (10 Hz of sim time, deterministic).
 
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <variant>
@@ -21,7 +25,6 @@
 #include "sample_order.h"
 #include "swa/agent/agent.h"
 #include "swa/dds/participant.h"
-#include "swa/dds/sample_queue.h"
 
 namespace swa::agent_node {
 
@@ -38,7 +41,8 @@ class AgentNode {
   AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file);
   ~AgentNode();
 
-  // Processes samples until swa::dds::shutdownRequested(); returns the process exit status.
+  // Until swa::dds::shutdownRequested(): publishes the pending state when the inputs go quiet. Then deletes the DDS
+  // entities, so no listener runs any more and stats() / diagnostics() are final. Returns the exit status.
   int run();
   const AgentNodeStats& stats() const { return stats_; }
   const agent::Diagnostics& diagnostics() const { return agent_.diagnostics(); }
@@ -46,6 +50,7 @@ class AgentNode {
  private:
   using Input = std::variant<msg::Imu, msg::Detections, msg::GnssFix>;
 
+  void onInput(Input&& in);  // listener threads
   void handle(Input& in);
   void publishState(agent::StampNs stamp_ns);
 
@@ -61,8 +66,9 @@ class AgentNode {
   // next step's IMU, or when the inputs go quiet), so it is the estimate the in-process loop scores at that step.
   std::optional<agent::StampNs> pending_state_ns_;
 
-  // The queue outlives the participant, whose listeners push into it.
-  dds::SampleQueue<Input> queue_;
+  std::mutex mutex_;  // guards everything above; held while a sample is processed
+  std::chrono::steady_clock::time_point last_input_;
+
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::VelocitySetpoint> cmd_writer_;
   dds::Writer<msg::AgentState> state_writer_;

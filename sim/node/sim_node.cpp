@@ -86,8 +86,10 @@ SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int d
   clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
   for (int i = 0; i < n_; ++i) {
     imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
-    det_.push_back(participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), "swa_sensor_writer"));
-    gnss_.push_back(participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), "swa_sensor_writer"));
+    det_.push_back(
+        participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), "swa_detections_gnss_writer"));
+    gnss_.push_back(
+        participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), "swa_detections_gnss_writer"));
     cmd_.push_back(participant_->reader<msg::VelocitySetpointPubSubType>(
         dds::topics::cmdVel(i), "swa_command_reader",
         [this, i](msg::VelocitySetpoint&& m) { queue_.push(Answer{i, std::move(m), Clock::now()}); }));

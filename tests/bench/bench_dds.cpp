@@ -13,7 +13,7 @@
 //
 // Usage: bench_dds [--quick] [--only latency|lockstep|scale|pingpong] [--duration S] [--reps R] [--pings N]
 //                  [--keep DIR]
-//        bench_dds --echo DOMAIN listener|thread      (internal: the ping-pong echo peer)
+//        bench_dds --echo DOMAIN listener|thread PEER (internal: a ping-pong echo peer)
 
 #include <unistd.h>
 
@@ -51,8 +51,9 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 const std::string kSource = SWA_SOURCE_DIR;
-const char* const kPingTopic = "swa/bench/ping";
-const char* const kPongTopic = "swa/bench/pong";
+// One ping / pong topic pair per echo peer, as each UAV has its own imu / cmd_vel topics.
+std::string pingTopic(int peer) { return "swa/bench/ping" + std::to_string(peer); }
+std::string pongTopic(int peer) { return "swa/bench/pong" + std::to_string(peer); }
 constexpr auto kPingPeriod = std::chrono::milliseconds(10);  // 100 Hz, as the IMU
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -233,6 +234,7 @@ std::optional<double> cpuSecondsOf(pid_t pid) {
 // ---- (a) ping-pong ----------------------------------------------------------------------------------------------
 
 struct Pong {
+  std::uint32_t peer = 0;
   std::uint32_t seq = 0;
   Clock::time_point received;
 };
@@ -244,13 +246,13 @@ struct PingResult {
 
 // The echo peer: answers every ping with a pong echoing its seq and stamp, from the listener (raw) or through a
 // queue and this thread (as swa_agent: listener -> queue -> worker -> write).
-int echoMain(int domain, const std::string& mode) {
+int echoMain(int domain, const std::string& mode, int index) {
   dds::installShutdownHandlers();
   dds::SampleQueue<msg::Imu> queue;
   const bool in_listener = mode == "listener";
   auto participant = std::make_unique<dds::Participant>("swa_bench_echo", domain, dds::resolveProfilesFile());
   dds::Writer<msg::VelocitySetpoint> pong =
-      participant->writer<msg::VelocitySetpointPubSubType>(kPongTopic, "swa_command_writer");
+      participant->writer<msg::VelocitySetpointPubSubType>(pongTopic(index), "swa_command_writer");
   const auto answer = [&pong](const msg::Imu& ping) {
     msg::VelocitySetpoint out;
     out.header().stamp_ns(ping.header().stamp_ns());
@@ -260,7 +262,7 @@ int echoMain(int domain, const std::string& mode) {
     out.answered_seq(ping.header().seq());
     pong.write(out);
   };
-  participant->reader<msg::ImuPubSubType>(kPingTopic, "swa_sensor_reader", [&](msg::Imu&& m) {
+  participant->reader<msg::ImuPubSubType>(pingTopic(index), "swa_sensor_reader", [&](msg::Imu&& m) {
     if (in_listener) {
       answer(m);
     } else {
@@ -278,29 +280,54 @@ int echoMain(int domain, const std::string& mode) {
   return 0;
 }
 
-PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& mode) {
+// `peers` echo processes answer at once, each on its own topic pair: every 10 ms the pinger writes one ping per
+// peer in a row, as swa_sim writes one IMU sample per UAV. Round trip = just before a ping's write() -> its pong in
+// the listener, so with several peers it includes the queueing of peers that share the 2 vCPUs, not the pinger's
+// own writes to the other peers.
+PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& mode, int peers) {
   ShmJanitor janitor;
   const int domain = nextDomain();
-  Child echo({selfPath(), "--echo", std::to_string(domain), mode}, dir / ("echo_" + mode + ".log"));
+  std::vector<std::unique_ptr<Child>> echoes;
+  for (int j = 0; j < peers; ++j) {
+    echoes.push_back(std::make_unique<Child>(
+        std::vector<std::string>{selfPath(), "--echo", std::to_string(domain), mode, std::to_string(j)},
+        dir / ("echo_" + mode + "_" + std::to_string(peers) + "_" + std::to_string(j) + ".log")));
+  }
   dds::SampleQueue<Pong> queue;
   PingResult r;
   {
     dds::Participant p("swa_bench_ping", domain, dds::resolveProfilesFile());
-    dds::Writer<msg::Imu> ping = p.writer<msg::ImuPubSubType>(kPingTopic, "swa_sensor_writer");
-    dds::Reader<msg::VelocitySetpoint> pong = p.reader<msg::VelocitySetpointPubSubType>(
-        kPongTopic, "swa_command_reader",
-        [&queue](msg::VelocitySetpoint&& m) { queue.push(Pong{m.answered_seq(), Clock::now()}); });
+    std::vector<dds::Writer<msg::Imu>> pings;
+    std::vector<dds::Reader<msg::VelocitySetpoint>> pongs;
+    for (int j = 0; j < peers; ++j) {
+      pings.push_back(p.writer<msg::ImuPubSubType>(pingTopic(j), "swa_sensor_writer"));
+      pongs.push_back(p.reader<msg::VelocitySetpointPubSubType>(
+          pongTopic(j), "swa_command_reader",
+          [&queue](msg::VelocitySetpoint&& m) { queue.push(Pong{m.uav_id(), m.answered_seq(), Clock::now()}); }));
+    }
     dds::acceptShutdownSignals();
+    const auto allMatched = [&] {
+      for (int j = 0; j < peers; ++j) {
+        if (pings[static_cast<std::size_t>(j)].matched() < 1 || pongs[static_cast<std::size_t>(j)].matched() < 1) {
+          return false;
+        }
+      }
+      return true;
+    };
     const auto t_disc = Clock::now();
-    while ((ping.matched() < 1 || pong.matched() < 1) && secondsSince(t_disc) < 30.0 && !dds::shutdownRequested()) {
+    while (!allMatched() && secondsSince(t_disc) < 30.0 && !dds::shutdownRequested()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    if (ping.matched() < 1 || pong.matched() < 1) throw std::runtime_error("ping-pong: echo peer not discovered");
+    if (!allMatched()) throw std::runtime_error("ping-pong: echo peers not discovered");
 
     constexpr int kWarmup = 100;
     const int total = kWarmup + opt.pings;
-    std::vector<Clock::time_point> sent(static_cast<std::size_t>(total) + 1);
-    std::vector<double> rtt_us(static_cast<std::size_t>(total) + 1, NAN);
+    const auto at = [total](std::uint32_t peer, std::uint32_t seq) {
+      return static_cast<std::size_t>(peer) * (static_cast<std::size_t>(total) + 1) + seq;
+    };
+    const auto cells = static_cast<std::size_t>(peers) * (static_cast<std::size_t>(total) + 1);
+    std::vector<Clock::time_point> sent(cells);
+    std::vector<double> rtt_us(cells, NAN);
     std::vector<Pong> batch;
     const auto collect = [&](Clock::time_point until) {
       do {
@@ -308,32 +335,39 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
         const auto now = Clock::now();
         queue.drain(batch, until > now ? until - now : Clock::duration::zero());
         for (const Pong& x : batch) {
-          if (x.seq >= 1 && x.seq <= static_cast<std::uint32_t>(total) && std::isnan(rtt_us[x.seq])) {
-            rtt_us[x.seq] = std::chrono::duration<double, std::micro>(x.received - sent[x.seq]).count();
+          if (x.peer >= static_cast<std::uint32_t>(peers) || x.seq < 1 || x.seq > static_cast<std::uint32_t>(total)) {
+            continue;
           }
+          double& cell = rtt_us[at(x.peer, x.seq)];
+          if (std::isnan(cell)) cell = std::chrono::duration<double, std::micro>(x.received - sent[at(x.peer, x.seq)]).count();
         }
       } while (Clock::now() < until && !dds::shutdownRequested());
     };
     const auto t0 = Clock::now();
     for (int i = 1; i <= total && !dds::shutdownRequested(); ++i) {
-      msg::Imu m;
-      m.header().seq(static_cast<std::uint32_t>(i));
-      m.header().stamp_ns(static_cast<std::int64_t>(i) * 10'000'000);
-      m.uav_id(0);
-      m.roll_rad(0.01 * i);
-      m.pitch_rad(-0.01 * i);
-      m.heading_rad(1.0);
-      sent[static_cast<std::size_t>(i)] = Clock::now();
-      ping.write(m);
+      for (int j = 0; j < peers; ++j) {
+        msg::Imu m;
+        m.header().seq(static_cast<std::uint32_t>(i));
+        m.header().stamp_ns(static_cast<std::int64_t>(i) * 10'000'000);
+        m.uav_id(static_cast<std::uint32_t>(j));
+        m.roll_rad(0.01 * i);
+        m.pitch_rad(-0.01 * i);
+        m.heading_rad(1.0);
+        sent[at(static_cast<std::uint32_t>(j), static_cast<std::uint32_t>(i))] = Clock::now();
+        pings[static_cast<std::size_t>(j)].write(m);
+      }
       collect(t0 + i * kPingPeriod);
     }
     collect(Clock::now() + std::chrono::milliseconds(200));
     std::vector<double> v;
-    for (int i = kWarmup + 1; i <= total; ++i) {
-      if (std::isnan(rtt_us[static_cast<std::size_t>(i)])) {
-        ++r.lost;
-      } else {
-        v.push_back(rtt_us[static_cast<std::size_t>(i)]);
+    for (int j = 0; j < peers; ++j) {
+      for (int i = kWarmup + 1; i <= total; ++i) {
+        const double x = rtt_us[at(static_cast<std::uint32_t>(j), static_cast<std::uint32_t>(i))];
+        if (std::isnan(x)) {
+          ++r.lost;
+        } else {
+          v.push_back(x);
+        }
       }
     }
     std::sort(v.begin(), v.end());
@@ -345,7 +379,7 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
     for (double x : v) sum += x;
     r.mean_us = v.empty() ? NAN : sum / static_cast<double>(v.size());
   }
-  echo.stop(10.0);
+  for (auto& e : echoes) e->stop(10.0);
   return r;
 }
 
@@ -475,19 +509,30 @@ std::string fmt(double x, int decimals = 1) {
 // (a) + (b): the loop against the raw ping-pong, medians over the repetitions; then the loop with fewer agents.
 int latencySection(const Options& opt, const fs::path& dir) {
   int failures = 0;
-  std::vector<double> raw50, raw99, thr50, thr99, loop50, loop99, loopmax, late, missing, rss, pss;
+  std::vector<double> raw50, raw99, thr50, thr99, fan50, fan99, fanthr50, fanthr99, loop50, loop99, loopmax, late,
+      missing, rss, pss;
+  constexpr int kFanOut = 8;  // the loop's N
   for (int rep = 0; rep < opt.reps && !dds::shutdownRequested(); ++rep) {
-    const PingResult raw = pingPong(opt, dir, "listener");
-    const PingResult thr = pingPong(opt, dir, "thread");
-    std::printf("rep %d ping-pong (%d round trips at 100 Hz): echo in listener p50 %.1f us p99 %.1f us max %.1f us "
-                "(%d lost); echo via worker thread p50 %.1f us p99 %.1f us max %.1f us (%d lost)\n",
-                rep + 1, opt.pings, raw.p50_us, raw.p99_us, raw.max_us, raw.lost, thr.p50_us, thr.p99_us, thr.max_us,
-                thr.lost);
+    const PingResult raw = pingPong(opt, dir, "listener", 1);
+    const PingResult thr = pingPong(opt, dir, "thread", 1);
+    const PingResult fan = pingPong(opt, dir, "listener", kFanOut);
+    const PingResult fanthr = pingPong(opt, dir, "thread", kFanOut);
+    std::printf("rep %d ping-pong (%d round trips at 100 Hz): 1 peer, echo in listener p50 %.1f us p99 %.1f us max "
+                "%.1f us (%d lost); 1 peer via worker thread p50 %.1f us p99 %.1f us (%d lost); %d peers in listener "
+                "p50 %.1f us p99 %.1f us max %.1f us (%d lost); %d peers via worker thread p50 %.1f us p99 %.1f us "
+                "(%d lost)\n",
+                rep + 1, opt.pings, raw.p50_us, raw.p99_us, raw.max_us, raw.lost, thr.p50_us, thr.p99_us, thr.lost,
+                kFanOut, fan.p50_us, fan.p99_us, fan.max_us, fan.lost, kFanOut, fanthr.p50_us, fanthr.p99_us,
+                fanthr.lost);
     std::fflush(stdout);
     raw50.push_back(raw.p50_us);
     raw99.push_back(raw.p99_us);
     thr50.push_back(thr.p50_us);
     thr99.push_back(thr.p99_us);
+    fan50.push_back(fan.p50_us);
+    fan99.push_back(fan.p99_us);
+    fanthr50.push_back(fanthr.p50_us);
+    fanthr99.push_back(fanthr.p99_us);
     if (opt.only == "pingpong") continue;
     const SwarmSpec spec{"dropout_8.yaml", 8, true, opt.duration_s, "latency_rt8_rep" + std::to_string(rep + 1)};
     const SwarmResult s = runSwarm(spec, dir);
@@ -518,12 +563,23 @@ int latencySection(const Options& opt, const fs::path& dir) {
               opt.pings, fmt(r50).c_str(), fmt(r99).c_str());
   std::printf("| (a') ping-pong, echo through a worker thread as in swa_agent (informative) | %s us | %s us | — |\n",
               fmt(median(thr50)).c_str(), fmt(median(thr99)).c_str());
+  const double f50 = median(fan50), f99 = median(fan99);
+  std::printf("| (a8) raw ping-pong with %d echo peers at once, echo in the listener (the raw floor at the loop's N) "
+              "| %s us | %s us | reference at N = %d |\n",
+              kFanOut, fmt(f50).c_str(), fmt(f99).c_str(), kFanOut);
+  std::printf("| (a8') %d echo peers at once, echo through a worker thread (informative) | %s us | %s us | — |\n",
+              kFanOut, fmt(median(fanthr50)).c_str(), fmt(median(fanthr99)).c_str());
   if (opt.only != "pingpong") {
     std::printf("| (b) loop: IMU published by swa_sim -> its cmd_vel received, N = 8 realtime, %.0f s | %s us | %s us "
                 "| |\n",
                 opt.duration_s, fmt(l50).c_str(), fmt(l99).c_str());
     std::printf("| (b) / (a) | %s x | %s x | p50 <= 1.3 x, p99 <= 1.5 x |\n", fmt(l50 / r50, 2).c_str(),
                 fmt(l99 / r99, 2).c_str());
+    std::printf("| (a8) / (a): the fan-out alone, no agent code | %s x | %s x | — |\n", fmt(f50 / r50, 2).c_str(),
+                fmt(f99 / r99, 2).c_str());
+    std::printf("| (b) / (a8): what the agent and simulator add at the same N | %s x | %s x | p50 <= 1.3 x, p99 <= "
+                "1.5 x |\n",
+                fmt(l50 / f50, 2).c_str(), fmt(l99 / f99, 2).c_str());
     std::printf("\nloop N = 8: max %s us, late %s %%, missing %s %%; per-agent RSS %s MB, PSS %s MB (median over "
                 "agents)\n",
                 fmt(median(loopmax)).c_str(), fmt(100.0 * median(late), 3).c_str(),
@@ -650,8 +706,8 @@ int benchMain(const Options& opt) {
 
 int main(int argc, char** argv) {
   try {
-    if (argc == 4 && std::string(argv[1]) == "--echo") {
-      return swa::bench::echoMain(std::atoi(argv[2]), argv[3]);
+    if (argc == 5 && std::string(argv[1]) == "--echo") {
+      return swa::bench::echoMain(std::atoi(argv[2]), argv[3], std::atoi(argv[4]));
     }
     const swa::bench::Options opt = swa::bench::parseOptions(argc, argv);
     if (opt.help) {
