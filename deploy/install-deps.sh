@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake
   libeigen3-dev libyaml-cpp-dev
-  libfastrtps-dev libfastcdr-dev fastddsgen
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools openssl
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

@@ -3,6 +3,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 
 namespace swa::agent_node {
@@ -70,13 +71,11 @@ Options:
   --parameters      list every agent parameter (key, unit, bounds, default) and exit
   -h, --help        this text
 
-Environment:
-  SWA_DOMAIN        domain id when --domain is not given
-  SWA_DDS_PROFILES  Fast DDS XML profiles (default: deploy/dds/profiles.xml of the source tree)
-
 Runs until SIGINT or SIGTERM, then deletes its DDS entities and exits 0.
-Exit status: 0 stopped by a signal; 1 DDS failure; 2 bad arguments or configuration (nothing started).
-)";
+Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials refused); 2 bad arguments or
+             configuration (nothing started).
+
+)" + dds::environmentHelp();
 }
 
 }  // namespace swa::agent_node

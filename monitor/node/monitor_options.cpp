@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 
 namespace swa::monitor_node {
@@ -169,12 +170,11 @@ Options:
                       sim time, on stderr)
   -h, --help          this text
 
-Environment: SWA_DOMAIN (domain when --domain is not given), SWA_DDS_PROFILES (Fast DDS XML profiles; default
-deploy/dds/profiles.xml of the source tree).
 Exit status: 0 PASS; 1 FAIL; 3 INCOMPLETE; 2 bad arguments or scenario, output directory not writable, DDS
              participant not created (nothing started). --combine: the verdict of the FIRST run (0, 1 or 3),
              2 for bad arguments or an unreadable run directory.
-)";
+
+)" + dds::environmentHelp();
 }
 
 }  // namespace swa::monitor_node

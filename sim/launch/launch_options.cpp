@@ -3,6 +3,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 
 namespace swa::launch {
@@ -70,6 +71,29 @@ LaunchOptions parseLaunchOptions(const std::vector<std::string>& args) {
       real(o.timeout_s, 0.0, 1e6, "a timeout in seconds in [0, 1e6] (0 = none)");
     } else if (key == "--grace-s") {
       real(o.grace_s, 0.0, 600.0, "a grace period in seconds in [0, 600]");
+    } else if (key == "--transport") {
+      if (const auto v = walker.value()) {
+        if (dds::parseTransport(*v)) {
+          o.transport = *v;
+        } else {
+          problems.push_back("--transport must be local, network or discovery-server, got '" + *v + "'");
+        }
+      }
+    } else if (key == "--discovery-server") {
+      if (const auto v = walker.value()) {
+        for (const std::string& p : dds::checkServerList(*v)) problems.push_back("--discovery-server: " + p);
+        o.discovery_server = *v;
+      }
+    } else if (key == "--discovery-port") {
+      if (const auto v = walker.value()) {
+        if (const auto n = dds::parseInteger(*v, 1024, 65535)) {
+          o.discovery_port = static_cast<int>(*n);
+        } else {
+          problems.push_back("--discovery-port '" + *v + "' is not a port in [1024, 65535]");
+        }
+      }
+    } else if (key == "--secure") {
+      text(o.secure_dir, "the credentials directory (deploy/security/make-credentials.sh)");
     } else {
       problems.push_back("unknown argument '" + walker.raw() + "' (see --help)");
     }
@@ -77,6 +101,9 @@ LaunchOptions parseLaunchOptions(const std::vector<std::string>& args) {
   if (o.scenario_path.empty() && !o.help && problems.empty()) problems.push_back("--scenario is required");
   if (o.restart_backoff_max_s < o.restart_backoff_s) {
     problems.push_back("--restart-backoff-max-s must not be below --restart-backoff-s");
+  }
+  if (!o.discovery_server.empty() && o.transport != "discovery-server") {
+    problems.push_back("--discovery-server needs --transport discovery-server");
   }
   if (!problems.empty()) {
     std::ostringstream msg;
@@ -121,6 +148,14 @@ Options:
   --agent-timeout-s T       lockstep: an agent silent this long is declared dead by the simulator (default 2)
   --timeout-s T             wall-clock bound per run; the run is then stopped like on SIGINT (default 0 = none)
   --grace-s T               how long a stopped child may take before it is killed (default 10)
+  --transport T             local (default: shared memory + UDP, one host) | network (UDPv4 only, multicast
+                            discovery) | discovery-server (UDPv4, discovery through a Fast DDS Discovery Server);
+                            sets SWA_TRANSPORT for every child (deploy/README.md: when to use which)
+  --discovery-server LIST   with discovery-server: the servers' IP:PORT[;IP:PORT...]; without it swa_launch starts
+                            one (fast-discovery-server -i 0) on 127.0.0.1:--discovery-port and stops it at the end
+  --discovery-port P        port of the server swa_launch starts (default 11811)
+  --secure DIR              DDS Security: authenticated, encrypted, per-UAV permissions, with the credentials in
+                            DIR (create them with deploy/security/make-credentials.sh DIR N); sets SWA_SECURITY_DIR
   -h, --help                this text
 
 Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 10 % of r, no collision, one

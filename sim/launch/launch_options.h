@@ -22,6 +22,10 @@ struct LaunchOptions {
   double agent_timeout_s = 2.0;           // passed to swa_sim --agent-timeout-s
   double timeout_s = 0.0;                 // wall bound of each run; 0 = none
   double grace_s = 10.0;                  // SIGTERM -> SIGKILL grace when stopping children
+  std::string transport;                  // --transport local|network|discovery-server (else $SWA_TRANSPORT)
+  std::string discovery_server;           // --discovery-server IP:PORT[;...]: use these instead of starting one
+  int discovery_port = 11811;             // --discovery-port: of the server swa_launch starts on 127.0.0.1
+  std::string secure_dir;                 // --secure DIR: DDS Security with the credentials in DIR
   bool help = false;
 };
 

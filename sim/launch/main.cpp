@@ -2,7 +2,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 #include <exception>
 #include <filesystem>
 #include <string>
@@ -13,6 +17,7 @@
 #include "run_supervisor.h"
 #include "shm_janitor.h"
 #include "swa/agent/config_io.h"
+#include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 #include "swa/dds/shutdown.h"
 #include "swa/sim/scenario_io.h"
@@ -38,6 +43,46 @@ Binaries findBinaries(const std::string& bin_dir, std::vector<std::string>& prob
   return b;
 }
 
+// How every child joins DDS (swa/dds/deployment.h), decided here once and passed down through the environment.
+// Returns the discovery server to start, empty if none. Throws std::invalid_argument / std::runtime_error.
+std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_count) {
+  if (!o.transport.empty()) ::setenv("SWA_TRANSPORT", o.transport.c_str(), 1);
+  if (!o.discovery_server.empty()) ::setenv("SWA_DISCOVERY_SERVER", o.discovery_server.c_str(), 1);
+  std::vector<std::string> server;
+  const char* transport = std::getenv("SWA_TRANSPORT");
+  const char* servers = std::getenv("SWA_DISCOVERY_SERVER");
+  if (transport != nullptr && std::string(transport) == "discovery-server" && (servers == nullptr || !*servers)) {
+    const std::string exe = "/usr/bin/fast-discovery-server";
+    if (::access(exe.c_str(), X_OK) != 0) {
+      throw std::runtime_error("no " + exe + " to start a discovery server (apt-get install fastdds-tools), or "
+                               "pass --discovery-server IP:PORT of a running one");
+    }
+    const std::string port = std::to_string(o.discovery_port);
+    ::setenv("SWA_DISCOVERY_SERVER", ("127.0.0.1:" + port).c_str(), 1);
+    server = {exe, "-i", "0", "-l", "127.0.0.1", "-p", port};
+  }
+  if (!o.secure_dir.empty()) {
+    std::error_code ec;
+    const fs::path dir = fs::absolute(o.secure_dir, ec);
+    std::vector<std::string> names{"swa_sim", "swa_monitor"};
+    for (int i = 0; i < max_uav_count; ++i) names.push_back("swa_agent_" + std::to_string(i));
+    std::string missing;
+    for (const std::string& n : names) {
+      for (const std::string& f : dds::unreadableFiles(dds::securityFiles(dir.string(), n))) {
+        if (missing.find(f) == std::string::npos) missing += "\n  " + f;
+      }
+    }
+    if (!missing.empty()) {
+      throw std::runtime_error("--secure " + o.secure_dir + ": missing credentials:" + missing +
+                               "\n(create them with: deploy/security/make-credentials.sh " + o.secure_dir + " " +
+                               std::to_string(max_uav_count) + ")");
+    }
+    ::setenv("SWA_SECURITY_DIR", dir.c_str(), 1);
+  }
+  dds::resolveDeployment();  // the combination as the children will see it
+  return server;
+}
+
 RunSpec makeSpec(const LaunchOptions& o, const std::string& label, const fs::path& dir,
                  const std::vector<std::string>& extra_overrides) {
   RunSpec spec;
@@ -56,6 +101,7 @@ int launchMain(int argc, char** argv) {
   std::vector<RunSpec> runs;
   Binaries bin;
   int domain = 0;
+  std::vector<std::string> discovery_server;
   // Everything that can be wrong is found before any process starts.
   try {
     o = parseLaunchOptions(std::vector<std::string>(argv + 1, argv + argc));
@@ -74,6 +120,9 @@ int launchMain(int argc, char** argv) {
     } else {
       runs.push_back(makeSpec(o, agent::toString(base.agent.mode), out, {}));
     }
+    int max_uav_count = 0;
+    for (const RunSpec& r : runs) max_uav_count = std::max(max_uav_count, r.uav_count);
+    discovery_server = applyDeployment(o, max_uav_count);
     std::vector<std::string> problems;
     bin = findBinaries(o.bin_dir, problems);
     if (!problems.empty()) {
@@ -93,7 +142,22 @@ int launchMain(int argc, char** argv) {
   dds::acceptShutdownSignals();  // single-threaded: the flag is polled by the supervision loop
   const ShmJanitor janitor;
   std::vector<RunOutcome> outcomes;
+  std::unique_ptr<ChildProcess> server;
+  const auto stopServer = [&server, &o] {
+    if (!server) return;
+    server->signal(SIGINT);  // on SIGTERM fast-discovery-server would leave its /dev/shm files
+    for (int k = 0; k < static_cast<int>(o.grace_s * 50) && server->running(); ++k) ::usleep(20000);
+    server.reset();  // SIGKILLs it if still running
+  };
   try {
+    if (!discovery_server.empty()) {
+      std::error_code ec;
+      fs::create_directories(o.out_dir, ec);
+      server = std::make_unique<ChildProcess>(discovery_server,
+                                              (fs::path(o.out_dir) / "discovery_server.log").string());
+      std::printf("swa_launch: discovery server on %s (log %s)\n", std::getenv("SWA_DISCOVERY_SERVER"),
+                  (fs::path(o.out_dir) / "discovery_server.log").c_str());
+    }
     for (const RunSpec& spec : runs) {
       if (dds::shutdownRequested()) break;
       outcomes.push_back(superviseRun(o, bin, domain, spec));
@@ -104,9 +168,11 @@ int launchMain(int argc, char** argv) {
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "swa_launch: %s\n", e.what());
+    stopServer();
     janitor.clean();
     return 3;
   }
+  stopServer();
   int status = outcomes.empty() ? 3 : outcomes.front().monitor_status;
 
   if (runs.size() > 1 && outcomes.size() == runs.size()) {

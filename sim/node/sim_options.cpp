@@ -3,6 +3,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 
 namespace swa::sim_node {
@@ -119,11 +120,10 @@ Options:
   --parameters              list every scenario parameter and exit
   -h, --help                this text
 
-Environment: SWA_DOMAIN (domain when --domain is not given), SWA_DDS_PROFILES (Fast DDS XML profiles; default
-deploy/dds/profiles.xml of the source tree).
 Exit status: 0 scenario completed; 1 DDS failure, discovery timeout or interrupted by a signal;
              2 bad arguments or scenario (nothing started).
-)";
+
+)" + dds::environmentHelp();
 }
 
 }  // namespace swa::sim_node

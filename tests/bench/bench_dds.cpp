@@ -83,8 +83,8 @@ Options parseOptions(int argc, char** argv) {
       o.quick = true;
     } else if (k == "--only") {
       if (auto v = w.value()) {
-        if (*v != "latency" && *v != "lockstep" && *v != "scale" && *v != "pingpong") {
-          problems.push_back("--only latency|lockstep|scale|pingpong");
+        if (*v != "latency" && *v != "lockstep" && *v != "scale" && *v != "pingpong" && *v != "security") {
+          problems.push_back("--only latency|lockstep|scale|pingpong|security");
         }
         o.only = *v;
       }
@@ -131,15 +131,17 @@ Options parseOptions(int argc, char** argv) {
 
 const char* const kUsage = R"(bench_dds: the SWA swarm over Fast DDS, measured (see BENCHMARKS.md).
 
-Usage: bench_dds [--quick] [--only latency|lockstep|scale|pingpong] [--duration S] [--reps R] [--pings N]
-                 [--keep DIR]
+Usage: bench_dds [--quick] [--only latency|lockstep|scale|pingpong|security] [--duration S] [--reps R]
+                 [--pings N] [--keep DIR]
 
   --only latency   (a) raw ping-pong (Imu -> VelocitySetpoint, the loop's profiles) and (b) the realtime loop
                    with 8 agents, plus the loop with 1, 2, 4 agents (informative: how it grows with N)
   --only pingpong  (a) alone
   --only lockstep  (c) lockstep speed N = 4, 8, 16, 32
   --only scale     (d) realtime scale N = 8 .. 48 and (e) per-agent RSS / PSS
-  Without --only: all of them. SWA_DDS_PROFILES (as for swa_sim / swa_agent) applies to every process.
+  --only security  (f) the N = 8 realtime loop with DDS Security off and on (credentials made by
+                   deploy/security/make-credentials.sh), alternating, R repetitions each
+  Without --only: all of them but (f). SWA_DDS_PROFILES (as for swa_sim / swa_agent) applies to every process.
   --duration S   wall seconds of the realtime run of (b) (default 30; --quick 10); (d) runs 2/3 of it, (c) 2x of
                  simulated time
   --reps R       repeat (a)+(b) and each (c) run R times, report medians (default 1)
@@ -391,6 +393,7 @@ struct SwarmSpec {
   bool realtime = true;
   double duration_s = 30.0;           // simulated
   std::string tag;                    // names the run's files
+  std::vector<std::string> env;       // extra environment of the simulator and the agents
 };
 
 struct SwarmResult {
@@ -426,11 +429,11 @@ SwarmResult runSwarm(const SwarmSpec& spec, const fs::path& dir) {
     agents.push_back(std::make_unique<Child>(
         std::vector<std::string>{SWA_AGENT_BINARY, "--id", std::to_string(i), "--config",
                                  (base / "agent.yaml").string(), "--domain", std::to_string(domain)},
-        base / ("agent" + std::to_string(i) + ".log")));
+        base / ("agent" + std::to_string(i) + ".log"), spec.env));
   }
   sim_args.insert(sim_args.end(), {"--domain", std::to_string(domain), "--summary-out",
                                    (base / "summary.json").string(), "--startup-timeout-s", "120"});
-  Child sim(sim_args, base / "sim.log");
+  Child sim(sim_args, base / "sim.log", spec.env);
 
   // Wait for the first step (the simulator logs the end of discovery), then sample CPU and memory at 20 % and 90 %
   // of a realtime run.
@@ -534,7 +537,7 @@ int latencySection(const Options& opt, const fs::path& dir) {
     fanthr50.push_back(fanthr.p50_us);
     fanthr99.push_back(fanthr.p99_us);
     if (opt.only == "pingpong") continue;
-    const SwarmSpec spec{"dropout_8.yaml", 8, true, opt.duration_s, "latency_rt8_rep" + std::to_string(rep + 1)};
+    const SwarmSpec spec{"dropout_8.yaml", 8, true, opt.duration_s, "latency_rt8_rep" + std::to_string(rep + 1), {}};
     const SwarmResult s = runSwarm(spec, dir);
     if (!s.ok) {
       ++failures;
@@ -594,7 +597,7 @@ int latencySection(const Options& opt, const fs::path& dir) {
               sweep_s);
   for (const int n : {1, 2, 4}) {
     if (dds::shutdownRequested()) break;
-    const SwarmSpec spec{"dropout_8.yaml", n, true, sweep_s, "latency_sweep_n" + std::to_string(n)};
+    const SwarmSpec spec{"dropout_8.yaml", n, true, sweep_s, "latency_sweep_n" + std::to_string(n), {}};
     const SwarmResult s = runSwarm(spec, dir);
     if (!s.ok) {
       ++failures;
@@ -614,14 +617,14 @@ int lockstepSection(const Options& opt, const fs::path& dir) {
   int failures = 0;
   const double sim_s = 2.0 * opt.duration_s;
   std::printf("\n### Lockstep speed (%.0f s simulated per run, median of %d)\n\n", sim_s, opt.reps);
-  std::printf("| N | scenario | sim s / wall s | wall s per run | loop latency p50 / p99 | target |\n"
+  std::printf("| N | scenario | sim s / wall s (each run) | wall s per run | loop latency p50 / p99 | target |\n"
               "|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   for (const int n : {4, 8, 16, 32}) {
     std::vector<double> speed, wall, p50, p99;
     for (int rep = 0; rep < opt.reps && !dds::shutdownRequested(); ++rep) {
       const SwarmSpec spec{scenarioFor(n), n, false, sim_s,
-                           "lockstep_n" + std::to_string(n) + "_rep" + std::to_string(rep + 1)};
+                           "lockstep_n" + std::to_string(n) + "_rep" + std::to_string(rep + 1), {}};
       const SwarmResult s = runSwarm(spec, dir);
       if (!s.ok || s.get("agent_dead_events") != 0.0) {
         ++failures;
@@ -634,7 +637,10 @@ int lockstepSection(const Options& opt, const fs::path& dir) {
       p50.push_back(s.get("latency_p50_us"));
       p99.push_back(s.get("latency_p99_us"));
     }
-    std::printf("| %d | %s | %sx | %s | %s / %s us | %s |\n", n, scenarioFor(n).c_str(), fmt(median(speed)).c_str(),
+    std::string each;
+    for (const double x : speed) each += (each.empty() ? "" : ", ") + fmt(x);
+    std::printf("| %d | %s | %sx (%s) | %s | %s / %s us | %s |\n", n, scenarioFor(n).c_str(),
+                fmt(median(speed)).c_str(), each.c_str(),
                 fmt(median(wall), 2).c_str(), fmt(median(p50)).c_str(), fmt(median(p99)).c_str(),
                 n == 8 ? ">= 20x" : "—");
     std::fflush(stdout);
@@ -655,7 +661,7 @@ int scaleSection(const Options& opt, const fs::path& dir) {
   for (const int n : {8, 16, 24, 32, 40, 48}) {
     if (dds::shutdownRequested() || largest != n - 8) break;  // stop at the first failure
     if (n > 32 && largest < 32) break;                         // 40 and 48 only if 32 passes
-    const SwarmSpec spec{scenarioFor(n), n, true, run_s, "scale_n" + std::to_string(n)};
+    const SwarmSpec spec{scenarioFor(n), n, true, run_s, "scale_n" + std::to_string(n), {}};
     const SwarmResult s = runSwarm(spec, dir);
     if (!s.ok) {
       ++failures;
@@ -680,6 +686,52 @@ int scaleSection(const Options& opt, const fs::path& dir) {
   return failures;
 }
 
+// (f) The same N = 8 realtime loop with DDS Security off and on (authentication, access control, AES-GCM on data
+// and metadata), interleaved so that both see the same machine load.
+int securitySection(const Options& opt, const fs::path& dir) {
+  const fs::path creds = dir / "creds";
+  {
+    Child make({"/bin/bash", kSource + "/deploy/security/make-credentials.sh", creds.string(), "8"},
+               dir / "make-credentials.log");
+    if (make.wait(120.0) != 0) {
+      std::printf("security: make-credentials.sh failed: %s\n", readFile(dir / "make-credentials.log").c_str());
+      return 1;
+    }
+  }
+  int failures = 0;
+  std::vector<double> off50, off99, on50, on99, late_on;
+  for (int rep = 0; rep < opt.reps && !dds::shutdownRequested(); ++rep) {
+    for (const bool secure : {rep % 2 == 1, rep % 2 == 0}) {
+      SwarmSpec spec{"dropout_8.yaml", 8, true, opt.duration_s,
+                     std::string(secure ? "secure" : "plain") + "_rep" + std::to_string(rep + 1), {}};
+      if (secure) spec.env = {"SWA_SECURITY_DIR=" + creds.string()};
+      const SwarmResult s = runSwarm(spec, dir);
+      if (!s.ok) {
+        ++failures;
+        std::printf("rep %d security %s FAILED: %s\n", rep + 1, secure ? "on" : "off", s.error.c_str());
+        continue;
+      }
+      std::printf("rep %d loop N = 8 realtime, security %s: p50 %.1f us p99 %.1f us max %.1f us, late %.0f, "
+                  "missing %.0f; agent PSS %.1f MB\n",
+                  rep + 1, secure ? "on " : "off", s.get("latency_p50_us"), s.get("latency_p99_us"),
+                  s.get("latency_max_us"), s.get("late_commands"), s.get("missing_answers"), s.pss_median_mb);
+      std::fflush(stdout);
+      (secure ? on50 : off50).push_back(s.get("latency_p50_us"));
+      (secure ? on99 : off99).push_back(s.get("latency_p99_us"));
+      if (secure) late_on.push_back(s.get("late_fraction"));
+    }
+  }
+  std::printf("\n### Loop latency with DDS Security (N = 8 realtime, %.0f s, medians of %d)\n\n", opt.duration_s,
+              opt.reps);
+  std::printf("| security | p50 | p99 |\n|---|---|---|\n| off | %s us | %s us |\n| on | %s us | %s us |\n",
+              fmt(median(off50)).c_str(), fmt(median(off99)).c_str(), fmt(median(on50)).c_str(),
+              fmt(median(on99)).c_str());
+  std::printf("| on / off | %s x | %s x |\n", fmt(median(on50) / median(off50), 2).c_str(),
+              fmt(median(on99) / median(off99), 2).c_str());
+  std::printf("\nsecure runs: late %s %% (median)\n", fmt(100.0 * median(late_on), 3).c_str());
+  return failures;
+}
+
 int benchMain(const Options& opt) {
   dds::installShutdownHandlers();
   const fs::path dir = opt.keep.empty()
@@ -696,6 +748,7 @@ int benchMain(const Options& opt) {
   dds::acceptShutdownSignals();
   if ((all || opt.only == "lockstep") && !dds::shutdownRequested()) failures += lockstepSection(opt, dir);
   if ((all || opt.only == "scale") && !dds::shutdownRequested()) failures += scaleSection(opt, dir);
+  if (opt.only == "security" && !dds::shutdownRequested()) failures += securitySection(opt, dir);
   std::printf("\nload average at end %s\n", loadAverage().c_str());
   if (opt.keep.empty()) fs::remove_all(dir);
   return failures == 0 && !dds::shutdownRequested() ? 0 : 1;

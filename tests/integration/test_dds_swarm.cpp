@@ -372,21 +372,10 @@ TEST_F(SwarmRun, LockstepDropout4K3EqualsTheInProcessLoop) {
 }
 
 TEST_F(SwarmRun, LockstepOverUdpOnlyEqualsTheInProcessLoop) {
-  // GIVEN the shipped profiles with shared memory switched off: every sample crosses UDPv4 (as between hosts or
-  // containers), where lost and repaired datagrams can reorder topics
-  std::string xml = readFile(std::string(SWA_SOURCE_DIR) + "/deploy/dds/profiles.xml");
-  const std::string anchor = "<participant profile_name=\"swa_participant\">\n      <rtps>\n";
-  const std::size_t at = xml.find(anchor);
-  ASSERT_NE(at, std::string::npos) << "participant profile layout changed";
-  xml.insert(at + anchor.size(),
-             "        <userTransports><transport_id>swa_udp_only</transport_id></userTransports>\n"
-             "        <useBuiltinTransports>false</useBuiltinTransports>\n");
-  xml.insert(xml.find("<profiles>") + std::string("<profiles>").size(),
-             "\n    <transport_descriptors><transport_descriptor><transport_id>swa_udp_only</transport_id>"
-             "<type>UDPv4</type></transport_descriptor></transport_descriptors>\n");
-  std::ofstream(dir_ / "udp_only.xml") << xml;
+  // GIVEN the network transport profile (SWA_TRANSPORT=network: UDPv4 only, as between hosts or containers), where
+  // lost and repaired datagrams can reorder topics
   // THEN the same bit-exact run as over shared memory
-  lockstepDropout4({"duration_s=20", "agent.k=2"}, 10.0, {"SWA_DDS_PROFILES=" + (dir_ / "udp_only.xml").string()});
+  lockstepDropout4({"duration_s=20", "agent.k=2"}, 10.0, {"SWA_TRANSPORT=network"});
 }
 
 TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {

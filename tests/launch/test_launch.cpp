@@ -246,5 +246,50 @@ TEST_F(LaunchTest, CompareStandaloneWritesOneReport) {
   expectNothingLeft();
 }
 
+// --transport discovery-server without a server address: the launcher starts fast-discovery-server on 127.0.0.1,
+// every child is a UDP-only client of it, and the server is stopped with the run. The run is the same experiment:
+// lockstep gives the in-process loop's d_NB exactly over this transport too.
+TEST_F(LaunchTest, DiscoveryServerTransportStaysCohesiveAndStopsTheServer) {
+  const std::string port = std::to_string(20000 + domain_);  // distinct per domain, as concurrent launches need
+  Child launch(launchArgs({"--set", "duration_s=30", "--transport", "discovery-server", "--discovery-port", port}),
+               dir_ / "launch.log");
+  const auto status = launch.wait(180.0);
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 0) << log;
+  const fs::path out = dir_ / "out";
+  const std::string server_log = readFile(out / "discovery_server.log");
+  EXPECT_NE(server_log.find("UDPv4:[127.0.0.1]:" + port), std::string::npos) << server_log;
+  EXPECT_NE(server_log.find("Server shut down"), std::string::npos) << "stopped cleanly: " << server_log;
+  const std::string summary = readFile(out / "summary.json");
+  const batch::RunResult oracle = batch::runClosedLoop(sim::loadScenario(kScenario, {"duration_s=30"}));
+  EXPECT_EQ(jsonNumber(summary, "mean_neighbor_distance_m"), oracle.summary.mean_neighbor_distance_m) << log;
+  EXPECT_NEAR(jsonNumber(summary, "mean_neighbor_distance_m"), 10.0, 1.0);
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string cmdline = readFile(e.path() / "cmdline");
+    EXPECT_FALSE(cmdline.find("fast-discovery-server") != std::string::npos && cmdline.find(port) != std::string::npos)
+        << "discovery server still running: pid " << e.path().filename();
+  }
+  expectNothingLeft();
+}
+
+TEST_F(LaunchTest, BadDeploymentStartsNothing) {
+  // A transport typo, and credentials that do not exist: both found before anything starts.
+  Child typo(launchArgs({"--transport", "shm"}), dir_ / "typo.log");
+  EXPECT_EQ(typo.wait(30.0), 2);
+  EXPECT_NE(readFile(dir_ / "typo.log").find("--transport must be local, network or discovery-server"),
+            std::string::npos)
+      << readFile(dir_ / "typo.log");
+  Child insecure(launchArgs({"--secure", (dir_ / "no_such_creds").string()}), dir_ / "secure.log");
+  EXPECT_EQ(insecure.wait(30.0), 2);
+  const std::string log = readFile(dir_ / "secure.log");
+  EXPECT_NE(log.find("missing credentials"), std::string::npos) << log;
+  EXPECT_NE(log.find("swa_agent_3/permissions.p7s"), std::string::npos) << "every missing file named: " << log;
+  EXPECT_NE(log.find("make-credentials.sh"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir_ / "out")) << "nothing may be started or written";
+  expectNothingLeft();
+}
+
 }  // namespace
 }  // namespace swa::testing

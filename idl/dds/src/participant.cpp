@@ -13,6 +13,9 @@
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+
+#include "swa/dds/deployment.h"
 
 namespace swa::dds {
 
@@ -61,20 +64,79 @@ void loadProfilesOnce(const std::string& file) {
   loaded = file;
 }
 
+std::string fileUri(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path abs = std::filesystem::absolute(path, ec);
+  return "file://" + (ec ? path : abs.lexically_normal().string());
+}
+
+// DDS Security 1.1 builtin plugins (authentication, access control, encryption) with this participant's files.
+void addSecurity(fdds::DomainParticipantQos& qos, const SecurityFiles& f) {
+  auto& props = qos.properties().properties();
+  const auto set = [&props](const std::string& name, const std::string& value) { props.emplace_back(name, value); };
+  set("dds.sec.auth.plugin", "builtin.PKI-DH");
+  set("dds.sec.auth.builtin.PKI-DH.identity_ca", fileUri(f.ca));
+  set("dds.sec.auth.builtin.PKI-DH.identity_certificate", fileUri(f.certificate));
+  set("dds.sec.auth.builtin.PKI-DH.private_key", fileUri(f.private_key));
+  set("dds.sec.access.plugin", "builtin.Access-Permissions");
+  set("dds.sec.access.builtin.Access-Permissions.permissions_ca", fileUri(f.ca));
+  set("dds.sec.access.builtin.Access-Permissions.governance", fileUri(f.governance));
+  set("dds.sec.access.builtin.Access-Permissions.permissions", fileUri(f.permissions));
+  set("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
 }  // namespace
 
 Participant::Participant(const std::string& name, int domain_id, const std::string& profiles_file)
     : name_(name), domain_id_(domain_id) {
   loadProfilesOnce(profiles_file);
+  Deployment deployment;
+  try {
+    deployment = resolveDeployment();
+  } catch (const std::invalid_argument& e) {
+    throw DdsError(e.what());
+  }
+  const char* profile = participantProfile(deployment.transport);
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   fdds::DomainParticipantQos qos;
-  if (factory->get_participant_qos_from_profile(kParticipantProfile, qos) != ReturnCode_t::RETCODE_OK) {
-    throw DdsError(std::string("participant profile '") + kParticipantProfile + "' missing in " + profiles_file);
+  if (factory->get_participant_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw DdsError(std::string("participant profile '") + profile + "' missing in " + profiles_file);
   }
   qos.name(name);
+  if (deployment.transport == Transport::kDiscoveryServer) {
+    auto& discovery = qos.wire_protocol().builtin.discovery_config;
+    discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
+    if (!eprosima::fastdds::rtps::load_environment_server_info(deployment.discovery_servers,
+                                                                discovery.m_DiscoveryServers)) {
+      throw DdsError("SWA_DISCOVERY_SERVER '" + deployment.discovery_servers + "' is not IP:PORT[;IP:PORT...]");
+    }
+  }
+  SecurityFiles security;
+  if (!deployment.security_dir.empty()) {
+    security = securityFiles(deployment.security_dir, name);
+    const auto unreadable = unreadableFiles(security);
+    if (!unreadable.empty()) {
+      std::string list;
+      for (const auto& f : unreadable) list += "\n  " + f;
+      throw DdsError("DDS Security (SWA_SECURITY_DIR=" + deployment.security_dir + "): no credentials for participant '" +
+                     name + "', cannot read:" + list +
+                     "\n(create them with deploy/security/make-credentials.sh, or unset SWA_SECURITY_DIR)");
+    }
+    addSecurity(qos, security);
+  }
   participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos);
   if (participant_ == nullptr) {
-    throw DdsError("cannot create DDS participant '" + name + "' on domain " + std::to_string(domain_id));
+    if (!deployment.security_dir.empty()) {
+      // Fast DDS says only "initialization error" here; the [SECURITY Error] lines above it name the check.
+      throw DdsError("DDS Security refused the credentials of participant '" + name + "' on domain " +
+                     std::to_string(domain_id) + ": " + security.permissions + " or " + security.governance +
+                     " is not signed by " + security.ca + " (tampered with or from another CA), " +
+                     security.certificate + " is not issued by it or does not match " + security.private_key +
+                     ", or the permissions grant no subject equal to the certificate's (RFC 2253 order), or not "
+                     "this domain; see the [SECURITY Error] lines above");
+    }
+    throw DdsError("cannot create DDS participant '" + name + "' on domain " + std::to_string(domain_id) +
+                   " (transport " + transportName(deployment.transport) + ")");
   }
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);

@@ -1,0 +1,130 @@
+#include "swa/dds/deployment.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+#include "swa/dds/options.h"
+
+namespace swa::dds {
+namespace {
+
+bool isDottedIpv4(const std::string& s) {
+  int parts = 0;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t dot = s.find('.', start);
+    const std::string part = s.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (part.empty() || part.size() > 3 || !parseInteger(part, 0, 255)) return false;
+    ++parts;
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return parts == 4;
+}
+
+}  // namespace
+
+const char* transportName(Transport t) {
+  switch (t) {
+    case Transport::kLocal:
+      return "local";
+    case Transport::kNetwork:
+      return "network";
+    case Transport::kDiscoveryServer:
+      return "discovery-server";
+  }
+  return "?";
+}
+
+std::optional<Transport> parseTransport(const std::string& name) {
+  for (const Transport t : {Transport::kLocal, Transport::kNetwork, Transport::kDiscoveryServer}) {
+    if (name == transportName(t)) return t;
+  }
+  return std::nullopt;
+}
+
+const char* participantProfile(Transport t) {
+  // discovery-server uses the network profile: the CLIENT role and the servers are set from SWA_DISCOVERY_SERVER
+  // (addresses known only at deployment, not in a shipped XML file).
+  return t == Transport::kLocal ? "swa_participant" : "swa_participant_network";
+}
+
+std::vector<std::string> checkServerList(const std::string& list) {
+  std::vector<std::string> problems;
+  if (list.empty()) return {"the list is empty"};
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t semi = list.find(';', start);
+    const std::string entry = list.substr(start, semi == std::string::npos ? std::string::npos : semi - start);
+    const std::size_t colon = entry.rfind(':');
+    if (colon == std::string::npos || !isDottedIpv4(entry.substr(0, colon)) ||
+        !parseInteger(entry.substr(colon + 1), 1, 65535)) {
+      problems.push_back("'" + entry + "' is not IPv4:PORT (e.g. 10.0.0.1:11811)");
+    }
+    if (semi == std::string::npos) break;
+    start = semi + 1;
+  }
+  return problems;
+}
+
+Deployment parseDeployment(const EnvLookup& env) {
+  Deployment d;
+  if (const auto t = env("SWA_TRANSPORT"); t && !t->empty()) {
+    const auto parsed = parseTransport(*t);
+    if (!parsed) {
+      throw std::invalid_argument("SWA_TRANSPORT '" + *t + "' is not one of local, network, discovery-server");
+    }
+    d.transport = *parsed;
+  }
+  if (const auto s = env("SWA_DISCOVERY_SERVER"); s && !s->empty()) d.discovery_servers = *s;
+  if (d.transport == Transport::kDiscoveryServer) {
+    if (d.discovery_servers.empty()) {
+      throw std::invalid_argument(
+          "SWA_TRANSPORT=discovery-server needs SWA_DISCOVERY_SERVER=IP:PORT[;IP:PORT...] (the servers' addresses)");
+    }
+    const auto problems = checkServerList(d.discovery_servers);
+    if (!problems.empty()) throw std::invalid_argument("SWA_DISCOVERY_SERVER: " + problems.front());
+  } else if (!d.discovery_servers.empty()) {
+    // Silently ignoring it would leave a user wondering why the server never sees the swarm.
+    throw std::invalid_argument(std::string("SWA_DISCOVERY_SERVER is set but SWA_TRANSPORT is ") +
+                                transportName(d.transport) + ": set SWA_TRANSPORT=discovery-server or unset it");
+  }
+  if (const auto s = env("SWA_SECURITY_DIR"); s && !s->empty()) d.security_dir = *s;
+  return d;
+}
+
+Deployment resolveDeployment() {
+  return parseDeployment([](const std::string& name) -> std::optional<std::string> {
+    const char* v = std::getenv(name.c_str());
+    if (v == nullptr) return std::nullopt;
+    return std::string(v);
+  });
+}
+
+std::string environmentHelp() {
+  return R"(Environment (deploy/README.md):
+  SWA_DOMAIN            DDS domain id when --domain is not given (default 0)
+  SWA_DDS_PROFILES      Fast DDS XML profiles (default: deploy/dds/profiles.xml of the source tree)
+  SWA_TRANSPORT         local (default: shared memory + UDP, one host) | network (UDPv4 only, multicast
+                        discovery: containers, hosts) | discovery-server (UDPv4, no multicast needed)
+  SWA_DISCOVERY_SERVER  IP:PORT[;IP:PORT...] of the Fast DDS Discovery Server(s), with discovery-server
+  SWA_SECURITY_DIR      DDS Security credentials (deploy/security/make-credentials.sh); unset = security off
+)";
+}
+
+SecurityFiles securityFiles(const std::string& dir, const std::string& participant_name) {
+  const std::string own = dir + "/" + participant_name + "/";
+  return SecurityFiles{dir + "/ca.pem", dir + "/governance.p7s", own + "cert.pem", own + "key.pem",
+                       own + "permissions.p7s"};
+}
+
+std::vector<std::string> unreadableFiles(const SecurityFiles& f) {
+  std::vector<std::string> out;
+  for (const std::string* p : {&f.ca, &f.governance, &f.certificate, &f.private_key, &f.permissions}) {
+    if (!std::ifstream(*p).good()) out.push_back(*p);
+  }
+  return out;
+}
+
+}  // namespace swa::dds

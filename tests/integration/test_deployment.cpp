@@ -1,0 +1,122 @@
+// How a process joins DDS (swa/dds/deployment.h) and the launcher options that set it: pure parsing, no DDS traffic.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "launch_options.h"
+#include "swa/dds/deployment.h"
+
+namespace swa {
+namespace {
+
+dds::EnvLookup envOf(const std::map<std::string, std::string>& vars) {
+  return [vars](const std::string& name) -> std::optional<std::string> {
+    const auto it = vars.find(name);
+    if (it == vars.end()) return std::nullopt;
+    return it->second;
+  };
+}
+
+std::string errorOf(const std::map<std::string, std::string>& vars) {
+  try {
+    dds::parseDeployment(envOf(vars));
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Deployment, DefaultsToLocalWithoutSecurity) {
+  const dds::Deployment d = dds::parseDeployment(envOf({}));
+  EXPECT_EQ(d.transport, dds::Transport::kLocal);
+  EXPECT_TRUE(d.security_dir.empty());
+  EXPECT_STREQ(dds::participantProfile(d.transport), "swa_participant");
+  EXPECT_EQ(dds::parseDeployment(envOf({{"SWA_TRANSPORT", ""}})).transport, dds::Transport::kLocal);
+}
+
+TEST(Deployment, EachTransportSelectsItsProfile) {
+  EXPECT_EQ(dds::parseDeployment(envOf({{"SWA_TRANSPORT", "network"}})).transport, dds::Transport::kNetwork);
+  const dds::Deployment ds = dds::parseDeployment(
+      envOf({{"SWA_TRANSPORT", "discovery-server"}, {"SWA_DISCOVERY_SERVER", "10.1.0.1:11811;10.1.0.2:11812"}}));
+  EXPECT_EQ(ds.transport, dds::Transport::kDiscoveryServer);
+  EXPECT_EQ(ds.discovery_servers, "10.1.0.1:11811;10.1.0.2:11812");
+  EXPECT_STREQ(dds::participantProfile(dds::Transport::kNetwork), "swa_participant_network");
+  EXPECT_STREQ(dds::participantProfile(dds::Transport::kDiscoveryServer), "swa_participant_network");
+  for (const auto t : {dds::Transport::kLocal, dds::Transport::kNetwork, dds::Transport::kDiscoveryServer}) {
+    EXPECT_EQ(dds::parseTransport(dds::transportName(t)), t);
+  }
+}
+
+TEST(Deployment, BadCombinationsNameTheVariable) {
+  EXPECT_NE(errorOf({{"SWA_TRANSPORT", "shm"}}).find("SWA_TRANSPORT 'shm'"), std::string::npos);
+  EXPECT_NE(errorOf({{"SWA_TRANSPORT", "discovery-server"}}).find("needs SWA_DISCOVERY_SERVER"), std::string::npos);
+  EXPECT_NE(errorOf({{"SWA_TRANSPORT", "discovery-server"}, {"SWA_DISCOVERY_SERVER", "server:11811"}})
+                .find("'server:11811' is not IPv4:PORT"),
+            std::string::npos);
+  // A server list without the discovery-server transport would be silently ignored by the participant.
+  EXPECT_NE(errorOf({{"SWA_DISCOVERY_SERVER", "127.0.0.1:11811"}}).find("SWA_TRANSPORT is local"), std::string::npos);
+}
+
+TEST(Deployment, ServerListIsCheckedEntryByEntry) {
+  EXPECT_TRUE(dds::checkServerList("127.0.0.1:11811").empty());
+  EXPECT_TRUE(dds::checkServerList("10.0.0.1:1;192.168.255.254:65535").empty());
+  EXPECT_EQ(dds::checkServerList("").size(), 1u);
+  EXPECT_EQ(dds::checkServerList("127.0.0.1").size(), 1u);
+  EXPECT_EQ(dds::checkServerList("127.0.0.1:0").size(), 1u);
+  EXPECT_EQ(dds::checkServerList("127.0.0.1:65536").size(), 1u);
+  EXPECT_EQ(dds::checkServerList("256.0.0.1:11811").size(), 1u);
+  EXPECT_EQ(dds::checkServerList("1.2.3:11811;1.2.3.4.5:11811;1.2.3.4:x").size(), 3u);
+}
+
+TEST(Deployment, SecurityFilesAreNamedAfterTheParticipant) {
+  const dds::SecurityFiles f = dds::securityFiles("/creds", "swa_agent_3");
+  EXPECT_EQ(f.ca, "/creds/ca.pem");
+  EXPECT_EQ(f.governance, "/creds/governance.p7s");
+  EXPECT_EQ(f.certificate, "/creds/swa_agent_3/cert.pem");
+  EXPECT_EQ(f.private_key, "/creds/swa_agent_3/key.pem");
+  EXPECT_EQ(f.permissions, "/creds/swa_agent_3/permissions.p7s");
+  EXPECT_EQ(dds::parseDeployment(envOf({{"SWA_SECURITY_DIR", "/creds"}})).security_dir, "/creds");
+}
+
+TEST(Deployment, UnreadableCredentialsAreListed) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("swa_test_creds_" + std::to_string(::getpid()));
+  fs::create_directories(dir / "swa_sim");
+  for (const char* f : {"ca.pem", "governance.p7s", "swa_sim/cert.pem", "swa_sim/key.pem"}) std::ofstream(dir / f) << "x";
+  const auto missing = dds::unreadableFiles(dds::securityFiles(dir.string(), "swa_sim"));
+  ASSERT_EQ(missing.size(), 1u);
+  EXPECT_EQ(missing[0], (dir / "swa_sim" / "permissions.p7s").string());
+  EXPECT_EQ(dds::unreadableFiles(dds::securityFiles(dir.string(), "swa_agent_0")).size(), 3u);
+  fs::remove_all(dir);
+}
+
+TEST(LaunchDeploymentOptions, ParsedAndChecked) {
+  const launch::LaunchOptions o = launch::parseLaunchOptions({"--scenario", "s.yaml", "--transport",
+                                                              "discovery-server", "--discovery-server",
+                                                              "127.0.0.1:11900", "--secure", "creds"});
+  EXPECT_EQ(o.transport, "discovery-server");
+  EXPECT_EQ(o.discovery_server, "127.0.0.1:11900");
+  EXPECT_EQ(o.secure_dir, "creds");
+  EXPECT_EQ(launch::parseLaunchOptions({"--scenario", "s", "--discovery-port", "12000"}).discovery_port, 12000);
+  try {
+    launch::parseLaunchOptions({"--scenario", "s", "--transport", "tcp", "--discovery-server", "host:1",
+                                "--discovery-port", "80", "--secure", ""});
+    FAIL() << "accepted bad deployment options";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--transport must be local, network or discovery-server, got 'tcp'"), std::string::npos);
+    EXPECT_NE(what.find("--discovery-server: 'host:1' is not IPv4:PORT"), std::string::npos);
+    EXPECT_NE(what.find("--discovery-port '80'"), std::string::npos);
+    EXPECT_NE(what.find("--secure needs the credentials directory"), std::string::npos);
+    EXPECT_NE(what.find("--discovery-server needs --transport discovery-server"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace swa
