@@ -50,11 +50,16 @@ class AgentNode {
  private:
   using Input = std::variant<msg::Imu, msg::Detections, msg::GnssFix>;
 
+  void connect();             // creates the participant and the endpoints
+  bool handshakeStalled();    // secure start that never matched a reader of our commands: reconnect?
   void onInput(Input&& in);  // listener threads
   void handle(Input& in);
   void publishState(agent::StampNs stamp_ns);
 
   const int id_;
+  const int domain_id_;
+  const std::string profiles_file_;
+  const bool secure_;
   agent::Agent agent_;
   StampOrderer<Input> order_;
   std::chrono::steady_clock::time_point started_;
@@ -68,6 +73,8 @@ class AgentNode {
 
   std::mutex mutex_;  // guards everything above; held while a sample is processed
   std::chrono::steady_clock::time_point last_input_;
+  std::chrono::steady_clock::time_point connected_at_;
+  int reconnects_ = 0;
 
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::VelocitySetpoint> cmd_writer_;

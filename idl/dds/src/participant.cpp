@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 #include <filesystem>
 #include <mutex>
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 #include <fastdds/dds/core/status/SubscriptionMatchedStatus.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
@@ -85,6 +88,43 @@ void addSecurity(fdds::DomainParticipantQos& qos, const SecurityFiles& f) {
   set("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
 }
 
+// SWA_DDS_TRACE=1: one line on stderr per remote participant discovered / lost / authenticated, to see on a real
+// network (or with DDS Security) who found whom. Only participant events: the data callbacks stay with the readers.
+class TraceListener : public fdds::DomainParticipantListener {
+ public:
+  explicit TraceListener(std::string self) : self_(std::move(self)) {}
+
+  void on_participant_discovery(fdds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info)
+      override {
+    using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
+    const char* what = info.status == Status::DISCOVERED_PARTICIPANT  ? "discovered"
+                       : info.status == Status::CHANGED_QOS_PARTICIPANT ? "changed"
+                       : info.status == Status::REMOVED_PARTICIPANT     ? "removed"
+                       : info.status == Status::DROPPED_PARTICIPANT     ? "dropped (lease expired)"
+                                                                        : "ignored";
+    if (info.status == Status::CHANGED_QOS_PARTICIPANT) return;
+    std::ostringstream guid;
+    guid << info.info.m_guid;
+    std::fprintf(stderr, "%s: [dds trace] participant %s %s (%s)\n", self_.c_str(), info.info.m_participantName.c_str(),
+                 what, guid.str().c_str());
+  }
+
+#if HAVE_SECURITY
+  void onParticipantAuthentication(fdds::DomainParticipant*,
+                                   eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override {
+    std::ostringstream guid;
+    guid << info.guid;
+    std::fprintf(stderr, "%s: [dds trace] participant %s %s\n", self_.c_str(), guid.str().c_str(),
+                 info.status == eprosima::fastrtps::rtps::ParticipantAuthenticationInfo::AUTHORIZED_PARTICIPANT
+                     ? "authenticated"
+                     : "REFUSED by authentication");
+  }
+#endif
+
+ private:
+  std::string self_;
+};
+
 }  // namespace
 
 Participant::Participant(const std::string& name, int domain_id, const std::string& profiles_file)
@@ -124,7 +164,11 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     }
     addSecurity(qos, security);
   }
-  participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos);
+  if (const char* trace = std::getenv("SWA_DDS_TRACE"); trace != nullptr && std::string(trace) == "1") {
+    trace_listener_ = std::make_unique<TraceListener>(name);
+  }
+  participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos, trace_listener_.get(),
+                                             fdds::StatusMask::none());
   if (participant_ == nullptr) {
     if (!deployment.security_dir.empty()) {
       // Fast DDS says only "initialization error" here; the [SECURITY Error] lines above it name the check.

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -138,6 +139,8 @@ class Participant {
  private:
   // Takes ownership of `type`.
   eprosima::fastdds::dds::Topic* topic(const std::string& topic_name, eprosima::fastdds::dds::TopicDataType* type);
+  // SWA_DDS_TRACE=1 only; deleted after the participant (the destructor deletes the participant explicitly).
+  std::unique_ptr<eprosima::fastdds::dds::DomainParticipantListener> trace_listener_;
   eprosima::fastdds::dds::DataWriter* createWriter(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
   eprosima::fastdds::dds::DataReader* createReader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
                                                    eprosima::fastdds::dds::DataReaderListener* listener);
