@@ -1,0 +1,423 @@
+#!/usr/bin/env bash
+# DDS Security credentials for an SWA swarm: one CA, one identity per participant, the governance document and
+# per-participant permissions, laid out as swa::dds::Participant expects them (idl/dds/include/swa/dds/deployment.h).
+# Run with --help for the layout, the options and the overwrite rules.
+set -euo pipefail
+
+readonly PROG=${0##*/}
+readonly MAX_DOMAIN=232   # highest DDS domain id whose RTPS ports fit in 16 bits with Fast DDS's default port mapping
+readonly MAX_UAVS=10000   # swa_agent --id accepts 0..9999
+
+usage() {
+  cat <<EOF
+$PROG: DDS Security credentials (CA, identities, governance, permissions) for an SWA swarm.
+
+Usage: $PROG [options] DIR N
+
+Creates in DIR, for the simulator, the monitor and N UAVs (swa_agent_0 .. swa_agent_<N-1>):
+  ca.pem                      the CA certificate (identity CA and permissions CA): every participant needs it
+  ca/key.pem                  the CA's private key (0600): keep it offline, never copy it to a drone
+  governance.xml, .p7s        the domain governance, signed by the CA
+  <name>/cert.pem, key.pem    the participant's identity (EC prime256v1), key 0600
+  <name>/permissions.xml, .p7s  what it may publish and subscribe, signed by the CA
+<name> is swa_sim, swa_monitor or swa_agent_<I>. The .xml files are the unsigned text, for reading only.
+
+Governance (domains 0-$MAX_DOMAIN by default): only authenticated participants whose permissions grant the
+domain may join; every topic's data and submessages are encrypted, and so is endpoint discovery and liveliness;
+reading or writing a topic needs a permissions grant.
+Permissions (default DENY, nothing else is allowed):
+  swa_agent_<I>  reads swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/clock;
+                 writes swa/uav<I>/cmd_vel, swa/uav<I>/state
+  swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/truth, swa/events, swa/clock;
+                 reads swa/uav*/cmd_vel
+  swa_monitor    reads swa/truth, swa/events, swa/uav*/state
+
+Options:
+  --days D        validity of identities and permissions in days (default 365)
+  --ca-days D     validity of a new CA in days (default 3650)
+  --domains A-B   DDS domain ids covered by governance and permissions, A-B or one id (default 0-$MAX_DOMAIN)
+  --org NAME      organisation in every subject, O=NAME (default SWA; letters, digits, space, . _ -)
+  --reuse-ca      DIR already holds credentials: keep its CA (ca.pem, ca/key.pem) and issue everything else
+                  anew (rotation: drones keep their ca.pem, get new cert/key/permissions and governance)
+  --force         DIR already holds credentials: replace all of them, CA included (every participant then
+                  needs the new ca.pem too)
+  -h, --help      this text
+
+Overwriting: without --reuse-ca or --force, DIR must not exist or be empty, so existing credentials are never
+replaced by accident. With either flag the script replaces only the entries listed above (and removes
+swa_agent_<I> directories beyond the new N); other files in DIR are left alone. Everything is first written to a
+staging directory inside DIR and moved into place only once all of it was created and verified, so a failure
+leaves DIR as it was.
+
+Subjects are O=<org>, CN=<name>; each permissions document names its subject exactly as
+'openssl x509 -noout -subject -nameopt RFC2253' prints it (CN=...,O=...), which is what Fast DDS compares.
+Validity starts now (UTC); a drone whose clock is behind rejects the certificates until its clock catches up.
+
+Example:
+  $PROG creds 4 && swa_launch --secure creds --scenario deploy/scenarios/dropout_4.yaml
+
+Exit status: 0 created; 1 failure (DIR unchanged); 2 bad arguments.
+Needs: openssl (tested with OpenSSL 3.0, Debian 12).
+EOF
+}
+
+die() {
+  echo "$PROG: $*" >&2
+  exit 1
+}
+
+usage_error() {
+  echo "$PROG: $*" >&2
+  echo "(see $PROG --help)" >&2
+  exit 2
+}
+
+# True if $1 is a decimal integer within [$2, $3].
+in_range() { [[ $1 =~ ^[0-9]{1,9}$ ]] && ((10#$1 >= $2 && 10#$1 <= $3)); }
+
+# Globals set by parse_args.
+DIR='' N='' DAYS=365 CA_DAYS=3650 DOMAIN_MIN=0 DOMAIN_MAX=$MAX_DOMAIN ORG=SWA MODE=new
+
+parse_args() {
+  local positional=()
+  while (($#)); do
+    case $1 in
+      -h | --help)
+        usage
+        exit 0
+        ;;
+      --days | --ca-days | --domains | --org)
+        (($# >= 2)) || usage_error "$1 needs a value"
+        case $1 in
+          --days) DAYS=$2 ;;
+          --ca-days) CA_DAYS=$2 ;;
+          --domains) parse_domains "$2" ;;
+          --org) ORG=$2 ;;
+        esac
+        shift 2
+        ;;
+      --reuse-ca | --force)
+        [[ $MODE == new ]] || usage_error "--reuse-ca and --force exclude each other"
+        MODE=${1#--}
+        shift
+        ;;
+      --)
+        shift
+        positional+=("$@")
+        break
+        ;;
+      -*) usage_error "unknown option $1" ;;
+      *)
+        positional+=("$1")
+        shift
+        ;;
+    esac
+  done
+  ((${#positional[@]} == 2)) || usage_error "expected DIR and N, got ${#positional[@]} argument(s)"
+  DIR=${positional[0]}
+  N=${positional[1]}
+  [[ -n $DIR ]] || usage_error "DIR is empty"
+  in_range "$N" 1 "$MAX_UAVS" || usage_error "N '$N' is not a UAV count 1..$MAX_UAVS"
+  N=$((10#$N))
+  in_range "$DAYS" 1 100000 || usage_error "--days '$DAYS' is not a number of days 1..100000"
+  in_range "$CA_DAYS" 1 100000 || usage_error "--ca-days '$CA_DAYS' is not a number of days 1..100000"
+  DAYS=$((10#$DAYS)) CA_DAYS=$((10#$CA_DAYS))
+  # Subjects go into -subj and into XML unescaped: only characters that need no escaping in either.
+  [[ $ORG =~ ^[A-Za-z0-9][A-Za-z0-9\ ._-]*$ ]] || usage_error "--org '$ORG': use letters, digits, space, . _ -"
+}
+
+parse_domains() {
+  local a b
+  if [[ $1 =~ ^([0-9]+)-([0-9]+)$ ]]; then
+    a=${BASH_REMATCH[1]} b=${BASH_REMATCH[2]}
+  elif [[ $1 =~ ^[0-9]+$ ]]; then
+    a=$1 b=$1
+  else
+    usage_error "--domains '$1' is not A-B or one domain id"
+  fi
+  if ! in_range "$a" 0 "$MAX_DOMAIN" || ! in_range "$b" "$((10#$a))" "$MAX_DOMAIN"; then
+    usage_error "--domains '$1': need 0 <= A <= B <= $MAX_DOMAIN"
+  fi
+  DOMAIN_MIN=$((10#$a)) DOMAIN_MAX=$((10#$b))
+}
+
+STAGE='' CREATED_DIR=false
+
+# On any exit: the staging directory goes; so does DIR if this run created it and failed before filling it.
+cleanup() {
+  if [[ -n $STAGE ]]; then rm -rf -- "$STAGE"; fi
+  if $CREATED_DIR && [[ -d $DIR && -z $(ls -A "$DIR") ]]; then rmdir -- "$DIR"; fi
+}
+
+participants() {
+  local i
+  echo swa_sim
+  echo swa_monitor
+  for ((i = 0; i < N; ++i)); do echo "swa_agent_$i"; done
+}
+
+# Refuses to touch credentials it was not told to replace (see --help, Overwriting).
+check_target() {
+  if [[ -e $DIR && ! -d $DIR ]]; then die "$DIR exists and is not a directory"; fi
+  local has_credentials=false
+  [[ -e $DIR/ca.pem ]] && has_credentials=true
+  case $MODE in
+    new)
+      if [[ -d $DIR ]] && [[ -n $(ls -A "$DIR") ]]; then
+        if $has_credentials; then
+          die "$DIR already holds credentials; --reuse-ca re-issues them with the same CA, --force replaces all"
+        fi
+        die "$DIR is not empty and holds no SWA credentials; choose an empty or new directory"
+      fi
+      ;;
+    reuse-ca)
+      [[ -r $DIR/ca.pem && -r $DIR/ca/key.pem ]] ||
+        die "--reuse-ca: $DIR/ca.pem and $DIR/ca/key.pem must exist (the CA to keep)"
+      openssl x509 -in "$DIR/ca.pem" -noout -checkend 0 >/dev/null ||
+        die "--reuse-ca: the CA in $DIR/ca.pem has expired; use --force for a new CA"
+      ;;
+    force) ;;
+  esac
+}
+
+# Extensions that OpenSSL's strict chain verification (X509_V_FLAG_X509_STRICT) expects of a CA and of its
+# leaves: critical basicConstraints, key identifiers. digitalSignature on the CA because it also signs the
+# governance and permissions documents (S/MIME).
+write_openssl_config() {
+  cat >"$1" <<'EOF'
+[ req ]
+distinguished_name = req_dn
+prompt = no
+[ req_dn ]
+[ ca_ext ]
+basicConstraints = critical, CA:TRUE
+keyUsage = critical, keyCertSign, cRLSign, digitalSignature
+subjectKeyIdentifier = hash
+authorityKeyIdentifier = keyid:always
+[ identity_ext ]
+basicConstraints = critical, CA:FALSE
+keyUsage = critical, digitalSignature
+subjectKeyIdentifier = hash
+authorityKeyIdentifier = keyid, issuer
+EOF
+}
+
+new_key() {
+  (umask 077 && openssl genpkey -algorithm EC -pkeyopt ec_paramgen_curve:prime256v1 -out "$1" 2>/dev/null)
+  chmod 0600 "$1"
+}
+
+random_serial() { echo "0x$(openssl rand -hex 16)"; }
+
+make_ca() {
+  local stage=$1 cnf=$2
+  mkdir -p "$stage/ca"
+  chmod 0700 "$stage/ca"
+  new_key "$stage/ca/key.pem"
+  openssl req -config "$cnf" -x509 -new -key "$stage/ca/key.pem" -sha256 -days "$CA_DAYS" \
+    -set_serial "$(random_serial)" -subj "/O=$ORG/CN=$ORG DDS CA" -extensions ca_ext -out "$stage/ca.pem"
+}
+
+# Writes <name>/cert.pem and key.pem in $stage, signed by the CA files given.
+make_identity() {
+  local stage=$1 cnf=$2 ca_cert=$3 ca_key=$4 name=$5
+  local dir=$stage/$name
+  mkdir -p "$dir"
+  new_key "$dir/key.pem"
+  openssl req -config "$cnf" -new -key "$dir/key.pem" -subj "/O=$ORG/CN=$name" -out "$stage/$name.csr"
+  openssl x509 -req -in "$stage/$name.csr" -CA "$ca_cert" -CAkey "$ca_key" -set_serial "$(random_serial)" \
+    -days "$DAYS" -sha256 -extfile "$cnf" -extensions identity_ext -out "$dir/cert.pem" 2>/dev/null
+  rm -f "$stage/$name.csr"
+}
+
+# The subject exactly as Fast DDS's access control compares it with <subject_name> (RFC 2253 order: CN first).
+rfc2253_subject() {
+  local s
+  s=$(openssl x509 -in "$1" -noout -subject -nameopt RFC2253)
+  echo "${s#subject=}"
+}
+
+domains_xml() {
+  local indent=$1
+  printf '%s<domains>\n%s  <id_range>\n%s    <min>%d</min>\n%s    <max>%d</max>\n%s  </id_range>\n%s</domains>\n' \
+    "$indent" "$indent" "$indent" "$DOMAIN_MIN" "$indent" "$DOMAIN_MAX" "$indent" "$indent"
+}
+
+# Element order matters: Fast DDS's parser expects the schema's sequence exactly.
+governance_xml() {
+  cat <<EOF
+<?xml version="1.0" encoding="UTF-8"?>
+<!-- SWA domain governance, made by deploy/security/make-credentials.sh. Signed copy: governance.p7s. -->
+<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
+     xsi:noNamespaceSchemaLocation="http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_governance.xsd">
+  <domain_access_rules>
+    <domain_rule>
+$(domains_xml '      ')
+      <allow_unauthenticated_participants>false</allow_unauthenticated_participants>
+      <enable_join_access_control>true</enable_join_access_control>
+      <discovery_protection_kind>ENCRYPT</discovery_protection_kind>
+      <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>
+      <!-- NONE: every topic's payload and submessages are already encrypted below, discovery and liveliness
+           above; protecting whole RTPS messages too would encrypt every control-loop message twice. -->
+      <rtps_protection_kind>NONE</rtps_protection_kind>
+      <topic_access_rules>
+        <topic_rule>
+          <topic_expression>*</topic_expression>
+          <enable_discovery_protection>true</enable_discovery_protection>
+          <enable_liveliness_protection>true</enable_liveliness_protection>
+          <enable_read_access_control>true</enable_read_access_control>
+          <enable_write_access_control>true</enable_write_access_control>
+          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>
+          <data_protection_kind>ENCRYPT</data_protection_kind>
+        </topic_rule>
+      </topic_access_rules>
+    </domain_rule>
+  </domain_access_rules>
+</dds>
+EOF
+}
+
+topics_xml() {
+  local kind=$1 t
+  shift
+  (($#)) || return 0
+  echo "        <$kind>"
+  echo "          <topics>"
+  for t in "$@"; do echo "            <topic>$t</topic>"; done
+  echo "          </topics>"
+  echo "        </$kind>"
+}
+
+# The topics of each role, from idl/dds/include/swa/dds/topics.h and the nodes (sim/node, agent/node,
+# monitor/node). fnmatch patterns: uav* stands for every UAV index.
+publishes() {
+  case $1 in
+    swa_sim) echo 'swa/uav*/imu swa/uav*/detections swa/uav*/gnss swa/truth swa/events swa/clock' ;;
+    swa_monitor) echo '' ;;
+    swa_agent_*) echo "swa/uav${1#swa_agent_}/cmd_vel swa/uav${1#swa_agent_}/state" ;;
+  esac
+}
+
+subscribes() {
+  case $1 in
+    swa_sim) echo 'swa/uav*/cmd_vel' ;;
+    swa_monitor) echo 'swa/truth swa/events swa/uav*/state' ;;
+    swa_agent_*)
+      local i=${1#swa_agent_}
+      echo "swa/uav$i/imu swa/uav$i/detections swa/uav$i/gnss swa/clock"
+      ;;
+  esac
+}
+
+permissions_xml() {
+  local name=$1 subject=$2 not_before=$3 not_after=$4
+  local -a pub sub
+  read -r -a pub <<<"$(publishes "$name")"
+  read -r -a sub <<<"$(subscribes "$name")"
+  cat <<EOF
+<?xml version="1.0" encoding="UTF-8"?>
+<!-- Permissions of $name, made by deploy/security/make-credentials.sh. Signed copy: permissions.p7s. -->
+<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
+     xsi:noNamespaceSchemaLocation="http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_permissions.xsd">
+  <permissions>
+    <grant name="$name">
+      <subject_name>$subject</subject_name>
+      <validity>
+        <not_before>$not_before</not_before>
+        <not_after>$not_after</not_after>
+      </validity>
+      <allow_rule>
+$(domains_xml '        ')
+$(topics_xml publish "${pub[@]+"${pub[@]}"}"; topics_xml subscribe "${sub[@]+"${sub[@]}"}")
+      </allow_rule>
+      <default>DENY</default>
+    </grant>
+  </permissions>
+</dds>
+EOF
+}
+
+sign() {
+  local ca_cert=$1 ca_key=$2 in=$3 out=$4
+  openssl smime -sign -text -in "$in" -out "$out" -signer "$ca_cert" -inkey "$ca_key"
+}
+
+# Everything checked as the participants will check it, before anything is moved into DIR.
+verify_stage() {
+  local stage=$1 ca_cert=$2 name subject doc
+  for doc in "$stage/governance.p7s" "$stage"/swa_*/permissions.p7s; do
+    openssl smime -verify -text -in "$doc" -CAfile "$ca_cert" -out /dev/null 2>/dev/null ||
+      die "internal error: $doc does not verify against $ca_cert"
+  done
+  while read -r name; do
+    openssl verify -x509_strict -CAfile "$ca_cert" "$stage/$name/cert.pem" >/dev/null ||
+      die "internal error: $name/cert.pem does not verify against $ca_cert"
+    subject=$(rfc2253_subject "$stage/$name/cert.pem")
+    grep -qF "<subject_name>$subject</subject_name>" "$stage/$name/permissions.xml" ||
+      die "internal error: $name/permissions.xml does not name subject $subject"
+  done < <(participants)
+}
+
+# Replaces DIR's entries by the staged ones, one rename each (staging is inside DIR: same file system).
+install_stage() {
+  local stage=$1 entry old
+  for old in "$DIR"/swa_agent_*; do
+    if [[ -e $old && ! -e $stage/${old##*/} ]]; then rm -rf -- "$old"; fi
+  done
+  for entry in "$stage"/*; do
+    old=$DIR/${entry##*/}
+    if [[ -e $old ]]; then rm -rf -- "$old"; fi
+    mv -- "$entry" "$old"
+  done
+}
+
+main() {
+  parse_args "$@"
+  command -v openssl >/dev/null || die "openssl not found (apt-get install openssl)"
+  check_target
+  if [[ ! -d $DIR ]]; then
+    mkdir -p "$DIR"
+    CREATED_DIR=true
+  fi
+  STAGE=$(mktemp -d "$DIR/.staging.XXXXXX")
+  trap cleanup EXIT
+
+  local stage=$STAGE
+  local cnf=$stage/openssl.cnf
+  write_openssl_config "$cnf"
+
+  local ca_cert ca_key
+  if [[ $MODE == reuse-ca ]]; then
+    ca_cert=$DIR/ca.pem ca_key=$DIR/ca/key.pem
+  else
+    make_ca "$stage" "$cnf"
+    ca_cert=$stage/ca.pem ca_key=$stage/ca/key.pem
+  fi
+
+  # Fast DDS reads these with mktime(), i.e. as local time; UTC is what a drone's clock normally runs on.
+  local not_before not_after
+  not_before=$(date -u +%Y-%m-%dT%H:%M:%S)
+  not_after=$(date -u -d "+$DAYS days" +%Y-%m-%dT%H:%M:%S)
+
+  governance_xml >"$stage/governance.xml"
+  sign "$ca_cert" "$ca_key" "$stage/governance.xml" "$stage/governance.p7s"
+
+  local name subject
+  while read -r name; do
+    make_identity "$stage" "$cnf" "$ca_cert" "$ca_key" "$name"
+    subject=$(rfc2253_subject "$stage/$name/cert.pem")
+    permissions_xml "$name" "$subject" "$not_before" "$not_after" >"$stage/$name/permissions.xml"
+    sign "$ca_cert" "$ca_key" "$stage/$name/permissions.xml" "$stage/$name/permissions.p7s"
+  done < <(participants)
+  rm -f "$cnf"
+
+  verify_stage "$stage" "$ca_cert"
+  install_stage "$stage"
+
+  local what="new CA"
+  [[ $MODE == reuse-ca ]] && what="CA kept"
+  echo "$PROG: $DIR: $what, governance for domains $DOMAIN_MIN-$DOMAIN_MAX, swa_sim, swa_monitor," \
+    "swa_agent_0..$((N - 1)); identities and permissions valid until $not_after UTC"
+}
+
+main "$@"

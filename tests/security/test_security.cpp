@@ -1,0 +1,484 @@
+// DDS Security end to end (issue #5), with credentials made by deploy/security/make-credentials.sh in a temporary
+// directory per test (removed afterwards, also on failure): a secure swarm stays cohesive; each role can create
+// exactly the endpoints its permissions grant (UAV 2's credentials cannot read UAV 1's detections nor command
+// UAV 1); a participant without credentials matches nothing of a secure swarm; tampered or foreign permissions are
+// refused at start with a message naming the file. Every check that something is refused has a positive control
+// in the same setup, so no case can pass just because nothing worked. Processes run on a private domain and are
+// reaped, and shared-memory files of killed processes removed, also when a check fails.
+
+#include <signal.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/ClockPubSubTypes.h>
+#include <swa/msg/DetectionsPubSubTypes.h>
+#include <swa/msg/GnssFixPubSubTypes.h>
+#include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SwarmTruthPubSubTypes.h>
+#include <swa/msg/VelocitySetpointPubSubTypes.h>
+
+#include "../integration/process_support.h"
+#include "swa/dds/options.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/topics.h"
+
+namespace swa::testing {
+namespace {
+
+const std::string kSourceDir = SWA_SOURCE_DIR;
+const std::string kMakeCredentials = kSourceDir + "/deploy/security/make-credentials.sh";
+const std::string kScenario = kSourceDir + "/deploy/scenarios/dropout_4.yaml";
+const std::string kLaunch = SWA_LAUNCH_BINARY;
+const std::string kSim = SWA_SIM_BINARY;
+const std::string kAgent = SWA_AGENT_BINARY;
+constexpr int kUavs = 4;  // dropout_4.yaml
+// Participant::Participant's message when Fast DDS refuses the credentials (idl/dds/src/participant.cpp).
+const std::string kRefused = "DDS Security refused the credentials of participant 'swa_agent_1'";
+
+double secondsSince(SteadyClock::time_point t0) {
+  return std::chrono::duration<double>(SteadyClock::now() - t0).count();
+}
+
+template <class Predicate>
+bool waitFor(Predicate done, double seconds) {
+  const auto deadline = SteadyClock::now() + std::chrono::duration<double>(seconds);
+  while (!done()) {
+    if (SteadyClock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+// A number member of the flat JSON objects our programs write ("key": value); NaN when absent or null.
+double jsonNumber(const std::string& json, const std::string& key) {
+  const std::regex re("\"" + key + "\"\\s*:\\s*([-+0-9.eE]+|null)");
+  std::smatch m;
+  if (!std::regex_search(json, m, re) || m[1] == "null") return std::nan("");
+  return std::strtod(m[1].str().c_str(), nullptr);
+}
+
+// Every file of a directory (a run's logs/), for failure messages.
+std::string allLogs(const fs::path& dir) {
+  std::string s;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) s += "--- " + e.path().string() + "\n" + readFile(e.path());
+  return s;
+}
+
+// PIDs of live swa_* processes whose command line names DDS domain `domain` (every child here gets --domain D).
+std::vector<int> processesOnDomain(int domain) {
+  std::vector<int> pids;
+  const std::string needle = std::string("--domain") + '\0' + std::to_string(domain) + '\0';
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string cmdline = readFile(e.path() / "cmdline");
+    if (cmdline.find("swa_") != std::string::npos && cmdline.find(needle) != std::string::npos &&
+        readFile(e.path() / "stat").find(") Z") == std::string::npos) {
+      pids.push_back(std::stoi(name));
+    }
+  }
+  return pids;
+}
+
+// SWA_SECURITY_DIR for participants created in this process while it lives (Participant reads it at
+// construction). Set only between constructions, from the test thread.
+class SecurityDirScope {
+ public:
+  explicit SecurityDirScope(const std::optional<fs::path>& dir) {
+    if (const char* old = std::getenv("SWA_SECURITY_DIR")) old_ = old;
+    if (dir) {
+      ::setenv("SWA_SECURITY_DIR", dir->c_str(), 1);
+    } else {
+      ::unsetenv("SWA_SECURITY_DIR");
+    }
+  }
+  ~SecurityDirScope() {
+    if (old_) {
+      ::setenv("SWA_SECURITY_DIR", old_->c_str(), 1);
+    } else {
+      ::unsetenv("SWA_SECURITY_DIR");
+    }
+  }
+  SecurityDirScope(const SecurityDirScope&) = delete;
+  SecurityDirScope& operator=(const SecurityDirScope&) = delete;
+
+ private:
+  std::optional<std::string> old_;
+};
+
+std::unique_ptr<dds::Participant> makeParticipant(const std::string& name, int domain,
+                                                  const std::optional<fs::path>& security_dir) {
+  SecurityDirScope scope(security_dir);
+  return std::make_unique<dds::Participant>(name, domain, dds::resolveProfilesFile());
+}
+
+enum class Kind { kReader, kWriter };
+
+const char* kindName(Kind k) { return k == Kind::kReader ? "reader" : "writer"; }
+
+template <class PubSub>
+void createWith(dds::Participant& p, Kind kind, const std::string& topic, const char* writer_profile,
+                const char* reader_profile) {
+  if (kind == Kind::kWriter) {
+    p.writer<PubSub>(topic, writer_profile);
+  } else {
+    p.reader<PubSub>(topic, reader_profile, [](typename PubSub::type&&) {});
+  }
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// One endpoint on `topic` with the message type and QoS profile the SWA nodes use for it. Throws DdsError when the
+// middleware refuses it.
+void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
+  if (endsWith(topic, "/imu")) {
+    return createWith<msg::ImuPubSubType>(p, kind, topic, "swa_sensor_writer", "swa_sensor_reader");
+  }
+  if (endsWith(topic, "/detections")) {
+    return createWith<msg::DetectionsPubSubType>(p, kind, topic, "swa_detections_gnss_writer", "swa_sensor_reader");
+  }
+  if (endsWith(topic, "/gnss")) {
+    return createWith<msg::GnssFixPubSubType>(p, kind, topic, "swa_detections_gnss_writer", "swa_sensor_reader");
+  }
+  if (endsWith(topic, "/cmd_vel")) {
+    return createWith<msg::VelocitySetpointPubSubType>(p, kind, topic, "swa_command_writer", "swa_command_reader");
+  }
+  if (endsWith(topic, "/state")) {
+    return createWith<msg::AgentStatePubSubType>(p, kind, topic, "swa_state_writer", "swa_state_reader");
+  }
+  if (topic == dds::topics::kTruth) {
+    return createWith<msg::SwarmTruthPubSubType>(p, kind, topic, "swa_truth_writer", "swa_truth_reader");
+  }
+  if (topic == dds::topics::kEvents) {
+    return createWith<msg::ScenarioEventPubSubType>(p, kind, topic, "swa_event_writer", "swa_event_reader");
+  }
+  if (topic == dds::topics::kClock) {
+    return createWith<msg::ClockPubSubType>(p, kind, topic, "swa_clock_writer", "swa_clock_reader");
+  }
+  throw std::logic_error("test bug: no type for topic " + topic);
+}
+
+// "" if the endpoint was created, else the DdsError's text.
+std::string tryCreate(dds::Participant& p, Kind kind, const std::string& topic) {
+  try {
+    createEndpoint(p, kind, topic);
+    return "";
+  } catch (const dds::DdsError& e) {
+    return e.what();
+  }
+}
+
+class SecurityTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("swa_security_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    creds_ = dir_ / "creds";
+    ASSERT_TRUE(makeCredentials(creds_));
+  }
+
+  void TearDown() override {
+    for (int pid : processesOnDomain(domain_)) ::kill(pid, SIGKILL);  // only after a failed check
+    // Private keys never outlive the test; the logs do when a check failed.
+    for (const fs::path& c : made_) fs::remove_all(c);
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  // deploy/security/make-credentials.sh DIR 4, timed.
+  bool makeCredentials(const fs::path& dir) {
+    made_.push_back(dir);
+    const auto t0 = SteadyClock::now();
+    const fs::path log = dir_ / ("make-credentials." + dir.filename().string() + ".log");
+    Child script({"/bin/bash", kMakeCredentials, dir.string(), std::to_string(kUavs)}, log);
+    const auto status = script.wait(60.0);
+    std::cout << "make-credentials.sh " << dir.filename().string() << " " << kUavs << ": " << secondsSince(t0)
+              << " s\n";
+    EXPECT_EQ(status, std::optional<int>(0)) << readFile(log);
+    return status == std::optional<int>(0);
+  }
+
+  std::string securityEnv() const { return "SWA_SECURITY_DIR=" + creds_.string(); }
+
+  // swa_agent --id `id` with this test's credentials.
+  std::unique_ptr<Child> startAgent(int id, const std::string& log_name) {
+    return std::make_unique<Child>(
+        std::vector<std::string>{kAgent, "--id", std::to_string(id), "--domain", std::to_string(domain_)},
+        dir_ / log_name, std::vector<std::string>{securityEnv()});
+  }
+
+  void expectNothingLeft() {
+    EXPECT_TRUE(processesOnDomain(domain_).empty()) << "processes left on domain " << domain_;
+    std::string left;
+    for (const std::string& f : janitor_.zombies()) left += " " + f;
+    EXPECT_TRUE(left.empty()) << "shared-memory files left behind:" << left;
+  }
+
+  ShmJanitor janitor_;  // first: outlives every process and participant of the test
+  fs::path dir_;
+  fs::path creds_;
+  std::vector<fs::path> made_;
+  int domain_ = testDomain(53);
+};
+
+// (a) swa_launch --secure: the 4-UAV dropout scenario for 30 s stays cohesive. An unauthenticated observer reading
+// the ground truth during the run proves that the run really was secured (it must get nothing).
+TEST_F(SecurityTest, SecureLaunchStaysCohesive) {
+  std::atomic<int> observed{0};
+  auto observer = makeParticipant("swa_test_observer", domain_, std::nullopt);
+  auto truth = observer->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader",
+                                                           [&observed](msg::SwarmTruth&&) { ++observed; });
+  const fs::path out = dir_ / "out";
+  const auto t0 = SteadyClock::now();
+  Child launch({kLaunch, "--secure", creds_.string(), "--scenario", kScenario, "--set", "duration_s=30", "--domain",
+                std::to_string(domain_), "--out", out.string(), "--timeout-s", "150"},
+               dir_ / "launch.log");
+  const auto status = launch.wait(170.0);
+  std::cout << "secure swa_launch, dropout_4, 30 s simulated: " << secondsSince(t0) << " s wall\n";
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 0) << log << allLogs(out / "logs");
+
+  const std::string summary = readFile(out / "summary.json");
+  ASSERT_FALSE(summary.empty()) << log;
+  EXPECT_NEAR(jsonNumber(summary, "mean_neighbor_distance_m"), 10.0, 1.0) << "d_NB within ±10 % of r = 10 m";
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0) << summary;
+  EXPECT_EQ(truth.matched(), 0) << "an unauthenticated reader matched the secure simulator's truth writer";
+  EXPECT_EQ(observed.load(), 0) << "an unauthenticated reader received ground truth";
+  observer.reset();
+  expectNothingLeft();
+}
+
+// (b) The permissions of UAV 2 do not reach UAV 1's topics: no reader of its detections, no writer of its
+// commands. Its own topics work with the same participant (positive control).
+TEST_F(SecurityTest, Uav2CredentialsCannotReadOrCommandUav1) {
+  auto uav2 = makeParticipant("swa_agent_2", domain_, creds_);
+  EXPECT_EQ(tryCreate(*uav2, Kind::kReader, dds::topics::detections(2)), "") << "own detections must be readable";
+  EXPECT_EQ(tryCreate(*uav2, Kind::kWriter, dds::topics::cmdVel(2)), "") << "own commands must be writable";
+
+  EXPECT_THROW(createEndpoint(*uav2, Kind::kReader, dds::topics::detections(1)), dds::DdsError);
+  EXPECT_THROW(createEndpoint(*uav2, Kind::kWriter, dds::topics::cmdVel(1)), dds::DdsError);
+  const std::string why = tryCreate(*uav2, Kind::kReader, dds::topics::detections(1));
+  EXPECT_NE(why.find("swa/uav1/detections"), std::string::npos) << why;
+
+  // Still usable after the refusals.
+  EXPECT_EQ(tryCreate(*uav2, Kind::kReader, dds::topics::imu(2)), "");
+  uav2.reset();
+  expectNothingLeft();
+}
+
+// Every role against what it must and must not be able to create (make-credentials.sh --help, the table).
+TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
+  using dds::topics::cmdVel;
+  using dds::topics::detections;
+  using dds::topics::gnss;
+  using dds::topics::imu;
+  using dds::topics::state;
+  struct Endpoint {
+    Kind kind;
+    std::string topic;
+  };
+  struct Role {
+    std::string name;
+    std::vector<Endpoint> allowed, denied;
+  };
+  const std::string truth = dds::topics::kTruth, events = dds::topics::kEvents, clock = dds::topics::kClock;
+  const Kind R = Kind::kReader, W = Kind::kWriter;
+  const std::vector<Role> roles{
+      {"swa_agent_2",
+       {{R, imu(2)}, {R, detections(2)}, {R, gnss(2)}, {R, clock}, {W, cmdVel(2)}, {W, state(2)}},
+       {{R, imu(1)}, {R, detections(1)}, {R, gnss(3)}, {R, state(1)}, {R, cmdVel(2)}, {R, truth}, {R, events},
+        {W, cmdVel(1)}, {W, state(1)}, {W, imu(2)}, {W, detections(2)}, {W, clock}, {W, truth}}},
+      {"swa_sim",
+       {{W, imu(0)}, {W, detections(3)}, {W, gnss(12)}, {W, truth}, {W, events}, {W, clock}, {R, cmdVel(1)}},
+       {{R, imu(0)}, {R, detections(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth}, {R, clock}}},
+      {"swa_monitor",
+       {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}},
+       {{W, truth}, {W, events}, {W, state(0)}, {R, imu(0)}, {R, detections(0)}, {R, cmdVel(0)}, {W, cmdVel(0)},
+        {R, clock}}},
+  };
+  for (const Role& role : roles) {
+    auto p = makeParticipant(role.name, domain_, creds_);
+    for (const Endpoint& e : role.allowed) {
+      EXPECT_EQ(tryCreate(*p, e.kind, e.topic), "") << role.name << " must be able to create a " << kindName(e.kind)
+                                                    << " on " << e.topic;
+    }
+    for (const Endpoint& e : role.denied) {
+      EXPECT_NE(tryCreate(*p, e.kind, e.topic), "") << role.name << " must not be able to create a "
+                                                    << kindName(e.kind) << " on " << e.topic;
+    }
+  }
+  expectNothingLeft();
+}
+
+// (c) A participant without credentials, next to a running secure simulator and its agents (realtime clock, so
+// sensor samples flow all the time), matches none of their endpoints and receives nothing. Positive controls: a
+// participant with UAV 1's credentials, created the same way in the same process, matches both and receives UAV 1's
+// IMU samples; and the unsecured reader does match an unsecured writer added afterwards.
+TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
+  std::vector<std::unique_ptr<Child>> agents;
+  for (int i = 0; i < kUavs; ++i) agents.push_back(startAgent(i, "agent" + std::to_string(i) + ".log"));
+  Child sim({kSim, "--scenario", kScenario, "--set", "clock.mode=realtime", "--set", "duration_s=600", "--domain",
+             std::to_string(domain_), "--startup-timeout-s", "60"},
+            dir_ / "sim.log", {securityEnv()});
+  const auto t0 = SteadyClock::now();
+  ASSERT_TRUE(waitFor([&] { return readFile(dir_ / "sim.log").find("discovered in") != std::string::npos; }, 60.0))
+      << readFile(dir_ / "sim.log") << runLogs(dir_, kUavs);
+  std::cout << "secure sim + 4 agents discovered: " << secondsSince(t0) << " s\n";
+
+  std::atomic<int> intruder_samples{0}, control_samples{0};
+  auto intruder = makeParticipant("swa_intruder", domain_, std::nullopt);
+  auto intruder_imu = intruder->reader<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_reader",
+                                                           [&](msg::Imu&&) { ++intruder_samples; });
+  auto intruder_cmd = intruder->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
+  auto control = makeParticipant("swa_agent_1", domain_, creds_);
+  auto control_imu = control->reader<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_reader",
+                                                         [&](msg::Imu&&) { ++control_samples; });
+  auto control_cmd = control->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
+
+  // Positive control first: once it matched and received, the intruder has had the same time to do so.
+  const auto t1 = SteadyClock::now();
+  const bool control_ok = waitFor(
+      [&] { return control_imu.matched() >= 1 && control_cmd.matched() >= 1 && control_samples.load() > 10; }, 20.0);
+  std::cout << "secured control matched and received after " << secondsSince(t1) << " s\n";
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  EXPECT_TRUE(control_ok) << "control: imu matched " << control_imu.matched() << ", cmd_vel matched "
+                          << control_cmd.matched() << ", samples " << control_samples.load() << "\n"
+                          << readFile(dir_ / "sim.log");
+  EXPECT_EQ(intruder_imu.matched(), 0) << "an unauthenticated reader matched swa/uav1/imu";
+  EXPECT_EQ(intruder_cmd.matched(), 0) << "an unauthenticated writer matched swa/uav1/cmd_vel";
+  EXPECT_EQ(intruder_samples.load(), 0) << "an unauthenticated reader received IMU samples";
+  std::cout << "intruder: matched " << intruder_imu.matched() << " / " << intruder_cmd.matched() << ", samples "
+            << intruder_samples.load() << "; control: samples " << control_samples.load() << "\n";
+
+  // The intruder itself can match: an unsecured peer's writer on the same topic is found within seconds.
+  auto peer = makeParticipant("swa_intruder_peer", domain_, std::nullopt);
+  auto peer_imu = peer->writer<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_writer");
+  EXPECT_TRUE(waitFor([&] { return intruder_imu.matched() == 1 && peer_imu.matched() == 1; }, 10.0))
+      << "the unsecured reader did not even match an unsecured writer: intruder " << intruder_imu.matched()
+      << ", peer " << peer_imu.matched();
+  peer.reset();
+
+  control.reset();
+  intruder.reset();
+  EXPECT_EQ(sim.stop(), 1) << "interrupted simulator: exit 1";  // SIGTERM before the end of the scenario
+  for (auto& a : agents) EXPECT_EQ(a->stop(), 0);
+  expectNothingLeft();
+}
+
+// Runs swa_agent --id 1 with the credentials as they are now; expects a refusal within seconds. Returns its log.
+std::string expectRefusedAtStart(const std::function<std::unique_ptr<Child>()>& start, const fs::path& log,
+                                 const std::string& what) {
+  const auto t0 = SteadyClock::now();
+  auto agent = start();
+  const auto status = agent->wait(20.0);
+  const double took = secondsSince(t0);
+  std::cout << what << ": swa_agent exit " << (status ? std::to_string(*status) : "none") << " after " << took
+            << " s\n";
+  const std::string text = readFile(log);
+  EXPECT_TRUE(status.has_value()) << what << ": the agent still runs after 20 s\n" << text;
+  EXPECT_EQ(status, std::optional<int>(1)) << what << "\n" << text;
+  EXPECT_LT(took, 10.0) << what;
+  EXPECT_NE(text.find(kRefused), std::string::npos) << what << "\n" << text;
+  EXPECT_NE(text.find("swa_agent_1/permissions.p7s"), std::string::npos) << what << ": file not named\n" << text;
+  EXPECT_EQ(text.find("up on domain"), std::string::npos) << what << "\n" << text;
+  return text;
+}
+
+// The untampered credentials start: the agent is up (participant and endpoints created) and stops cleanly.
+void expectStarts(Child& agent, const fs::path& log) {
+  const bool up = waitFor([&] { return readFile(log).find("swa_agent 1: up on domain") != std::string::npos; }, 20.0);
+  EXPECT_TRUE(up) << readFile(log);
+  EXPECT_FALSE(agent.wait(0.0).has_value()) << readFile(log);
+  EXPECT_EQ(agent.stop(), 0) << readFile(log);
+}
+
+// (d) One byte of swa_agent_1/permissions.p7s changed — 'swa/uav1/cmd_vel' widened to 'swa/uav*/cmd_vel', the
+// attack a tampered file would attempt — and, separately, one byte of the signature: the agent is refused at start
+// with a message naming the file. The untampered file starts (positive control).
+TEST_F(SecurityTest, TamperedPermissionsAreRefusedAtStart) {
+  const fs::path file = creds_ / "swa_agent_1" / "permissions.p7s";
+  const std::string original = readFile(file);
+  const std::size_t grant = original.find("swa/uav1/cmd_vel");
+  ASSERT_NE(grant, std::string::npos) << original;
+  // The last mention is the signature part's own Content-Type (the first is the message's protocol parameter).
+  const std::size_t signature = original.rfind("pkcs7-signature");
+  ASSERT_NE(signature, std::string::npos) << original;
+  // A base64 character well inside the signature block (past its MIME headers).
+  const std::size_t sig_body = original.find("\n\n", signature);
+  ASSERT_NE(sig_body, std::string::npos) << original;
+  const std::size_t sig_byte = sig_body + 40;
+  ASSERT_LT(sig_byte, original.size());
+
+  struct Case {
+    std::string what;
+    std::size_t at;
+    char replacement;
+  };
+  const char sig_replacement = original[sig_byte] == 'A' ? 'B' : 'A';
+  for (const Case& c : {Case{"grant widened to swa/uav*/cmd_vel", grant + 7, '*'},
+                        Case{"signature byte changed", sig_byte, sig_replacement}}) {
+    std::string tampered = original;
+    tampered[c.at] = c.replacement;
+    ASSERT_NE(tampered, original);
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << tampered;
+    const std::string log_name = "agent1_" + std::to_string(c.at) + ".log";
+    const std::string text =
+        expectRefusedAtStart([&] { return startAgent(1, log_name); }, dir_ / log_name, c.what);
+    std::cout << "---- " << c.what << ", swa_agent output:\n" << text << "----\n";
+  }
+
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << original;
+  auto agent = startAgent(1, "agent1_original.log");
+  expectStarts(*agent, dir_ / "agent1_original.log");
+  expectNothingLeft();
+}
+
+// (d, continued) Validly signed permissions that are not UAV 1's: UAV 2's document (another subject), and UAV 1's
+// document from another CA (an attacker's own). Both refused at start; the right one starts.
+TEST_F(SecurityTest, ForeignPermissionsAreRefusedAtStart) {
+  const fs::path file = creds_ / "swa_agent_1" / "permissions.p7s";
+  const std::string original = readFile(file);
+  const fs::path other = dir_ / "other_ca";
+  ASSERT_TRUE(makeCredentials(other));
+
+  const std::vector<std::pair<std::string, fs::path>> cases{
+      {"UAV 2's permissions as UAV 1's", creds_ / "swa_agent_2" / "permissions.p7s"},
+      {"UAV 1's permissions signed by another CA", other / "swa_agent_1" / "permissions.p7s"}};
+  int n = 0;
+  for (const auto& [what, source] : cases) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << readFile(source);
+    const std::string log_name = "agent1_foreign" + std::to_string(n++) + ".log";
+    const std::string text =
+        expectRefusedAtStart([&] { return startAgent(1, log_name); }, dir_ / log_name, what);
+    std::cout << "---- " << what << ", swa_agent output:\n" << text << "----\n";
+  }
+
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << original;
+  auto agent = startAgent(1, "agent1_original.log");
+  expectStarts(*agent, dir_ / "agent1_original.log");
+  expectNothingLeft();
+}
+
+}  // namespace
+}  // namespace swa::testing
