@@ -473,9 +473,9 @@ class BadInput : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // Exit status and everything the process printed.
-  std::pair<int, std::string> run(const std::vector<std::string>& argv) {
+  std::pair<int, std::string> run(const std::vector<std::string>& argv, const std::vector<std::string>& env = {}) {
     const fs::path log = dir_ / "out.log";
-    Child c(argv, log);
+    Child c(argv, log, env);
     const std::optional<int> status = c.wait(30.0);
     return {status.value_or(-1), readFile(log)};
   }
@@ -502,6 +502,24 @@ TEST_F(BadInput, MalformedScenarioMakesTheSimulatorExitWithAClearError) {
   EXPECT_EQ(status4, 2) << out4;
   EXPECT_NE(out4.find("--domain"), std::string::npos) << out4;
   EXPECT_EQ(run({SWA_SIM_BINARY, "--help"}).first, 0);
+  EXPECT_TRUE(janitor_.zombies().empty());
+}
+
+TEST_F(BadInput, BadDeploymentEnvironmentIsAClearErrorNotACrash) {
+  // Every node validates SWA_TRANSPORT / SWA_DISCOVERY_SERVER / SWA_SECURITY_DIR when it creates its participant.
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"SWA_TRANSPORT=shm"}, "SWA_TRANSPORT 'shm'"},
+      {{"SWA_TRANSPORT=discovery-server"}, "needs SWA_DISCOVERY_SERVER"},
+      {{"SWA_TRANSPORT=discovery-server", "SWA_DISCOVERY_SERVER=localhost"}, "'localhost' is not IPv4:PORT"},
+      {{"SWA_DISCOVERY_SERVER=127.0.0.1:11811"}, "SWA_TRANSPORT is local"},
+      {{"SWA_SECURITY_DIR=" + (dir_ / "nowhere").string()}, "swa_agent_1/permissions.p7s"}};
+  for (const auto& [env, needle] : cases) {
+    const auto [status, out] = run({SWA_AGENT_BINARY, "--id", "1", "--domain", "5"}, env);
+    EXPECT_EQ(status, 1) << env.front() << ":\n" << out;  // a DDS failure, not a signal (134 = abort)
+    EXPECT_NE(out.find(needle), std::string::npos) << needle << " missing from:\n" << out;
+    const auto [sim_status, sim_out] = run({SWA_SIM_BINARY, "--scenario", kScenario, "--domain", "5"}, env);
+    EXPECT_EQ(sim_status, 1) << env.front() << ":\n" << sim_out;
+  }
   EXPECT_TRUE(janitor_.zombies().empty());
 }
 
