@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake
   libeigen3-dev libyaml-cpp-dev
-  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools openssl
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools openssl libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

@@ -1,7 +1,7 @@
 #pragma once
 // Helpers for tests that run the SWA processes: a child process that is always reaped (SIGTERM, then SIGKILL),
 // a janitor that removes the Fast DDS shared-memory files our processes leave behind when they die by a signal,
-// and small file helpers. POSIX only.
+// the processes left on a test's domain, polling with a bound, and small file and JSON helpers. POSIX only.
 
 #include <fcntl.h>
 #include <signal.h>
@@ -9,9 +9,12 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -29,6 +32,42 @@ inline std::string readFile(const fs::path& p) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// A number member of the flat JSON objects our programs write ("key": value); NaN when absent or null.
+inline double jsonNumber(const std::string& json, const std::string& key) {
+  const std::regex re("\"" + key + "\"\\s*:\\s*([-+0-9.eE]+|null)");
+  std::smatch m;
+  if (!std::regex_search(json, m, re) || m[1] == "null") return std::nan("");
+  return std::strtod(m[1].str().c_str(), nullptr);
+}
+
+// Polls `done` every 20 ms for at most `seconds`; its last answer.
+template <class Predicate>
+bool waitFor(Predicate done, double seconds) {
+  const auto deadline = SteadyClock::now() + std::chrono::duration<double>(seconds);
+  while (!done()) {
+    if (SteadyClock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+// PIDs of live swa_* processes whose command line names DDS domain `domain` (every child of a test gets
+// --domain D), to find what a failed check left running.
+inline std::vector<int> processesOnDomain(int domain) {
+  std::vector<int> pids;
+  const std::string needle = std::string("--domain") + '\0' + std::to_string(domain) + '\0';
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string cmdline = readFile(e.path() / "cmdline");
+    if (cmdline.find("swa_") != std::string::npos && cmdline.find(needle) != std::string::npos &&
+        readFile(e.path() / "stat").find(") Z") == std::string::npos) {
+      pids.push_back(std::stoi(name));
+    }
+  }
+  return pids;
 }
 
 // The simulator's and agents' logs of a run directory (sim.log, agent<i>.log), for failure messages.

@@ -51,17 +51,6 @@ constexpr int kAgents = 4;
 constexpr double kRunBoundS = 40.0;       // wall-clock bound of the simulator run (measured: 0.6 to 2.5 s)
 constexpr double kLateDiscoveryS = 10.0;  // longest wait for discovery to reach the observer
 
-// Polls `done` every 20 ms for at most `seconds`; its last answer.
-template <class Predicate>
-bool waitFor(Predicate done, double seconds) {
-  const auto deadline = SteadyClock::now() + std::chrono::duration<double>(seconds);
-  while (!done()) {
-    if (SteadyClock::now() >= deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return true;
-}
-
 bool has(const std::vector<Endpoint>& endpoints, const std::string& participant, EndpointKind kind,
          const std::string& topic) {
   return std::any_of(endpoints.begin(), endpoints.end(), [&](const Endpoint& e) {

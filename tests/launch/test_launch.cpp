@@ -6,7 +6,6 @@
 
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <memory>
 #include <mutex>
 #include <regex>
@@ -29,30 +28,6 @@ namespace {
 
 const std::string kScenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml";
 const std::string kLaunch = SWA_LAUNCH_BINARY;
-
-// A number member of a flat JSON object written by our own writers ("key": value), NaN when absent or null.
-double jsonNumber(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\"\\s*:\\s*([-+0-9.eE]+|null)");
-  std::smatch m;
-  if (!std::regex_search(json, m, re) || m[1] == "null") return std::nan("");
-  return std::strtod(m[1].str().c_str(), nullptr);
-}
-
-// PIDs of live processes whose command line names DDS domain `domain` (our children all get --domain D).
-std::vector<int> processesOnDomain(int domain) {
-  std::vector<int> pids;
-  const std::string needle = std::string("--domain") + '\0' + std::to_string(domain) + '\0';
-  for (const auto& e : fs::directory_iterator("/proc")) {
-    const std::string name = e.path().filename().string();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    const std::string cmdline = readFile(e.path() / "cmdline");
-    if (cmdline.find("swa_") != std::string::npos && cmdline.find(needle) != std::string::npos &&
-        readFile(e.path() / "stat").find(") Z") == std::string::npos) {
-      pids.push_back(std::stoi(name));
-    }
-  }
-  return pids;
-}
 
 // The pid of the swa_agent process for `uav` on `domain`, or -1.
 int agentPid(int domain, int uav) {

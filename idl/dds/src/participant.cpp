@@ -19,6 +19,7 @@
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 
 #include "swa/dds/deployment.h"
+#include "swa/dds/security_check.h"
 
 namespace swa::dds {
 
@@ -171,13 +172,18 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
                                              fdds::StatusMask::none());
   if (participant_ == nullptr) {
     if (!deployment.security_dir.empty()) {
-      // Fast DDS says only "initialization error" here; the [SECURITY Error] lines above it name the check.
-      throw DdsError("DDS Security refused the credentials of participant '" + name + "' on domain " +
-                     std::to_string(domain_id) + ": " + security.permissions + " or " + security.governance +
-                     " is not signed by " + security.ca + " (tampered with or from another CA), " +
-                     security.certificate + " is not issued by it or does not match " + security.private_key +
-                     ", or the permissions grant no subject equal to the certificate's (RFC 2253 order), or not "
-                     "this domain; see the [SECURITY Error] lines above");
+      // Fast DDS says only "initialization error" here: its plugins' checks are repeated on the files to name one.
+      const std::string refused = "DDS Security refused the credentials of participant '" + name + "' on domain " +
+                                  std::to_string(domain_id) + ": ";
+      if (const auto problem = credentialProblem(security)) throw DdsError(refused + *problem);
+      // Fast DDS 2.9.1 creates the participant when the documents do not cover its domain (endpoints fail later):
+      // what is left are the grant's dates and the XML itself.
+      throw DdsError(refused + "no problem found in them (" + security.certificate + " verifies against " +
+                     security.ca + " and matches " + security.private_key + ", the signatures of " +
+                     security.governance + " and " + security.permissions + " verify, the grant names the "
+                     "certificate's subject); left: the grant is outside its validity dates (read as local time), "
+                     "a document is not XML Fast DDS accepts, or the failure is not about security (see the Fast "
+                     "DDS errors above)");
     }
     throw DdsError("cannot create DDS participant '" + name + "' on domain " + std::to_string(domain_id) +
                    " (transport " + transportName(deployment.transport) + ")");
