@@ -2,9 +2,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <utility>
 #include <vector>
 
@@ -32,17 +34,18 @@ std::string signalName(int signal) {
 
 MonitorNode::MonitorNode(LiveRun& run, const MonitorNodeOptions& options, int domain_id,
                          const std::string& profiles_file)
-    : run_(run), options_(options), pacer_(isatty(fileno(stderr)) != 0) {
-  participant_ = std::make_unique<dds::Participant>("swa_monitor", domain_id, profiles_file);
-  participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
-                                                     [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
-  participant_->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader",
-                                                  [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
+    : run_(run),
+      options_(options),
+      pacer_(isatty(fileno(stderr)) != 0),
+      domain_id_(domain_id),
+      profiles_file_(profiles_file),
+      secure_(std::getenv("SWA_SECURITY_DIR") != nullptr && *std::getenv("SWA_SECURITY_DIR") != '\0') {
   if (options_.uav_count) {
-    for (int i = 0; i < *options_.uav_count; ++i) subscribeState(i);
+    for (int i = 0; i < *options_.uav_count; ++i) state_readers_.insert(i);
   } else {
     readers_from_truth_pending_ = true;
   }
+  connect();
   std::fprintf(stderr, "swa_monitor: listening on domain %d for %s\n", domain_id,
                options_.uav_count ? (std::to_string(*options_.uav_count) + " UAV(s)").c_str()
                                   : "the UAVs of the first truth sample");
@@ -50,12 +53,41 @@ MonitorNode::MonitorNode(LiveRun& run, const MonitorNodeOptions& options, int do
 
 MonitorNode::~MonitorNode() { participant_.reset(); }
 
+void MonitorNode::connect() {
+  participant_ = std::make_unique<dds::Participant>("swa_monitor", domain_id_, profiles_file_);
+  connected_at_ = std::chrono::steady_clock::now();
+  participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
+                                                     [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
+  truth_reader_ = participant_->reader<msg::SwarmTruthPubSubType>(
+      dds::topics::kTruth, "swa_truth_reader", [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
+  for (const int uav : state_readers_) createStateReader(uav);
+}
+
 void MonitorNode::subscribeState(int uav) {
-  if (!state_readers_.insert(uav).second) return;
+  if (state_readers_.insert(uav).second) createStateReader(uav);
+}
+
+void MonitorNode::createStateReader(int uav) {
   participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(uav), "swa_state_reader",
                                                   [this, uav](msg::AgentState&& m) {
                                                     queue_.push(StateInput{uav, std::move(m)});
                                                   });
+}
+
+void MonitorNode::reconnectIfHandshakeStalled() {
+  // The same Fast DDS 2.9 stalled authentication handshake as in swa_agent (agent_node.cpp, deploy/README.md),
+  // here with the simulator: before the first truth sample, with no truth writer matched, a new participant (new
+  // GUID) gets a fresh handshake. After 5 s, then 10, 20, 40, 60 s.
+  if (!secure_ || truth_seen_ || truth_reader_.matched() > 0) return;
+  const auto wait = std::min(std::chrono::seconds(5) * (1 << std::min(reconnects_, 4)), std::chrono::seconds(60));
+  if (std::chrono::steady_clock::now() - connected_at_ < wait) return;
+  ++reconnects_;
+  std::fprintf(stderr,
+               "swa_monitor: no writer of %s with DDS Security on: re-creating the participant (reconnection %d; a "
+               "stalled authentication handshake, see deploy/README.md)\n",
+               dds::topics::kTruth, reconnects_);
+  participant_.reset();
+  connect();
 }
 
 RunEnd MonitorNode::run() {
@@ -69,6 +101,7 @@ RunEnd MonitorNode::run() {
     batch.clear();
     queue_.drain(batch, kPollPeriod);
     for (Input& input : batch) process(input);
+    reconnectIfHandshakeStalled();
     const double now_s = elapsed();
     showStatus(now_s, false);
 
@@ -96,9 +129,10 @@ RunEnd MonitorNode::run() {
 
 void MonitorNode::process(Input& input) {
   if (auto* truth = std::get_if<msg::SwarmTruth>(&input)) {
+    truth_seen_ = true;
     if (readers_from_truth_pending_) {
       // Without a scenario the swarm's size is only known from the truth. States published before these readers
-      // match are lost (VOLATILE): the first steps then lack those estimates.
+      // match come from the agents' history (TRANSIENT_LOCAL, the last 100 s).
       readers_from_truth_pending_ = false;
       for (const msg::UavTruth& u : truth->uavs()) {
         if (u.id() <= 100'000) subscribeState(static_cast<int>(u.id()));

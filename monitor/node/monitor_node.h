@@ -3,6 +3,7 @@
 // swa/uav<i>/state, hands every sample to one worker thread (the listeners only push into a queue), converts it
 // and feeds the LiveRun, prints the status line, and decides when the run has ended. No metric is computed here.
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <set>
@@ -50,7 +51,10 @@ class MonitorNode {
   };
   using Input = std::variant<msg::SwarmTruth, StateInput, msg::ScenarioEvent>;
 
+  void connect();  // the participant and every reader (again after a stalled secure handshake)
   void subscribeState(int uav);
+  void createStateReader(int uav);
+  void reconnectIfHandshakeStalled();
   void process(Input& input);
   void showStatus(double wall_s, bool last);
 
@@ -60,10 +64,17 @@ class MonitorNode {
   std::size_t status_width_ = 0;  // length of the line last shown in place (to blank its rest)
   std::set<int> state_readers_;
   bool readers_from_truth_pending_ = false;
+  const int domain_id_;
+  const std::string profiles_file_;
+  const bool secure_;
+  bool truth_seen_ = false;
+  int reconnects_ = 0;
+  std::chrono::steady_clock::time_point connected_at_;
 
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Input> queue_;
   std::unique_ptr<dds::Participant> participant_;
+  dds::Reader<msg::SwarmTruth> truth_reader_;
 };
 
 }  // namespace swa::monitor_node
