@@ -20,7 +20,8 @@ Creates in DIR, for the simulator, the monitor and N UAVs (swa_agent_0 .. swa_ag
   governance.xml, .p7s        the domain governance, signed by the CA
   <name>/cert.pem, key.pem    the participant's identity (EC prime256v1), key 0600
   <name>/permissions.xml, .p7s  what it may publish and subscribe, signed by the CA
-<name> is swa_sim, swa_monitor or swa_agent_<I>. The .xml files are the unsigned text, for reading only.
+<name> is swa_sim, swa_monitor, swa_agent_<I> or (--bridges) swa_bridge_<I>. The .xml files are the unsigned
+text, for reading only.
 
 Governance (domains 0-$MAX_DOMAIN by default): only authenticated participants whose permissions grant the
 domain may join; every topic's data and submessages are encrypted, and so is endpoint discovery and liveliness;
@@ -31,12 +32,15 @@ Permissions (default DENY, nothing else is allowed):
   swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/truth, swa/events, swa/clock;
                  reads swa/uav*/cmd_vel
   swa_monitor    reads swa/truth, swa/events, swa/uav*/state
+  swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I on a real drone, in place of the simulator:
+                 writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss; reads swa/uav<I>/cmd_vel
 
 Options:
   --days D        validity of identities and permissions in days (default 365)
   --ca-days D     validity of a new CA in days (default 3650)
   --domains A-B   DDS domain ids covered by governance and permissions, A-B or one id (default 0-$MAX_DOMAIN)
   --org NAME      organisation in every subject, O=NAME (default SWA; letters, digits, space, . _ -)
+  --bridges       also swa_bridge_0 .. swa_bridge_<N-1>, one identity per UAV's autopilot bridge
   --reuse-ca      DIR already holds credentials: keep its CA (ca.pem, ca/key.pem) and issue everything else
                   anew (rotation: drones keep their ca.pem, get new cert/key/permissions and governance)
   --force         DIR already holds credentials: replace all of them, CA included (every participant then
@@ -45,7 +49,8 @@ Options:
 
 Overwriting: without --reuse-ca or --force, DIR must not exist or be empty, so existing credentials are never
 replaced by accident. With either flag the script replaces only the entries listed above (and removes
-swa_agent_<I> directories beyond the new N); other files in DIR are left alone. Everything is first written to a
+swa_agent_<I> / swa_bridge_<I> directories beyond the new N or without --bridges); other files in DIR are left
+alone. Everything is first written to a
 staging directory inside DIR and moved into place only once all of it was created and verified, so a failure
 leaves DIR as it was.
 
@@ -76,7 +81,7 @@ usage_error() {
 in_range() { [[ $1 =~ ^[0-9]{1,9}$ ]] && ((10#$1 >= $2 && 10#$1 <= $3)); }
 
 # Globals set by parse_args.
-DIR='' N='' DAYS=365 CA_DAYS=3650 DOMAIN_MIN=0 DOMAIN_MAX=$MAX_DOMAIN ORG=SWA MODE=new
+DIR='' N='' DAYS=365 CA_DAYS=3650 DOMAIN_MIN=0 DOMAIN_MAX=$MAX_DOMAIN ORG=SWA MODE=new BRIDGES=false
 
 parse_args() {
   local positional=()
@@ -95,6 +100,10 @@ parse_args() {
           --org) ORG=$2 ;;
         esac
         shift 2
+        ;;
+      --bridges)
+        BRIDGES=true
+        shift
         ;;
       --reuse-ca | --force)
         [[ $MODE == new ]] || usage_error "--reuse-ca and --force exclude each other"
@@ -154,6 +163,9 @@ participants() {
   echo swa_sim
   echo swa_monitor
   for ((i = 0; i < N; ++i)); do echo "swa_agent_$i"; done
+  if $BRIDGES; then
+    for ((i = 0; i < N; ++i)); do echo "swa_bridge_$i"; done
+  fi
 }
 
 # Refuses to touch credentials it was not told to replace (see --help, Overwriting).
@@ -295,6 +307,10 @@ publishes() {
     swa_sim) echo 'swa/uav*/imu swa/uav*/detections swa/uav*/gnss swa/truth swa/events swa/clock' ;;
     swa_monitor) echo '' ;;
     swa_agent_*) echo "swa/uav${1#swa_agent_}/cmd_vel swa/uav${1#swa_agent_}/state" ;;
+    swa_bridge_*)
+      local i=${1#swa_bridge_}
+      echo "swa/uav$i/imu swa/uav$i/detections swa/uav$i/gnss"
+      ;;
   esac
 }
 
@@ -306,6 +322,7 @@ subscribes() {
       local i=${1#swa_agent_}
       echo "swa/uav$i/imu swa/uav$i/detections swa/uav$i/gnss swa/clock"
       ;;
+    swa_bridge_*) echo "swa/uav${1#swa_bridge_}/cmd_vel" ;;
   esac
 }
 
@@ -361,7 +378,7 @@ verify_stage() {
 # Replaces DIR's entries by the staged ones, one rename each (staging is inside DIR: same file system).
 install_stage() {
   local stage=$1 entry old
-  for old in "$DIR"/swa_agent_*; do
+  for old in "$DIR"/swa_agent_* "$DIR"/swa_bridge_*; do
     if [[ -e $old && ! -e $stage/${old##*/} ]]; then rm -rf -- "$old"; fi
   done
   for entry in "$stage"/*; do
@@ -417,7 +434,8 @@ main() {
   local what="new CA"
   [[ $MODE == reuse-ca ]] && what="CA kept"
   echo "$PROG: $DIR: $what, governance for domains $DOMAIN_MIN-$DOMAIN_MAX, swa_sim, swa_monitor," \
-    "swa_agent_0..$((N - 1)); identities and permissions valid until $not_after UTC"
+    "swa_agent_0..$((N - 1))$($BRIDGES && echo ", swa_bridge_0..$((N - 1))");" \
+    "identities and permissions valid until $not_after UTC"
 }
 
 main "$@"

@@ -169,12 +169,12 @@ class SecurityTest : public ::testing::Test {
     if (!HasFailure()) fs::remove_all(dir_);
   }
 
-  // deploy/security/make-credentials.sh DIR 4, timed.
+  // deploy/security/make-credentials.sh --bridges DIR 4, timed.
   bool makeCredentials(const fs::path& dir) {
     made_.push_back(dir);
     const auto t0 = SteadyClock::now();
     const fs::path log = dir_ / ("make-credentials." + dir.filename().string() + ".log");
-    Child script({"/bin/bash", kMakeCredentials, dir.string(), std::to_string(kUavs)}, log);
+    Child script({"/bin/bash", kMakeCredentials, "--bridges", dir.string(), std::to_string(kUavs)}, log);
     const auto status = script.wait(60.0);
     std::cout << "make-credentials.sh " << dir.filename().string() << " " << kUavs << ": " << secondsSince(t0)
               << " s\n";
@@ -276,6 +276,11 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
       {"swa_sim",
        {{W, imu(0)}, {W, detections(3)}, {W, gnss(12)}, {W, truth}, {W, events}, {W, clock}, {R, cmdVel(1)}},
        {{R, imu(0)}, {R, detections(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth}, {R, clock}}},
+      // The autopilot bridge of UAV 1 on a real drone: its sensors out, its commands in, nothing of another UAV.
+      {"swa_bridge_1",
+       {{W, imu(1)}, {W, detections(1)}, {W, gnss(1)}, {R, cmdVel(1)}},
+       {{W, imu(2)}, {W, detections(0)}, {R, imu(1)}, {R, cmdVel(2)}, {W, cmdVel(1)}, {R, state(1)}, {W, state(1)},
+        {R, truth}, {W, truth}, {W, clock}}},
       {"swa_monitor",
        {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}},
        {{W, truth}, {W, events}, {W, state(0)}, {R, imu(0)}, {R, detections(0)}, {R, cmdVel(0)}, {W, cmdVel(0)},
