@@ -4,9 +4,10 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <filesystem>
 #include <mutex>
+#include <optional>
+#include <sstream>
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 #include <fastdds/dds/core/status/SubscriptionMatchedStatus.hpp>
@@ -126,6 +127,43 @@ class TraceListener : public fdds::DomainParticipantListener {
   std::string self_;
 };
 
+// SWA_TRANSPORT=discovery-server: a CLIENT of the servers listed (position in the list = server id, as
+// fast-discovery-server -i expects).
+void useDiscoveryServers(fdds::DomainParticipantQos& qos, const std::string& servers) {
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
+  if (!eprosima::fastdds::rtps::load_environment_server_info(servers, discovery.m_DiscoveryServers)) {
+    throw DdsError("SWA_DISCOVERY_SERVER '" + servers + "' is not IP:PORT[;IP:PORT...]");
+  }
+}
+
+// SWA_SECURITY_DIR: every file must be readable before Fast DDS sees them, so a missing one is named as such.
+void useSecurity(fdds::DomainParticipantQos& qos, const SecurityFiles& files, const std::string& dir,
+                 const std::string& name) {
+  const auto unreadable = unreadableFiles(files);
+  if (!unreadable.empty()) {
+    std::string list;
+    for (const auto& f : unreadable) list += "\n  " + f;
+    throw DdsError("DDS Security (SWA_SECURITY_DIR=" + dir + "): no credentials for participant '" + name +
+                   "', cannot read:" + list +
+                   "\n(create them with deploy/security/make-credentials.sh, or unset SWA_SECURITY_DIR)");
+  }
+  addSecurity(qos, files);
+}
+
+// Fast DDS says only "initialization error" when it refuses credentials: its plugins' checks are repeated on the
+// files to name the one that failed.
+std::string refusalReason(const SecurityFiles& files) {
+  if (const auto problem = credentialProblem(files)) return *problem;
+  // Fast DDS 2.9.1 creates the participant when the documents do not cover its domain (endpoints fail later):
+  // what is left are the grant's dates and the XML itself.
+  return "no problem found in them (" + files.certificate + " verifies against " + files.ca + " and matches " +
+         files.private_key + ", the signatures of " + files.governance + " and " + files.permissions +
+         " verify, the grant names the certificate's subject); left: the grant is outside its validity dates (read "
+         "as local time), a document is not XML Fast DDS accepts, or the failure is not about security (see the "
+         "Fast DDS errors above)";
+}
+
 }  // namespace
 
 Participant::Participant(const std::string& name, int domain_id, const std::string& profiles_file)
@@ -144,26 +182,11 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     throw DdsError(std::string("participant profile '") + profile + "' missing in " + profiles_file);
   }
   qos.name(name);
-  if (deployment.transport == Transport::kDiscoveryServer) {
-    auto& discovery = qos.wire_protocol().builtin.discovery_config;
-    discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
-    if (!eprosima::fastdds::rtps::load_environment_server_info(deployment.discovery_servers,
-                                                                discovery.m_DiscoveryServers)) {
-      throw DdsError("SWA_DISCOVERY_SERVER '" + deployment.discovery_servers + "' is not IP:PORT[;IP:PORT...]");
-    }
-  }
-  SecurityFiles security;
+  if (deployment.transport == Transport::kDiscoveryServer) useDiscoveryServers(qos, deployment.discovery_servers);
+  std::optional<SecurityFiles> security;
   if (!deployment.security_dir.empty()) {
     security = securityFiles(deployment.security_dir, name);
-    const auto unreadable = unreadableFiles(security);
-    if (!unreadable.empty()) {
-      std::string list;
-      for (const auto& f : unreadable) list += "\n  " + f;
-      throw DdsError("DDS Security (SWA_SECURITY_DIR=" + deployment.security_dir + "): no credentials for participant '" +
-                     name + "', cannot read:" + list +
-                     "\n(create them with deploy/security/make-credentials.sh, or unset SWA_SECURITY_DIR)");
-    }
-    addSecurity(qos, security);
+    useSecurity(qos, *security, deployment.security_dir, name);
   }
   if (const char* trace = std::getenv("SWA_DDS_TRACE"); trace != nullptr && std::string(trace) == "1") {
     trace_listener_ = std::make_unique<TraceListener>(name);
@@ -171,19 +194,9 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
   participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos, trace_listener_.get(),
                                              fdds::StatusMask::none());
   if (participant_ == nullptr) {
-    if (!deployment.security_dir.empty()) {
-      // Fast DDS says only "initialization error" here: its plugins' checks are repeated on the files to name one.
-      const std::string refused = "DDS Security refused the credentials of participant '" + name + "' on domain " +
-                                  std::to_string(domain_id) + ": ";
-      if (const auto problem = credentialProblem(security)) throw DdsError(refused + *problem);
-      // Fast DDS 2.9.1 creates the participant when the documents do not cover its domain (endpoints fail later):
-      // what is left are the grant's dates and the XML itself.
-      throw DdsError(refused + "no problem found in them (" + security.certificate + " verifies against " +
-                     security.ca + " and matches " + security.private_key + ", the signatures of " +
-                     security.governance + " and " + security.permissions + " verify, the grant names the "
-                     "certificate's subject); left: the grant is outside its validity dates (read as local time), "
-                     "a document is not XML Fast DDS accepts, or the failure is not about security (see the Fast "
-                     "DDS errors above)");
+    if (security) {
+      throw DdsError("DDS Security refused the credentials of participant '" + name + "' on domain " +
+                     std::to_string(domain_id) + ": " + refusalReason(*security));
     }
     throw DdsError("cannot create DDS participant '" + name + "' on domain " + std::to_string(domain_id) +
                    " (transport " + transportName(deployment.transport) + ")");
