@@ -23,6 +23,8 @@ namespace {
 
 // Longest single wait, so a signal or the timeout is noticed quickly.
 constexpr auto kPollPeriod = std::chrono::milliseconds(100);
+// Longest wait for every agent's state writer before the run is read without the missing ones.
+constexpr auto kStateMatchWait = std::chrono::seconds(30);
 
 std::string signalName(int signal) {
   if (signal == SIGINT) return "SIGINT";
@@ -56,11 +58,43 @@ MonitorNode::~MonitorNode() { participant_.reset(); }
 void MonitorNode::connect() {
   participant_ = std::make_unique<dds::Participant>("swa_monitor", domain_id_, profiles_file_);
   connected_at_ = std::chrono::steady_clock::now();
+  state_reader_handles_.clear();
+  truth_reader_ = {};
+  for (const int uav : state_readers_) createStateReader(uav);
+  // With a known swarm, the truth and event readers wait until every agent's state writer is matched (see
+  // createRunReadersWhenReady); without one, the UAVs are only known from the first truth sample.
+  run_readers_pending_ = options_.uav_count.has_value();
+  if (!run_readers_pending_) createRunReaders();
+}
+
+void MonitorNode::createRunReaders() {
   participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
                                                      [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
   truth_reader_ = participant_->reader<msg::SwarmTruthPubSubType>(
       dds::topics::kTruth, "swa_truth_reader", [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
-  for (const int uav : state_readers_) createStateReader(uav);
+}
+
+void MonitorNode::createRunReadersWhenReady() {
+  // The simulator starts once it has matched every agent and the monitor's truth reader (--wait-monitors), but
+  // discovery is pairwise: the monitor could match an agent's state writer later, and the states of the steps
+  // already joined and released meanwhile would be lost (measured in containers: ~45 steps per agent). So the
+  // truth reader, the simulator's signal that the monitor is ready, appears only once every state writer is
+  // matched, or after kStateMatchWait with a warning (an agent that never starts must not block the run).
+  if (!run_readers_pending_) return;
+  std::vector<int> unmatched;
+  for (const auto& [uav, reader] : state_reader_handles_) {
+    if (reader.matched() < 1) unmatched.push_back(uav);
+  }
+  const bool waited_enough = std::chrono::steady_clock::now() - connected_at_ >= kStateMatchWait;
+  if (!unmatched.empty() && !waited_enough) return;
+  if (!unmatched.empty()) {
+    std::string list;
+    for (const int uav : unmatched) list += " " + std::to_string(uav);
+    std::fprintf(stderr, "swa_monitor: no state writer of agent(s)%s after %.0f s; reading the run without them\n",
+                 list.c_str(), std::chrono::duration<double>(kStateMatchWait).count());
+  }
+  run_readers_pending_ = false;
+  createRunReaders();
 }
 
 void MonitorNode::subscribeState(int uav) {
@@ -68,10 +102,9 @@ void MonitorNode::subscribeState(int uav) {
 }
 
 void MonitorNode::createStateReader(int uav) {
-  participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(uav), "swa_state_reader",
-                                                  [this, uav](msg::AgentState&& m) {
-                                                    queue_.push(StateInput{uav, std::move(m)});
-                                                  });
+  state_reader_handles_[uav] = participant_->reader<msg::AgentStatePubSubType>(
+      dds::topics::state(uav), "swa_state_reader",
+      [this, uav](msg::AgentState&& m) { queue_.push(StateInput{uav, std::move(m)}); });
 }
 
 void MonitorNode::reconnectIfHandshakeStalled() {
@@ -101,6 +134,7 @@ RunEnd MonitorNode::run() {
     batch.clear();
     queue_.drain(batch, kPollPeriod);
     for (Input& input : batch) process(input);
+    createRunReadersWhenReady();
     reconnectIfHandshakeStalled();
     const double now_s = elapsed();
     showStatus(now_s, false);

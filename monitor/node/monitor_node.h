@@ -4,6 +4,7 @@
 // and feeds the LiveRun, prints the status line, and decides when the run has ended. No metric is computed here.
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -52,6 +53,8 @@ class MonitorNode {
   using Input = std::variant<msg::SwarmTruth, StateInput, msg::ScenarioEvent>;
 
   void connect();  // the participant and every reader (again after a stalled secure handshake)
+  void createRunReaders();           // swa/events and swa/truth
+  void createRunReadersWhenReady();  // ... once every agent's state writer is matched
   void subscribeState(int uav);
   void createStateReader(int uav);
   void reconnectIfHandshakeStalled();
@@ -75,6 +78,8 @@ class MonitorNode {
   dds::SampleQueue<Input> queue_;
   std::unique_ptr<dds::Participant> participant_;
   dds::Reader<msg::SwarmTruth> truth_reader_;
+  std::map<int, dds::Reader<msg::AgentState>> state_reader_handles_;
+  bool run_readers_pending_ = false;
 };
 
 }  // namespace swa::monitor_node
