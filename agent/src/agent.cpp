@@ -20,6 +20,7 @@ Agent::Agent(const AgentConfig& config)
       bank_(config.surroundings),
       focal_(config.focal),
       absolute_(config.focal),
+      imu_bias_(config.focal.bias_window_s, config.focal.bias_freeze_speed_mps),
       r_acc_(Mat2::Identity() * config.focal.r_acc_m2ps4),
       r_pos_(Mat2::Identity() * config.focal.r_pos_m2) {
   diag_.mode = config.mode;
@@ -57,11 +58,13 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
     heading_rad_ = imu.heading_rad;
     have_heading_ = true;
     // DESIGN §3.4: pitch gives body-x and roll body-y acceleration, rotated into the stable frame by heading.
-    const Vec2 acc = config_.focal.q_c_mps2 * (rotation(imu.heading_rad) * Vec2(imu.pitch_rad, imu.roll_rad));
-    for (FocalEstimator* f : {&focal_, &absolute_}) {
-      f->predictTo(imu.stamp_ns, command_);
-      f->correctAcceleration(acc, r_acc_);
-    }
+    const Vec2 acc_body = config_.focal.q_c_mps2 * Vec2(imu.pitch_rad, imu.roll_rad);
+    const Mat2 to_stable = rotation(imu.heading_rad);
+    const Vec2 unbiased_body = imu_bias_.correct(acc_body, imu.stamp_ns, command_);
+    focal_.predictTo(imu.stamp_ns, command_);
+    focal_.correctAcceleration(to_stable * unbiased_body, r_acc_);
+    absolute_.predictTo(imu.stamp_ns, command_);
+    absolute_.correctAcceleration(to_stable * acc_body, r_acc_);
     command_ = computeCommand(imu.stamp_ns);
   }
 
@@ -120,19 +123,20 @@ void Agent::onDetections(const DetectionSet& in) {
 
 void Agent::updateFrame(StampNs stamp) {
   const FormationConfig& fc = config_.formation;
-  const Neighbourhood next = selectNeighbours(bank_.tracks(), fc.k, fc.sensing_range_m);
-  const FrameFit fit = fitFloatingFrame(next.positions, fc.radius_m, fc.circle_fit);
-  fit_case_ = fit.fit_case;
-  if (!fit.valid) {
+  const Neighbourhood next = selectNeighbours(bank_.tracks(), fc);
+  const FrameFit now = fit(next.positions);
+  fit_case_ = now.fit_case;
+  if (!now.valid) {
     frame_valid_ = false;
     neighbours_ = next;
     return;
   }
-  const Vec2 z = -fit.centre;  // z_p = -r_c: own position in the floating frame
+  const Vec2 z = -now.centre;  // z_p = -r_c: own position in the floating frame
   focal_.predictTo(stamp, command_);
   const bool stale = secondsBetween(last_frame_ns_, stamp) > config_.focal.frame_timeout_s;
   if (!focal_.initialized()) {
     focal_.initialize(stamp, z, r_pos_);
+    imu_bias_.reset();
   } else if (stale) {
     focal_.resetPosition(z, r_pos_);
     ++diag_.frame_resets;
@@ -143,10 +147,10 @@ void Agent::updateFrame(StampNs stamp) {
     NeighbourPositions old;
     FrameFit old_fit;
     if (frame_valid_ && positionsOf(bank_.tracks(), neighbours_, old)) {
-      old_fit = fitFloatingFrame(old, fc.radius_m, fc.circle_fit);
+      old_fit = fit(old);
     }
     if (old_fit.valid) {
-      focal_.shiftFrame(fit.centre - old_fit.centre);
+      focal_.shiftFrame(now.centre - old_fit.centre);
       focal_.correctPosition(z, r_pos_);
       ++diag_.frame_shifts;
     } else {
@@ -158,8 +162,13 @@ void Agent::updateFrame(StampNs stamp) {
   }
   neighbours_ = next;
   frame_valid_ = true;
-  frame_centre_ = fit.centre;
+  frame_centre_ = now.centre;
   last_frame_ns_ = stamp;
+}
+
+FrameFit Agent::fit(const NeighbourPositions& neighbours) const {
+  const FormationConfig& fc = config_.formation;
+  return fitFloatingFrame(neighbours, fc.radius_m, fc.circle_fit, fc.far_neighbour_weight);
 }
 
 void Agent::onGnss(const GnssSample& g) {

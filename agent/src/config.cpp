@@ -24,4 +24,14 @@ std::string toString(CircleFit fit) {
   return "unknown";
 }
 
+std::string toString(NeighbourhoodRule rule) {
+  switch (rule) {
+    case NeighbourhoodRule::kGabriel:
+      return "gabriel";
+    case NeighbourhoodRule::kKNearest:
+      return "k_nearest";
+  }
+  return "unknown";
+}
+
 }  // namespace swa::agent

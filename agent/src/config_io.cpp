@@ -86,6 +86,7 @@ Param choice(std::string key, Access access, const std::array<Enum, N>& values, 
 
 constexpr std::array kModes{Mode::kSwa, Mode::kStandalone, Mode::kAnchored};
 constexpr std::array kCircleFits{CircleFit::kFixedRadius, CircleFit::kAlgebraic};
+constexpr std::array kNeighbourhoodRules{NeighbourhoodRule::kGabriel, NeighbourhoodRule::kKNearest};
 
 const std::vector<Param>& parameters() {
   using A = AgentConfig;
@@ -124,12 +125,20 @@ const std::vector<Param>& parameters() {
 
       number("formation.radius_m", &A::formation, &F::radius_m, "m", openClosed(0, 1000),
              "r: desired distance to the neighbours (radius of the fitted circle)"),
+      choice("formation.neighbourhood", [](auto& c) -> auto& { return c.formation.neighbourhood; },
+             kNeighbourhoodRules,
+             "gabriel = tracks with no other track inside the circle on the segment to them as diameter; "
+             "k_nearest = the k nearest tracks"),
       number("formation.k", &A::formation, &F::k, "", closed(1, 16),
-             "number of nearest neighbours used for the floating frame"),
+             "k_nearest only: number of nearest neighbours used for the floating frame"),
       number("formation.sensing_range_m", &A::formation, &F::sensing_range_m, "m", openClosed(0, 10000),
              "tracks farther than this are not neighbours"),
+      number("formation.max_edge_factor", &A::formation, &F::max_edge_factor, "", closed(1, 100),
+             "gabriel only: neighbours other than the nearest must be closer than this times r"),
       choice("formation.circle_fit", [](auto& c) -> auto& { return c.formation.circle_fit; }, kCircleFits,
               "fit for n >= 3 neighbours; algebraic = the paper's Kasa fit (collapses, k = 3)"),
+      number("formation.far_neighbour_weight", &A::formation, &F::far_neighbour_weight, "", openClosed(0, 1),
+             "fixed_radius fit: weight of the neighbours beyond the two nearest (which weigh 1)"),
 
       number("focal.tau_s", &A::focal, &Fo::tau_s, "s", openClosed(0, 60),
              "tau: time constant of the velocity damping exp(-dt/tau) of the focal UAV model"),
@@ -151,6 +160,11 @@ const std::vector<Param>& parameters() {
              "q_c: lateral acceleration per radian of tilt"),
       number("focal.frame_timeout_s", &A::focal, &Fo::frame_timeout_s, "s", openClosed(0, 600),
              "without a floating frame for this long, dead reckoning is no longer trusted"),
+      number("focal.bias_window_s", &A::focal, &Fo::bias_window_s, "s", closed(0, 3600),
+             "IMU-bias removal: window of the running mean subtracted from the tilt acceleration (0 = off); "
+             "assumes a hovering UAV's acceleration averages to zero"),
+      number("focal.bias_freeze_speed_mps", &A::focal, &Fo::bias_freeze_speed_mps, "m/s", openClosed(0, 50),
+             "the IMU-bias mean is frozen while the commanded speed exceeds this"),
 
       number("control.k_p", &A::control, &C::k_p, "1/s", closed(0, 20), "position feedback gain"),
       number("control.k_v", &A::control, &C::k_v, "", closed(0, 10), "velocity feedback gain"),

@@ -14,11 +14,14 @@ constexpr double kMinRcond = 1e-10;
 constexpr int kMaxGaussNewtonIterations = 20;
 constexpr double kGaussNewtonStepTolM = 1e-9;
 
-double fixedRadiusCost(const NeighbourPositions& nb, const Vec2& c, double radius) {
+// Neighbours are sorted nearest first: the two nearest weigh 1, the rest `far_weight`.
+double weightOf(int j, double far_weight) { return j < 2 ? 1.0 : far_weight; }
+
+double fixedRadiusCost(const NeighbourPositions& nb, const Vec2& c, double radius, double far_weight) {
   double cost = 0.0;
   for (int j = 0; j < nb.count; ++j) {
     const double e = (nb.position[j] - c).norm() - radius;
-    cost += e * e;
+    cost += weightOf(j, far_weight) * e * e;
   }
   return cost;
 }
@@ -95,13 +98,13 @@ FrameFit fitAlgebraic(const NeighbourPositions& nb, double radius) {
   return fit;
 }
 
-FrameFit fitFixedRadius(const NeighbourPositions& nb, double radius) {
+FrameFit fitFixedRadius(const NeighbourPositions& nb, double radius, double far_weight) {
   // Started from the n = 2 point of the two nearest neighbours: from the Kasa centre Gauss-Newton falls into the
   // mirror solution on the far side of the neighbours and UAVs collide (DESIGN §3.3).
   FrameFit fit = fitTwo(nb.position[0], nb.position[1], radius);
   if (fit.fit_case == FitCase::kCoincident) return fit;
   Vec2 c = fit.centre;
-  double cost = fixedRadiusCost(nb, c, radius);
+  double cost = fixedRadiusCost(nb, c, radius, far_weight);
   int it = 0;
   for (; it < kMaxGaussNewtonIterations; ++it) {
     Mat2 JtJ = Mat2::Zero();
@@ -111,18 +114,19 @@ FrameFit fitFixedRadius(const NeighbourPositions& nb, double radius) {
       const double dist = d.norm();
       if (dist < kCoincidentM) continue;  // gradient undefined on the neighbour itself; the others decide
       const Vec2 J = -d / dist;          // d(|p - c| - r)/dc
-      JtJ.noalias() += J * J.transpose();
-      Jte += J * (dist - radius);
+      const double w = weightOf(j, far_weight);
+      JtJ.noalias() += w * J * J.transpose();
+      Jte += w * J * (dist - radius);
     }
     // A whisker of Levenberg damping keeps the 2x2 solve defined when all residual directions are parallel.
     JtJ.diagonal().array() += 1e-9 * (1.0 + JtJ.trace());
     Vec2 step = -JtJ.ldlt().solve(Jte);
     if (!isFinite(step)) break;
     // Halve the step until the cost does not increase: plain Gauss-Newton can overshoot near the two-fold ambiguity.
-    double new_cost = fixedRadiusCost(nb, c + step, radius);
+    double new_cost = fixedRadiusCost(nb, c + step, radius, far_weight);
     for (int h = 0; h < 10 && new_cost > cost; ++h) {
       step *= 0.5;
-      new_cost = fixedRadiusCost(nb, c + step, radius);
+      new_cost = fixedRadiusCost(nb, c + step, radius, far_weight);
     }
     if (new_cost > cost) break;
     c += step;
@@ -138,7 +142,7 @@ FrameFit fitFixedRadius(const NeighbourPositions& nb, double radius) {
   return fit;
 }
 
-FrameFit fitFloatingFrame(const NeighbourPositions& nb, double radius, CircleFit method) {
+FrameFit fitFloatingFrame(const NeighbourPositions& nb, double radius, CircleFit method, double far_weight) {
   switch (nb.count) {
     case 0:
       return FrameFit{};
@@ -147,7 +151,7 @@ FrameFit fitFloatingFrame(const NeighbourPositions& nb, double radius, CircleFit
     case 2:
       return fitTwo(nb.position[0], nb.position[1], radius);
     default:
-      return method == CircleFit::kAlgebraic ? fitAlgebraic(nb, radius) : fitFixedRadius(nb, radius);
+      return method == CircleFit::kAlgebraic ? fitAlgebraic(nb, radius) : fitFixedRadius(nb, radius, far_weight);
   }
 }
 

@@ -3,6 +3,34 @@
 #include <algorithm>
 
 namespace swa::agent {
+namespace {
+
+struct Candidate {
+  double dist2;
+  int id;
+  Vec2 position;
+};
+
+bool nearer(const Candidate& a, const Candidate& b) { return a.dist2 < b.dist2 || (a.dist2 == b.dist2 && a.id < b.id); }
+
+// A witness this close to the circle counts as on it (blocks): keeps exact lattices exact under rounding.
+constexpr double kOnCircleTolerance = 1e-9;
+
+// Gabriel's test is O(n^2) over every confirmed track, so it sees at most this many (nearest first); the bank
+// holds at most TrackBank::kMaxTracks.
+constexpr std::size_t kMaxWitnesses = TrackBank::kMaxTracks;
+
+Neighbourhood fromCandidates(const Candidate* c, int n) {
+  Neighbourhood out;
+  out.positions.count = n;
+  for (int i = 0; i < n; ++i) {
+    out.positions.position[i] = c[i].position;
+    out.ids[i] = c[i].id;
+  }
+  return out;
+}
+
+}  // namespace
 
 bool Neighbourhood::sameIdsAs(const Neighbourhood& other) const {
   if (count() != other.count()) return false;
@@ -15,19 +43,11 @@ bool Neighbourhood::sameIdsAs(const Neighbourhood& other) const {
   return true;
 }
 
-Neighbourhood selectNeighbours(const std::vector<Track>& tracks, int k, double sensing_range_m) {
-  struct Candidate {
-    double dist2;
-    int id;
-    Vec2 position;
-  };
+Neighbourhood selectKNearest(const std::vector<Track>& tracks, int k, double sensing_range_m) {
   std::array<Candidate, kMaxNeighbours> best{};
   const int wanted = std::clamp(k, 0, kMaxNeighbours);
   int n = 0;
   const double range2 = sensing_range_m * sensing_range_m;
-  auto better = [](const Candidate& a, const Candidate& b) {
-    return a.dist2 < b.dist2 || (a.dist2 == b.dist2 && a.id < b.id);
-  };
   // Insertion into a small sorted array: k <= 16 and tracks <= 128, cheaper than sorting all tracks.
   for (const Track& t : tracks) {
     if (!t.confirmed) continue;
@@ -36,20 +56,54 @@ Neighbourhood selectNeighbours(const std::vector<Track>& tracks, int k, double s
     if (c.dist2 > range2) continue;
     if (n < wanted) {
       best[n++] = c;
-    } else if (n > 0 && better(c, best[n - 1])) {
+    } else if (n > 0 && nearer(c, best[n - 1])) {
       best[n - 1] = c;
     } else {
       continue;
     }
-    for (int i = n - 1; i > 0 && better(best[i], best[i - 1]); --i) std::swap(best[i], best[i - 1]);
+    for (int i = n - 1; i > 0 && nearer(best[i], best[i - 1]); --i) std::swap(best[i], best[i - 1]);
   }
-  Neighbourhood out;
-  out.positions.count = n;
-  for (int i = 0; i < n; ++i) {
-    out.positions.position[i] = best[i].position;
-    out.ids[i] = best[i].id;
+  return fromCandidates(best.data(), n);
+}
+
+Neighbourhood selectGabriel(const std::vector<Track>& tracks, double sensing_range_m, double max_edge_m) {
+  // Every confirmed track is a witness, also beyond sensing range; nearest first, because only a track nearer than
+  // j can lie inside j's disc (the disc is within |p_j| of self).
+  std::array<Candidate, kMaxWitnesses> all;
+  std::size_t n = 0;
+  for (const Track& t : tracks) {
+    if (!t.confirmed || n == all.size()) continue;
+    const Vec2 p = t.position();
+    all[n++] = Candidate{p.squaredNorm(), t.id, p};
   }
-  return out;
+  std::sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(n), nearer);
+
+  std::array<Candidate, kMaxNeighbours> chosen{};
+  int count = 0;
+  const double range2 = sensing_range_m * sensing_range_m;
+  const double edge2 = max_edge_m * max_edge_m;
+  for (std::size_t j = 0; j < n && count < kMaxNeighbours; ++j) {
+    const Candidate& cj = all[j];
+    if (cj.dist2 > range2) break;
+    if (count > 0 && cj.dist2 >= edge2) break;  // sorted: every farther track is longer still
+    bool blocked = false;
+    for (std::size_t m = 0; m < j && !blocked; ++m) {
+      const Vec2& pm = all[m].position;
+      blocked = pm.dot(cj.position - pm) >= -kOnCircleTolerance * cj.dist2;
+    }
+    if (!blocked) chosen[static_cast<std::size_t>(count++)] = cj;
+  }
+  return fromCandidates(chosen.data(), count);
+}
+
+Neighbourhood selectNeighbours(const std::vector<Track>& tracks, const FormationConfig& formation) {
+  switch (formation.neighbourhood) {
+    case NeighbourhoodRule::kKNearest:
+      return selectKNearest(tracks, formation.k, formation.sensing_range_m);
+    case NeighbourhoodRule::kGabriel:
+      break;
+  }
+  return selectGabriel(tracks, formation.sensing_range_m, formation.max_edge_factor * formation.radius_m);
 }
 
 bool positionsOf(const std::vector<Track>& tracks, const Neighbourhood& chosen, NeighbourPositions& out) {

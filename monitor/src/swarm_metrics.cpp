@@ -47,6 +47,7 @@ EstimateRecord estimateFromDiagnostics(const agent::Diagnostics& d, const agent:
   r.neighbour_ids = d.neighbour_ids;
   r.radius_m = formation.radius_m;
   r.circle_fit = formation.circle_fit;
+  r.far_neighbour_weight = formation.far_neighbour_weight;
   return r;
 }
 
@@ -185,7 +186,7 @@ TruthInFrame truthInFloatingFrame(const UavTruth& self, const std::vector<UavTru
     for (const FrameNeighbour& f : nb) {
       positions.position[static_cast<std::size_t>(positions.count++)] = f.relative_position + dt * f.relative_velocity;
     }
-    return agent::fitFloatingFrame(positions, record.radius_m, record.circle_fit);
+    return agent::fitFloatingFrame(positions, record.radius_m, record.circle_fit, record.far_neighbour_weight);
   };
 
   const agent::FrameFit fit = fitAt(0.0, 0.0);

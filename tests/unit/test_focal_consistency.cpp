@@ -54,8 +54,9 @@ AneesSeries runMonteCarlo(const AgentConfig& cfg, int runs, double duration_s, d
         for (const Detection& d : set.detections)
           stable.push_back({d.target_id, R * d.position_body_m, Mat2::Identity() * cfg.surroundings.r_det_m2});
         bank.update(t, stable);
-        const Neighbourhood nb = selectNeighbours(bank.tracks(), cfg.formation.k, cfg.formation.sensing_range_m);
-        const FrameFit fit = fitFloatingFrame(nb.positions, cfg.formation.radius_m, cfg.formation.circle_fit);
+        const Neighbourhood nb = selectNeighbours(bank.tracks(), cfg.formation);
+        const FrameFit fit = fitFloatingFrame(nb.positions, cfg.formation.radius_m, cfg.formation.circle_fit,
+                                              cfg.formation.far_neighbour_weight);
         if (fit.valid) {
           if (!focal.initialized()) {
             focal.initialize(t, -fit.centre, R_pos);
@@ -82,7 +83,8 @@ AneesSeries runMonteCarlo(const AgentConfig& cfg, int runs, double duration_s, d
       for (const Vec2& g : group) truth.position[truth.count++] = g - world.p;
       std::sort(truth.position.begin(), truth.position.begin() + truth.count,
                 [](const Vec2& a, const Vec2& b) { return a.squaredNorm() < b.squaredNorm(); });
-      const FrameFit true_fit = fitFloatingFrame(truth, cfg.formation.radius_m, cfg.formation.circle_fit);
+      const FrameFit true_fit = fitFloatingFrame(truth, cfg.formation.radius_m, cfg.formation.circle_fit,
+                                                 cfg.formation.far_neighbour_weight);
       const Vec2 e_p = focal.position() - (-true_fit.centre);
       const Vec2 e_v = focal.velocity() - world.v;  // the group hovers: frame velocity is zero
       out.position[k - first] += e_p.dot(focal.positionCov().ldlt().solve(e_p)) / runs;

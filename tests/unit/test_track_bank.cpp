@@ -153,7 +153,7 @@ TEST(Neighbourhood, SelectsKNearestConfirmedWithinRangeTiesById) {
   bank.update(3 * kScanNs, {det(1, 5, 0), det(9, 0, 12), det(4, -12, 0), det(2, 30, 0), det(3, 45, 0),
                             det(7, 1, 0)});
   // WHEN the 3 nearest within 40 m are chosen
-  const Neighbourhood nb = selectNeighbours(bank.tracks(), 3, 40.0);
+  const Neighbourhood nb = selectKNearest(bank.tracks(), 3, 40.0);
   // THEN they are 1 (5 m), then 4 and 9 (12 m, tie broken by id); the tentative 7 and the 45 m one are not
   ASSERT_EQ(nb.count(), 3);
   EXPECT_EQ(nb.ids[0], 1);
@@ -161,7 +161,7 @@ TEST(Neighbourhood, SelectsKNearestConfirmedWithinRangeTiesById) {
   EXPECT_EQ(nb.ids[2], 9);
   EXPECT_NEAR(nb.positions.position[0].x(), 5.0, 1e-6);
   // AND with k = 10 only the 4 confirmed within range are returned
-  EXPECT_EQ(selectNeighbours(bank.tracks(), 10, 40.0).count(), 4);
+  EXPECT_EQ(selectKNearest(bank.tracks(), 10, 40.0).count(), 4);
 }
 
 }  // namespace

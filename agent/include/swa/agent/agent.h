@@ -10,6 +10,7 @@
 #include "swa/agent/config.h"
 #include "swa/agent/diagnostics.h"
 #include "swa/agent/focal_estimator.h"
+#include "swa/agent/imu_bias.h"
 #include "swa/agent/neighbourhood.h"
 #include "swa/agent/samples.h"
 #include "swa/agent/track_bank.h"
@@ -32,6 +33,7 @@ class Agent {
   const TrackBank& bank() const { return bank_; }
   const FocalEstimator& focal() const { return focal_; }
   const FocalEstimator& absolute() const { return absolute_; }
+  const ImuBiasRemover& imuBias() const { return imu_bias_; }
 
  private:
   bool acceptStamp(StampNs stamp, StampNs& last, bool& seen);
@@ -39,11 +41,14 @@ class Agent {
   void updateFrame(StampNs stamp);
   Vec2 computeCommand(StampNs stamp);
   void refreshDiagnostics(StampNs stamp);
+  FrameFit fit(const NeighbourPositions& neighbours) const;
 
   AgentConfig config_;
   TrackBank bank_;
   FocalEstimator focal_;     // floating frame (swa, anchored)
   FocalEstimator absolute_;  // take-off frame from GNSS + IMU (standalone, anchored)
+  // Feeds focal_ only: the standalone baseline stays the paper's dead reckoning, so SWA is compared with it.
+  ImuBiasRemover imu_bias_;
   Diagnostics diag_;
 
   Mat2 r_acc_;

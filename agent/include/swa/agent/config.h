@@ -9,6 +9,7 @@ namespace swa::agent {
 
 enum class Mode { kSwa, kStandalone, kAnchored };
 enum class CircleFit { kFixedRadius, kAlgebraic };
+enum class NeighbourhoodRule { kGabriel, kKNearest };
 
 struct SurroundingsConfig {
   // Q_o diagonal blocks, per `q_ref_dt_s` of prediction (scaled linearly with the actual step).
@@ -27,9 +28,20 @@ struct SurroundingsConfig {
 
 struct FormationConfig {
   double radius_m = 10.0;          // r
-  int k = 3;                       // neighbours used for the floating frame
+  // Gabriel (DESIGN §3.2): in a triangular lattice it selects exactly the lattice edges, so every distance can be r
+  // at once. k nearest with k = 3 squeezes the formation to ~0.93 r (a second-shell UAV at sqrt(3) r is pulled to r);
+  // k = 2 keeps the spacing but lets the swarm split.
+  NeighbourhoodRule neighbourhood = NeighbourhoodRule::kKNearest;
+  int k = 3;                       // k_nearest only: neighbours used for the floating frame
   double sensing_range_m = 40.0;   // tracks farther than this are not neighbours
+  // Gabriel only: a neighbour other than the nearest must be closer than this times r. A UAV hidden by the field of
+  // view or a lost track stops blocking the edge to the second-shell UAV behind it (sqrt(3) r or 2 r away); without
+  // the cap that UAV would be pulled to r.
+  double max_edge_factor = 1.5;
   CircleFit circle_fit = CircleFit::kFixedRadius;  // the paper's algebraic fit collapses with k = 3 (DESIGN §3)
+  // Fixed-radius fit: weight of every neighbour beyond the two nearest (they weigh 1). With 3-6 equidistant
+  // neighbours the unweighted fit reads d_NB ~4 % short (DESIGN §3.3); 1 = unweighted.
+  double far_neighbour_weight = 1.0;
 };
 
 struct FocalConfig {
@@ -46,6 +58,12 @@ struct FocalConfig {
   double r_acc_m2ps4 = 2.25;       // R_a
   double q_c_mps2 = 6.35;          // tilt (rad) -> lateral acceleration
   double frame_timeout_s = 2.0;    // without a frame for this long the agent stops trusting dead reckoning
+  // IMU-bias removal (DESIGN §3.4): the tilt-derived acceleration minus its running mean over this window. Assumes
+  // a hovering UAV's true acceleration averages to zero over the window (its velocity stays bounded), so the mean is
+  // the bias. 0 turns it off (the paper's filter).
+  double bias_window_s = 0.0;
+  // The mean is frozen while the command is faster than this: a manoeuvring UAV's acceleration is not zero-mean.
+  double bias_freeze_speed_mps = 0.5;
 };
 
 struct ControlConfig {
@@ -81,5 +99,6 @@ struct AgentConfig {
 
 std::string toString(Mode mode);
 std::string toString(CircleFit fit);
+std::string toString(NeighbourhoodRule rule);
 
 }  // namespace swa::agent

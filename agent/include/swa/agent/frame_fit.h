@@ -25,7 +25,7 @@ enum class FitCase : std::uint8_t {
   kTwoFarApart,      // n = 2 farther than 2r apart: midpoint
   kCoincident,       // neighbours on top of each other or of self: a fixed, documented direction is used
   kAlgebraic,        // n >= 3, linear least squares (Kasa)
-  kFixedRadius,      // n >= 3, Gauss-Newton with |p_j - c| = r
+  kFixedRadius,      // n >= 3, (weighted) Gauss-Newton with |p_j - c| = r
   kCollinearFallback // n >= 3 collinear / ill-conditioned algebraic system: the n = 2 solution of the two nearest
 };
 
@@ -36,12 +36,15 @@ struct FrameFit {
   int iterations = 0;          // Gauss-Newton iterations used
 };
 
-FrameFit fitFloatingFrame(const NeighbourPositions& neighbours, double radius, CircleFit method);
+// `far_weight` weighs the fixed-radius residuals of every neighbour beyond the two nearest (the two nearest weigh 1);
+// the other cases ignore it.
+FrameFit fitFloatingFrame(const NeighbourPositions& neighbours, double radius, CircleFit method,
+                          double far_weight = 1.0);
 
 // The individual cases, exposed for the tests and the benchmark.
 FrameFit fitOne(const Vec2& p, double radius);
 FrameFit fitTwo(const Vec2& p1, const Vec2& p2, double radius);
 FrameFit fitAlgebraic(const NeighbourPositions& neighbours, double radius);
-FrameFit fitFixedRadius(const NeighbourPositions& neighbours, double radius);
+FrameFit fitFixedRadius(const NeighbourPositions& neighbours, double radius, double far_weight = 1.0);
 
 }  // namespace swa::agent

@@ -49,6 +49,7 @@ struct EstimateRecord {
   std::array<int, agent::kMaxNeighbours> neighbour_ids{};
   double radius_m = 10.0;                             // formation.radius_m of that agent
   agent::CircleFit circle_fit = agent::CircleFit::kFixedRadius;
+  double far_neighbour_weight = agent::FormationConfig{}.far_neighbour_weight;
 };
 
 // The record of an agent's diagnostics. valid only when the estimate is a floating-frame one that is being tracked:
