@@ -13,9 +13,6 @@ struct Candidate {
 
 bool nearer(const Candidate& a, const Candidate& b) { return a.dist2 < b.dist2 || (a.dist2 == b.dist2 && a.id < b.id); }
 
-// A witness this close to the circle counts as on it (blocks): keeps exact lattices exact under rounding.
-constexpr double kOnCircleTolerance = 1e-9;
-
 // Gabriel's test is O(n^2) over every confirmed track, so it sees at most this many (nearest first); the bank
 // holds at most TrackBank::kMaxTracks.
 constexpr std::size_t kMaxWitnesses = TrackBank::kMaxTracks;
@@ -88,8 +85,7 @@ Neighbourhood selectGabriel(const std::vector<Track>& tracks, double sensing_ran
     if (count > 0 && cj.dist2 >= edge2) break;  // sorted: every farther track is longer still
     bool blocked = false;
     for (std::size_t m = 0; m < j && !blocked; ++m) {
-      const Vec2& pm = all[m].position;
-      blocked = pm.dot(cj.position - pm) >= -kOnCircleTolerance * cj.dist2;
+      blocked = inDiametralDisc(Vec2::Zero(), cj.position, all[m].position);
     }
     if (!blocked) chosen[static_cast<std::size_t>(count++)] = cj;
   }

@@ -37,7 +37,8 @@ MetricsAccumulator::MetricsAccumulator(const MetricsConfig& config)
     : config_((validate(config), config)),
       window_start_ns_(toNs(config.window_start_s)),
       final_window_ns_(toNs(config.final_window_s)),
-      drift_window_ns_(toNs(config.drift_window_s)) {}
+      drift_window_ns_(toNs(config.drift_window_s)),
+      drift_segment_ns_(toNs(config.drift_segment_s)) {}
 
 const StepMetrics& MetricsAccumulator::add(const StepInput& step) {
   if (steps_ > 0 && step.stamp_ns < last_ns_) {
@@ -60,7 +61,8 @@ const StepMetrics& MetricsAccumulator::add(const StepInput& step) {
   m.drift_mps = updateDrift(step.stamp_ns, m.geometry);
   min_separation_m_ = nanMin(min_separation_m_, m.geometry.min_separation_m);
 
-  final_samples_.push_back({step.stamp_ns, m.geometry.mean_neighbor_distance_m, m.geometry.formation_error_m});
+  final_samples_.push_back({step.stamp_ns, m.geometry.mean_neighbor_distance_m, m.geometry.formation_error_m,
+                            m.geometry.edge_length_m});
   while (final_samples_.front().stamp_ns < step.stamp_ns - final_window_ns_) final_samples_.pop_front();
 
   last_positions_.clear();
@@ -73,6 +75,10 @@ const StepMetrics& MetricsAccumulator::add(const StepInput& step) {
       window_started_ = true;
       window_first_ns_ = step.stamp_ns;
       window_start_positions_ = last_positions_;
+    }
+    if (step.stamp_ns == window_first_ns_ || closeDriftSegment(step.stamp_ns)) {
+      segment_first_ns_ = step.stamp_ns;
+      segment_start_positions_ = last_positions_;
     }
     drift_max_mps_ = nanMax(drift_max_mps_, m.drift_mps);
     skipped_unknown_ += static_cast<std::uint64_t>(m.nees.skipped_unknown_id);
@@ -117,6 +123,47 @@ int MetricsAccumulator::updateCollisions(const StepInput& step) {
   return onsets;
 }
 
+namespace {
+
+// Over the UAVs present at both ends: the length of their mean displacement (the centroid's, for a fixed set of
+// UAVs) and the mean of their own displacements' lengths.
+struct Displacement {
+  double centroid_m = 0.0;
+  double uav_m = 0.0;
+  int common = 0;
+};
+
+Displacement meanDisplacement(const std::map<int, Vec2>& from, const std::map<int, Vec2>& to) {
+  Displacement d;
+  double sx = 0.0, sy = 0.0;  // plain doubles: GCC 12 mis-flags an Eigen accumulator here (-Wdangling-pointer)
+  for (const auto& [id, start] : from) {
+    const auto end = to.find(id);
+    if (end == to.end()) continue;
+    const Vec2 delta = end->second - start;
+    sx += delta.x();
+    sy += delta.y();
+    d.uav_m += delta.norm();
+    ++d.common;
+  }
+  if (d.common > 0) {
+    d.centroid_m = std::hypot(sx, sy) / d.common;
+    d.uav_m /= d.common;
+  }
+  return d;
+}
+
+}  // namespace
+
+bool MetricsAccumulator::closeDriftSegment(StampNs stamp) {
+  if (stamp - segment_first_ns_ < drift_segment_ns_) return false;
+  const Displacement d = meanDisplacement(segment_start_positions_, last_positions_);
+  if (d.common > 0) {
+    segment_speed_sum_ += d.centroid_m / toSeconds(stamp - segment_first_ns_);
+    ++segments_;
+  }
+  return true;
+}
+
 double MetricsAccumulator::updateDrift(StampNs stamp, const Geometry& geometry) {
   if (!agent::isFinite(geometry.centroid_m)) return kNaN;
   centroid_history_.emplace_back(stamp, geometry.centroid_m);
@@ -126,6 +173,17 @@ double MetricsAccumulator::updateDrift(StampNs stamp, const Geometry& geometry) 
   const auto& [then_ns, then_c] = centroid_history_.front();
   if (then_ns > back) return kNaN;
   return (geometry.centroid_m - then_c).norm() / toSeconds(stamp - then_ns);
+}
+
+double MetricsAccumulator::finalMean(double FinalSample::*field) const {
+  double sum = 0.0;
+  int n = 0;
+  for (const FinalSample& f : final_samples_) {
+    if (!std::isfinite(f.*field)) continue;
+    sum += f.*field;
+    ++n;
+  }
+  return n > 0 ? sum / n : kNaN;
 }
 
 const agent::AneesBand& MetricsAccumulator::bandFor(int k) {
@@ -146,44 +204,22 @@ Summary MetricsAccumulator::summary() const {
   s.min_separation_m = min_separation_m_;
   s.collisions = collisions_;
 
-  double d_sum = 0.0;
-  double e_sum = 0.0;
-  int d_n = 0;
-  int e_n = 0;
-  for (const FinalSample& f : final_samples_) {
-    if (std::isfinite(f.d_nb)) {
-      d_sum += f.d_nb;
-      ++d_n;
-    }
-    if (std::isfinite(f.formation_error)) {
-      e_sum += f.formation_error;
-      ++e_n;
-    }
-  }
-  if (d_n > 0) s.mean_neighbor_distance_m = d_sum / d_n;
-  if (e_n > 0) s.formation_error_m = e_sum / e_n;
+  s.mean_neighbor_distance_m = finalMean(&FinalSample::d_nb);
+  s.formation_error_m = finalMean(&FinalSample::formation_error);
+  s.edge_length_m = finalMean(&FinalSample::edge_length);
 
   if (!window_started_) return s;
   s.window_start_s = toSeconds(window_first_ns_);
   s.window_duration_s = toSeconds(last_ns_ - window_first_ns_);
   s.drift_speed_max_mps = drift_max_mps_;
 
-  Vec2 disp_sum = Vec2::Zero();
-  double dist_sum = 0.0;
-  int common = 0;
-  for (const auto& [id, start] : window_start_positions_) {
-    const auto end = last_positions_.find(id);
-    if (end == last_positions_.end()) continue;
-    disp_sum += end->second - start;
-    dist_sum += (end->second - start).norm();
-    ++common;
-  }
-  if (common > 0) {
-    const Vec2 mean_disp = disp_sum / static_cast<double>(common);
-    s.centroid_displacement_m = mean_disp.norm();
-    s.uav_displacement_m = dist_sum / static_cast<double>(common);
+  const Displacement window = meanDisplacement(window_start_positions_, last_positions_);
+  if (window.common > 0) {
+    s.centroid_displacement_m = window.centroid_m;
+    s.uav_displacement_m = window.uav_m;
     if (s.window_duration_s > 0.0) s.drift_velocity_mps = s.centroid_displacement_m / s.window_duration_s;
   }
+  if (segments_ > 0) s.drift_velocity_windows_mps = segment_speed_sum_ / segments_;
 
   s.nees_steps = nees_steps_;
   s.nees_samples = nees_samples_;

@@ -29,9 +29,11 @@ void visitSummary(S& s, F&& f) {
   f("uav_count", s.uav_count);
   f("mean_neighbor_distance_m", s.mean_neighbor_distance_m);
   f("formation_error_m", s.formation_error_m);
+  f("edge_length_m", s.edge_length_m);
   f("min_separation_m", s.min_separation_m);
   f("collisions", s.collisions);
   f("drift_velocity_mps", s.drift_velocity_mps);
+  f("drift_velocity_windows_mps", s.drift_velocity_windows_mps);
   f("centroid_displacement_m", s.centroid_displacement_m);
   f("uav_displacement_m", s.uav_displacement_m);
   f("drift_speed_max_mps", s.drift_speed_max_mps);

@@ -58,6 +58,7 @@ void validate(const MetricsConfig& c) {
   };
   check(std::isfinite(c.formation_radius_m) && c.formation_radius_m > 0.0, "formation_radius_m must be > 0");
   check(std::isfinite(c.collision_distance_m) && c.collision_distance_m > 0.0, "collision_distance_m must be > 0");
+  check(std::isfinite(c.drift_segment_s) && c.drift_segment_s > 0.0, "drift_segment_s must be > 0");
   check(std::isfinite(c.collision_release_m) && c.collision_release_m >= 0.0, "collision_release_m must be >= 0");
   check(std::isfinite(c.group_link_factor) && c.group_link_factor > 0.0, "group_link_factor must be > 0");
   check(c.distance_neighbours >= 1, "distance_neighbours must be >= 1");
@@ -150,7 +151,25 @@ Geometry computeGeometry(const std::vector<UavTruth>& uavs, const MetricsConfig&
   }
   g.mean_neighbor_distance_m = d_nb_sum / static_cast<double>(n);
   g.formation_error_m = fe_sum / static_cast<double>(n);
+  g.edge_length_m = meanGabrielEdgeLength(p);
   return g;
+}
+
+double meanGabrielEdgeLength(const std::vector<Vec2>& p) {
+  double sum = 0.0;
+  int edges = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      bool blocked = false;
+      for (std::size_t m = 0; m < p.size() && !blocked; ++m) {
+        blocked = m != i && m != j && agent::inDiametralDisc(p[i], p[j], p[m]);
+      }
+      if (blocked) continue;
+      sum += (p[i] - p[j]).norm();
+      ++edges;
+    }
+  }
+  return edges > 0 ? sum / edges : kNaN;
 }
 
 TruthInFrame truthInFloatingFrame(const UavTruth& self, const std::vector<UavTruth>& uavs,

@@ -111,6 +111,42 @@ TEST(MetricsAccumulator, DriftOfATranslatingSwarmIsItsVelocity) {
   EXPECT_EQ(s.collisions, 0u);
 }
 
+TEST(MetricsAccumulator, WindowedDriftAveragesCompleteSixtySecondStretches) {
+  // GIVEN a triangle that moves +x at 0.2 m/s for 60 s, back at 0.2 m/s for 60 s, then +y at 0.1 m/s for 70 s,
+  // sampled at 10 Hz, window from t = 10 s (so the stretches are [10, 70], [70, 130], [130, 190])
+  MetricsConfig c;
+  c.window_start_s = 10.0;
+  MetricsAccumulator acc(c);
+  auto position = [](double t) {
+    if (t <= 70.0) return Vec2(0.2 * t, 0.0);
+    if (t <= 130.0) return Vec2(14.0 - 0.2 * (t - 70.0), 0.0);
+    return Vec2(2.0, 0.1 * (t - 130.0));
+  };
+  for (int k = 0; k <= 2000; ++k) {
+    StepInput s;
+    s.stamp_ns = at(0.1 * k);
+    s.uavs = triangle(10.0, position(0.1 * k));
+    acc.add(s);
+  }
+  const Summary s = acc.summary();
+  // THEN the net drift over the 190 s window is small (|(2, 7) - (2, 0)| / 190) ...
+  EXPECT_NEAR(s.drift_velocity_mps, 7.0 / 190.0, 1e-9);
+  // ... while the windows see 0.2, 0.2 and 0.1 m/s: the trailing 10 s stretch [190, 200] is left out
+  EXPECT_NEAR(s.drift_velocity_windows_mps, (0.2 + 0.2 + 0.1) / 3.0, 1e-9);
+}
+
+TEST(MetricsAccumulator, WindowedDriftIsNaNBeforeTheFirstCompleteStretch) {
+  MetricsAccumulator acc;
+  for (int k = 0; k < 590; ++k) {
+    StepInput s;
+    s.stamp_ns = at(0.1 * k);
+    s.uavs = triangle(10.0, Vec2(0.1 * k, 0.0));
+    acc.add(s);
+  }
+  EXPECT_TRUE(std::isnan(acc.summary().drift_velocity_windows_mps));
+  EXPECT_GT(acc.summary().drift_velocity_mps, 0.9);
+}
+
 TEST(MetricsAccumulator, HoveringSwarmThatExpandsHasNoDriftButDisplacement) {
   // GIVEN a triangle expanding about its centroid from side 10 to 16 between t = 0 and t = 6 s
   MetricsAccumulator acc;

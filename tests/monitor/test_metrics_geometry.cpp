@@ -15,7 +15,7 @@ namespace {
 
 using agent::Vec2;
 
-std::vector<UavTruth> swarm(std::initializer_list<Vec2> positions) {
+std::vector<UavTruth> swarm(const std::vector<Vec2>& positions) {
   std::vector<UavTruth> uavs;
   int id = 0;
   for (const Vec2& p : positions) uavs.push_back({id++, p, Vec2::Zero(), true});
@@ -38,6 +38,7 @@ TEST(MetricsGeometry, EquilateralTriangleOfSideRIsAPerfectSingleGroup) {
   EXPECT_NEAR(g.min_separation_m, 10.0, 1e-12);
   EXPECT_EQ(g.groups, 1);
   EXPECT_NEAR(g.formation_error_m, 0.0, 1e-12);
+  EXPECT_NEAR(g.edge_length_m, 10.0, 1e-12);  // all three sides are Gabriel edges
   // AND the centroid is the triangle's centre, 10/sqrt(3) m from each corner
   EXPECT_NEAR(g.centroid_m.x(), 3.0 + 5.0, 1e-12);
   EXPECT_NEAR(g.centroid_m.y(), -2.0 + 5.0 / std::sqrt(3.0), 1e-12);
@@ -54,10 +55,51 @@ TEST(MetricsGeometry, UnevenLineShowsFormationErrorThatDnbHides) {
   EXPECT_NEAR(g.formation_error_m, 14.0 / 3.0, 1e-12);
   EXPECT_GE(g.formation_error_m, std::fabs(g.mean_neighbor_distance_m - 10.0));
   EXPECT_NEAR(g.min_separation_m, 8.0, 1e-12);
+  // AND the Gabriel edges are the two links of the chain (the middle UAV blocks 0-20): (8 + 12) / 2
+  EXPECT_NEAR(g.edge_length_m, 10.0, 1e-12);
   // AND the chain 0-8-20 (links 8 and 12 < 15) is one group although the ends are 20 m apart
   EXPECT_EQ(g.groups, 1);
   EXPECT_NEAR(g.centroid_m.x(), 28.0 / 3.0, 1e-12);
   EXPECT_NEAR(g.spread_m, 20.0 - 28.0 / 3.0, 1e-12);
+}
+
+TEST(MetricsGeometry, EdgeLengthReadsTheSpacingWhereDnbReadsLow) {
+  // GIVEN a centre UAV with six neighbours at 60 deg steps, alternately 9 m and 11 m away (mean spacing 10 m)
+  std::vector<Vec2> p{Vec2::Zero()};
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * M_PI / 3.0;
+    p.push_back((k % 2 == 0 ? 11.0 : 9.0) * Vec2(std::cos(a), std::sin(a)));
+  }
+  const Geometry g = computeGeometry(swarm(p), MetricsConfig{});
+  // THEN (hand computed) the Gabriel graph is the six spokes and the six ring sides of sqrt(9^2 + 11^2 - 99) m,
+  // mean (3*9 + 3*11 + 6*sqrt(103)) / 12 = 10.07 m ...
+  const double side = std::sqrt(103.0);
+  EXPECT_NEAR(g.edge_length_m, (60.0 + 6.0 * side) / 12.0, 1e-12);
+  // ... while d_NB takes each UAV's two nearest: 9 for the centre, (9 + side) / 2 and side for the ring, 9.74 m
+  EXPECT_NEAR(g.mean_neighbor_distance_m, (9.0 + 1.5 * (9.0 + side) + 3.0 * side) / 7.0, 1e-12);
+  EXPECT_LT(g.mean_neighbor_distance_m, 9.75);
+}
+
+TEST(MetricsGeometry, TriangularLatticeEdgesAreTheSpacing) {
+  // GIVEN 19 UAVs on a hexagonal patch of a triangular lattice of spacing 10 m
+  std::vector<Vec2> lattice;
+  for (int i = -2; i <= 2; ++i) {
+    for (int j = -2; j <= 2; ++j) {
+      if (std::abs(i + j) <= 2) lattice.push_back(10.0 * Vec2(i + 0.5 * j, 0.5 * std::sqrt(3.0) * j));
+    }
+  }
+  ASSERT_EQ(lattice.size(), 19u);
+  // THEN every Gabriel edge is a lattice edge of 10 m
+  EXPECT_NEAR(computeGeometry(swarm(lattice), MetricsConfig{}).edge_length_m, 10.0, 1e-9);
+}
+
+TEST(MetricsGeometry, SquareHasNoDiagonalEdges) {
+  // GIVEN 4 UAVs on a 10 m square: each diagonal has the other two corners on its circle
+  const Geometry g = computeGeometry(swarm({Vec2(0, 0), Vec2(10, 0), Vec2(10, 10), Vec2(0, 10)}), MetricsConfig{});
+  // THEN the edges are the four sides only
+  EXPECT_NEAR(g.edge_length_m, 10.0, 1e-12);
+  EXPECT_NEAR(meanGabrielEdgeLength({Vec2(0, 0), Vec2(3, 4)}), 5.0, 1e-12);
+  EXPECT_TRUE(std::isnan(meanGabrielEdgeLength({Vec2(1, 1)})));
 }
 
 TEST(MetricsGeometry, TwoClustersFarApartAreTwoGroups) {

@@ -79,12 +79,13 @@ TEST(MetricsReport, SummaryJsonHasEveryKeyOnceAndNullForMissingValues) {
   for (const char* key :
        {"mean_neighbor_distance_m", "min_separation_m", "collisions", "drift_velocity_mps", "uav_displacement_m",
         "groups", "spread_m", "formation_error_m", "anees_position", "anees_velocity", "anees_band_low",
-        "anees_band_high", "anees_agents", "nees_skipped_unknown_id"}) {
+        "anees_band_high", "anees_agents", "nees_skipped_unknown_id", "edge_length_m",
+        "drift_velocity_windows_mps"}) {
     EXPECT_EQ(occurrences(json, std::string("\"") + key + "\":"), 1) << key;
   }
   // AND so is every field of the flat view, with its value
   const std::vector<NamedValue> fields = summaryFields(s);
-  EXPECT_EQ(fields.size(), 26u);
+  EXPECT_EQ(fields.size(), 28u);
   for (const NamedValue& f : fields) {
     EXPECT_EQ(occurrences(json, "\"" + f.key + "\": " + (std::isfinite(f.value) ? formatNumber(f.value) : "null")),
               1)

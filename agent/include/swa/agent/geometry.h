@@ -33,4 +33,12 @@ inline bool isCovariance(const Mat2& m) {
          m(0, 0) <= kMaxVariance && m(1, 1) <= kMaxVariance && std::isfinite(det) && det > 0.0;
 }
 
+// Gabriel's test (DESIGN §3.2): m lies in the closed disc with the segment a-b as diameter, i.e. the angle a-m-b is
+// 90 deg or more. A point on the circle counts as inside (so a square loses its diagonals), with a relative tolerance
+// that keeps exact lattices exact under rounding.
+inline bool inDiametralDisc(const Vec2& a, const Vec2& b, const Vec2& m) {
+  constexpr double kOnCircleTolerance = 1e-9;
+  return (a - m).dot(b - m) <= kOnCircleTolerance * (b - a).squaredNorm();
+}
+
 }  // namespace swa::agent

@@ -37,11 +37,16 @@ struct Summary {
   int uav_count = 0;                      // present at the last step
   double mean_neighbor_distance_m = kNaN; // mean of the per-step d_NB over the last final_window_s
   double formation_error_m = kNaN;        // mean of the per-step formation error over the last final_window_s
+  double edge_length_m = kNaN;            // mean of the per-step Gabriel edge length over the last final_window_s
   double min_separation_m = kNaN;         // minimum over the whole run
   std::uint64_t collisions = 0;           // onsets over the whole run
   // Over the UAVs present at both ends of the window: |mean_i (p_i(end) - p_i(start))| / window duration, i.e. the
   // net displacement of the centroid of a fixed set of UAVs (a UAV dropping out does not move it).
   double drift_velocity_mps = kNaN;
+  // The same net-centroid speed over each complete drift_segment_s stretch of the window (consecutive, from its
+  // start; a trailing partial stretch is left out), averaged. Unlike drift_velocity_mps it does not fall as 1/T for
+  // a swarm that wanders back and forth, so runs of different lengths compare. NaN until one stretch is complete.
+  double drift_velocity_windows_mps = kNaN;
   double centroid_displacement_m = kNaN;  // the same mean displacement, as a distance
   double uav_displacement_m = kNaN;       // mean_i |p_i(end) - p_i(start)| over the same UAVs
   double drift_speed_max_mps = kNaN;      // largest time-series drift_mps inside the window
@@ -83,7 +88,11 @@ class MetricsAccumulator {
     agent::StampNs stamp_ns;
     double d_nb;
     double formation_error;
+    double edge_length;
   };
+  // Adds the stretch ending at `stamp` to the drift segments if it is complete; true when it was.
+  bool closeDriftSegment(agent::StampNs stamp);
+  double finalMean(double FinalSample::*field) const;
 
   int updateCollisions(const StepInput& step);
   double updateDrift(agent::StampNs stamp, const Geometry& geometry);
@@ -110,6 +119,11 @@ class MetricsAccumulator {
   agent::StampNs window_first_ns_ = 0;
   std::map<int, agent::Vec2> window_start_positions_;
   std::map<int, agent::Vec2> last_positions_;
+  agent::StampNs drift_segment_ns_;
+  agent::StampNs segment_first_ns_ = 0;
+  std::map<int, agent::Vec2> segment_start_positions_;
+  double segment_speed_sum_ = 0.0;
+  int segments_ = 0;
   double drift_max_mps_ = kNaN;
 
   double nees_pos_sum_ = 0.0;

@@ -86,6 +86,7 @@ struct MetricsConfig {
   double window_start_s = 0.0;         // drift, displacement and ANEES window start (the GNSS-loss time)
   double final_window_s = 5.0;         // d_NB and formation error "at the end": mean over this last stretch
   double drift_window_s = 1.0;         // time-series drift: centroid speed over this last stretch
+  double drift_segment_s = 60.0;       // summary drift_velocity_windows_mps: mean over consecutive windows this long
   double anees_alpha = 0.05;           // two-sided ANEES acceptance band (1 - alpha)
   FrameVelocity frame_velocity = FrameVelocity::kNeighbourMean;
 };
@@ -108,9 +109,17 @@ struct Geometry {
   // d_NB set, formation_error >= |d_NB - r| (equality iff no distance lies on the other side of r), so it adds the
   // spread of the spacing to the bias that d_NB shows. NaN with fewer than 2 UAVs.
   double formation_error_m = kNaN;
+  // Mean true length of the edges of the swarm's Gabriel graph (i-j is an edge when no other UAV lies in the disc
+  // with diameter i-j; DESIGN §3.2). The spacing metric that does not read low for UAVs with 3-6 neighbours at r
+  // (d_NB averages the two nearest, which are below r whenever the spacing varies at all). NaN with fewer than 2 UAVs.
+  double edge_length_m = kNaN;
 };
 
 Geometry computeGeometry(const std::vector<UavTruth>& uavs, const MetricsConfig& config);
+
+// Mean length of the edges of the Gabriel graph of `points` (agent::inDiametralDisc); NaN with fewer than 2 points.
+// O(n^3): fine for swarms of tens.
+double meanGabrielEdgeLength(const std::vector<agent::Vec2>& points);
 
 // Connected components of the graph linking points closer than `link_distance_m` (strictly).
 int countGroups(const std::vector<agent::Vec2>& positions, double link_distance_m);
