@@ -20,7 +20,7 @@ Agent::Agent(const AgentConfig& config)
       bank_(config.surroundings),
       focal_(config.focal),
       absolute_(config.focal),
-      imu_bias_(config.focal.bias_window_s, config.focal.bias_freeze_speed_mps),
+      imu_bias_(config.focal.bias_window_s, config.focal.bias_freeze_speed_mps, config.focal.bias_freeze_hold_s),
       r_acc_(Mat2::Identity() * config.focal.r_acc_m2ps4),
       r_pos_(Mat2::Identity() * config.focal.r_pos_m2) {
   diag_.mode = config.mode;

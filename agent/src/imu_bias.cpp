@@ -10,14 +10,17 @@ constexpr double kMinAveragingS = 1.0;
 
 }  // namespace
 
-ImuBiasRemover::ImuBiasRemover(double window_s, double freeze_speed_mps)
-    : window_s_(window_s), freeze_speed_mps_(freeze_speed_mps) {}
+ImuBiasRemover::ImuBiasRemover(double window_s, double freeze_speed_mps, double freeze_hold_s)
+    : window_s_(window_s),
+      freeze_speed_mps_(freeze_speed_mps),
+      freeze_hold_s_(freeze_hold_s) {}
 
 void ImuBiasRemover::reset() {
   bias_.setZero();
   averaged_s_ = 0.0;
   started_ = false;
   frozen_ = false;
+  seen_fast_ = false;
 }
 
 Vec2 ImuBiasRemover::correct(const Vec2& a, StampNs stamp, const Vec2& command_mps) {
@@ -30,7 +33,11 @@ Vec2 ImuBiasRemover::correct(const Vec2& a, StampNs stamp, const Vec2& command_m
   if (stamp <= last_ns_) return a - bias_;
   const double dt = secondsBetween(last_ns_, stamp);
   last_ns_ = stamp;
-  frozen_ = command_mps.norm() > freeze_speed_mps_;
+  if (command_mps.norm() > freeze_speed_mps_) {
+    seen_fast_ = true;
+    last_fast_ns_ = stamp;
+  }
+  frozen_ = seen_fast_ && secondsBetween(last_fast_ns_, stamp) <= freeze_hold_s_;
   if (!frozen_) {
     averaged_s_ += dt;
     const double horizon = std::min(window_s_, std::max(kMinAveragingS, averaged_s_));

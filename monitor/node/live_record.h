@@ -26,7 +26,7 @@ struct RunContext {
   std::string label;     // empty: the mode
   std::string scenario;  // scenario file, empty without
   std::optional<std::uint64_t> seed;
-  double tolerance = 0.10;
+  double tolerance = monitor::kDefaultRadiusTolerance;
   RunEnd end;
   RestartLog restarts;
 };

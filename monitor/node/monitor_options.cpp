@@ -142,7 +142,7 @@ it writes into --out DIR:
   report.html        plots, summary, events and agent restarts (and the plots as .svg files)
 and prints the verdict and the report's path.
 
-Verdict (--tolerance F, default 0.10):
+Verdict (--tolerance F, default 0.05):
   PASS        EVENT_SCENARIO_END "completed", final d_NB (mean over the last 5 s) within r (1 +- F), no collision,
               one group at the end
   FAIL        completed, but one of those failed (reasons in summary.json and printed)
@@ -164,7 +164,7 @@ Options:
                       wall_s,uav,exit_status,restart_count,backoff_s and one row per agent restart
                       (missing or empty file: no restart; malformed rows are counted and reported)
   --timeout-s S       give up S wall seconds after start without EVENT_SCENARIO_END (default 0: never)
-  --tolerance F       PASS band for the final d_NB, as a fraction of r (default 0.10); with --combine only the
+  --tolerance F       PASS band for the final d_NB, as a fraction of r (default 0.05); with --combine only the
                       band drawn in the report (default: the first run's)
   --quiet             no status line (default: refreshed in place on a terminal, else a line every 10 s of
                       sim time, on stderr)

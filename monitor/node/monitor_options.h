@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "swa/monitor/report_html.h"
+
 namespace swa::monitor_node {
 
 // Exit status of swa_monitor, live and --combine.
@@ -30,7 +32,7 @@ struct MonitorOptions {
   std::optional<std::string> domain;   // --domain D (else SWA_DOMAIN, else 0)
   std::string restarts_path;           // --restarts FILE (launcher's restart log, read at the end)
   double timeout_s = 0.0;              // --timeout-s S: wall seconds without EVENT_SCENARIO_END; 0 = none
-  double tolerance = 0.10;             // --tolerance F: PASS needs |d_NB - r| <= F r
+  double tolerance = monitor::kDefaultRadiusTolerance;  // --tolerance F: PASS needs |d_NB - r| <= F r
   bool tolerance_given = false;
   bool quiet = false;                 // --quiet: no status line
   std::vector<CombineInput> combine;  // --combine LABEL=DIR [LABEL=DIR]...: offline mode

@@ -30,7 +30,7 @@ struct RunRecord {
   std::string end_reason;             // "completed", or why not
   Verdict verdict;
   double formation_radius_m = 10.0;  // r the run was scored against
-  double tolerance = 0.10;           // PASS band, fraction of r
+  double tolerance = monitor::kDefaultRadiusTolerance;  // PASS band, fraction of r
   double collision_distance_m = 1.5;
   double window_start_s = 0.0;  // metrics window start (the GNSS loss time when there is one)
   monitor::Summary summary;

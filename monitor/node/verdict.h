@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "swa/monitor/accumulator.h"
+#include "swa/monitor/report_html.h"
 
 namespace swa::monitor_node {
 
@@ -26,7 +27,7 @@ struct VerdictInput {
   bool saw_truth = false;  // at least one step was scored
   monitor::Summary summary;
   double formation_radius_m = 10.0;
-  double tolerance = 0.10;
+  double tolerance = monitor::kDefaultRadiusTolerance;
 };
 
 Verdict judge(const VerdictInput& input);

@@ -1,5 +1,7 @@
 #include "closed_loop.h"
 
+#include <cmath>
+
 #include "swa/agent/agent.h"
 #include "swa/monitor/swarm_metrics.h"
 #include "swa/sim/world.h"
@@ -59,6 +61,19 @@ RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& option
   result.trajectories = trajectories.trajectories();
   for (const agent::Agent& a : agents) result.rejected_inputs += a.diagnostics().rejected.total();
   return result;
+}
+
+double meanNeighbourDistanceAt(const RunResult& run, double t_s, double window_s) {
+  constexpr double kSlackS = 1e-9;  // row times are sums of 0.1 s steps
+  double sum = 0.0;
+  int n = 0;
+  for (const monitor::TimeSeriesRow& row : run.series) {
+    if (row.t_s > t_s - window_s + kSlackS && row.t_s <= t_s + kSlackS && std::isfinite(row.d_nb_m)) {
+      sum += row.d_nb_m;
+      ++n;
+    }
+  }
+  return n > 0 ? sum / n : monitor::kNaN;
 }
 
 }  // namespace swa::batch

@@ -29,4 +29,8 @@ struct LoopOptions {
 
 RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& options = {});
 
+// d_NB "at" time t_s with the summary's end-of-run definition: the mean over the metrics rows in (t_s - window, t_s].
+// NaN when no row there has one.
+double meanNeighbourDistanceAt(const RunResult& run, double t_s, double window_s = 5.0);
+
 }  // namespace swa::batch

@@ -158,7 +158,7 @@ Options:
                             DIR (create them with deploy/security/make-credentials.sh DIR N); sets SWA_SECURITY_DIR
   -h, --help                this text
 
-Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 10 % of r, no collision, one
+Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 5 % of r, no collision, one
 group), 1 FAIL, 3 INCOMPLETE (interrupted, timed out, or a process failed); 2 bad arguments or scenario, or a
 missing executable (nothing started).
 )";

@@ -31,4 +31,13 @@ struct Stats {
 // Ten seeds by default (the issue's minimum), two in parallel on this two-core machine.
 inline Stats runSeeds(const sim::Scenario& s, int seeds = 10) { return Stats{batch::runSeeds(s, seeds, 2, nullptr)}; }
 
+// The neighbourhood rules before issue #10, spelled out (the defaults are Gabriel + weighted fit + bias removal).
+// `more` is appended.
+inline std::vector<std::string> kNearest(int k, const std::vector<std::string>& more = {}) {
+  std::vector<std::string> sets = {"agent.formation.neighbourhood=k_nearest", "agent.formation.k=" + std::to_string(k),
+                                   "agent.formation.far_neighbour_weight=1", "agent.focal.bias_window_s=0"};
+  sets.insert(sets.end(), more.begin(), more.end());
+  return sets;
+}
+
 }  // namespace swa::batch::testing

@@ -1,4 +1,5 @@
-// DESIGN §5 / issue #3: SWA holds the formation after GNSS is lost, standalone UAVs drift apart.
+// DESIGN §5 / issues #3 and #10: SWA holds the formation after GNSS is lost, standalone UAVs drift apart. The
+// targets of the neighbourhood rules over every swarm size are in test_formation_rules.cpp.
 
 #include <gtest/gtest.h>
 
@@ -7,6 +8,7 @@
 namespace swa::batch {
 namespace {
 
+using testing::kNearest;
 using testing::runSeeds;
 using testing::shipped;
 using testing::Stats;
@@ -22,33 +24,25 @@ void expectCohesive(const Stats& s, double tolerance_fraction, const char* what)
   for (const RunResult& r : s.runs) EXPECT_EQ(r.rejected_inputs, 0u) << "seed " << r.seed;
 }
 
-TEST(ClosedLoopCohesion, FourUavsHoldFormationWithin10Percent) {
-  // GIVEN 4 UAVs with k = 2 (the shipped dropout_4), GNSS lost at 10 s
+TEST(ClosedLoopCohesion, FourUavsHoldFormationWithin3Percent) {
+  // GIVEN 4 UAVs (the shipped dropout_4), GNSS lost at 10 s
   // WHEN 10 seeds of 120 s run
   const Stats s = runSeeds(shipped("dropout_4"));
-  // THEN d_NB at the end is within 10 % of r, no collision, drift <= 0.08 m/s
-  expectCohesive(s, 0.10, "N = 4");
+  // THEN d_NB at the end is within 3 % of r, no collision, drift <= 0.08 m/s
+  expectCohesive(s, 0.03, "N = 4");
 }
 
-TEST(ClosedLoopCohesion, FourUavsWithThreeNeighboursSettleShort) {
-  // GIVEN 4 UAVs with k = 3: every UAV fits all three others, and four points in a plane cannot all be r apart
-  const Stats s = runSeeds(shipped("dropout_4", {"agent.k=3"}));
-  // THEN the formation is cohesive but settles short of r (measured 8.55 m = 0.855 r): within 15 %, not 10 %
-  expectCohesive(s, 0.15, "N = 4, k = 3");
-  EXPECT_LT(s.mean("mean_neighbor_distance_m"), 0.9 * kR);
+TEST(ClosedLoopCohesion, EightUavsHoldFormationWithin3Percent) {
+  expectCohesive(runSeeds(shipped("dropout_8")), 0.03, "N = 8");
 }
 
-TEST(ClosedLoopCohesion, EightUavsHoldFormationWithin10Percent) {
-  expectCohesive(runSeeds(shipped("dropout_8")), 0.10, "N = 8");
-}
-
-TEST(ClosedLoopCohesion, SixteenUavsHoldFormationWithin10Percent) {
-  expectCohesive(runSeeds(shipped("swarm_16")), 0.10, "N = 16");
+TEST(ClosedLoopCohesion, SixteenUavsHoldFormationWithin3Percent) {
+  expectCohesive(runSeeds(shipped("swarm_16")), 0.03, "N = 16");
 }
 
 TEST(ClosedLoopCohesion, AnonymousDetectionsWithClutterStayCohesive) {
   // GIVEN LiDAR-like anonymous detections with 0.4 false positives per scan (5 % of 8 detections)
-  expectCohesive(runSeeds(shipped("anonymous_8")), 0.10, "anonymous + clutter");
+  expectCohesive(runSeeds(shipped("anonymous_8")), 0.03, "anonymous + clutter");
 }
 
 TEST(ClosedLoopBaseline, StandaloneUavsDriftApart) {
@@ -62,8 +56,9 @@ TEST(ClosedLoopBaseline, StandaloneDisplacementIsAtLeastThreeTimesSwa) {
   // GIVEN the same seeds with and without SWA
   const Stats swa = runSeeds(shipped("dropout_8"));
   const Stats standalone = runSeeds(shipped("dropout_8", {"agent.mode=standalone"}));
-  // THEN each standalone UAV moves >= 3x as far as a SWA UAV after GNSS loss. Measured: 22.1 m vs 7.34 m = 3.01x,
-  // a thin margin: SWA's own drift (0.061 m/s) sits where DESIGN §5's k = 3 reference does (0.065 m/s).
+  // THEN each standalone UAV moves >= 3x as far as a SWA UAV after GNSS loss (measured 22.0 m vs 3.55 m, 6.2x; it
+  // was 3.0x with the k = 3 rule before issue #10). The standalone baseline is the paper's dead reckoning: the
+  // IMU-bias removal feeds the floating-frame filter only.
   EXPECT_GE(standalone.mean("uav_displacement_m"), 3.0 * swa.mean("uav_displacement_m"));
 }
 
@@ -77,9 +72,10 @@ TEST(ClosedLoopScaling, DriftFallsAsTheSwarmGrows) {
 }
 
 TEST(ClosedLoopFit, PapersAlgebraicFitCollapsesTheFormation) {
-  // GIVEN k = 3 with the paper's algebraic (Kasa) circle fit: with c free, r cancels out of the fit
+  // GIVEN the paper's literal method: k = 3 nearest with the algebraic (Kasa) circle fit, where with c free r
+  // cancels out of the fit, and no bias removal
   // WHEN 8 UAVs fly
-  const Stats s = runSeeds(shipped("dropout_8", {"agent.circle_fit=algebraic"}));
+  const Stats s = runSeeds(shipped("dropout_8", kNearest(3, {"agent.circle_fit=algebraic"})));
   // THEN they collapse onto each other, which is why fixed_radius is the default
   EXPECT_LT(s.mean("mean_neighbor_distance_m"), 0.3 * kR);
   EXPECT_GT(s.mean("collisions"), 0.0);
@@ -90,7 +86,7 @@ TEST(ClosedLoopAnchored, OneUavKeepingGnssStopsTheSwarmDrifting) {
   const Stats s = runSeeds(shipped("anchored_8"));
   // THEN the centroid's net drift is <= 0.01 m/s and the formation still holds
   EXPECT_LE(s.mean("drift_velocity_mps"), 0.01);
-  expectCohesive(s, 0.10, "anchored");
+  expectCohesive(s, 0.03, "anchored");
 }
 
 TEST(ClosedLoopConsistency, FocalAneesInsideTheChi2BandOnTheDefaultScenario) {
@@ -102,6 +98,9 @@ TEST(ClosedLoopConsistency, FocalAneesInsideTheChi2BandOnTheDefaultScenario) {
     EXPECT_GE(r.summary.anees_position, r.summary.anees_band_low);
     EXPECT_LE(r.summary.anees_position, r.summary.anees_band_high);
   }
+  // AND at least 80 % of the steps are inside the band, averaged over the seeds (issue #10; R_c and Q_f were tuned
+  // on seeds 101-120, these are 1-10; measured ANEES 2.33, 86 % of steps). Before: 3.4 with 60 %.
+  EXPECT_GE(s.mean("anees_position_in_band"), 0.80);
 }
 
 }  // namespace

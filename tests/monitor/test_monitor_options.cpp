@@ -35,7 +35,7 @@ TEST(MonitorOptions, DefaultsWithoutArguments) {
   EXPECT_FALSE(o.domain.has_value());
   EXPECT_TRUE(o.restarts_path.empty());
   EXPECT_DOUBLE_EQ(o.timeout_s, 0.0);
-  EXPECT_DOUBLE_EQ(o.tolerance, 0.10);
+  EXPECT_DOUBLE_EQ(o.tolerance, 0.05);  // issue #10: d_NB within ±5 % of r
   EXPECT_FALSE(o.tolerance_given);
   EXPECT_FALSE(o.quiet);
   EXPECT_FALSE(o.combineMode());

@@ -53,6 +53,22 @@ TEST(MonitorVerdict, BandEdgesAreInclusive) {
   EXPECT_EQ(judge(in).outcome, Outcome::kPass);
 }
 
+TEST(MonitorVerdict, DefaultBandIsFivePercentOfR) {
+  // GIVEN the default tolerance (issue #10 tightened it from 10 %: the Gabriel rule holds d_NB within 3 %)
+  VerdictInput in = good();
+  in.tolerance = VerdictInput{}.tolerance;
+  EXPECT_DOUBLE_EQ(in.tolerance, 0.05);
+  // THEN 9.5 and 10.5 m pass, 9.4 and 10.6 m (which the old band passed) fail
+  for (double d : {9.5, 10.5}) {
+    in.summary.mean_neighbor_distance_m = d;
+    EXPECT_EQ(judge(in).outcome, Outcome::kPass) << d;
+  }
+  for (double d : {9.4, 10.6}) {
+    in.summary.mean_neighbor_distance_m = d;
+    EXPECT_EQ(judge(in).outcome, Outcome::kFail) << d;
+  }
+}
+
 TEST(MonitorVerdict, EachFailureIsNamed) {
   VerdictInput in = good();
   in.summary.mean_neighbor_distance_m = 12.0;

@@ -181,7 +181,8 @@ TEST(ReportHtml, ComparisonPlotsHoldEveryRunAndTheirReferences) {
   EXPECT_EQ(plots[3].name, "nees_position");
   EXPECT_EQ(plots[4].name, "trajectories_swa");
   EXPECT_EQ(plots[5].name, "trajectories_standalone");
-  // AND d_NB shows both runs on one plot, in their palette colours, with the band r ± 10 % and the GNSS loss line
+  // AND d_NB shows both runs on one plot, in their palette colours, with the band r ± 5 % (the default PASS band)
+  // and the GNSS loss line
   const PlotSpec& d_nb = plots[0].spec;
   ASSERT_EQ(d_nb.series.size(), 2U);
   EXPECT_EQ(d_nb.series[0].label, "swa");
@@ -189,8 +190,8 @@ TEST(ReportHtml, ComparisonPlotsHoldEveryRunAndTheirReferences) {
   EXPECT_EQ(d_nb.series[0].colour, paletteColour(0));
   EXPECT_EQ(d_nb.series[1].colour, paletteColour(1));
   ASSERT_EQ(d_nb.bands.size(), 1U);
-  EXPECT_DOUBLE_EQ(d_nb.bands[0].low, 9.0);
-  EXPECT_DOUBLE_EQ(d_nb.bands[0].high, 11.0);
+  EXPECT_DOUBLE_EQ(d_nb.bands[0].low, 9.5);
+  EXPECT_DOUBLE_EQ(d_nb.bands[0].high, 10.5);
   bool loss_line = false;
   for (const PlotLine& l : d_nb.lines) loss_line |= l.orientation == LineOrientation::kVertical && l.value == 5.0;
   EXPECT_TRUE(loss_line);
@@ -213,11 +214,11 @@ TEST(ReportHtml, DnbBandIsDrawnWhereTheAxisPutsIt) {
   const ReportNotes notes = makeNotes();
   const std::string html = renderReportHtml(runs, notes);
   const PlotLayout l = layoutPlot(reportPlots(runs, notes)[0].spec);
-  // WHEN the d_NB figure is inspected THEN its band rect runs from y(11 m) to y(9 m)
+  // WHEN the d_NB figure is inspected THEN its band rect runs from y(10.5 m) to y(9.5 m)
   const std::vector<std::string> bands = elements(figure(html, "d_nb"), "rect", "band");
   ASSERT_EQ(bands.size(), 1U);
-  EXPECT_NEAR(num(bands[0], "y"), l.yToPx(11.0), 0.01);
-  EXPECT_NEAR(num(bands[0], "height"), l.yToPx(9.0) - l.yToPx(11.0), 0.01);
+  EXPECT_NEAR(num(bands[0], "y"), l.yToPx(10.5), 0.01);
+  EXPECT_NEAR(num(bands[0], "height"), l.yToPx(9.5) - l.yToPx(10.5), 0.01);
   // AND the min separation figure draws its collision line at y(1.5 m)
   const PlotLayout ls = layoutPlot(reportPlots(runs, notes)[2].spec);
   bool found = false;

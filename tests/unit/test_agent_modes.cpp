@@ -76,23 +76,34 @@ TEST(AgentFrameJump, NewCloserNeighbourShiftsTheEstimateWithoutDisturbingVelocit
 }
 
 TEST(AgentFrameJump, NeighboursReplacedWholesaleReinitialiseThePosition) {
-  // GIVEN a settled agent
-  FocalWorld world(6, ringAround(Vec2::Zero(), {90, 210, 330}), Vec2(0.5, 0.5), FocalWorld::Options{});
-  Loop loop(AgentConfig{}, world);
-  loop.run(2000);
-  // WHEN its three neighbours vanish and three different ones (new IDs) appear at once
-  loop.world.neighbours = ringAround(Vec2(3.0, 0.0), {0, 120, 240});
-  // (the FocalWorld gives IDs by index, so renumber by adding three dummies far out of sensing range first)
-  loop.world.neighbours.insert(loop.world.neighbours.begin(), {Vec2(1e3, 0), Vec2(1e3, 50), Vec2(1e3, 100)});
-  loop.run(50);
-  // THEN, once the new tracks are confirmed, the old set cannot be evaluated and the position is re-initialised
-  const Diagnostics& d = loop.agent.diagnostics();
-  EXPECT_EQ(d.frame_resets, 1u);
-  EXPECT_EQ(d.neighbour_count, 3);
-  EXPECT_LT((loop.agent.focal().position() + d.frame_centre_m).norm(), 0.5);
-  // AND the agent then converges to the new frame origin
-  loop.run(1000);
-  EXPECT_LT((loop.run(3000) - Vec2(3.0, 0.0)).norm(), 0.3);
+  // Over 8 seeds: one seed's 30 s mean position wanders ~0.3 m with the gusts, which is the size of the effect of
+  // any tuning change, so the convergence is judged against the 3 m move the jump asks for.
+  Vec2 error_sum = Vec2::Zero();
+  for (std::uint64_t seed = 6; seed < 14; ++seed) {
+    SCOPED_TRACE(seed);
+    // GIVEN a settled agent
+    FocalWorld world(seed, ringAround(Vec2::Zero(), {90, 210, 330}), Vec2(0.5, 0.5), FocalWorld::Options{});
+    Loop loop(AgentConfig{}, world);
+    loop.run(2000);
+    // WHEN its three neighbours vanish and three different ones (new IDs) appear at once, centred 3 m away
+    loop.world.neighbours = ringAround(Vec2(3.0, 0.0), {0, 120, 240});
+    // (the FocalWorld gives IDs by index, so renumber by adding three dummies far out of sensing range first)
+    loop.world.neighbours.insert(loop.world.neighbours.begin(), {Vec2(1e3, 0), Vec2(1e3, 50), Vec2(1e3, 100)});
+    loop.run(50);
+    // THEN, once the new tracks are confirmed, the old set cannot be evaluated and the position is re-initialised
+    const Diagnostics& d = loop.agent.diagnostics();
+    EXPECT_EQ(d.frame_resets, 1u);
+    EXPECT_EQ(d.neighbour_count, 3);
+    EXPECT_LT((loop.agent.focal().position() + d.frame_centre_m).norm(), 0.5);
+    // AND the agent then flies to the new frame origin: each seed's mean position within 1 m of it (the old origin
+    // is 3 m away) ...
+    loop.run(1000);
+    const Vec2 error = loop.run(3000) - Vec2(3.0, 0.0);
+    EXPECT_LT(error.norm(), 1.0);
+    error_sum += error;
+  }
+  // ... and without a systematic offset: the mean error over the seeds is within 0.2 m (measured 0.09 m)
+  EXPECT_LT((error_sum / 8.0).norm(), 0.2);
 }
 
 TEST(AgentModes, StandaloneHoldsTakeOffPointOnGnssThenDeadReckons) {

@@ -181,6 +181,11 @@ TEST(AgentConfigDefaults, GivenADefaultConfig_ThenItHoldsTableI) {
   EXPECT_DOUBLE_EQ(c.formation.radius_m, 10.0);
   EXPECT_EQ(c.formation.k, 3);
   EXPECT_EQ(c.formation.circle_fit, CircleFit::kFixedRadius);
+  // DESIGN §3.2-§3.4 rules measured to beat the paper's: Gabriel neighbours, weighted fit, IMU-bias removal
+  EXPECT_EQ(c.formation.neighbourhood, NeighbourhoodRule::kGabriel);
+  EXPECT_DOUBLE_EQ(c.formation.far_neighbour_weight, 0.2);
+  EXPECT_DOUBLE_EQ(c.formation.max_edge_factor, 1.5);
+  EXPECT_DOUBLE_EQ(c.focal.bias_window_s, 30.0);
   EXPECT_DOUBLE_EQ(c.focal.tau_s, 2.8);
   EXPECT_DOUBLE_EQ(c.control.k_p, 0.5);
   EXPECT_DOUBLE_EQ(c.control.k_v, 0.63);
@@ -189,11 +194,11 @@ TEST(AgentConfigDefaults, GivenADefaultConfig_ThenItHoldsTableI) {
   EXPECT_DOUBLE_EQ(c.surroundings.q_acc_m2ps4, 1e-1);
   EXPECT_DOUBLE_EQ(c.surroundings.r_det_m2, 0.1);
   // Q_f and R_c are the ANEES-tuned values (Table I's are conservative, see config.h and test_focal_consistency)
-  EXPECT_DOUBLE_EQ(c.focal.q_pos_m2, 1e-3);
+  EXPECT_DOUBLE_EQ(c.focal.q_pos_m2, 1.5e-4);
   EXPECT_DOUBLE_EQ(c.focal.q_vel_m2ps2, 1.7e-4);
   EXPECT_DOUBLE_EQ(c.focal.q_acc_m2ps4, 0.1);
   EXPECT_DOUBLE_EQ(c.focal.q_scale, 1.0);
-  EXPECT_DOUBLE_EQ(c.focal.r_pos_m2, 0.03);
+  EXPECT_DOUBLE_EQ(c.focal.r_pos_m2, 0.1);
   EXPECT_DOUBLE_EQ(c.focal.r_acc_m2ps4, 2.25);
   EXPECT_DOUBLE_EQ(c.focal.q_c_mps2, 6.35);
   // AND they satisfy the declared bounds and cross-field constraints
@@ -206,6 +211,8 @@ TEST(AgentConfigDefaults, GivenTheEnums_ThenToStringGivesTheYamlSpelling) {
   EXPECT_EQ(toString(Mode::kAnchored), "anchored");
   EXPECT_EQ(toString(CircleFit::kFixedRadius), "fixed_radius");
   EXPECT_EQ(toString(CircleFit::kAlgebraic), "algebraic");
+  EXPECT_EQ(toString(NeighbourhoodRule::kGabriel), "gabriel");
+  EXPECT_EQ(toString(NeighbourhoodRule::kKNearest), "k_nearest");
 }
 
 TEST(AgentConfigParse, GivenAnEmptyOrCommentOnlyText_WhenParsed_ThenAllDefaults) {
@@ -427,7 +434,7 @@ TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEvery
   std::ifstream file(path);
   const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
-  EXPECT_EQ(keysOf(text).size(), 40u);
+  EXPECT_EQ(keysOf(text).size(), 41u);
 }
 
 TEST(AgentConfigOverride, GivenSetArguments_WhenApplied_ThenTheyOverrideTheFileValues) {
@@ -508,7 +515,7 @@ TEST(AgentConfigYaml, GivenAConfigWithEveryFieldChanged_WhenDumpedAndParsed_Then
 
 TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
   const std::string yaml = toYaml(AgentConfig{});
-  EXPECT_EQ(keysOf(yaml).size(), 40u);
+  EXPECT_EQ(keysOf(yaml).size(), 41u);
   EXPECT_TRUE(contains(yaml, "k_p: 0.5")) << yaml;
   EXPECT_TRUE(contains(yaml, "# 1/s")) << yaml;
   expectSameConfig(parseAgentConfig(yaml), AgentConfig{});

@@ -36,7 +36,13 @@ TEST(Controller, SingleAgentWithFixedNeighboursConvergesToItsFrameOriginWithinSa
   for (double deg : {100.0, 220.0, 340.0}) group.push_back(origin + 10.0 * Vec2(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)));
   FocalWorld::Options opt;
   FocalWorld world(11, group, origin + Vec2(20.0, -15.0), opt);
-  Agent agent{AgentConfig{}};
+  // All three define the frame (k nearest, unweighted): the controller is under test, not the neighbourhood rule.
+  // (Gabriel would keep only the nearest of the group seen from outside it, and the UAV would join at r from that
+  // one, a valid formation slot, but not the circle centre this test checks against.)
+  AgentConfig cfg;
+  cfg.formation.neighbourhood = NeighbourhoodRule::kKNearest;
+  cfg.formation.far_neighbour_weight = 1.0;
+  Agent agent{cfg};
   const double dt = 0.01;
   Vec2 u = Vec2::Zero();
   double max_cmd = 0.0, saturated_steps = 0;

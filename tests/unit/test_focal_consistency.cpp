@@ -8,6 +8,7 @@
 #include "swa/agent/chi2.h"
 #include "swa/agent/focal_estimator.h"
 #include "swa/agent/frame_fit.h"
+#include "swa/agent/imu_bias.h"
 #include "swa/agent/neighbourhood.h"
 #include "swa/agent/track_bank.h"
 
@@ -20,10 +21,15 @@ struct AneesSeries {
   std::vector<double> position, velocity;  // per time step, averaged over the runs
 };
 
-// The estimation chain of one agent (bank -> neighbours -> frame -> focal filter), driven by a trajectory-tracking
-// command instead of the formation controller, as in the paper's tuning experiment: the focal UAV flies a figure
-// of eight relative to a hovering group of three, so its estimate is exercised while it manoeuvres.
-AneesSeries runMonteCarlo(const AgentConfig& cfg, int runs, double duration_s, double warmup_s) {
+// The estimation chain of one agent (bank -> neighbours -> frame -> focal filter, IMU-bias removal on the tilt
+// acceleration), driven by a trajectory-tracking command instead of the formation controller, as in the paper's
+// tuning experiment: the focal UAV flies a figure of eight relative to a hovering group of three, so its estimate is
+// exercised while it manoeuvres. The frame is always fitted on all three (k nearest, k = 3): the chain has no
+// handling of neighbour-set changes (Agent::updateFrame has), and Gabriel's rule would drop the far one of the group
+// whenever the UAV comes close to another. The three sit on one r-circle, so the fit weights do not move the frame.
+AneesSeries runMonteCarlo(AgentConfig cfg, int runs, double duration_s, double warmup_s) {
+  cfg.formation.neighbourhood = NeighbourhoodRule::kKNearest;
+  cfg.formation.k = 3;
   const double dt = 0.01;
   const int steps = static_cast<int>(duration_s / dt);
   const int first = static_cast<int>(warmup_s / dt);
@@ -39,6 +45,7 @@ AneesSeries runMonteCarlo(const AgentConfig& cfg, int runs, double duration_s, d
     FocalWorld world(1000 + static_cast<std::uint64_t>(run), group, Vec2(1.0, -1.0), FocalWorld::Options{});
     TrackBank bank(cfg.surroundings);
     FocalEstimator focal(cfg.focal);
+    ImuBiasRemover bias(cfg.focal.bias_window_s, cfg.focal.bias_freeze_speed_mps, cfg.focal.bias_freeze_hold_s);
     std::vector<StableDetection> stable;
     Vec2 u = Vec2::Zero();
     const double phase = 0.7 * run;
@@ -60,6 +67,7 @@ AneesSeries runMonteCarlo(const AgentConfig& cfg, int runs, double duration_s, d
         if (fit.valid) {
           if (!focal.initialized()) {
             focal.initialize(t, -fit.centre, R_pos);
+            bias.reset();
           } else {
             focal.predictTo(t, u);
             focal.correctPosition(-fit.centre, R_pos);
@@ -67,7 +75,8 @@ AneesSeries runMonteCarlo(const AgentConfig& cfg, int runs, double duration_s, d
         }
       }
       const ImuSample imu = world.imu(t);
-      const Vec2 acc = cfg.focal.q_c_mps2 * (rotation(imu.heading_rad) * Vec2(imu.pitch_rad, imu.roll_rad));
+      const Vec2 acc_body = bias.correct(cfg.focal.q_c_mps2 * Vec2(imu.pitch_rad, imu.roll_rad), t, u);
+      const Vec2 acc = rotation(imu.heading_rad) * acc_body;
       focal.predictTo(t, u);
       focal.correctAcceleration(acc, R_acc);
 

@@ -14,9 +14,10 @@ namespace {
 constexpr StampNs kImuNs = 10'000'000;  // 100 Hz
 constexpr double kWindowS = 30.0;
 constexpr double kFreezeMps = 0.5;
+constexpr double kHoldS = 5.0;
 
 struct Feed {
-  ImuBiasRemover remover{kWindowS, kFreezeMps};
+  ImuBiasRemover remover{kWindowS, kFreezeMps, kHoldS};
   std::mt19937_64 rng{42};
   std::normal_distribution<double> noise{0.0, 1.5};  // the simulator's IMU noise (sqrt of R_a)
   StampNs t = 0;
@@ -49,7 +50,7 @@ TEST(ImuBias, ConvergesOnAConstantBiasUnderNoise) {
 
 TEST(ImuBias, NoiseFreeBiasIsLearntWithinTheFirstWindow) {
   // GIVEN a noise-free constant bias
-  ImuBiasRemover r(kWindowS, kFreezeMps);
+  ImuBiasRemover r(kWindowS, kFreezeMps, kHoldS);
   const Vec2 bias(0.2, -0.1);
   StampNs t = 0;
   Vec2 out = Vec2::Zero();
@@ -63,7 +64,7 @@ TEST(ImuBias, NoiseFreeBiasIsLearntWithinTheFirstWindow) {
   EXPECT_LT((r.bias() - bias).norm() / bias.norm(), 0.001);
 }
 
-TEST(ImuBias, FrozenWhileCommandedFasterThanTheThreshold) {
+TEST(ImuBias, FrozenWhileCommandedFasterThanTheThresholdAndForTheHoldAfter) {
   // GIVEN a remover that has learnt a bias over 60 s of hover
   Feed f;
   const Vec2 bias(0.1, 0.05);
@@ -75,11 +76,16 @@ TEST(ImuBias, FrozenWhileCommandedFasterThanTheThreshold) {
   EXPECT_TRUE(f.remover.frozen());
   EXPECT_EQ(f.remover.bias(), learnt);
   EXPECT_NEAR(f.remover.averagedSeconds(), 60.0 - 0.01, 1e-9);
-  // WHEN the same manoeuvre is commanded at 0.4 m/s (below the threshold)
-  f.run(20.0, bias, Vec2(0.0, 0.4), Vec2(0.8, 0.0));
-  // THEN the mean absorbs part of the acceleration: the zero-mean prior is broken, which is why freezing exists
+  // WHEN it then brakes at a slow command (0.3 m/s) for 4.9 s, within the 5 s hold
+  f.run(4.9, bias, Vec2(0.0, 0.3), Vec2(-0.8, 0.0));
+  // THEN the mean is still frozen: braking is part of the manoeuvre
+  EXPECT_TRUE(f.remover.frozen());
+  EXPECT_EQ(f.remover.bias(), learnt);
+  // WHEN the slow command goes on past the hold with the acceleration still there
+  f.run(20.0, bias, Vec2(0.0, 0.3), Vec2(-0.8, 0.0));
+  // THEN the mean absorbs part of it: the zero-mean prior is broken, which is why freezing exists
   EXPECT_FALSE(f.remover.frozen());
-  EXPECT_GT(f.remover.bias().x() - learnt.x(), 0.3);
+  EXPECT_LT(f.remover.bias().x() - learnt.x(), -0.3);
 }
 
 TEST(ImuBias, ResetForgetsTheMean) {
@@ -98,14 +104,14 @@ TEST(ImuBias, ResetForgetsTheMean) {
 }
 
 TEST(ImuBias, WindowZeroIsOff) {
-  ImuBiasRemover r(0.0, kFreezeMps);
+  ImuBiasRemover r(0.0, kFreezeMps, kHoldS);
   EXPECT_FALSE(r.enabled());
   for (int k = 1; k <= 100; ++k) EXPECT_EQ(r.correct(Vec2(0.4, -0.2), k * kImuNs, Vec2::Zero()), Vec2(0.4, -0.2));
   EXPECT_EQ(r.bias(), Vec2::Zero());
 }
 
 TEST(ImuBias, RepeatedOrOlderStampsOnlySubtract) {
-  ImuBiasRemover r(kWindowS, kFreezeMps);
+  ImuBiasRemover r(kWindowS, kFreezeMps, kHoldS);
   for (int k = 1; k <= 500; ++k) r.correct(Vec2(1.0, 0.0), k * kImuNs, Vec2::Zero());
   const Vec2 before = r.bias();
   // WHEN a sample repeats the last stamp, or is older

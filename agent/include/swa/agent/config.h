@@ -31,7 +31,7 @@ struct FormationConfig {
   // Gabriel (DESIGN §3.2): in a triangular lattice it selects exactly the lattice edges, so every distance can be r
   // at once. k nearest with k = 3 squeezes the formation to ~0.93 r (a second-shell UAV at sqrt(3) r is pulled to r);
   // k = 2 keeps the spacing but lets the swarm split.
-  NeighbourhoodRule neighbourhood = NeighbourhoodRule::kKNearest;
+  NeighbourhoodRule neighbourhood = NeighbourhoodRule::kGabriel;
   int k = 3;                       // k_nearest only: neighbours used for the floating frame
   double sensing_range_m = 40.0;   // tracks farther than this are not neighbours
   // Gabriel only: a neighbour other than the nearest must be closer than this times r. A UAV hidden by the field of
@@ -41,29 +41,35 @@ struct FormationConfig {
   CircleFit circle_fit = CircleFit::kFixedRadius;  // the paper's algebraic fit collapses with k = 3 (DESIGN §3)
   // Fixed-radius fit: weight of every neighbour beyond the two nearest (they weigh 1). With 3-6 equidistant
   // neighbours the unweighted fit reads d_NB ~4 % short (DESIGN §3.3); 1 = unweighted.
-  double far_neighbour_weight = 1.0;
+  double far_neighbour_weight = 0.2;
 };
 
 struct FocalConfig {
   double tau_s = 2.8;
   // Q_f per `q_ref_dt_s`, scaled by `q_scale`. Table I gives diag(5e-2, 5e-1, 5) and R_c = 0.02; with those the
   // filter is badly conservative (velocity ANEES ~0.02 for n_x = 2 in the §IV-C scenario). The defaults are tuned
-  // by the ANEES Monte Carlo in tests/unit/test_focal_consistency.cpp against the simulator model of DESIGN §4.
-  double q_pos_m2 = 1e-3;
+  // against the simulator model of DESIGN §4 by two ANEES Monte Carlos that must both hold: the single agent of
+  // tests/unit/test_focal_consistency.cpp and the closed loop of the default scenario
+  // (tests/closedloop/test_formation_rules.cpp; tuned on seeds 101-120, asserted on 1-10).
+  double q_pos_m2 = 1.5e-4;
   double q_vel_m2ps2 = 1.7e-4;
   double q_acc_m2ps4 = 0.1;
   double q_scale = 1.0;
   double q_ref_dt_s = 0.01;
-  double r_pos_m2 = 0.03;          // R_c (Table I: 0.02; the frame fit on bank-smoothed tracks is noisier)
+  // R_c (Table I: 0.02). The frame fit on bank-smoothed tracks is noisier and its error is correlated in time;
+  // with 0.03 the closed-loop position ANEES was 4.6 (Gabriel) with 40 % of steps in the chi-square band.
+  double r_pos_m2 = 0.1;
   double r_acc_m2ps4 = 2.25;       // R_a
   double q_c_mps2 = 6.35;          // tilt (rad) -> lateral acceleration
   double frame_timeout_s = 2.0;    // without a frame for this long the agent stops trusting dead reckoning
   // IMU-bias removal (DESIGN §3.4): the tilt-derived acceleration minus its running mean over this window. Assumes
   // a hovering UAV's true acceleration averages to zero over the window (its velocity stays bounded), so the mean is
   // the bias. 0 turns it off (the paper's filter).
-  double bias_window_s = 0.0;
-  // The mean is frozen while the command is faster than this: a manoeuvring UAV's acceleration is not zero-mean.
+  double bias_window_s = 30.0;
+  // The mean is frozen while the command is faster than this, and for bias_freeze_hold_s after: a manoeuvring UAV's
+  // acceleration is not zero-mean, least of all where it turns round at low speed.
   double bias_freeze_speed_mps = 0.5;
+  double bias_freeze_hold_s = 5.0;
 };
 
 struct ControlConfig {

@@ -4,7 +4,8 @@
 //   b <- b + (a - b) dt / min(T_b, max(1 s, t)),   t = time averaged since the last reset.
 // It rests on one prior: a hovering UAV's true acceleration averages to zero over T_b (its velocity stays bounded),
 // so the mean of what the IMU reports is its bias. That prior is false while the UAV manoeuvres, so the mean is
-// frozen (still subtracted, no longer updated) while the command in force is faster than `freeze_speed_mps`.
+// frozen (still subtracted, no longer updated) while the command in force is faster than `freeze_speed_mps` and for
+// `freeze_hold_s` after: a manoeuvre's slow phases (turning round, braking) carry its largest accelerations.
 // Works in the body frame, where the bias of a tilt sensor is constant even if the heading turns.
 //
 // Why not a bias state in the filter: an 8-state filter did nothing with the paper's Q_f and made drift worse with a
@@ -18,7 +19,7 @@ namespace swa::agent {
 class ImuBiasRemover {
  public:
   // window_s = 0 turns the remover off: correct() returns its input.
-  ImuBiasRemover(double window_s, double freeze_speed_mps);
+  ImuBiasRemover(double window_s, double freeze_speed_mps, double freeze_hold_s);
 
   bool enabled() const { return window_s_ > 0.0; }
   // Forgets the mean: the next sample starts a new average (the focal filter restarted).
@@ -34,6 +35,9 @@ class ImuBiasRemover {
  private:
   double window_s_;
   double freeze_speed_mps_;
+  double freeze_hold_s_;
+  StampNs last_fast_ns_ = 0;
+  bool seen_fast_ = false;
   Vec2 bias_ = Vec2::Zero();
   double averaged_s_ = 0.0;  // t: time over which the mean has been updated since the reset
   StampNs last_ns_ = 0;

@@ -1,0 +1,155 @@
+// Formation-quality study (issue #10): the closed loop over seeds for every swarm size in a range, one row per size
+// and neighbourhood rule, the metrics of DESIGN §5 side by side. A table-printing program, not a test: the
+// closed-loop tests assert the targets on fewer seeds (tests/closedloop/test_formation_rules.cpp).
+//
+//   study_formation [--seeds 20] [--jobs 2] [--sizes 3-16] [--duration 600] [--rules gabriel,k3]
+//                   [--scenario FILE] [--set key=value]...
+//
+// Rules (each spelled out, so the table does not change meaning with the defaults): gabriel = Gabriel + weighted fit
+// (0.2) + IMU-bias removal (30 s); gabriel_nobias = the same without bias removal; k3 / k2 = k nearest with the
+// unweighted fixed-radius fit and no bias removal (k3 was the default before issue #10). Other parameters keep the
+// defaults of the scenario file and the agent.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "batch_runner.h"
+#include "swa/sim/scenario_io.h"
+
+namespace {
+
+using swa::batch::RunResult;
+
+const std::map<std::string, std::vector<std::string>> kRules = {
+    {"gabriel",
+     {"agent.formation.neighbourhood=gabriel", "agent.formation.far_neighbour_weight=0.2",
+      "agent.focal.bias_window_s=30"}},
+    {"gabriel_nobias",
+     {"agent.formation.neighbourhood=gabriel", "agent.formation.far_neighbour_weight=0.2",
+      "agent.focal.bias_window_s=0"}},
+    {"k3",
+     {"agent.formation.neighbourhood=k_nearest", "agent.formation.k=3", "agent.formation.far_neighbour_weight=1",
+      "agent.focal.bias_window_s=0"}},
+    {"k2",
+     {"agent.formation.neighbourhood=k_nearest", "agent.formation.k=2", "agent.formation.far_neighbour_weight=1",
+      "agent.focal.bias_window_s=0"}},
+};
+
+struct Options {
+  int seeds = 20;
+  int jobs = 2;
+  int n_from = 3, n_to = 16;
+  double duration_s = 600.0;
+  std::vector<std::string> rules = {"gabriel", "k3"};
+  std::string scenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_8.yaml";
+  std::vector<std::string> sets;
+};
+
+[[noreturn]] void usage(const char* why) {
+  std::fprintf(stderr, "study_formation: %s\nusage: study_formation [--seeds N] [--jobs J] [--sizes A-B] "
+                       "[--duration S] [--rules r1,r2] [--scenario FILE] [--set key=value]...\nrules:", why);
+  for (const auto& [name, sets] : kRules) std::fprintf(stderr, " %s", name.c_str());
+  std::fprintf(stderr, "\n");
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help") usage("formation quality over swarm sizes and rules");
+    if (i + 1 >= argc) usage(("missing value after " + a).c_str());
+    const std::string v = argv[++i];
+    if (a == "--seeds") {
+      o.seeds = std::atoi(v.c_str());
+    } else if (a == "--jobs") {
+      o.jobs = std::atoi(v.c_str());
+    } else if (a == "--duration") {
+      o.duration_s = std::atof(v.c_str());
+    } else if (a == "--sizes") {
+      if (std::sscanf(v.c_str(), "%d-%d", &o.n_from, &o.n_to) != 2) o.n_to = o.n_from = std::atoi(v.c_str());
+    } else if (a == "--rules") {
+      o.rules.clear();
+      for (std::size_t s = 0, e; s <= v.size(); s = e + 1) {
+        e = std::min(v.find(',', s), v.size());
+        o.rules.push_back(v.substr(s, e - s));
+      }
+    } else if (a == "--scenario") {
+      o.scenario = v;
+    } else if (a == "--set") {
+      o.sets.push_back(v);
+    } else {
+      usage(("unknown option " + a).c_str());
+    }
+  }
+  for (const std::string& r : o.rules)
+    if (kRules.count(r) == 0) usage(("unknown rule " + r).c_str());
+  if (o.seeds < 1 || o.jobs < 1 || o.n_from < 2 || o.n_to < o.n_from || !(o.duration_s > 120.0))
+    usage("need seeds >= 1, jobs >= 1, sizes >= 2, duration > 120 s");
+  return o;
+}
+
+struct Column {
+  double sum = 0.0, sq = 0.0;
+  int n = 0;
+  void add(double v) {
+    if (!std::isfinite(v)) return;
+    sum += v;
+    sq += v * v;
+    ++n;
+  }
+  double mean() const { return n > 0 ? sum / n : std::numeric_limits<double>::quiet_NaN(); }
+  double stdev() const { return n > 1 ? std::sqrt(std::max(0.0, (sq - sum * sum / n) / (n - 1))) : 0.0; }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  std::printf("study_formation: %s, %d seeds, %.0f s, GNSS lost as in the scenario; extra:", o.scenario.c_str(),
+              o.seeds, o.duration_s);
+  for (const std::string& s : o.sets) std::printf(" %s", s.c_str());
+  std::printf("\n\n| N | rule | d_NB 120 s | d_NB end | edge end | runs split | collisions (runs) | worst min sep | "
+              "drift, 60 s windows | centroid disp. | ANEES pos (in band) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (int n = o.n_from; n <= o.n_to; ++n) {
+    for (const std::string& rule : o.rules) {
+      std::vector<std::string> sets = {"uav_count=" + std::to_string(n), "duration_s=" + std::to_string(o.duration_s)};
+      sets.insert(sets.end(), o.sets.begin(), o.sets.end());
+      const std::vector<std::string>& r = kRules.at(rule);
+      sets.insert(sets.end(), r.begin(), r.end());
+      const swa::sim::Scenario scenario = swa::sim::loadScenario(o.scenario, sets);
+      const std::vector<RunResult> runs = swa::batch::runSeeds(scenario, o.seeds, o.jobs, nullptr);
+      Column d120, dend, edge, drift, disp, anees, in_band;
+      int split = 0, collided = 0;
+      std::uint64_t collisions = 0;
+      double worst = std::numeric_limits<double>::infinity();
+      for (const RunResult& run : runs) {
+        const auto& s = run.summary;
+        d120.add(swa::batch::meanNeighbourDistanceAt(run, 120.0));
+        dend.add(s.mean_neighbor_distance_m);
+        edge.add(s.edge_length_m);
+        drift.add(s.drift_velocity_windows_mps);
+        disp.add(s.centroid_displacement_m);
+        anees.add(s.anees_position);
+        in_band.add(s.anees_position_in_band);
+        split += s.groups > 1 ? 1 : 0;
+        collisions += s.collisions;
+        collided += s.collisions > 0 ? 1 : 0;
+        worst = std::min(worst, s.min_separation_m);
+      }
+      std::printf("| %d | %s | %.2f ± %.2f | %.2f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | %.1f | %.2f (%.0f %%) |\n",
+                  n, rule.c_str(), d120.mean(), d120.stdev(), dend.mean(), dend.stdev(), edge.mean(), split,
+                  o.seeds, static_cast<unsigned long long>(collisions), collided, worst, drift.mean(), disp.mean(),
+                  anees.mean(), 100.0 * in_band.mean());
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
