@@ -27,7 +27,7 @@ DIR/<mode>/seed_<S>.csv (time series, one row per 100 ms) and DIR/<mode>/seed_<S
 collisions, failsafe).
 
   --scenario FILE   scenario YAML (see deploy/scenarios/)
-  --set key=value   override any scenario key, e.g. --set uav_count=16 --set agent.k=2 (repeatable)
+  --set key=value   override any scenario key, e.g. --set uav_count=16 --set imu.bias_std=0.15 (repeatable)
   --seeds N         number of seeds, starting at the scenario's `seed` (default 1)
   --jobs J          seeds run in parallel (default 1; this machine has 2 cores)
   --out DIR         output directory (default out/batch)

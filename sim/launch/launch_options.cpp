@@ -136,7 +136,7 @@ side. Without it the run's files are in DIR itself.
 
 Options:
   --scenario FILE           scenario YAML (see deploy/scenarios/, swa_sim --parameters)
-  --set key=value           override a scenario key, e.g. --set duration_s=60 --set agent.k=2 (repeatable)
+  --set key=value           override a scenario key, e.g. --set duration_s=60 --set uav_count=12 (repeatable)
   --out DIR                 output directory (default out/launch)
   --compare MODE            standalone | swa | anchored: also run the baseline in that mode (same seed)
   --domain D                DDS domain id 0..232 (default: $SWA_DOMAIN, else 0); use distinct domains for

@@ -104,7 +104,7 @@ At the end it publishes EVENT_SCENARIO_END and exits 0.
 
 Options:
   --scenario FILE           scenario YAML (see deploy/scenarios/, swa_sim --parameters)
-  --set key=value           override a scenario key, e.g. --set duration_s=20 --set agent.k=2 (repeatable)
+  --set key=value           override a scenario key, e.g. --set duration_s=20 --set mps.fov_deg=240 (repeatable)
   --domain D                DDS domain id 0..232 (default: $SWA_DOMAIN, else 0)
   --agent-timeout-s T       lockstep: wall seconds to wait for an agent's answer (default 2)
   --startup-timeout-s T     wall seconds to wait for discovery of every agent (default 60)

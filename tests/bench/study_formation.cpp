@@ -6,7 +6,8 @@
 //                   [--scenario FILE] [--set key=value]...
 //
 // Rules (each spelled out, so the table does not change meaning with the defaults): gabriel = Gabriel + weighted fit
-// (0.2) + IMU-bias removal (30 s); gabriel_nobias = the same without bias removal; k3 / k2 = k nearest with the
+// (0.2) + IMU-bias removal (30 s); gabriel_nobias = the same without bias removal; gabriel_nocap = without the
+// edge-length cap (Gabriel's test alone); k3 / k2 = k nearest with the
 // unweighted fixed-radius fit and no bias removal (k3 was the default before issue #10). Other parameters keep the
 // defaults of the scenario file and the agent.
 
@@ -33,6 +34,9 @@ const std::map<std::string, std::vector<std::string>> kRules = {
     {"gabriel_nobias",
      {"agent.formation.neighbourhood=gabriel", "agent.formation.far_neighbour_weight=0.2",
       "agent.focal.bias_window_s=0"}},
+    {"gabriel_nocap",
+     {"agent.formation.neighbourhood=gabriel", "agent.formation.far_neighbour_weight=0.2",
+      "agent.focal.bias_window_s=30", "agent.formation.max_edge_factor=100"}},
     {"k3",
      {"agent.formation.neighbourhood=k_nearest", "agent.formation.k=3", "agent.formation.far_neighbour_weight=1",
       "agent.focal.bias_window_s=0"}},
