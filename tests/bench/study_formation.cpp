@@ -124,10 +124,11 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n = o.n_from; n <= o.n_to; ++n) {
     for (const std::string& rule : o.rules) {
+      // The rule's settings first, so a --set of the user's wins over them.
       std::vector<std::string> sets = {"uav_count=" + std::to_string(n), "duration_s=" + std::to_string(o.duration_s)};
-      sets.insert(sets.end(), o.sets.begin(), o.sets.end());
       const std::vector<std::string>& r = kRules.at(rule);
       sets.insert(sets.end(), r.begin(), r.end());
+      sets.insert(sets.end(), o.sets.begin(), o.sets.end());
       const swa::sim::Scenario scenario = swa::sim::loadScenario(o.scenario, sets);
       const std::vector<RunResult> runs = swa::batch::runSeeds(scenario, o.seeds, o.jobs, nullptr);
       Column d120, dend, edge, drift, disp, anees, in_band;
