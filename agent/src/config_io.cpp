@@ -166,7 +166,8 @@ const std::vector<Param>& parameters() {
       number("focal.bias_freeze_speed_mps", &A::focal, &Fo::bias_freeze_speed_mps, "m/s", openClosed(0, 50),
              "the IMU-bias mean is frozen while the commanded speed exceeds this"),
       number("focal.bias_freeze_hold_s", &A::focal, &Fo::bias_freeze_hold_s, "s", closed(0, 600),
-             "... and for this long after the commanded speed last exceeded it"),
+             "the IMU-bias mean stays frozen this long after the commanded speed last exceeded "
+             "bias_freeze_speed_mps"),
 
       number("control.k_p", &A::control, &C::k_p, "1/s", closed(0, 20), "position feedback gain"),
       number("control.k_v", &A::control, &C::k_v, "", closed(0, 10), "velocity feedback gain"),
