@@ -27,6 +27,9 @@ constexpr agent::StampNs kStatePeriodNs = 100'000'000;  // 10 Hz
 // samples together) and is waiting or has ended, so the pending state is published.
 constexpr auto kQuietPeriod = std::chrono::milliseconds(100);
 constexpr auto kQuietPoll = std::chrono::milliseconds(20);
+// The state is published at least this often once the agent has run, and says STAGE_NO_INPUT after this long
+// without a valid IMU sample.
+constexpr auto kHeartbeat = std::chrono::seconds(1);
 // Secure start without a reader of our commands: re-create the participant after 5 s, then 10, 20, 40, 60 s.
 constexpr auto kReconnectFirst = std::chrono::seconds(5);
 constexpr auto kReconnectMax = std::chrono::seconds(60);
@@ -50,7 +53,9 @@ AgentNode::AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id
       agent_(config),
       order_(kHoldLimitNs),
       started_(std::chrono::steady_clock::now()),
-      last_input_(started_) {
+      last_input_(started_),
+      last_state_(started_),
+      last_fresh_imu_(started_) {
   connect();
 }
 
@@ -62,9 +67,9 @@ void AgentNode::connect() {
   state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), "swa_state_writer");
   participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), "swa_sensor_reader",
                                            [this](msg::Imu&& m) { onInput(Input(std::move(m))); });
-  participant_->reader<msg::DetectionsPubSubType>(dds::topics::detections(id_), "swa_sensor_reader",
+  participant_->reader<msg::DetectionsPubSubType>(dds::topics::detections(id_), "swa_detections_gnss_reader",
                                                   [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
-  participant_->reader<msg::GnssFixPubSubType>(dds::topics::gnss(id_), "swa_sensor_reader",
+  participant_->reader<msg::GnssFixPubSubType>(dds::topics::gnss(id_), "swa_detections_gnss_reader",
                                                [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
 }
 
@@ -88,6 +93,7 @@ int AgentNode::run() {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();
     }
+    heartbeat();
     if (handshakeStalled()) {
       ++reconnects_;
       std::fprintf(stderr,
@@ -119,8 +125,14 @@ void AgentNode::onInput(Input&& in) {
       in);
   const std::lock_guard<std::mutex> lock(mutex_);
   last_input_ = std::chrono::steady_clock::now();
+  const auto* det = std::get_if<msg::Detections>(&in);
+  if (det != nullptr && det->detections().size() > agent_.config().limits.max_detections) {
+    handle(in);  // rejected whole by the core (and counted) before it is stored anywhere
+    return;
+  }
   order_.push(stream, stamp, std::move(in));
   while (auto entry = order_.pop()) handle(entry->payload);
+  stats_.forced_releases = order_.forcedReleases();
 }
 
 void AgentNode::handle(Input& in) {
@@ -146,7 +158,20 @@ void AgentNode::handle(Input& in) {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();
     }
+    const std::uint64_t resyncs = agent_.diagnostics().stamp_resyncs;
     const agent::VelocityCommand cmd = agent_.onImu(dds::fromMsg(*imu));
+    if (agent_.diagnostics().stamp_resyncs != resyncs) {
+      std::fprintf(stderr,
+                   "swa_agent %d: the IMU clock restarted (now at stamp %lld ns): estimates restarted on the new "
+                   "timeline\n",
+                   id_, static_cast<long long>(stamp));
+    }
+    // A rejected sample (counted in the state's reject counters) is not answered: a flood of bad samples must not
+    // turn into a flood of commands. A UAV whose valid samples stop gets no commands, and its autopilot's own
+    // offboard timeout takes over (the simulator's failsafe: hover after failsafe_timeout_s).
+    if (!cmd.fresh) return;
+    had_fresh_imu_ = true;
+    last_fresh_imu_ = std::chrono::steady_clock::now();
     msg::VelocitySetpoint out = dds::toMsg(cmd, self, ++cmd_seq_, imu->header().seq());
     if (cmd_writer_.write(out)) {
       ++stats_.commands;
@@ -172,9 +197,21 @@ void AgentNode::handle(Input& in) {
   }
 }
 
-void AgentNode::publishState(agent::StampNs stamp_ns) {
+void AgentNode::heartbeat() {
+  // Before the first valid IMU sample the agent has nothing to say that its absence does not say (and in lockstep
+  // a state stamped before the run would take the place of step 0's).
+  if (!had_fresh_imu_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_state_ < kHeartbeat) return;
+  // The stamp of the newest processed sample: the monitor's joiner drops it as a duplicate of that step's state.
+  publishState(agent_.diagnostics().stamp_ns, now - last_fresh_imu_ >= kHeartbeat);
+}
+
+void AgentNode::publishState(agent::StampNs stamp_ns, bool no_input) {
   msg::AgentState state = toStateMsg(agent_.diagnostics(), static_cast<std::uint32_t>(id_), ++state_seq_);
   state.header().stamp_ns(stamp_ns);  // the step whose samples have all been processed (also if one was rejected)
+  if (no_input) state.stage(msg::STAGE_NO_INPUT);
+  last_state_ = std::chrono::steady_clock::now();
   if (state_writer_.write(state)) {
     ++stats_.states;
   } else {

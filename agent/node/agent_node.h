@@ -6,7 +6,10 @@
 // (BENCHMARKS.md). Fast DDS delivers one transport port's samples on one receive thread; a mutex serialises the
 // processing should samples come in through two (e.g. shared memory and UDP). Per sample the agent:
 //   - one VelocitySetpoint per IMU sample, echoing the IMU's stamp and seq (the lockstep simulator waits for it);
-//   - an AgentState whenever the sample time crosses a 100 ms boundary (10 Hz of sim time, deterministic).
+//   - an AgentState whenever the sample time crosses a 100 ms boundary (10 Hz of sim time, deterministic);
+//   - and, once the agent has run, an AgentState at least every second of wall time whatever the inputs do: the
+//     state never goes silent while the process lives, and says STAGE_NO_INPUT after a second without a valid IMU
+//     sample (a rejected sample gets no command, so the autopilot's offboard timeout is what holds the UAV).
 
 #include <chrono>
 #include <cstdint>
@@ -33,6 +36,7 @@ struct AgentNodeStats {
   std::uint64_t commands = 0, states = 0;
   std::uint64_t foreign = 0;         // samples naming another UAV (a wiring error upstream): dropped
   std::uint64_t write_failures = 0;
+  std::uint64_t forced_releases = 0;  // samples the stamp orderer let through early (sample_order.h)
 };
 
 class AgentNode {
@@ -54,7 +58,8 @@ class AgentNode {
   bool handshakeStalled();    // secure start that never matched a reader of our commands: reconnect?
   void onInput(Input&& in);  // listener threads
   void handle(Input& in);
-  void publishState(agent::StampNs stamp_ns);
+  void publishState(agent::StampNs stamp_ns, bool no_input = false);
+  void heartbeat();  // run(): the wall-clock state
 
   const int id_;
   const int domain_id_;
@@ -73,6 +78,9 @@ class AgentNode {
 
   std::mutex mutex_;  // guards everything above; held while a sample is processed
   std::chrono::steady_clock::time_point last_input_;
+  std::chrono::steady_clock::time_point last_state_;      // wall time of the last published state
+  std::chrono::steady_clock::time_point last_fresh_imu_;  // wall time of the last accepted IMU sample
+  bool had_fresh_imu_ = false;
   std::chrono::steady_clock::time_point connected_at_;
   int reconnects_ = 0;
 

@@ -58,6 +58,8 @@ msg::AgentState toStateMsg(const agent::Diagnostics& d, std::uint32_t uav_id, st
   m.rejected_bad_id(d.rejected.bad_id);
   m.rejected_implausible(d.rejected.implausible);
   m.rejected_no_heading(d.rejected.no_heading);
+  m.rejected_future_stamp(d.rejected.future);
+  m.stamp_resyncs(d.stamp_resyncs);
   m.commands_sent(d.commands);
   return m;
 }

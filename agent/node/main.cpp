@@ -46,8 +46,9 @@ int agentMain(int argc, char** argv) {
   const std::string profiles = dds::resolveProfilesFile();
   try {
     AgentNode node(options.id, config, domain, profiles);
-    std::fprintf(stderr, "swa_agent %d: up on domain %d (mode %s, k = %d), profiles %s\n", options.id, domain,
-                 agent::toString(config.mode).c_str(), config.formation.k, profiles.c_str());
+    std::fprintf(stderr, "swa_agent %d: up on domain %d (mode %s, neighbourhood %s), profiles %s\n", options.id,
+                 domain, agent::toString(config.mode).c_str(), agent::toString(config.formation.neighbourhood).c_str(),
+                 profiles.c_str());
     dds::acceptShutdownSignals();
     const int status = node.run();
     const AgentNodeStats& s = node.stats();
@@ -65,6 +66,16 @@ int agentMain(int argc, char** argv) {
                                                                                                         : "initializing";
     std::fprintf(stderr, "swa_agent %d: final stage %s, %d confirmed track(s), frame fitted on %d neighbour(s)\n",
                  options.id, stage, d.confirmed_tracks, d.neighbour_count);
+    const agent::RejectCounters& r = d.rejected;
+    std::fprintf(stderr,
+                 "swa_agent %d: inputs rejected: %llu non-finite, %llu out of order, %llu future stamp, %llu oversize, "
+                 "%llu bad id, %llu implausible, %llu before a heading; %llu stamp resync(s), %llu forced release(s) "
+                 "from the stamp orderer\n",
+                 options.id, static_cast<unsigned long long>(r.nonfinite),
+                 static_cast<unsigned long long>(r.out_of_order), static_cast<unsigned long long>(r.future),
+                 static_cast<unsigned long long>(r.oversize), static_cast<unsigned long long>(r.bad_id),
+                 static_cast<unsigned long long>(r.implausible), static_cast<unsigned long long>(r.no_heading),
+                 static_cast<unsigned long long>(d.stamp_resyncs), static_cast<unsigned long long>(s.forced_releases));
     return status;
   } catch (const dds::DdsError& e) {
     std::fprintf(stderr, "swa_agent %d: DDS error: %s\n", options.id, e.what());

@@ -8,7 +8,12 @@
 // with stamp s waits until an IMU sample with stamp >= s has arrived (so the IMU of the same step, which the command
 // answers, is processed first), or, if the IMU stream has gone quiet, until a later detection / GNSS sample is more
 // than `hold_limit_ns` newer (so a sensor setup without IMU still gets its detections, late but in order).
-// Pure: no clock, no DDS, no threads; the node's worker owns one instance.
+//
+// Bounded whatever the input: a detection / GNSS sample stamped more than `hold_limit_ns` ahead of the newest IMU
+// stamp is not held at all (it leaves at once, and the agent core judges its stamp), and beyond `max_held` entries
+// the first one in order leaves at once whatever its stamp. Both count in forcedReleases(); neither happens with a
+// sane producer.
+// Pure: no clock, no DDS, no threads; the node owns one instance.
 
 #include <algorithm>
 #include <cstdint>
@@ -33,9 +38,19 @@ class StampOrderer {
     Payload payload;
   };
 
-  explicit StampOrderer(agent::StampNs hold_limit_ns) : hold_limit_ns_(hold_limit_ns) {}
+  static constexpr std::size_t kDefaultMaxHeld = 256;  // 2.5 s of one UAV's three streams at 100 + 10 + 10 Hz
+
+  explicit StampOrderer(agent::StampNs hold_limit_ns, std::size_t max_held = kDefaultMaxHeld)
+      : hold_limit_ns_(hold_limit_ns), max_held_(std::max<std::size_t>(max_held, 1)) {}
 
   void push(Stream stream, agent::StampNs stamp_ns, Payload payload) {
+    Entry entry{stamp_ns, stream, next_arrival_++, std::move(payload)};
+    if (stream != Stream::kImu && farAhead(entry)) {
+      // Not held and not counted as the stream's newest: it would keep every later sample waiting for nothing.
+      bypass_.push_back(std::move(entry));
+      ++forced_releases_;
+      return;
+    }
     if (stream == Stream::kImu) {
       imu_watermark_ns_ = have_imu_ ? std::max(imu_watermark_ns_, stamp_ns) : stamp_ns;
       have_imu_ = true;
@@ -43,20 +58,30 @@ class StampOrderer {
       newest_other_ns_ = have_other_ ? std::max(newest_other_ns_, stamp_ns) : stamp_ns;
       have_other_ = true;
     }
-    heap_.push_back(Entry{stamp_ns, stream, next_arrival_++, std::move(payload)});
+    heap_.push_back(std::move(entry));
     std::push_heap(heap_.begin(), heap_.end(), Later{});
   }
 
   // The next entry that may be processed now, or nullopt if none may (yet).
   std::optional<Entry> pop() {
-    if (heap_.empty() || !releasable(heap_.front())) return std::nullopt;
+    if (!bypass_.empty()) {
+      Entry e = std::move(bypass_.back());
+      bypass_.pop_back();
+      return e;
+    }
+    if (heap_.empty()) return std::nullopt;
+    if (!releasable(heap_.front())) {
+      if (heap_.size() <= max_held_) return std::nullopt;
+      ++forced_releases_;
+    }
     std::pop_heap(heap_.begin(), heap_.end(), Later{});
     Entry e = std::move(heap_.back());
     heap_.pop_back();
     return e;
   }
 
-  std::size_t size() const { return heap_.size(); }
+  std::size_t size() const { return heap_.size() + bypass_.size(); }
+  std::uint64_t forcedReleases() const { return forced_releases_; }
 
  private:
   struct Later {
@@ -75,8 +100,19 @@ class StampOrderer {
     return newer_by > hold_limit_ns_;
   }
 
+  // Ahead of the newest IMU stamp by more than the hold limit: no IMU sample will release it in time.
+  bool farAhead(const Entry& e) const {
+    if (!have_imu_) return false;
+    agent::StampNs ahead = 0;
+    if (__builtin_sub_overflow(e.stamp_ns, imu_watermark_ns_, &ahead)) return e.stamp_ns > imu_watermark_ns_;
+    return ahead > hold_limit_ns_;
+  }
+
   agent::StampNs hold_limit_ns_;
+  std::size_t max_held_;
+  std::uint64_t forced_releases_ = 0;
   std::vector<Entry> heap_;
+  std::vector<Entry> bypass_;  // at most one entry between a push and the pops that follow it
   std::uint64_t next_arrival_ = 0;
   bool have_imu_ = false;
   agent::StampNs imu_watermark_ns_ = 0;

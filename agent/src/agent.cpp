@@ -10,8 +10,8 @@ namespace {
 
 // An anchored UAV adds its absolute hold only while its GNSS is fresh; 1 s is ten missed 10 Hz fixes.
 constexpr double kGnssFreshS = 1.0;
-// A rejected IMU sample is answered with the previous command, but only this many times in a row (0.1 s at 100 Hz).
-constexpr int kMaxHeldCommands = 10;
+
+StampNs toNs(double seconds) { return static_cast<StampNs>(std::llround(seconds * 1e9)); }
 
 }  // namespace
 
@@ -22,39 +22,77 @@ Agent::Agent(const AgentConfig& config)
       absolute_(config.focal),
       imu_bias_(config.focal.bias_window_s, config.focal.bias_freeze_speed_mps, config.focal.bias_freeze_hold_s),
       r_acc_(Mat2::Identity() * config.focal.r_acc_m2ps4),
-      r_pos_(Mat2::Identity() * config.focal.r_pos_m2) {
+      r_pos_(Mat2::Identity() * config.focal.r_pos_m2),
+      imu_clock_(toNs(config.limits.max_stamp_jump_s), config.limits.resync_samples),
+      det_clock_(toNs(config.limits.max_stamp_jump_s), config.limits.resync_samples),
+      gnss_clock_(toNs(config.limits.max_stamp_jump_s), config.limits.resync_samples) {
   diag_.mode = config.mode;
   stable_.reserve(config.limits.max_detections);
 }
 
-bool Agent::acceptStamp(StampNs stamp, StampNs& last, bool& seen) {
-  if (seen && stamp <= last) {
+bool Agent::acceptStamp(StreamClock& clock, StampNs stamp) {
+  switch (clock.check(stamp)) {
+    case StreamClock::Verdict::kAccept:
+      break;
+    case StreamClock::Verdict::kResync:
+      ++diag_.stamp_resyncs;
+      if (&clock == &imu_clock_) restartTimeline();
+      break;
+    case StreamClock::Verdict::kOutOfOrder:
+      ++diag_.rejected.out_of_order;
+      return false;
+    case StreamClock::Verdict::kFuture:
+      ++diag_.rejected.future;
+      return false;
+  }
+  if (&clock == &imu_clock_ || !imu_clock_.started()) return true;
+  // Detections and GNSS are applied on the IMU's timeline (the filters predict to their stamps): a stream whose
+  // clock disagrees with it by more than the window would throw the estimates into another time.
+  StampNs offset = 0;
+  const StampNs window = toNs(config_.limits.max_stamp_jump_s);
+  if (__builtin_sub_overflow(stamp, imu_clock_.last(), &offset) || offset > window) {
+    ++diag_.rejected.future;
+    return false;
+  }
+  if (offset < -window) {
     ++diag_.rejected.out_of_order;
     return false;
   }
-  last = stamp;
-  seen = true;
   return true;
+}
+
+void Agent::restartTimeline() {
+  // The IMU clock restarted (a producer reboot): every estimate refers to times of the old timeline. Start over as
+  // a new agent would, keeping the configuration, the take-off point and the counters.
+  bank_ = TrackBank(config_.surroundings);
+  focal_.reset();
+  absolute_.reset();
+  imu_bias_.reset();
+  neighbours_ = Neighbourhood{};
+  frame_valid_ = false;
+  fit_case_ = FitCase::kNone;
+  det_clock_ = StreamClock(toNs(config_.limits.max_stamp_jump_s), config_.limits.resync_samples);
+  gnss_clock_ = StreamClock(toNs(config_.limits.max_stamp_jump_s), config_.limits.resync_samples);
+  gnss_valid_ = false;
 }
 
 VelocityCommand Agent::onImu(const ImuSample& imu) {
   const bool finite = std::isfinite(imu.roll_rad) && std::isfinite(imu.pitch_rad) && std::isfinite(imu.heading_rad);
-  const double max_tilt = config_.limits.max_tilt_rad;
+  const LimitsConfig& lim = config_.limits;
   bool accepted = false;
   if (!finite) {
     ++diag_.rejected.nonfinite;
-  } else if (std::abs(imu.roll_rad) > max_tilt || std::abs(imu.pitch_rad) > max_tilt) {
+  } else if (std::abs(imu.roll_rad) > lim.max_tilt_rad || std::abs(imu.pitch_rad) > lim.max_tilt_rad ||
+             std::abs(imu.heading_rad) > lim.max_abs_heading_rad) {
     ++diag_.rejected.implausible;
   } else {
-    accepted = acceptStamp(imu.stamp_ns, last_imu_ns_, seen_imu_);
+    accepted = acceptStamp(imu_clock_, imu.stamp_ns);
   }
 
-  if (!accepted && ++consecutive_imu_rejects_ >= kMaxHeldCommands) {
-    // The last command was computed from data that is getting old and nothing usable is arriving: hover.
-    command_ = Vec2::Zero();
-  }
+  // A rejected sample changes nothing: it is answered with the previous command, marked not fresh (the node does
+  // not publish it). Whether the UAV should hover because no valid sample arrives is a question of time, which
+  // only the caller's clock can answer: a count of rejections would let a flood of bad samples ground the UAV.
   if (accepted) {
-    consecutive_imu_rejects_ = 0;
     heading_rad_ = imu.heading_rad;
     have_heading_ = true;
     // DESIGN §3.4: pitch gives body-x and roll body-y acceleration, rotated into the stable frame by heading.
@@ -73,6 +111,7 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
   cmd.answered_stamp_ns = imu.stamp_ns;
   cmd.seq = ++seq_;
   cmd.velocity_mps = command_;
+  cmd.fresh = accepted;
   ++diag_.commands;
   refreshDiagnostics(accepted ? imu.stamp_ns : diag_.stamp_ns);
   return cmd;
@@ -114,7 +153,7 @@ void Agent::onDetections(const DetectionSet& in) {
     ++diag_.rejected.no_heading;
     return;
   }
-  if (!acceptStamp(in.stamp_ns, last_det_ns_, seen_det_)) return;
+  if (!acceptStamp(det_clock_, in.stamp_ns)) return;
   convertDetections(in);
   bank_.update(in.stamp_ns, stable_);
   if (config_.mode != Mode::kStandalone) updateFrame(in.stamp_ns);
@@ -183,7 +222,7 @@ void Agent::onGnss(const GnssSample& g) {
       return;
     }
   }
-  if (!acceptStamp(g.stamp_ns, last_gnss_ns_, seen_gnss_)) return;
+  if (!acceptStamp(gnss_clock_, g.stamp_ns)) return;
   gnss_valid_ = g.valid;
   diag_.gnss_valid = g.valid;
   if (!g.valid) return;
@@ -195,7 +234,9 @@ void Agent::onGnss(const GnssSample& g) {
   if (!hold_point_set_) {
     hold_point_ = g.position_m;
     hold_point_set_ = true;
-    absolute_.initialize(g.stamp_ns, Vec2::Zero(), R);
+  }
+  if (!absolute_.initialized()) {  // the first fix, or the first after a restart of the timeline or a long gap
+    absolute_.initialize(g.stamp_ns, g.position_m - hold_point_, R);
     return;
   }
   absolute_.predictTo(g.stamp_ns, command_);

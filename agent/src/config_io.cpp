@@ -188,6 +188,13 @@ const std::vector<Param>& parameters() {
              "|roll|, |pitch| beyond this are not treated as lateral flight"),
       number("limits.max_abs_position_m", &A::limits, &L::max_abs_position_m, "m", openClosed(0, 1e9),
              "detections and GNSS fixes farther than this are corrupt"),
+      number("limits.max_abs_heading_rad", &A::limits, &L::max_abs_heading_rad, "rad", openClosed(0, 1e3),
+             "IMU headings beyond +- this are corrupt"),
+      number("limits.max_stamp_jump_s", &A::limits, &L::max_stamp_jump_s, "s", openClosed(0, 3600),
+             "a sample stamped more than this after the previous one of its stream (or this far from the IMU's "
+             "clock) is not trusted"),
+      number("limits.resync_samples", &A::limits, &L::resync_samples, "", closed(2, 100),
+             "consecutive samples of a consistent new timeline after which a stream re-synchronises to it"),
   };
   return table;
 }

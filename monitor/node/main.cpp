@@ -22,6 +22,7 @@
 #include "run_files.h"
 #include "run_report.h"
 #include "swa/dds/options.h"
+#include "swa/monitor/output_dir.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/shutdown.h"
 #include "swa/sim/scenario_io.h"
@@ -29,20 +30,6 @@
 // Fast DDS declares a global `namespace dds = eprosima::fastdds::dds;`: stay inside namespace swa so `dds::` is ours.
 namespace swa::monitor_node {
 namespace {
-
-// The output directory must be writable before anything starts: a run that cannot be recorded is not worth
-// joining. Throws std::runtime_error.
-void checkOutputDir(const std::string& dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw std::runtime_error("cannot create --out " + dir + ": " + ec.message());
-  const fs::path probe = fs::path(dir) / ".swa_monitor_write_test";
-  std::ofstream(probe) << "";
-  const bool ok = fs::exists(probe, ec);
-  fs::remove(probe, ec);
-  if (!ok) throw std::runtime_error("cannot write into --out " + dir);
-}
 
 int writeOutputs(const std::string& dir, const RunRecord& record) {
   try {
@@ -76,7 +63,7 @@ int monitorMain(int argc, char** argv) {
     if (!options.scenario_path.empty()) scenario = sim::loadScenario(options.scenario_path, options.overrides);
     config = scenario ? liveRunConfig(*scenario) : liveRunConfigWithoutScenario();
     domain = dds::resolveDomain(options.domain);
-    checkOutputDir(options.out_dir);
+    monitor::prepareOutputDir(options.out_dir);
   } catch (const agent::ConfigError& e) {
     std::fprintf(stderr, "swa_monitor: invalid scenario:\n%s\n", e.what());
     return kExitBadInput;

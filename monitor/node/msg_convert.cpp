@@ -24,6 +24,7 @@ std::optional<agent::Stage> toStage(msg::AgentStage s) {
     case msg::STAGE_INITIALIZING: return agent::Stage::kInitializing;
     case msg::STAGE_TRACKING: return agent::Stage::kTracking;
     case msg::STAGE_LOST: return agent::Stage::kLost;
+    case msg::STAGE_NO_INPUT: return agent::Stage::kLost;  // not tracking: no estimate to score
   }
   return std::nullopt;
 }

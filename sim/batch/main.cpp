@@ -11,6 +11,7 @@
 #include "batch_options.h"
 #include "batch_runner.h"
 #include "swa/agent/config_io.h"
+#include "swa/monitor/output_dir.h"
 #include "swa/sim/scenario_io.h"
 
 namespace fs = std::filesystem;
@@ -122,8 +123,9 @@ int main(int argc, char** argv) {
       return 0;
     }
     scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
+    monitor::prepareOutputDir(opt.out_dir);  // before hours of seeds, not after
   } catch (const std::exception& e) {
-    std::cerr << e.what() << "\n";
+    std::cerr << "swa_batch: " << e.what() << "\n";
     return 2;
   }
 

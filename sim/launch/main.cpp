@@ -20,6 +20,7 @@
 #include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 #include "swa/dds/shutdown.h"
+#include "swa/monitor/output_dir.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::launch {
@@ -130,6 +131,7 @@ int launchMain(int argc, char** argv) {
       for (const std::string& p : problems) all += (all.empty() ? "" : "\n") + p;
       throw std::runtime_error(all);
     }
+    monitor::prepareOutputDir(o.out_dir);  // last: a run refused for another reason writes nothing
   } catch (const agent::ConfigError& e) {
     std::fprintf(stderr, "swa_launch: invalid scenario:\n%s\n", e.what());
     return 2;

@@ -59,6 +59,13 @@ TEST(BatchCli, MalformedScenarioExitsWith2AndWritesNothing) {
   EXPECT_EQ(runBatch("--help"), 0);
 }
 
+TEST(BatchCli, UnwritableOutputExits2BeforeRunning) {
+  // GIVEN --out where nothing can be created (issue #11: every seed ran, then it failed to write, exit 1)
+  const std::string scenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml";
+  // THEN a usage error, exit 2
+  EXPECT_EQ(runBatch("--scenario " + scenario + " --set duration_s=600 --seeds 20 --out /proc/swa_nope"), 2);
+}
+
 TEST(BatchCli, ShortRunWritesSummaryAndSeries) {
   // GIVEN a 5 s run of 2 seeds with the standalone comparison
   const fs::path out = fs::temp_directory_path() / ("swa_batch_ok_" + std::to_string(::getpid()));

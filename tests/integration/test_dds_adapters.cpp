@@ -88,6 +88,40 @@ TEST(StampOrderer, ExtremeStampsDoNotOverflow) {
   EXPECT_EQ(drain(o), (std::vector<int>{1}));
 }
 
+TEST(StampOrderer, FarFutureSideSamplesAreNotHeld) {
+  // GIVEN an IMU stream at 5 s
+  Orderer o(1000 * kMs);
+  o.push(Stream::kImu, 5000 * kMs, 1);
+  drain(o);
+  // WHEN 10000 detection sets arrive stamped an hour, and INT64_MAX, ahead (the issue's +43 MB/s)
+  for (int i = 0; i < 10000; ++i) {
+    o.push(Stream::kDetections, i % 2 == 0 ? 3'600'000 * kMs : std::numeric_limits<agent::StampNs>::max(), 2);
+    EXPECT_EQ(drain(o), (std::vector<int>{2}));  // THEN each leaves at once (the core rejects its stamp)
+  }
+  EXPECT_EQ(o.size(), 0u);
+  EXPECT_EQ(o.forcedReleases(), 10000u);
+  // AND the normal order is unaffected: a set of the next step still waits for its IMU
+  o.push(Stream::kDetections, 5010 * kMs, 3);
+  EXPECT_TRUE(drain(o).empty());
+  o.push(Stream::kImu, 5010 * kMs, 4);
+  EXPECT_EQ(drain(o), (std::vector<int>{4, 3}));
+}
+
+TEST(StampOrderer, NeverHoldsMoreThanItsBound) {
+  // GIVEN no IMU and side samples that creep forward by 1 ns (never more than the hold limit apart)
+  Orderer o(1000 * kMs, 64);
+  std::size_t released = 0;
+  for (int i = 0; i < 100000; ++i) {
+    o.push(Stream::kDetections, i, i);
+    released += drain(o).size();
+    ASSERT_LE(o.size(), 64u);
+  }
+  // THEN the orderer stays at its bound and releases the oldest, in order
+  EXPECT_EQ(o.size(), 64u);
+  EXPECT_EQ(released, 100000u - 64u);
+  EXPECT_EQ(o.forcedReleases(), 100000u - 64u);
+}
+
 // ---- LockstepTracker ------------------------------------------------------------------------------------------
 
 TEST(LockstepTracker, WaitsForEveryLiveAgentWithAnImuSample) {

@@ -249,6 +249,17 @@ TEST_F(LaunchTest, DiscoveryServerTransportStaysCohesiveAndStopsTheServer) {
   expectNothingLeft();
 }
 
+TEST_F(LaunchTest, UnwritableOutputStartsNothingAndExits2) {
+  // GIVEN an output directory that cannot be created (issue #11: this ran the monitor and exited 3)
+  Child c({kLaunch, "--scenario", kScenario, "--out", "/proc/swa_nope", "--domain", std::to_string(domain_)},
+          dir_ / "launch.log");
+  // THEN it is a usage error, named, and nothing starts
+  EXPECT_EQ(c.wait(30.0), 2);
+  EXPECT_NE(readFile(dir_ / "launch.log").find("cannot create --out /proc/swa_nope"), std::string::npos)
+      << readFile(dir_ / "launch.log");
+  expectNothingLeft();
+}
+
 TEST_F(LaunchTest, BadDeploymentStartsNothing) {
   // A transport typo, and credentials that do not exist: both found before anything starts.
   Child typo(launchArgs({"--transport", "shm"}), dir_ / "typo.log");

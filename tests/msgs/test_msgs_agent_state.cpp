@@ -39,6 +39,8 @@ TEST(MsgAgentState, RoundTripPreservesEveryField)
     in.rejected_bad_id(13);
     in.rejected_implausible(14);
     in.rejected_no_heading(5'000'000'015ULL);
+    in.rejected_future_stamp(16);
+    in.stamp_resyncs(17);
     in.commands_sent(16);
 
     // WHEN it goes through serialize/deserialize
@@ -51,6 +53,8 @@ TEST(MsgAgentState, RoundTripPreservesEveryField)
     EXPECT_EQ(out->stage(), STAGE_LOST);
     EXPECT_EQ(out->neighbour_ids(), (std::vector<int32_t>{2, 5, 17}));
     EXPECT_EQ(out->rejected_no_heading(), 5'000'000'015ULL);
+    EXPECT_EQ(out->rejected_future_stamp(), 16u);
+    EXPECT_EQ(out->stamp_resyncs(), 17u);
 }
 
 // Pins a fastddsgen 2.3 property the publisher relies on knowing: sequence<int32, 64> is not

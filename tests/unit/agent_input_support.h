@@ -83,6 +83,7 @@ inline void expectCounters(const RejectCounters& got, const RejectCounters& want
   EXPECT_EQ(got.bad_id, want.bad_id) << "rejected.bad_id";
   EXPECT_EQ(got.implausible, want.implausible) << "rejected.implausible";
   EXPECT_EQ(got.no_heading, want.no_heading) << "rejected.no_heading";
+  EXPECT_EQ(got.future, want.future) << "rejected.future";
 }
 
 // ---------------------------------------------------------------------------------------------------------------

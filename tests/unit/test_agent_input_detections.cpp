@@ -212,7 +212,7 @@ TEST(AgentInputDetections, PositionAtLimitIsAcceptedButNotANeighbour) {
 }
 
 TEST(AgentInputDetections, IdOutsideRangeIsBadId) {
-  // GIVEN two anchored agents tracking on the same stream, max_target_id = 1'000'000
+  // GIVEN two anchored agents tracking on the same stream, max_target_id = 255 (the default)
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
   const int max_id = tw.config.limits.max_target_id;

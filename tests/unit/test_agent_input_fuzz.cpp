@@ -1,6 +1,6 @@
 // Fuzz at the Agent facade: seeded streams of every kind of sample with every kind of garbage, in every mode; the
 // command is always finite and within saturation and the reject counters account for exactly the bad inputs. Also:
-// accepted stamps more than INT64_MAX ns apart do not overflow. Shared helpers: agent_input_support.h.
+// stamps more than INT64_MAX ns apart re-synchronise without overflow. Shared helpers: agent_input_support.h.
 
 #include <climits>
 #include <cmath>
@@ -16,6 +16,7 @@
 
 #include "agent_input_support.h"
 #include "swa/agent/agent.h"
+#include "swa/agent/stream_clock.h"
 
 namespace swa::agent {
 namespace {
@@ -92,18 +93,49 @@ struct Verdict {
   std::uint64_t maybe = 0;
 };
 
+// The stamp rules of the spec: each stream's own clock (stream_clock.h, tested on its own in test_stream_clock.cpp),
+// detections and GNSS within the window of the IMU's clock, and a restart of the IMU's clock restarting the others.
 struct FuzzOracle {
-  bool seen[3] = {false, false, false};
-  StampNs last[3] = {0, 0, 0};
-  bool have_heading = false;
+  explicit FuzzOracle(const LimitsConfig& lim)
+      : window(static_cast<StampNs>(lim.max_stamp_jump_s * 1e9)),
+        resync(lim.resync_samples),
+        clock{fresh(), fresh(), fresh()} {}
 
-  bool acceptStamp(int stream, StampNs st) {
-    if (seen[stream] && st <= last[stream]) return false;
-    seen[stream] = true;
-    last[stream] = st;
-    return true;
+  StreamClock fresh() const { return StreamClock(window, resync); }
+
+  enum class Stamp { kOk, kOutOfOrder, kFuture };
+  Stamp judge(int stream, StampNs st) {
+    const StreamClock::Verdict v = clock[stream].check(st);
+    if (v == StreamClock::Verdict::kOutOfOrder) return Stamp::kOutOfOrder;
+    if (v == StreamClock::Verdict::kFuture) return Stamp::kFuture;
+    if (v == StreamClock::Verdict::kResync && stream == 0) {
+      clock[1] = fresh();
+      clock[2] = fresh();
+    }
+    if (stream == 0 || !clock[0].started()) return Stamp::kOk;
+    StampNs offset = 0;
+    if (__builtin_sub_overflow(st, clock[0].last(), &offset) || offset > window) return Stamp::kFuture;
+    return offset < -window ? Stamp::kOutOfOrder : Stamp::kOk;
   }
+
+  StampNs window;
+  int resync;
+  StreamClock clock[3];
+  bool have_heading = false;
 };
+
+// Counts a stamp verdict into `res`; true when the stamp is accepted.
+template <class Result>
+bool countStamp(FuzzOracle::Stamp v, Result& res) {
+  if (v == FuzzOracle::Stamp::kOk) return true;
+  ++res.bad;
+  if (v == FuzzOracle::Stamp::kFuture) {
+    ++res.generated.future;
+  } else {
+    ++res.generated.out_of_order;
+  }
+  return false;
+}
 
 // Everything a fuzz run observed; filled without gtest macros so the run can also execute in a forked child.
 struct FuzzResult {
@@ -126,7 +158,7 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
   const AgentConfig config = configFor(mode);
   Agent agent(config);
   Fuzzer fz(seed, config.limits);
-  FuzzOracle oracle;
+  FuzzOracle oracle(config.limits);
   const LimitsConfig& lim = config.limits;
   const double v_max = config.control.v_max_mps;
 
@@ -150,14 +182,13 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
       s.pitch_rad = fz.value(-0.85, 0.85, 0.05);
       s.heading_rad = fz.value(-4.0, 4.0, 0.05);
       const bool finite = std::isfinite(s.roll_rad) && std::isfinite(s.pitch_rad) && std::isfinite(s.heading_rad);
-      const bool tilt_ok = std::abs(s.roll_rad) <= lim.max_tilt_rad && std::abs(s.pitch_rad) <= lim.max_tilt_rad;
+      const bool tilt_ok = std::abs(s.roll_rad) <= lim.max_tilt_rad && std::abs(s.pitch_rad) <= lim.max_tilt_rad &&
+                           std::abs(s.heading_rad) <= lim.max_abs_heading_rad;
       if (!finite) {
         ++res.bad, ++res.generated.nonfinite;
       } else if (!tilt_ok) {
         ++res.bad, ++res.generated.implausible;
-      } else if (!oracle.acceptStamp(0, s.stamp_ns)) {
-        ++res.bad, ++res.generated.out_of_order;
-      } else {
+      } else if (countStamp(oracle.judge(0, s.stamp_ns), res)) {
         oracle.have_heading = true;
       }
       what = "IMU stamp " + std::to_string(s.stamp_ns) + " roll " + std::to_string(s.roll_rad) + " pitch " +
@@ -230,8 +261,7 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
         ++res.bad, ++res.generated.oversize;
       } else if (!oracle.have_heading) {
         ++res.bad, ++res.generated.no_heading;
-      } else if (!oracle.acceptStamp(1, set.stamp_ns)) {
-        ++res.bad, ++res.generated.out_of_order;
+      } else if (!countStamp(oracle.judge(1, set.stamp_ns), res)) {
       } else {
         res.bad += per_detection.bad;
         res.maybe += per_detection.maybe;
@@ -255,8 +285,8 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
         ++res.bad, ++res.generated.nonfinite;
       } else if (g.valid && !plausible) {
         ++res.bad, ++res.generated.implausible;
-      } else if (!oracle.acceptStamp(2, g.stamp_ns)) {
-        ++res.bad, ++res.generated.out_of_order;
+      } else {
+        countStamp(oracle.judge(2, g.stamp_ns), res);
       }
       std::ostringstream os;
       os << "GNSS valid " << g.valid << " stamp " << g.stamp_ns << " position " << g.position_m.transpose() << " std "
@@ -298,7 +328,8 @@ TEST(AgentInputFuzz, CommandsFiniteAndSaturatedAndCountersMatchInEveryMode) {
       SCOPED_TRACE("mode " + toString(mode) + " seed " + std::to_string(seed));
       constexpr int kSamples = 20'000;
       // GIVEN a seeded stream of 2e4 random IMU, detection and GNSS samples mixing valid values, NaN, +-inf, 1e300,
-      // DBL_MAX, huge and negative IDs, repeated / backward / far-jumping stamps and oversized sets
+      // DBL_MAX, huge and negative IDs, repeated / backward / far-jumping stamps (which re-synchronise the streams
+      // after a few consistent samples) and oversized sets
       // WHEN an agent consumes it (first in a child process: an agent that hangs must fail, not stall the suite)
       const std::string hang = runWithDeadline(kDeadlineS, [&] { runFuzz(mode, seed, kSamples); });
       EXPECT_EQ(hang, "") << "agent did not get through the fuzz stream";
@@ -318,7 +349,8 @@ TEST(AgentInputFuzz, CommandsFiniteAndSaturatedAndCountersMatchInEveryMode) {
       EXPECT_LE(r.rejected.total(), r.bad + r.maybe) << "more rejections than bad inputs";
       // AND every category was generated and counted
       for (auto field : {&RejectCounters::nonfinite, &RejectCounters::out_of_order, &RejectCounters::oversize,
-                         &RejectCounters::bad_id, &RejectCounters::implausible, &RejectCounters::no_heading}) {
+                         &RejectCounters::bad_id, &RejectCounters::implausible, &RejectCounters::no_heading,
+                         &RejectCounters::future}) {
         EXPECT_GT(r.generated.*field, 0u);
         EXPECT_GT(r.rejected.*field, 0u);
       }
@@ -333,10 +365,10 @@ TEST(AgentInputFuzz, CommandsFiniteAndSaturatedAndCountersMatchInEveryMode) {
 // ===============================================================================================================
 // Stamps far apart
 
-// secondsBetween(from, to) computes `to - from` in int64: two accepted stamps more than INT64_MAX ns apart (e.g. a
-// first sample stamped near INT64_MIN, then one near INT64_MAX) overflow, which is undefined behaviour (UBSan aborts
-// here) and in practice wraps to a tiny negative interval. The agent must treat them as what they are: far apart.
-TEST(AgentInputStamps, StampsMoreThanInt64MaxApartDoNotOverflow) {
+// A producer whose clock jumps from near INT64_MIN to near INT64_MAX (a restart, or garbage): the jump is a future
+// stamp, a consistent new timeline re-synchronises after limits.resync_samples samples, and nothing on the way
+// overflows (secondsBetween of stamps more than INT64_MAX ns apart saturates; UBSan would abort on a wrap).
+TEST(AgentInputStamps, StampsMoreThanInt64MaxApartResynchroniseWithoutOverflow) {
   for (const Mode mode : {Mode::kSwa, Mode::kStandalone, Mode::kAnchored}) {
     SCOPED_TRACE("mode " + toString(mode));
     const StampNs lo = std::numeric_limits<StampNs>::min();
@@ -355,26 +387,38 @@ TEST(AgentInputStamps, StampsMoreThanInt64MaxApartDoNotOverflow) {
     g.stamp_ns = lo + 2;
     agent.onGnss(g);
     ASSERT_NE(agent.bank().find(1), nullptr);
-    // WHEN the next samples are stamped near INT64_MAX (strictly later: nothing is out of order), the detection set
-    // seeing only neighbour 2
-    imu.stamp_ns = hi - 10;
-    const VelocityCommand c = agent.onImu(imu);
+    // WHEN the IMU goes on near INT64_MAX, 10 ms apart
+    const int k = agent.config().limits.resync_samples;
+    std::vector<VelocityCommand> commands;
+    for (int i = k - 1; i >= 0; --i) {
+      imu.stamp_ns = hi - i * 10'000'000;
+      commands.push_back(agent.onImu(imu));
+    }
+    // THEN the first k - 1 are future stamps (answered with the previous command, not fresh), the k-th
+    // re-synchronises the IMU clock and restarts the estimates: neighbour 1's track is gone
+    RejectCounters want;
+    want.future = static_cast<std::uint64_t>(k - 1);
+    expectCounters(agent.diagnostics().rejected, want);
+    EXPECT_EQ(agent.diagnostics().stamp_resyncs, 1u);
+    for (int i = 0; i < k - 1; ++i) EXPECT_FALSE(commands[static_cast<std::size_t>(i)].fresh);
+    EXPECT_TRUE(commands.back().fresh);
+    EXPECT_EQ(agent.bank().find(1), nullptr);
+    // AND detections and GNSS on the new timeline are accepted at once, old-timeline ones are out of order
     set.stamp_ns = hi - 5;
     set.detections = {det(2, 0.0, 5.0)};
     agent.onDetections(set);
     g.stamp_ns = hi - 3;
     agent.onGnss(g);
-    imu.stamp_ns = hi;
-    const VelocityCommand d = agent.onImu(imu);
-    // THEN nothing is rejected, commands are finite and saturated, and neighbour 1, silent for ~585 years, is gone
-    expectCounters(agent.diagnostics().rejected, RejectCounters{});
-    for (const VelocityCommand& v : {c, d}) {
+    set.stamp_ns = lo + 10;
+    agent.onDetections(set);
+    want.out_of_order = 1;
+    expectCounters(agent.diagnostics().rejected, want);
+    EXPECT_NE(agent.bank().find(2), nullptr);
+    for (const VelocityCommand& v : commands) {
       EXPECT_TRUE(allFinite(v.velocity_mps));
-      EXPECT_LE(v.velocity_mps.norm(), agent.config().control.v_max_mps + 1e-12);
+      EXPECT_LE(v.velocity_mps.norm(), agent.config().control.v_max_mps);
     }
     EXPECT_TRUE(finiteDiagnostics(agent.diagnostics()));
-    EXPECT_EQ(agent.bank().find(1), nullptr) << "a track last seen ~585 years ago was not pruned (interval wrapped)";
-    EXPECT_NE(agent.bank().find(2), nullptr);
   }
 }
 

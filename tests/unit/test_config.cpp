@@ -434,7 +434,7 @@ TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEvery
   std::ifstream file(path);
   const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
-  EXPECT_EQ(keysOf(text).size(), 41u);
+  EXPECT_EQ(keysOf(text).size(), 44u);
 }
 
 TEST(AgentConfigOverride, GivenSetArguments_WhenApplied_ThenTheyOverrideTheFileValues) {
@@ -515,7 +515,7 @@ TEST(AgentConfigYaml, GivenAConfigWithEveryFieldChanged_WhenDumpedAndParsed_Then
 
 TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
   const std::string yaml = toYaml(AgentConfig{});
-  EXPECT_EQ(keysOf(yaml).size(), 41u);
+  EXPECT_EQ(keysOf(yaml).size(), 44u);
   EXPECT_TRUE(contains(yaml, "k_p: 0.5")) << yaml;
   EXPECT_TRUE(contains(yaml, "# 1/s")) << yaml;
   expectSameConfig(parseAgentConfig(yaml), AgentConfig{});

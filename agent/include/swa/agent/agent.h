@@ -13,6 +13,7 @@
 #include "swa/agent/imu_bias.h"
 #include "swa/agent/neighbourhood.h"
 #include "swa/agent/samples.h"
+#include "swa/agent/stream_clock.h"
 #include "swa/agent/track_bank.h"
 
 namespace swa::agent {
@@ -22,8 +23,8 @@ class Agent {
   explicit Agent(const AgentConfig& config);
 
   // Every IMU sample, accepted or not, is answered with a command (the 100 Hz control step). A rejected sample gets
-  // the previous command again, and from the tenth rejected sample in a row a hover command: the command is always
-  // finite and within saturation.
+  // the previous command again with `fresh` false: the command is always finite and within saturation. Stamps are
+  // judged per stream (stream_clock.h): a restart of the IMU clock restarts the agent's estimates.
   VelocityCommand onImu(const ImuSample& imu);
   void onDetections(const DetectionSet& detections);
   void onGnss(const GnssSample& gnss);
@@ -36,7 +37,8 @@ class Agent {
   const ImuBiasRemover& imuBias() const { return imu_bias_; }
 
  private:
-  bool acceptStamp(StampNs stamp, StampNs& last, bool& seen);
+  bool acceptStamp(StreamClock& clock, StampNs stamp);
+  void restartTimeline();
   void convertDetections(const DetectionSet& in);
   void updateFrame(StampNs stamp);
   Vec2 computeCommand(StampNs stamp);
@@ -55,8 +57,7 @@ class Agent {
   Mat2 r_pos_;
   double heading_rad_ = 0.0;
   bool have_heading_ = false;
-  StampNs last_imu_ns_ = 0, last_det_ns_ = 0, last_gnss_ns_ = 0;
-  bool seen_imu_ = false, seen_det_ = false, seen_gnss_ = false;
+  StreamClock imu_clock_, det_clock_, gnss_clock_;
 
   Neighbourhood neighbours_;
   bool frame_valid_ = false;
@@ -70,7 +71,6 @@ class Agent {
   bool gnss_valid_ = false;
 
   Vec2 command_ = Vec2::Zero();
-  int consecutive_imu_rejects_ = 0;
   std::uint64_t seq_ = 0;
   std::vector<StableDetection> stable_;  // reused conversion buffer
 };

@@ -86,11 +86,19 @@ struct AnchorConfig {
 
 struct LimitsConfig {
   std::size_t max_detections = 64;   // a larger detection set is rejected whole
-  int max_target_id = 1'000'000;     // IDs above this are treated as corrupt
+  // IDs above this are treated as corrupt: the largest UAV id of the swarm (the simulator numbers 0..255 at most).
+  // Every accepted id can become a track, so a generous bound lets a faulty sensor create phantom neighbours.
+  int max_target_id = 255;
   // |roll|, |pitch| beyond 80 deg is not lateral flight. Not tighter: the tilt noise of R_a = 2.25 (0.24 rad std)
   // would otherwise reject ~0.1 % of genuine samples.
   double max_tilt_rad = 1.4;
   double max_abs_position_m = 1e6;   // detections / fixes farther than this are corrupt
+  double max_abs_heading_rad = 12.566370614359172;  // 4 pi: a heading is an angle, wrapped or not by much
+  // Stamps (stream_clock.h): a sample more than this after the previous one of its stream (or, for detections and
+  // GNSS, this far from the IMU's clock) is not trusted; this many consecutive samples of a consistent new timeline
+  // re-synchronise the stream (a producer that restarted its clock), and the agent restarts its estimates.
+  double max_stamp_jump_s = 1.0;
+  int resync_samples = 4;
 };
 
 struct AgentConfig {

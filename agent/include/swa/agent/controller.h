@@ -2,6 +2,8 @@
 // Formation control (paper §III-D with the sign erratum of DESIGN §3.5): v_d = -k_p p - k_v v drives the UAV to
 // the floating-frame origin. The paper's e = -x with v_d = -k e is positive feedback and diverges.
 
+#include <cmath>
+
 #include "swa/agent/config.h"
 #include "swa/agent/geometry.h"
 
@@ -11,11 +13,20 @@ inline Vec2 formationVelocity(const Vec2& position, const Vec2& velocity, const 
   return -c.k_p * position - c.k_v * velocity;
 }
 
-// Scales the vector down to |v| <= v_max keeping its direction; anything non-finite becomes a hover command.
+// Scales the vector down to |v| <= v_max keeping its direction; anything non-finite becomes a hover command. The
+// scaled vector's norm can round one step above v_max, so it is scaled again by the next smaller factor until it
+// is not (at most a few steps).
 inline Vec2 saturate(const Vec2& v, double v_max) {
   if (!isFinite(v)) return Vec2::Zero();
   const double n = v.norm();
-  return n > v_max ? Vec2(v * (v_max / n)) : v;
+  if (n <= v_max) return v;
+  double factor = v_max / n;
+  Vec2 out = v * factor;
+  while (out.norm() > v_max && factor > 0.0) {
+    factor = std::nextafter(factor, 0.0);
+    out = v * factor;
+  }
+  return out;
 }
 
 }  // namespace swa::agent

@@ -25,7 +25,10 @@ struct RejectCounters {
   std::uint64_t bad_id = 0;        // target id neither anonymous nor in [0, limits.max_target_id]
   std::uint64_t implausible = 0;   // finite but physically impossible (tilt, distance, covariance, GNSS std)
   std::uint64_t no_heading = 0;    // detections before the first IMU sample: no way to rotate them
-  std::uint64_t total() const { return nonfinite + out_of_order + oversize + bad_id + implausible + no_heading; }
+  std::uint64_t future = 0;        // stamp more than limits.max_stamp_jump_s ahead of its stream or the IMU clock
+  std::uint64_t total() const {
+    return nonfinite + out_of_order + oversize + bad_id + implausible + no_heading + future;
+  }
 };
 
 struct Diagnostics {
@@ -47,6 +50,7 @@ struct Diagnostics {
   std::uint64_t commands = 0;
   std::uint64_t frame_shifts = 0;  // neighbour set changed; estimate shifted to the new frame
   std::uint64_t frame_resets = 0;  // neighbour set changed and the old frame was gone; position re-initialised
+  std::uint64_t stamp_resyncs = 0; // an input stream's clock restarted (stream_clock.h); for the IMU the agent restarted
   bool gnss_valid = false;
 };
 

@@ -51,6 +51,7 @@ struct VelocityCommand {
   StampNs answered_stamp_ns = 0;  // the IMU sample this command answers (latency and lockstep bookkeeping)
   std::uint64_t seq = 0;
   Vec2 velocity_mps = Vec2::Zero();  // stable frame
+  bool fresh = false;  // computed from this IMU sample; false: a rejected sample, answered with the previous command
 };
 
 }  // namespace swa::agent
