@@ -17,6 +17,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "swa/agent/param_file.h"
 #include "swa/agent/param_text.h"
 #include "swa/agent/param_yaml.h"
 
@@ -443,7 +444,11 @@ std::string joinWithSource(const std::string& source, const std::vector<std::str
 // ------------------------------------------------------------------------------------------------------------
 
 ConfigError::ConfigError(std::string source, std::vector<std::string> problems)
-    : std::runtime_error(joinWithSource(source, problems)), source_(std::move(source)), problems_(std::move(problems)) {}
+    : ConfigError(Summarised{}, std::move(source), param::summariseProblems(problems)) {}
+
+ConfigError::ConfigError(Summarised, std::string source, std::vector<std::string> problems)
+    : std::runtime_error(joinWithSource(source, problems)), source_(std::move(source)),
+      problems_(std::move(problems)) {}
 
 AgentConfig parseAgentConfig(const std::string& yaml_text, const std::string& source_name) {
   std::vector<YAML::Node> documents;
@@ -457,6 +462,8 @@ AgentConfig parseAgentConfig(const std::string& yaml_text, const std::string& so
   Report report(/*show_locations=*/true);
   if (documents.size() > 1) {
     report.add("contains " + std::to_string(documents.size()) + " YAML documents; expected one");
+  } else if (documents.size() == 1 && param::countKeys(documents.front()) > param::kMaxKeys) {
+    report.add("has more than " + std::to_string(param::kMaxKeys) + " keys: not a configuration file");
   } else if (documents.size() == 1 && !documents.front().IsNull()) {
     const YAML::Node& root = documents.front();
     if (root.IsMap()) {
@@ -474,19 +481,10 @@ AgentConfig parseAgentConfig(const std::string& yaml_text, const std::string& so
 }
 
 AgentConfig loadAgentConfig(const std::string& yaml_path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status status = fs::status(yaml_path, ec);
-  if (!fs::exists(status)) throw ConfigError(yaml_path, {"configuration file does not exist"});
-  if (fs::is_directory(status)) throw ConfigError(yaml_path, {"is a directory, not a configuration file"});
-
-  std::ifstream file(yaml_path, std::ios::binary);
-  if (!file.is_open()) {
-    throw ConfigError(yaml_path, {std::string("configuration file cannot be opened: ") + std::strerror(errno)});
-  }
-  const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (file.bad()) throw ConfigError(yaml_path, {"configuration file cannot be read"});
-  return parseAgentConfig(text, yaml_path);
+  std::string problem;
+  const std::optional<std::string> text = param::readTextFile(yaml_path, "configuration", problem);
+  if (!text) throw ConfigError(yaml_path, {problem});
+  return parseAgentConfig(*text, yaml_path);
 }
 
 void applyOverride(AgentConfig& config, const std::string& dotted_key, const std::string& value) {

@@ -43,4 +43,21 @@ std::optional<std::string> readNumber(const YAML::Node& value, const std::string
   return std::nullopt;
 }
 
+std::size_t countKeys(const YAML::Node& node, std::size_t limit) {
+  std::size_t n = 0;
+  if (node.IsMap()) {
+    for (const auto& entry : node) {
+      if (++n > limit) return n;
+      n += countKeys(entry.second, limit - n);
+      if (n > limit) return n;
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) {
+      n += countKeys(item, limit - n);
+      if (n > limit) return n;
+    }
+  }
+  return n;
+}
+
 }  // namespace swa::agent::param

@@ -24,6 +24,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "swa/agent/param_file.h"
 #include "swa/agent/param_text.h"
 #include "swa/agent/param_yaml.h"
 
@@ -1073,6 +1074,9 @@ Scenario buildScenario(const std::string* yaml_text, Report report, const std::s
     if (documents.size() > 1) {
       report.add("contains " + std::to_string(documents.size()) + " YAML documents; expected one");
       file_ok = false;
+    } else if (documents.size() == 1 && param::countKeys(documents.front()) > param::kMaxKeys) {
+      report.add("has more than " + std::to_string(param::kMaxKeys) + " keys: not a scenario file");
+      file_ok = false;
     } else if (documents.size() == 1 && !documents.front().IsNull()) {
       const YAML::Node& root = documents.front();
       if (root.IsMap()) {
@@ -1110,24 +1114,11 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source,
 }
 
 Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
-  namespace fs = std::filesystem;
   Report report;
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) {
-    report.add("scenario file does not exist");
-  } else if (fs::is_directory(status)) {
-    report.add("is a directory, not a scenario file");
-  } else {
-    std::ifstream file(path, std::ios::binary);
-    if (!file.is_open()) {
-      report.add(std::string("scenario file cannot be opened: ") + std::strerror(errno));
-    } else {
-      const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-      if (!file.bad()) return buildScenario(&text, std::move(report), path, overrides);
-      report.add("scenario file cannot be read");
-    }
-  }
+  std::string problem;
+  const std::optional<std::string> text = param::readTextFile(path, "scenario", problem);
+  if (text) return buildScenario(&*text, std::move(report), path, overrides);
+  report.add(problem);
   return buildScenario(nullptr, std::move(report), path, overrides);
 }
 

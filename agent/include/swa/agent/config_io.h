@@ -29,6 +29,8 @@ namespace swa::agent {
 // what() lists them one per line, each prefixed by the source: "agent.yaml: control.k_p = -1 is out of ...".
 class ConfigError : public std::runtime_error {
  public:
+  // Repeated problems are merged, long ones cut and at most 20 listed (param_file.h): a broken 10 MB file is one
+  // screen of errors, not five million lines.
   ConfigError(std::string source, std::vector<std::string> problems);
 
   const std::string& source() const noexcept { return source_; }
@@ -36,6 +38,9 @@ class ConfigError : public std::runtime_error {
   const std::vector<std::string>& problems() const noexcept { return problems_; }
 
  private:
+  struct Summarised {};
+  ConfigError(Summarised, std::string source, std::vector<std::string> problems);
+
   std::string source_;
   std::vector<std::string> problems_;
 };

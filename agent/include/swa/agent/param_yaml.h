@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -27,5 +28,10 @@ std::string describeYamlException(const YAML::Exception& e);
 // [1, 16]"). Whether the number is valid for the parameter is the caller's check (numberProblem).
 std::optional<std::string> readNumber(const YAML::Node& value, const std::string& name, const std::string& expected,
                                       double& number);
+
+// Map keys in the document, counted up to `limit` + 1. A parameter file has about a hundred; a document with
+// thousands is not one (each unknown key costs a spelling suggestion), so the loaders refuse it up front.
+constexpr std::size_t kMaxKeys = 2000;
+std::size_t countKeys(const YAML::Node& node, std::size_t limit = kMaxKeys);
 
 }  // namespace swa::agent::param
