@@ -212,7 +212,11 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
     g.std_m(-1.0);
     gnss_.write(g);
   }
-  // ... and a flood of 20000 stale IMU samples (random stamps of the last 5 s) as fast as it can
+  // (everything so far delivered before the flood: a KEEP_LAST writer history may drop unacknowledged samples)
+  imu_.waitForAcknowledgments(5.0);
+  det_.waitForAcknowledgments(5.0);
+  gnss_.waitForAcknowledgments(5.0);
+  // ... and a flood of 20000 stale IMU samples (random old stamps) as fast as it can
   std::mt19937_64 rng(7);
   std::uniform_int_distribution<agent::StampNs> stale(-10 * kSec, -kMs);  // old: before every genuine stamp
   const auto flood_start = SteadyClock::now();
