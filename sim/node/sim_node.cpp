@@ -26,6 +26,9 @@ namespace {
 
 // Longest single wait in a loop, so a signal is noticed quickly.
 constexpr auto kPollPeriod = std::chrono::milliseconds(100);
+// A loop iteration longer than one poll plus this means the simulator itself did not run (stall_watch.h). Generous:
+// on a loaded 2-core machine a wake-up can be a few tens of milliseconds late.
+constexpr auto kStallSlack = std::chrono::milliseconds(150);
 
 msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq) {
   msg::Header h;
@@ -65,6 +68,7 @@ SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int d
       world_(scenario),
       n_(world_.uav_count()),
       lockstep_(n_),
+      stall_(kPollPeriod + kStallSlack),
       latency_(n_),
       rt_alive_(static_cast<std::size_t>(n_), true),
       rt_last_answer_(static_cast<std::size_t>(n_)),
@@ -187,9 +191,15 @@ void SimNode::runLockstep() {
     // An agent that never answered may still be matching our writers (discovery is not symmetric): it gets the
     // startup timeout, not the agent timeout, for its first answer.
     const double timeout_s = lockstep_.waitingForNewcomer() ? startup_s : options_.agent_timeout_s;
-    const auto deadline = Clock::now() + seconds(timeout_s);
+    auto deadline = Clock::now() + seconds(timeout_s);
+    stall_.restart(Clock::now());  // since the last step: the acknowledgment wait, bounded by its own deadline
     while (!lockstep_.complete() && !dds::shutdownRequested()) {
       const auto now = Clock::now();
+      const Clock::duration lost = stall_.check(now);
+      if (lost > Clock::duration::zero()) {
+        deadline += lost;  // the agents had no chance to answer while the simulator did not run
+        noteStall(lost);
+      }
       if (now >= deadline) break;
       drainLockstep(std::min<Clock::duration>(deadline - now, kPollPeriod));
     }
@@ -282,17 +292,31 @@ void SimNode::runRealtime() {
                  options_.startup_timeout_s);
   }
 
-  const auto start = Clock::now();
+  auto start = Clock::now();
   for (auto& t : rt_last_answer_) t = start;
   const auto scheduledTime = [&](agent::StampNs stamp_ns) {
     return start + seconds(sim::stampSeconds(stamp_ns) / speed);
   };
+  // A stall of the simulator itself pauses the simulated world with it (the schedule and every agent's silence
+  // move by the time lost), instead of racing through the missed steps and blaming the agents.
+  const auto absorbStall = [&](Clock::time_point now) {
+    const Clock::duration lost = stall_.check(now);
+    if (lost <= Clock::duration::zero()) return;
+    start += lost;
+    for (auto& t : rt_last_answer_) t += lost;
+    noteStall(lost);
+  };
+  stall_.restart(Clock::now());
   while (!world_.finished() && !dds::shutdownRequested()) {
-    const auto target = scheduledTime(world_.time_ns() + dt_ns);  // the next step
+    absorbStall(Clock::now());
+    auto target = scheduledTime(world_.time_ns() + dt_ns);  // the next step
     do {
       const auto now = Clock::now();
+      absorbStall(now);
+      target = scheduledTime(world_.time_ns() + dt_ns);
       drainRealtime(now < target ? std::min<Clock::duration>(target - now, kPollPeriod) : Clock::duration::zero());
     } while (Clock::now() < target && !dds::shutdownRequested());
+    absorbStall(Clock::now());
     const auto now = Clock::now();
     for (int i = 0; i < n_; ++i) {
       const auto k = static_cast<std::size_t>(i);
@@ -313,6 +337,16 @@ void SimNode::runRealtime() {
   }
   // The last step's samples are judged like every other: collect their answers until they are due.
   if (!dds::shutdownRequested()) collectLateAnswers(scheduledTime(world_.time_ns() + dt_ns));
+}
+
+void SimNode::noteStall(Clock::duration lost) {
+  ++summary_.stalls;
+  const double s = std::chrono::duration<double>(lost).count();
+  summary_.stalled_s += s;
+  std::fprintf(stderr,
+               "swa_sim: t = %.2f s: the simulator itself did not run for %.3f s: its deadlines moved by that much "
+               "(no agent is blamed for it)\n",
+               sim::stampSeconds(world_.time_ns()), s);
 }
 
 void SimNode::drainRealtime(Clock::duration wait) {
@@ -495,7 +529,8 @@ std::string SimNode::summaryJson() const {
     << ",\n  \"ignored_commands\": " << summary_.ignored_commands
     << ",\n  \"unacknowledged_sensor_steps\": " << summary_.unacknowledged_sensor_steps
     << ",\n  \"agent_dead_events\": " << summary_.agent_dead_events
-    << ",\n  \"agent_rejoined_events\": " << summary_.agent_rejoined_events << ",\n  \"dead_at_end\": [";
+    << ",\n  \"agent_rejoined_events\": " << summary_.agent_rejoined_events << ",\n  \"stalls\": " << summary_.stalls
+    << ",\n  \"stalled_s\": " << jsonReal(summary_.stalled_s) << ",\n  \"dead_at_end\": [";
   for (std::size_t k = 0; k < summary_.dead_at_end.size(); ++k) o << (k ? ", " : "") << summary_.dead_at_end[k];
   const LatencyReport& l = summary_.latency;
   o << "],\n  \"write_failures\": " << summary_.write_failures

@@ -23,6 +23,7 @@
 #include "latency_stats.h"
 #include "lockstep.h"
 #include "sim_options.h"
+#include "stall_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/sim/scenario.h"
@@ -43,6 +44,10 @@ struct SimSummary {
   std::uint64_t unacknowledged_sensor_steps = 0;  // lockstep: detections / GNSS not acknowledged in time
   std::uint64_t agent_dead_events = 0;
   std::uint64_t agent_rejoined_events = 0;
+  // Times the simulator itself did not run for longer than its loop explains (stall_watch.h), and for how long in
+  // all: its wall-clock deadlines were moved by it, nobody was declared dead for it.
+  int stalls = 0;
+  double stalled_s = 0.0;
   std::vector<int> dead_at_end;
   std::uint64_t write_failures = 0;
   // Loop latency: wall time from publishing a UAV's IMU sample to receiving the cmd_vel that answers it (its
@@ -96,6 +101,8 @@ class SimNode {
   sim::World world_;
   int n_;
   LockstepTracker lockstep_;
+  StallWatch stall_;
+  void noteStall(Clock::duration lost);  // logs and counts a stall of the simulator itself
   SimSummary summary_;
   CommandLatencyTracker latency_;
   LogHistogram step_lag_;

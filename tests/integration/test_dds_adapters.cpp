@@ -14,6 +14,7 @@
 #include "agent_state_msg.h"
 #include "lockstep.h"
 #include "sample_order.h"
+#include "stall_watch.h"
 #include "sim_options.h"
 #include "swa/dds/convert.h"
 #include "swa/dds/options.h"
@@ -120,6 +121,24 @@ TEST(StampOrderer, NeverHoldsMoreThanItsBound) {
   EXPECT_EQ(o.size(), 64u);
   EXPECT_EQ(released, 100000u - 64u);
   EXPECT_EQ(o.forcedReleases(), 100000u - 64u);
+}
+
+// ---- StallWatch -----------------------------------------------------------------------------------------------
+
+TEST(StallWatch, OnlyGapsBeyondTheLoopsOwnWaitCount) {
+  using C = sim_node::StallWatch::Clock;
+  sim_node::StallWatch w(std::chrono::milliseconds(250));
+  const C::time_point t0{};
+  EXPECT_EQ(w.check(t0), C::duration::zero());  // the first check starts the watch
+  EXPECT_EQ(w.check(t0 + std::chrono::milliseconds(100)), C::duration::zero());
+  EXPECT_EQ(w.check(t0 + std::chrono::milliseconds(350)), C::duration::zero());  // exactly the allowed gap
+  // a 2 s SIGSTOP between two checks: 2 s + 100 ms of gap, 1.85 s of it beyond the loop's 250 ms
+  EXPECT_EQ(w.check(t0 + std::chrono::milliseconds(2450)), std::chrono::milliseconds(1850));
+  EXPECT_EQ(w.stalls(), 1);
+  // a known wait is not a stall
+  w.restart(t0 + std::chrono::milliseconds(9000));
+  EXPECT_EQ(w.check(t0 + std::chrono::milliseconds(9100)), C::duration::zero());
+  EXPECT_EQ(w.total(), std::chrono::milliseconds(1850));
 }
 
 // ---- LockstepTracker ------------------------------------------------------------------------------------------
