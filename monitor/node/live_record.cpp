@@ -25,6 +25,7 @@ std::vector<std::pair<std::string, std::uint64_t>> inputCounts(const LiveRun& ru
       {"state_nonfinite", c.state_nonfinite},
       {"steps_incomplete", c.steps_incomplete},
       {"missing_states", c.missing_states},
+      {"truth_missed_ms", static_cast<std::uint64_t>(run.coverage().missedSeconds() * 1e3 + 0.5)},
   };
 }
 
@@ -41,7 +42,8 @@ RunRecord makeRunRecord(const LiveRun& run, const LiveRunConfig& config, const R
   r.collision_distance_m = config.metrics.collision_distance_m;
   r.window_start_s = run.windowStartS();
   r.summary = run.summary();
-  r.verdict = judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.formation_radius_m, r.tolerance});
+  r.verdict = judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.formation_radius_m, r.tolerance,
+                     run.coverage().missed()});
   r.counts = inputCounts(run);
   r.restarts = context.restarts;
   r.events = run.events();

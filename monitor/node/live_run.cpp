@@ -40,6 +40,7 @@ void LiveRun::finish() {
 }
 
 void LiveRun::score(const JoinedStep& step) {
+  coverage_.add(step.truth.stamp_ns);
   monitor::StepInput input;
   input.stamp_ns = step.truth.stamp_ns;
   input.uavs = step.truth.uavs;

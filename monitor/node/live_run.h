@@ -10,6 +10,7 @@
 
 #include "monitor_inputs.h"
 #include "step_joiner.h"
+#include "truth_coverage.h"
 #include "swa/agent/config.h"
 #include "swa/monitor/accumulator.h"
 #include "swa/monitor/report.h"
@@ -74,6 +75,8 @@ class LiveRun {
   const JoinCounters& joinCounters() const { return joiner_.counters(); }
   std::uint64_t unknownEvents() const { return unknown_events_; }
   std::uint64_t rejectedSteps() const { return rejected_steps_; }
+  // The parts of the run (from sim time 0 to the last scored truth) the monitor did not see.
+  const TruthCoverage& coverage() const { return coverage_; }
 
  private:
   void score(const JoinedStep& step);
@@ -85,6 +88,7 @@ class LiveRun {
   std::vector<monitor::TimeSeriesRow> series_;
   std::vector<monitor::StepInput> replay_;  // every scored step, only when window_from_events
   std::vector<EventRecord> events_;
+  TruthCoverage coverage_;
   std::optional<EventRecord> end_event_;
   std::optional<double> gnss_lost_all_s_;
   std::optional<double> gnss_lost_any_s_;

@@ -37,7 +37,18 @@ Verdict judge(const VerdictInput& in) {
   if (s.collisions > 0) v.reasons.push_back(std::to_string(s.collisions) + " collision(s)");
   if (s.groups != 1) v.reasons.push_back(std::to_string(s.groups) + " groups at the end (expected 1)");
 
-  if (!in.completed) {
+  if (!in.missed.empty()) {
+    double total = 0.0;
+    std::string spans;
+    for (std::size_t i = 0; i < in.missed.size(); ++i) {
+      total += in.missed[i].to_s - in.missed[i].from_s;
+      if (i < 3) spans += (i ? ", " : "") + fixed(in.missed[i].from_s, 1) + "-" + fixed(in.missed[i].to_s, 1) + " s";
+    }
+    if (in.missed.size() > 3) spans += ", ...";
+    v.reasons.push_back("the monitor missed " + fixed(total, 1) + " s of the run (" + spans + ")");
+  }
+
+  if (!in.completed || !in.missed.empty()) {
     v.outcome = Outcome::kIncomplete;
   } else {
     v.outcome = v.reasons.empty() ? Outcome::kPass : Outcome::kFail;

@@ -2,7 +2,8 @@
 // The run's verdict and the process exit status that carries it (monitor_options.h ExitCode).
 //   PASS        the scenario completed, final d_NB within r (1 ± tolerance), no collision, one group at the end
 //   FAIL        completed, but at least one of those criteria failed
-//   INCOMPLETE  the scenario did not complete (or no truth was seen at all): the numbers describe a partial run
+//   INCOMPLETE  the scenario did not complete, no truth was seen at all, or the monitor missed part of the run (it
+//               started late or lost the truth for more than a second): the numbers describe a partial run
 // INCOMPLETE wins over FAIL; its reasons still list the criteria that failed on the partial run, for the record.
 
 #include <optional>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "swa/monitor/accumulator.h"
+#include "truth_coverage.h"
 #include "swa/monitor/report_html.h"
 
 namespace swa::monitor_node {
@@ -28,6 +30,8 @@ struct VerdictInput {
   monitor::Summary summary;
   double formation_radius_m = 10.0;
   double tolerance = monitor::kDefaultRadiusTolerance;
+  // Parts of the run the monitor did not see (truth_coverage.h): the verdict is INCOMPLETE if there are any.
+  std::vector<MissedSpan> missed;
 };
 
 Verdict judge(const VerdictInput& input);

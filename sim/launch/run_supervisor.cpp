@@ -103,6 +103,10 @@ class Supervisor {
   }
 
   void startMonitor() {
+    if (monitor_restarts_ > 0) {
+      std::ofstream(logs_ / "monitor.log", std::ios::app)
+          << "\n==== swa_launch: restart " << monitor_restarts_ << " at " << secondsSince(t0_) << " s ====\n";
+    }
     std::vector<std::string> argv{bin_.monitor};
     for (const std::string& a : scenarioArgs()) argv.push_back(a);
     for (const std::string& a : {std::string("--label"), spec_.label, std::string("--out"), spec_.dir.string(),
@@ -195,9 +199,25 @@ class Supervisor {
           }
         }
       }
-      if (const auto m = monitor_->poll()) {
+      if (monitor_restart_due_) {
+        if (Clock::now() >= *monitor_restart_due_) {
+          monitor_restart_due_.reset();
+          ++monitor_restarts_;
+          startMonitor();
+        }
+      } else if (const auto m = monitor_->poll()) {
         if (sim_done_at) break;
         if (*m != 0 && *m != 1 && *m != 3) {
+          // Crashed or killed before the end: started again like an agent. The new monitor scores what it can still
+          // get (the simulator's truth history reaches 100 s back) and names what it missed (truth_coverage.h).
+          if (!stopping_ && policy_.allowed(monitor_restarts_)) {
+            const double delay = policy_.delay(monitor_restarts_);
+            std::printf("swa_launch [%s]: swa_monitor ended (%s) at %.1f s; restarting it in %.1f s\n",
+                        spec_.label.c_str(), describeStatus(*m).c_str(), secondsSince(t0_), delay);
+            monitor_restart_due_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                      std::chrono::duration<double>(delay));
+            continue;
+          }
           std::printf("swa_launch [%s]: swa_monitor failed with %s (see %s)\n", spec_.label.c_str(),
                       describeStatus(*m).c_str(), (logs_ / "monitor.log").c_str());
           requestStop("monitor gone");
@@ -262,6 +282,8 @@ class Supervisor {
   RestartPolicy policy_;
   Clock::time_point t0_;
   std::unique_ptr<ChildProcess> sim_, monitor_;
+  int monitor_restarts_ = 0;
+  std::optional<Clock::time_point> monitor_restart_due_;
   std::vector<AgentSlot> agents_;
   std::map<int, std::pair<int, double>> last_exit_;  // uav -> (exit status, back-off) of the pending restart
   bool stopping_ = false;

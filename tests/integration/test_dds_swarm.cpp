@@ -258,7 +258,7 @@ class SwarmRun : public ::testing::Test {
 
   void lockstepDropout4(const std::vector<std::string>& overrides, double expected_d_nb_m,
                         const std::vector<std::string>& env = {});
-  void stopSimulatorForTwoSeconds(const char* clock_mode, bool stall_reported);
+  void stopSimulator(const char* clock_mode, bool stall_reported);
 
   std::string logs() const { return runLogs(dir_, agents_.size()); }
 
@@ -413,17 +413,19 @@ TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {
   EXPECT_EQ(agent_status_[2], 0);  // the stalled agent still shuts down cleanly
 }
 
-// Issue #11: stopping the simulator for 2 s declared every healthy agent dead (realtime). In lockstep the agents'
-// answers reach the stopped simulator's queue and complete the step when it continues, so a stall there usually
-// costs nothing and is not always seen; only realtime must report it.
-void SwarmRun::stopSimulatorForTwoSeconds(const char* clock_mode, bool stall_reported) {
+// Issue #11: stopping the simulator for 2 s declared every healthy agent dead (realtime). Stopped for 5 s here: that
+// also lost the agents' shared-memory channel to it for good before the SHM port health check was lengthened
+// (deploy/dds/profiles.xml, swa_shm). In lockstep the agents' answers reach the stopped simulator's queue and
+// complete the step when it continues, so a stall there usually costs nothing and is not always seen; only realtime
+// must report it.
+void SwarmRun::stopSimulator(const char* clock_mode, bool stall_reported) {
   // GIVEN a run with the default 1 s agent timeout
   start({"duration_s=12", clock_mode}, {});
   ASSERT_FALSE(HasFatalFailure());
   ASSERT_TRUE(monitor_->waitForSimTime(4.0, 60.0)) << logs();
-  // WHEN the simulator itself is stopped for 2 s (SIGSTOP), then continued
+  // WHEN the simulator itself is stopped for 5 s (SIGSTOP), then continued
   sim_->signal(SIGSTOP);
-  std::this_thread::sleep_for(std::chrono::seconds(2));
+  std::this_thread::sleep_for(std::chrono::seconds(5));
   sim_->signal(SIGCONT);
   // THEN the run completes with no agent declared dead, and the simulator reports its own stall
   ASSERT_EQ(finish(), 0) << logs();
@@ -431,13 +433,11 @@ void SwarmRun::stopSimulatorForTwoSeconds(const char* clock_mode, bool stall_rep
   const std::string summary = readFile(dir_ / "summary.json");
   if (!stall_reported) return;
   EXPECT_GE(jsonNumber(summary, "stalls"), 1.0) << summary;
-  EXPECT_GE(jsonNumber(summary, "stalled_s"), 1.5) << summary;
+  EXPECT_GE(jsonNumber(summary, "stalled_s"), 4.5) << summary;
 }
 
-TEST_F(SwarmRun, StoppedSimulatorBlamesNoAgentInRealtime) { stopSimulatorForTwoSeconds("clock.mode=realtime", true); }
-TEST_F(SwarmRun, StoppedSimulatorBlamesNoAgentInLockstep) {
-  stopSimulatorForTwoSeconds("clock.mode=lockstep", false);
-}
+TEST_F(SwarmRun, StoppedSimulatorBlamesNoAgentInRealtime) { stopSimulator("clock.mode=realtime", true); }
+TEST_F(SwarmRun, StoppedSimulatorBlamesNoAgentInLockstep) { stopSimulator("clock.mode=lockstep", false); }
 
 TEST_F(SwarmRun, RealtimeFourAgentsTwentySecondsCohesiveAndEveryCommandWithinItsPeriod) {
   // GIVEN the shipped 4-UAV scenario, 20 s, in realtime mode at speed 1 (one step = 10 ms of wall time)

@@ -39,6 +39,14 @@ int agentPid(int domain, int uav) {
   return -1;
 }
 
+int monitorPid(int domain) {
+  for (int pid : processesOnDomain(domain)) {
+    const std::string cmdline = readFile(fs::path("/proc") / std::to_string(pid) / "cmdline");
+    if (cmdline.find("swa_monitor") != std::string::npos) return pid;
+  }
+  return -1;
+}
+
 class LaunchTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -181,6 +189,50 @@ TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
   EXPECT_NEAR(jsonNumber(summary, "mean_neighbor_distance_m"), 10.0, 1.0);
   EXPECT_NE(readFile(out / "report.html").find("restart"), std::string::npos) << "the restart is not in the report";
   EXPECT_NE(log.find("agent 2 ended (signal 9"), std::string::npos) << log;
+  expectNothingLeft(&launcher_files);
+}
+
+// Issue #11: kill -9 of the monitor under swa_launch ended the whole run with no summary and printed the path of a
+// report that did not exist. Now the monitor is restarted like an agent, and the new one says what it missed.
+TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
+  // Only to time the kill: the newest stamp agent 0 has published its state for.
+  std::atomic<long long> newest_stamp_ns{0};
+  auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
+  participant->reader<msg::AgentStatePubSubType>(dds::topics::state(0), "swa_state_reader",
+                                                  [&newest_stamp_ns](msg::AgentState&& s) {
+                                                    newest_stamp_ns.store(s.header().stamp_ns());
+                                                  });
+  ShmJanitor launcher_files;
+  Child launch(launchArgs({"--set", "duration_s=400"}), dir_ / "launch.log");
+  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
+  bool killed = false;
+  // WHEN the monitor is SIGKILLed once the run is past 200 s (the simulator's truth history reaches 100 s back, so
+  // the restarted monitor cannot get the first 100 s)
+  while (!killed && SteadyClock::now() < deadline && !launch.wait(0.0)) {
+    if (newest_stamp_ns.load() >= 200'000'000'000LL) {
+      const int pid = monitorPid(domain_);
+      ASSERT_GT(pid, 0);
+      ::kill(pid, SIGKILL);
+      killed = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(killed) << readFile(dir_ / "launch.log");
+  participant.reset();
+  const auto status = launch.wait(180.0);
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  // THEN the launcher restarted it, the run ran to its end, and the report it names exists
+  EXPECT_NE(log.find("swa_monitor ended (signal 9"), std::string::npos) << log;
+  const fs::path out = dir_ / "out";
+  EXPECT_TRUE(fs::exists(out / "report.html")) << log;
+  EXPECT_NE(readFile(out / "logs" / "monitor.log").find("==== swa_launch: restart 1"), std::string::npos);
+  // AND its verdict is INCOMPLETE (exit 3), naming the part of the run it missed, not a PASS on what it saw
+  EXPECT_EQ(*status, 3) << log;
+  const std::string summary = readFile(out / "summary.json");
+  EXPECT_NE(summary.find("\"verdict\": \"INCOMPLETE\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("the monitor missed"), std::string::npos) << summary;
+  EXPECT_GE(jsonNumber(summary, "truth_missed_ms"), 50'000.0) << summary;
   expectNothingLeft(&launcher_files);
 }
 

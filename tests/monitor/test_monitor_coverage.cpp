@@ -1,0 +1,64 @@
+// Issue #11: a monitor that missed part of the run says so. Before, a monitor restarted by hand 28 s into a run
+// reported "0 incomplete steps" and could PASS.
+
+#include <gtest/gtest.h>
+
+#include "truth_coverage.h"
+#include "verdict.h"
+
+namespace swa::monitor_node {
+namespace {
+
+constexpr agent::StampNs kMs = 1'000'000;
+
+TEST(TruthCoverage, AWholeRunAt10HzMissesNothing) {
+  TruthCoverage c;
+  for (int k = 0; k <= 1200; ++k) c.add(k * 100 * kMs);
+  EXPECT_TRUE(c.missed().empty());
+  EXPECT_EQ(c.missedSeconds(), 0.0);
+}
+
+TEST(TruthCoverage, ALateStartAndAGapAreMissed) {
+  // GIVEN a monitor whose first truth is at 28 s, and which then loses 4 s of truth
+  TruthCoverage c;
+  for (int k = 280; k <= 500; ++k) c.add(k * 100 * kMs);
+  for (int k = 540; k <= 600; ++k) c.add(k * 100 * kMs);
+  // THEN it missed 0-28 s and 50-54 s
+  ASSERT_EQ(c.missed().size(), 2u);
+  EXPECT_DOUBLE_EQ(c.missed()[0].from_s, 0.0);
+  EXPECT_DOUBLE_EQ(c.missed()[0].to_s, 28.0);
+  EXPECT_DOUBLE_EQ(c.missed()[1].from_s, 50.0);
+  EXPECT_DOUBLE_EQ(c.missed()[1].to_s, 54.0);
+  EXPECT_NEAR(c.missedSeconds(), 32.0, 1e-9);
+}
+
+TEST(TruthCoverage, GapsUpToASecondAndRepeatsAreNotMissed) {
+  TruthCoverage c;
+  c.add(0);
+  c.add(1000 * kMs);      // exactly the allowed gap
+  c.add(1000 * kMs);      // repeated: ignored
+  c.add(500 * kMs);       // older: ignored
+  c.add(1900 * kMs);
+  EXPECT_TRUE(c.missed().empty());
+}
+
+TEST(MonitorVerdict, MissedPartOfTheRunIsIncompleteAndNamed) {
+  // GIVEN a completed run that would pass, seen from 28 s on
+  VerdictInput in;
+  in.completed = true;
+  in.end_reason = "completed";
+  in.saw_truth = true;
+  in.summary.mean_neighbor_distance_m = 10.0;
+  in.summary.groups = 1;
+  in.missed = {{0.0, 28.0}};
+  // THEN INCOMPLETE, saying what was missed
+  const Verdict v = judge(in);
+  EXPECT_EQ(v.outcome, Outcome::kIncomplete);
+  ASSERT_EQ(v.reasons.size(), 1u);
+  EXPECT_EQ(v.reasons[0], "the monitor missed 28 s of the run (0-28 s)");
+  in.missed.clear();
+  EXPECT_EQ(judge(in).outcome, Outcome::kPass);
+}
+
+}  // namespace
+}  // namespace swa::monitor_node
