@@ -94,6 +94,11 @@ LaunchOptions parseLaunchOptions(const std::vector<std::string>& args) {
       }
     } else if (key == "--secure") {
       text(o.secure_dir, "the credentials directory (deploy/security/make-credentials.sh)");
+    } else if (key == "--swarm") {
+      text(o.swarm, "a swarm name, or none");
+      if (o.swarm != "none" && !o.swarm.empty()) {
+        if (const auto problem = dds::swarmNameProblem(o.swarm)) problems.push_back("--swarm " + *problem);
+      }
     } else {
       problems.push_back("unknown argument '" + walker.raw() + "' (see --help)");
     }
@@ -156,6 +161,11 @@ Options:
   --discovery-port P        port of the server swa_launch starts (default 11811)
   --secure DIR              DDS Security: authenticated, encrypted, per-UAV permissions, with the credentials in
                             DIR (create them with deploy/security/make-credentials.sh DIR N); sets SWA_SECURITY_DIR
+  --swarm NAME              the swarm of this launch: every child's readers and writers in the DDS partition
+                            swa.NAME (SWA_SWARM), so another swarm or a stray publisher on the same domain never
+                            mixes with it. Default: $SWA_SWARM if set, else a new name per launch (printed), except
+                            with --secure (the credentials keep swarms apart). 'none': the default partition (for
+                            a process started by hand, a bridge or a DDS tool to join the run)
   -h, --help                this text
 
 Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 5 % of r, no collision, one

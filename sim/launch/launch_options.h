@@ -26,6 +26,7 @@ struct LaunchOptions {
   std::string discovery_server;           // --discovery-server IP:PORT[;...]: use these instead of starting one
   int discovery_port = 11811;             // --discovery-port: of the server swa_launch starts on 127.0.0.1
   std::string secure_dir;                 // --secure DIR: DDS Security with the credentials in DIR
+  std::string swarm;                      // --swarm NAME | none (else $SWA_SWARM, else a new name per launch)
   bool help = false;
 };
 

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -79,6 +80,17 @@ std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_cou
                                std::to_string(max_uav_count) + ")");
     }
     ::setenv("SWA_SECURITY_DIR", dir.c_str(), 1);
+  }
+  if (o.swarm == "none") {
+    ::unsetenv("SWA_SWARM");
+  } else if (!o.swarm.empty()) {
+    ::setenv("SWA_SWARM", o.swarm.c_str(), 1);
+  } else if (std::getenv("SWA_SWARM") == nullptr && o.secure_dir.empty()) {
+    // A name of our own: two launches on one domain (or anything else there) never exchange a sample.
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                        std::chrono::system_clock::now().time_since_epoch()).count();
+    const std::string name = "launch-" + std::to_string(::getpid()) + "-" + std::to_string(ms % 1'000'000'000);
+    ::setenv("SWA_SWARM", name.c_str(), 1);
   }
   dds::resolveDeployment();  // the combination as the children will see it
   return server;

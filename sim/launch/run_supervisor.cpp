@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -65,8 +66,10 @@ class Supervisor {
   RunOutcome run() {
     prepareDirectory();
     t0_ = Clock::now();
-    std::printf("swa_launch [%s]: sim + %d agents + monitor on DDS domain %s, logs in %s\n", spec_.label.c_str(),
-                spec_.uav_count, domain_.c_str(), logs_.c_str());
+    const char* swarm = std::getenv("SWA_SWARM");
+    std::printf("swa_launch [%s]: sim + %d agents + monitor on DDS domain %s, swarm %s, logs in %s\n",
+                spec_.label.c_str(), spec_.uav_count, domain_.c_str(),
+                swarm != nullptr && *swarm ? swarm : "(default partition)", logs_.c_str());
     std::fflush(stdout);
     startMonitor();
     for (int i = 0; i < spec_.uav_count; ++i) startAgent(i);

@@ -175,4 +175,14 @@ class ShmJanitor : public launch::ShmJanitor {
 // A DDS domain of our own: derived from the PID (Fast DDS's own tests do the same), never 0, at most 232.
 inline int testDomain(int offset = 0) { return 1 + static_cast<int>((::getpid() + offset) % 200); }
 
+// A swarm of our own (SWA_SWARM, a DDS partition): set in this process's environment, so this test's participants
+// and every child it starts (the launcher too) share it, and another DDS user that happens to be on the same domain
+// (two CI jobs, another developer's swarm) never exchanges a sample with the test. Unique per call.
+inline std::string useOwnSwarm() {
+  static int count = 0;
+  const std::string name = "test-" + std::to_string(::getpid()) + "-" + std::to_string(++count);
+  ::setenv("SWA_SWARM", name.c_str(), 1);
+  return name;
+}
+
 }  // namespace swa::testing

@@ -201,6 +201,7 @@ class SwarmRun : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     domain_ = testDomain();
+    useOwnSwarm();  // no sample of another DDS user on this domain can reach the run
   }
 
   void TearDown() override {

@@ -63,6 +63,20 @@ TEST(Deployment, BadCombinationsNameTheVariable) {
   EXPECT_NE(errorOf({{"SWA_DISCOVERY_SERVER", "127.0.0.1:11811"}}).find("SWA_TRANSPORT is local"), std::string::npos);
 }
 
+TEST(Deployment, SwarmNameIsAPartitionOfItsOwn) {
+  // Issue #11: one swarm per run. Unset: the default partition.
+  EXPECT_TRUE(dds::parseDeployment(envOf({})).swarm.empty());
+  EXPECT_EQ(dds::parseDeployment(envOf({{"SWA_SWARM", "field-test_2.b"}})).swarm, "field-test_2.b");
+  EXPECT_EQ(dds::swarmPartition("field-test_2.b"), "swa.field-test_2.b");
+  // Names that are no partition name, or would be a wildcard pattern, are refused
+  for (const std::string& bad : std::vector<std::string>{"two words", "swa*", "a/b", std::string(65, 'x')}) {
+    EXPECT_NE(errorOf({{"SWA_SWARM", bad}}).find("SWA_SWARM: '"), std::string::npos) << bad;
+  }
+  // With DDS Security the permissions grant the default partition only: refused, saying why
+  EXPECT_NE(errorOf({{"SWA_SWARM", "a"}, {"SWA_SECURITY_DIR", "/creds"}}).find("cannot be combined"),
+            std::string::npos);
+}
+
 TEST(Deployment, ServerListIsCheckedEntryByEntry) {
   EXPECT_TRUE(dds::checkServerList("127.0.0.1:11811").empty());
   EXPECT_TRUE(dds::checkServerList("10.0.0.1:1;192.168.255.254:65535").empty());
@@ -104,6 +118,9 @@ TEST(LaunchDeploymentOptions, ParsedAndChecked) {
   EXPECT_EQ(o.discovery_server, "127.0.0.1:11900");
   EXPECT_EQ(o.secure_dir, "creds");
   EXPECT_EQ(launch::parseLaunchOptions({"--scenario", "s", "--discovery-port", "12000"}).discovery_port, 12000);
+  EXPECT_EQ(launch::parseLaunchOptions({"--scenario", "s", "--swarm", "none"}).swarm, "none");
+  EXPECT_EQ(launch::parseLaunchOptions({"--scenario", "s", "--swarm=lab-3"}).swarm, "lab-3");
+  EXPECT_THROW(launch::parseLaunchOptions({"--scenario", "s", "--swarm", "lab 3"}), std::invalid_argument);
   try {
     launch::parseLaunchOptions({"--scenario", "s", "--transport", "tcp", "--discovery-server", "host:1",
                                 "--discovery-port", "80", "--secure", ""});

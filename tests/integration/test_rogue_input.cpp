@@ -61,6 +61,7 @@ class RogueInput : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     domain_ = testDomain(37);
+    useOwnSwarm();
     agent_ = std::make_unique<Child>(
         std::vector<std::string>{SWA_AGENT_BINARY, "--id", std::to_string(kUav), "--domain", std::to_string(domain_)},
         dir_ / "agent.log");

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/ScenarioEventPubSubTypes.h>
 
 #include "../integration/process_support.h"
 #include "closed_loop.h"
@@ -54,6 +55,7 @@ class LaunchTest : public ::testing::Test {
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
+    swarm_ = useOwnSwarm();  // the launcher takes it from the environment; this test's observers join it
   }
   void TearDown() override {
     for (int pid : processesOnDomain(domain_)) ::kill(pid, SIGKILL);  // only after a failed check
@@ -79,6 +81,7 @@ class LaunchTest : public ::testing::Test {
   }
 
   ShmJanitor janitor_;  // first: outlives every process the test starts
+  std::string swarm_;
   fs::path dir_;
   int domain_ = testDomain(31);
 };
@@ -234,6 +237,46 @@ TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
   EXPECT_NE(summary.find("the monitor missed"), std::string::npos) << summary;
   EXPECT_GE(jsonNumber(summary, "truth_missed_ms"), 50'000.0) << summary;
   expectNothingLeft(&launcher_files);
+}
+
+// Issue #11: a stray scenario-end event on the domain ended a 40 s run at 18 s as "PASS, completed", and two runs on
+// one domain mixed silently. Each launch is a swarm of its own (a DDS partition): two of them side by side on one
+// domain, and a stray publisher there, change nothing.
+TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
+  // GIVEN two launches of the same scenario at once on this test's domain, each its own swarm
+  ::unsetenv("SWA_SWARM");
+  Child a(launchArgs({"--set", "duration_s=20", "--swarm", swarm_ + "-a"}), dir_ / "a.log");
+  std::vector<std::string> b_args = launchArgs({"--set", "duration_s=20", "--swarm", swarm_ + "-b"});
+  for (std::string& arg : b_args) {
+    if (arg == (dir_ / "out").string()) arg = (dir_ / "out_b").string();
+  }
+  Child b(b_args, dir_ / "b.log");
+  // AND a stray publisher on the same domain (default partition) announcing the end of "the" scenario every 50 ms
+  auto stray = std::make_unique<dds::Participant>("swa_test_stray", domain_, dds::resolveProfilesFile());
+  auto events = stray->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
+  msg::ScenarioEvent end;
+  end.kind(msg::EVENT_SCENARIO_END);
+  end.text("completed");
+  const auto deadline = SteadyClock::now() + std::chrono::seconds(120);
+  while ((!a.wait(0.0) || !b.wait(0.0)) && SteadyClock::now() < deadline) {
+    events.write(end);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  stray.reset();
+  // THEN both complete their 20 s with PASS, and each is exactly the in-process loop: nothing crossed over
+  ASSERT_EQ(a.wait(120.0), std::optional<int>(0)) << readFile(dir_ / "a.log");
+  ASSERT_EQ(b.wait(120.0), std::optional<int>(0)) << readFile(dir_ / "b.log");
+  const batch::RunResult oracle = batch::runClosedLoop(sim::loadScenario(kScenario, {"duration_s=20"}));
+  for (const fs::path& out : {dir_ / "out", dir_ / "out_b"}) {
+    SCOPED_TRACE(out.string());
+    const std::string summary = readFile(out / "summary.json");
+    EXPECT_NE(summary.find("\"end_reason\": \"completed\""), std::string::npos) << summary;
+    EXPECT_EQ(jsonNumber(summary, "duration_s"), oracle.summary.duration_s) << summary;
+    EXPECT_EQ(jsonNumber(summary, "mean_neighbor_distance_m"), oracle.summary.mean_neighbor_distance_m);
+    EXPECT_EQ(jsonNumber(summary, "anees_position"), oracle.summary.anees_position);
+  }
+  EXPECT_NE(readFile(dir_ / "a.log").find("swarm " + swarm_ + "-a"), std::string::npos);
+  expectNothingLeft();
 }
 
 // SIGTERM to the launcher mid-run: forwarded, the monitor writes what it has (verdict INCOMPLETE = 3), and every

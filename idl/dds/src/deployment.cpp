@@ -1,5 +1,7 @@
 #include "swa/dds/deployment.h"
 
+#include <algorithm>
+
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -91,7 +93,30 @@ Deployment parseDeployment(const EnvLookup& env) {
                                 transportName(d.transport) + ": set SWA_TRANSPORT=discovery-server or unset it");
   }
   if (const auto s = env("SWA_SECURITY_DIR"); s && !s->empty()) d.security_dir = *s;
+  if (const auto s = env("SWA_SWARM"); s && !s->empty()) {
+    if (const auto problem = swarmNameProblem(*s)) throw std::invalid_argument("SWA_SWARM: " + *problem);
+    d.swarm = *s;
+  }
+  if (!d.swarm.empty() && !d.security_dir.empty()) {
+    // The permissions of make-credentials.sh grant the default partition only: every endpoint would be refused.
+    throw std::invalid_argument(
+        "SWA_SWARM cannot be combined with SWA_SECURITY_DIR: the permissions grant the default partition only; with "
+        "DDS Security, credentials (or a domain) keep swarms apart");
+  }
   return d;
+}
+
+std::string swarmPartition(const std::string& swarm) { return "swa." + swarm; }
+
+std::optional<std::string> swarmNameProblem(const std::string& name) {
+  const bool ok_chars = std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' ||
+           c == '-';
+  });
+  if (name.empty() || name.size() > 64 || !ok_chars) {
+    return "'" + name.substr(0, 80) + "' must be 1 to 64 letters, digits, '.', '_' or '-'";
+  }
+  return std::nullopt;
 }
 
 Deployment resolveDeployment() {
@@ -110,6 +135,9 @@ std::string environmentHelp() {
                         discovery: containers, hosts) | discovery-server (UDPv4, no multicast needed)
   SWA_DISCOVERY_SERVER  IP:PORT[;IP:PORT...] of the Fast DDS Discovery Server(s), with discovery-server
   SWA_SECURITY_DIR      DDS Security credentials (deploy/security/make-credentials.sh); unset = security off
+  SWA_SWARM             the swarm (run) of this process: DDS partition swa.<name>, so swarms sharing a domain
+                        never mix; every process of a run needs the same (swa_launch sets one per run; not with
+                        SWA_SECURITY_DIR); unset = the default partition
 )";
 }
 

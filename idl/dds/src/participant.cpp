@@ -201,8 +201,15 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     throw DdsError("cannot create DDS participant '" + name + "' on domain " + std::to_string(domain_id) +
                    " (transport " + transportName(deployment.transport) + ")");
   }
-  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
-  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  // SWA_SWARM: every reader and writer of this process in the swarm's partition (deployment.h).
+  fdds::PublisherQos publisher_qos = fdds::PUBLISHER_QOS_DEFAULT;
+  fdds::SubscriberQos subscriber_qos = fdds::SUBSCRIBER_QOS_DEFAULT;
+  if (!deployment.swarm.empty()) {
+    publisher_qos.partition().push_back(swarmPartition(deployment.swarm).c_str());
+    subscriber_qos.partition().push_back(swarmPartition(deployment.swarm).c_str());
+  }
+  publisher_ = participant_->create_publisher(publisher_qos);
+  subscriber_ = participant_->create_subscriber(subscriber_qos);
   if (publisher_ == nullptr || subscriber_ == nullptr) {
     participant_->delete_contained_entities();
     factory->delete_participant(participant_);

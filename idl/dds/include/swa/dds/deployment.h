@@ -9,6 +9,9 @@
 //   SWA_DISCOVERY_SERVER  IP:PORT[;IP:PORT...] of the servers (required by, and only allowed with, discovery-server);
 //                         list position = server id, as `fastdds discovery -i <id>` expects
 //   SWA_SECURITY_DIR      directory of DDS Security credentials (deploy/security/make-credentials.sh); unset = off
+//   SWA_SWARM             the swarm (run) this process belongs to: its readers and writers are in the DDS partition
+//                         "swa.<name>", so two swarms on one domain never exchange a sample. Unset = the default
+//                         partition (what plain DDS and ROS 2 tools use). swa_launch sets one per run.
 
 #include <functional>
 #include <optional>
@@ -23,12 +26,18 @@ struct Deployment {
   Transport transport = Transport::kLocal;
   std::string discovery_servers;  // SWA_DISCOVERY_SERVER, verbatim
   std::string security_dir;       // empty: DDS Security off
+  std::string swarm;              // SWA_SWARM; empty: the default partition
 };
+
+// The DDS partition of a swarm: "swa.<name>".
+std::string swarmPartition(const std::string& swarm);
+// Why `name` is not a usable SWA_SWARM (1 to 64 of A-Z a-z 0-9 . _ -), if it is not.
+std::optional<std::string> swarmNameProblem(const std::string& name);
 
 // Environment lookup, injectable for tests; nullopt = variable not set.
 using EnvLookup = std::function<std::optional<std::string>(const std::string&)>;
 
-// Reads the three variables. Throws std::invalid_argument naming the variable and the accepted values.
+// Reads the variables. Throws std::invalid_argument naming the variable and the accepted values.
 Deployment parseDeployment(const EnvLookup& env);
 Deployment resolveDeployment();  // from the process environment
 
