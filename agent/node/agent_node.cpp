@@ -94,13 +94,24 @@ int AgentNode::run() {
       pending_state_ns_.reset();
     }
     heartbeat();
+    if (participant_->mustGiveWay()) {
+      lock.unlock();
+      refuseAsTwin();
+      return kExitTwin;
+    }
+    noteYoungerTwin();
+    std::string why;
     if (handshakeStalled()) {
+      why = "no reader of " + dds::topics::cmdVel(id_) +
+            " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
+    } else if (const auto [back, name] = participant_->peersBackAfterLease(); back > 0) {
+      // The peer went silent beyond its lease and never dropped us: Fast DDS 2.9 may not re-send all its endpoints
+      // (peer_book.h), so a UAV could lose its sensors or its commands for good.
+      why = "participant " + name + " came back after its DDS lease expired (endpoints may not re-match)";
+    }
+    if (!why.empty()) {
       ++reconnects_;
-      std::fprintf(stderr,
-                   "swa_agent %d: no reader of %s after %.0f s with DDS Security on: re-creating the participant "
-                   "(reconnection %d; a stalled authentication handshake, see deploy/README.md)\n",
-                   id_, dds::topics::cmdVel(id_).c_str(),
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - connected_at_).count(),
+      std::fprintf(stderr, "swa_agent %d: %s: re-creating the participant (reconnection %d)\n", id_, why.c_str(),
                    reconnects_);
       lock.unlock();  // deleting the participant waits for its listeners, which take the lock
       participant_.reset();
@@ -110,6 +121,28 @@ int AgentNode::run() {
   }
   participant_.reset();
   return 0;
+}
+
+void AgentNode::refuseAsTwin() {
+  const std::optional<dds::Peer> twin = participant_->twin();
+  const std::string swarm = twin && !twin->card->swarm.empty() ? "swarm " + twin->card->swarm : "the default swarm";
+  std::fprintf(stderr,
+               "swa_agent %d: REFUSING to run: another swa_agent %d (pid %ld on host %s) was already running in %s on "
+               "domain %d; two agents for one UAV would both command it. Stop one of them, or give this one another "
+               "--id or SWA_SWARM.\n",
+               id_, id_, twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?", swarm.c_str(),
+               domain_id_);
+  participant_.reset();
+}
+
+void AgentNode::noteYoungerTwin() {
+  const std::optional<dds::Peer> twin = participant_->twin();
+  if (!twin || twin->key == reported_twin_) return;
+  reported_twin_ = twin->key;
+  std::fprintf(stderr,
+               "swa_agent %d: a second swa_agent %d (pid %ld on host %s) joined this swarm; it started later and must "
+               "refuse to run (if it keeps commanding UAV %d, stop it)\n",
+               id_, id_, twin->card->pid, twin->card->host.c_str(), id_);
 }
 
 void AgentNode::onInput(Input&& in) {

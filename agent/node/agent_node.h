@@ -41,6 +41,9 @@ struct AgentNodeStats {
 
 class AgentNode {
  public:
+  // run()'s status when an older agent with this id runs in the same swarm (peer_book.h).
+  static constexpr int kExitTwin = 3;
+
   // Creates every DDS entity; throws swa::dds::DdsError.
   AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file);
   ~AgentNode();
@@ -60,6 +63,8 @@ class AgentNode {
   void handle(Input& in);
   void publishState(agent::StampNs stamp_ns, bool no_input = false);
   void heartbeat();  // run(): the wall-clock state
+  void refuseAsTwin();
+  void noteYoungerTwin();
 
   const int id_;
   const int domain_id_;
@@ -83,6 +88,7 @@ class AgentNode {
   bool had_fresh_imu_ = false;
   std::chrono::steady_clock::time_point connected_at_;
   int reconnects_ = 0;
+  dds::PeerKey reported_twin_{};
 
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::VelocitySetpoint> cmd_writer_;

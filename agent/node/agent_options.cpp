@@ -72,8 +72,10 @@ Options:
   -h, --help        this text
 
 Runs until SIGINT or SIGTERM, then deletes its DDS entities and exits 0.
+One agent per UAV and swarm: when another swa_agent with the same --id runs in the same swarm (SWA_SWARM) on the
+domain, the one started later refuses to run (exit 3) and the other logs it.
 Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials refused); 2 bad arguments or
-             configuration (nothing started).
+             configuration (nothing started); 3 refused: an older agent with this --id runs in this swarm.
 
 )" + dds::environmentHelp();
 }

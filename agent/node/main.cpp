@@ -51,6 +51,7 @@ int agentMain(int argc, char** argv) {
                  profiles.c_str());
     dds::acceptShutdownSignals();
     const int status = node.run();
+    if (status == AgentNode::kExitTwin) return status;  // refuseAsTwin() said why
     const AgentNodeStats& s = node.stats();
     std::fprintf(stderr,
                  "swa_agent %d: stopping on signal %d after %llu IMU, %llu detection, %llu GNSS samples; %llu commands, "

@@ -29,6 +29,16 @@ constexpr auto kPollPeriod = std::chrono::milliseconds(100);
 // A loop iteration longer than one poll plus this means the simulator itself did not run (stall_watch.h). Generous:
 // on a loaded 2-core machine a wake-up can be a few tens of milliseconds late.
 constexpr auto kStallSlack = std::chrono::milliseconds(150);
+// A UAV's commands may come from another writer once its current one has been silent this long (command_gate.h):
+// longer than any pause of a healthy agent (it answers every 10 ms), shorter than the launcher's restart of a crashed
+// one (0.5 s back-off plus the start).
+constexpr auto kCommandHandover = std::chrono::milliseconds(500);
+
+std::string guidText(const dds::WriterGuid& g) {
+  char text[3 * 16 + 1] = {};
+  for (std::size_t k = 0; k < g.size(); ++k) std::snprintf(text + 3 * k, 4, k + 1 < g.size() ? "%02x." : "%02x", g[k]);
+  return text;
+}
 
 msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq) {
   msg::Header h;
@@ -68,6 +78,7 @@ SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int d
       world_(scenario),
       n_(world_.uav_count()),
       lockstep_(n_),
+      gate_(n_, kCommandHandover),
       stall_(kPollPeriod + kStallSlack),
       latency_(n_),
       rt_alive_(static_cast<std::size_t>(n_), true),
@@ -94,9 +105,10 @@ SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int d
         participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), "swa_detections_gnss_writer"));
     gnss_.push_back(
         participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), "swa_detections_gnss_writer"));
-    cmd_.push_back(participant_->reader<msg::VelocitySetpointPubSubType>(
-        dds::topics::cmdVel(i), "swa_command_reader",
-        [this, i](msg::VelocitySetpoint&& m) { queue_.push(Answer{i, std::move(m), Clock::now()}); }));
+    cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
+        dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
+          queue_.push(Answer{i, std::move(m), Clock::now(), w});
+        }));
   }
 }
 
@@ -109,6 +121,7 @@ bool SimNode::awaitDiscovery() {
                participant_->domainId(), options_.startup_timeout_s);
   std::vector<std::string> missing;
   while (!dds::shutdownRequested()) {
+    if (olderTwinRuns()) return false;
     missing.clear();
     for (int i = 0; i < n_; ++i) {
       const auto k = static_cast<std::size_t>(i);
@@ -138,6 +151,7 @@ bool SimNode::awaitDiscovery() {
 
 int SimNode::run() {
   if (!awaitDiscovery()) {
+    if (summary_.refused_as_twin) return 1;  // publishes nothing: the running simulator owns the swarm's topics
     if (dds::shutdownRequested()) std::fprintf(stderr, "swa_sim: interrupted before the first step\n");
     publishEvent(msg::EVENT_SCENARIO_END, msg::ALL_UAVS, -1, 0.0,
                  dds::shutdownRequested() ? "interrupted before start" : "discovery timeout");
@@ -192,7 +206,7 @@ void SimNode::runLockstep() {
     // startup timeout, not the agent timeout, for its first answer.
     const double timeout_s = lockstep_.waitingForNewcomer() ? startup_s : options_.agent_timeout_s;
     auto deadline = Clock::now() + seconds(timeout_s);
-    stall_.restart(Clock::now());  // since the last step: the acknowledgment wait, bounded by its own deadline
+    stall_.restart(Clock::now());  // publishing is not a stall
     while (!lockstep_.complete() && !dds::shutdownRequested()) {
       const auto now = Clock::now();
       const Clock::duration lost = stall_.check(now);
@@ -211,26 +225,40 @@ void SimNode::runLockstep() {
       publishEvent(msg::EVENT_AGENT_DEAD, i, -1, timeout_s, "no answer within the agent timeout");
     }
     awaitSensorAcks(deadline);
+    if (dds::shutdownRequested()) break;
     if (world_.finished()) break;
     world_.step();
   }
 }
 
-void SimNode::awaitSensorAcks(Clock::time_point deadline) {
+void SimNode::awaitSensorAcks(Clock::time_point& deadline) {
   // The agent orders its inputs by stamp (sample_order.h), which reproduces the closed loop only if this step's
   // detections and GNSS fix are in its queue before the next step's IMU sample. DDS orders samples per topic, not
   // across topics (a repaired loss on one topic, or another transport path, lets the next IMU overtake them), so
   // wait until each live agent has acknowledged them: an RTPS acknowledgment follows the reader's listener call.
-  // Bounded by the step's deadline, so a stalled agent costs at most one agent timeout per step.
+  // Bounded by the step's deadline, so a stalled agent costs at most one agent timeout per step. Waited in slices of
+  // one poll period, so a stall of the simulator here is seen and moves the deadline like in the answer wait.
+  const auto acknowledged = [&](dds::Writer<msg::Detections>& det, dds::Writer<msg::GnssFix>& gnss) {
+    const auto slice_s = [&] {
+      const auto left = std::min<Clock::duration>(deadline - Clock::now(), kPollPeriod);
+      return std::max(0.0, std::chrono::duration<double>(left).count());
+    };
+    while (!dds::shutdownRequested()) {
+      if (det.waitForAcknowledgments(slice_s()) && gnss.waitForAcknowledgments(slice_s())) return true;
+      const auto now = Clock::now();
+      const Clock::duration lost = stall_.check(now);
+      if (lost > Clock::duration::zero()) {
+        deadline += lost;
+        noteStall(lost);
+      }
+      if (now >= deadline) return false;
+    }
+    return false;
+  };
   for (int i = 0; i < n_; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (!side_written_[k] || !lockstep_.alive(i)) continue;
-    const auto remaining_s = [&] {
-      return std::max(0.0, std::chrono::duration<double>(deadline - Clock::now()).count());
-    };
-    if (!det_[k].waitForAcknowledgments(remaining_s()) || !gnss_[k].waitForAcknowledgments(remaining_s())) {
-      ++summary_.unacknowledged_sensor_steps;
-    }
+    if (!acknowledged(det_[k], gnss_[k])) ++summary_.unacknowledged_sensor_steps;
   }
 }
 
@@ -238,6 +266,7 @@ void SimNode::drainLockstep(Clock::duration wait) {
   batch_.clear();
   queue_.drain(batch_, wait);
   for (const Answer& a : batch_) {
+    if (!fromCommander(a)) continue;
     if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav)) {
       ++summary_.ignored_commands;
       continue;
@@ -343,6 +372,7 @@ void SimNode::noteStall(Clock::duration lost) {
   ++summary_.stalls;
   const double s = std::chrono::duration<double>(lost).count();
   summary_.stalled_s += s;
+  gate_.shift(lost);  // no commander could be heard while the simulator did not run
   std::fprintf(stderr,
                "swa_sim: t = %.2f s: the simulator itself did not run for %.3f s: its deadlines moved by that much "
                "(no agent is blamed for it)\n",
@@ -354,6 +384,7 @@ void SimNode::drainRealtime(Clock::duration wait) {
   queue_.drain(batch_, wait);
   const agent::StampNs now_ns = world_.time_ns();
   for (const Answer& a : batch_) {
+    if (!fromCommander(a)) continue;
     const auto k = static_cast<std::size_t>(a.uav);
     const agent::StampNs answered = a.setpoint.answered_stamp_ns();
     if (a.setpoint.uav_id() == static_cast<std::uint32_t>(a.uav)) recordLatency(a);
@@ -383,14 +414,14 @@ void SimNode::collectLateAnswers(Clock::time_point until) {
     batch_.clear();
     queue_.drain(batch_, std::min<Clock::duration>(until - now, kPollPeriod));
     for (const Answer& a : batch_) {
-      if (a.setpoint.uav_id() == static_cast<std::uint32_t>(a.uav)) recordLatency(a);
+      if (fromCommander(a) && a.setpoint.uav_id() == static_cast<std::uint32_t>(a.uav)) recordLatency(a);
     }
   }
   // What arrived in time but was not drained yet.
   batch_.clear();
   queue_.drain(batch_, Clock::duration::zero());
   for (const Answer& a : batch_) {
-    if (a.setpoint.uav_id() == static_cast<std::uint32_t>(a.uav)) recordLatency(a);
+    if (fromCommander(a) && a.setpoint.uav_id() == static_cast<std::uint32_t>(a.uav)) recordLatency(a);
   }
 }
 
@@ -407,6 +438,52 @@ void SimNode::finishLatency() {
   summary_.step_lag_max_us = realtime ? step_lag_.maxNs() * 1e-3 : std::nan("");
 }
 
+bool SimNode::fromCommander(const Answer& a) {
+  const Admission admission = gate_.admit(a.uav, a.writer, a.received);
+  if (admission == Admission::kRefused) {
+    ++summary_.refused_commands;
+    if (gate_.firstRefusal(a.uav, a.writer)) {
+      summary_.refused_writers = gate_.refusedWriters();
+      std::fprintf(stderr,
+                   "swa_sim: t = %.2f s: a second writer on %s (writer %s) while the current one is active: its "
+                   "commands are refused (a second agent with this id, or another program writing it)\n",
+                   sim::stampSeconds(world_.time_ns()), dds::topics::cmdVel(a.uav).c_str(), guidText(a.writer).c_str());
+    }
+    return false;
+  }
+  if (admission == Admission::kHandover && gate_.handovers() != summary_.command_handovers) {
+    summary_.command_handovers = gate_.handovers();
+    std::fprintf(stderr, "swa_sim: t = %.2f s: %s now written by writer %s (the previous one fell silent)\n",
+                 sim::stampSeconds(world_.time_ns()), dds::topics::cmdVel(a.uav).c_str(), guidText(a.writer).c_str());
+  }
+  return true;
+}
+
+bool SimNode::olderTwinRuns() {
+  if (!participant_->mustGiveWay()) {
+    noteYoungerTwin();
+    return false;
+  }
+  const std::optional<dds::Peer> twin = participant_->twin();
+  std::fprintf(stderr,
+               "swa_sim: REFUSING to run: another swa_sim (pid %ld on host %s) was already running in %s on domain "
+               "%d; two simulators would publish two worlds to the same agents. Stop it, or use another SWA_SWARM.\n",
+               twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?",
+               twin && !twin->card->swarm.empty() ? ("swarm " + twin->card->swarm).c_str() : "the default swarm",
+               participant_->domainId());
+  summary_.refused_as_twin = true;
+  return true;
+}
+
+void SimNode::noteYoungerTwin() {
+  const std::optional<dds::Peer> twin = participant_->twin();
+  if (!twin || twin->key == reported_twin_) return;
+  reported_twin_ = twin->key;
+  std::fprintf(stderr, "swa_sim: a second swa_sim (pid %ld on host %s) joined this swarm; it started later and must "
+                       "refuse to run\n",
+               twin->card->pid, twin->card->host.c_str());
+}
+
 void SimNode::apply(const Answer& a) {
   world_.command(a.uav, dds::fromMsg(a.setpoint));
   ++summary_.applied_commands;
@@ -418,6 +495,7 @@ bool SimNode::agentAlive(int uav) const {
 }
 
 void SimNode::publishStepOutputs() {
+  if (world_.step_index() % 10 == 0) noteYoungerTwin();
   for (const sim::Event& e : world_.events()) {
     switch (e.kind) {
       case sim::EventKind::kGnssLost:
@@ -527,6 +605,9 @@ std::string SimNode::summaryJson() const {
     << ",\n  \"handshake_s\": " << summary_.handshake_s
     << ",\n  \"collisions\": " << summary_.collisions << ",\n  \"applied_commands\": " << summary_.applied_commands
     << ",\n  \"ignored_commands\": " << summary_.ignored_commands
+    << ",\n  \"refused_commands\": " << summary_.refused_commands
+    << ",\n  \"refused_writers\": " << summary_.refused_writers
+    << ",\n  \"command_handovers\": " << summary_.command_handovers
     << ",\n  \"unacknowledged_sensor_steps\": " << summary_.unacknowledged_sensor_steps
     << ",\n  \"agent_dead_events\": " << summary_.agent_dead_events
     << ",\n  \"agent_rejoined_events\": " << summary_.agent_rejoined_events << ",\n  \"stalls\": " << summary_.stalls

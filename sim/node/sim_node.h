@@ -20,6 +20,7 @@
 #include <swa/msg/SwarmTruth.h>
 #include <swa/msg/VelocitySetpoint.h>
 
+#include "command_gate.h"
 #include "latency_stats.h"
 #include "lockstep.h"
 #include "sim_options.h"
@@ -41,6 +42,12 @@ struct SimSummary {
   int collisions = 0;
   std::uint64_t applied_commands = 0;
   std::uint64_t ignored_commands = 0;  // stale, duplicate, or naming the wrong UAV
+  // Commands from a second writer on a UAV's cmd_vel while its current one is active (command_gate.h), and how many
+  // such writers were seen; changes of a UAV's writer after its first (a restarted agent).
+  std::uint64_t refused_commands = 0;
+  std::size_t refused_writers = 0;
+  std::uint64_t command_handovers = 0;
+  bool refused_as_twin = false;  // an older simulator runs in this swarm: this one did not start
   std::uint64_t unacknowledged_sensor_steps = 0;  // lockstep: detections / GNSS not acknowledged in time
   std::uint64_t agent_dead_events = 0;
   std::uint64_t agent_rejoined_events = 0;
@@ -77,6 +84,7 @@ class SimNode {
     int uav = 0;  // whose cmd_vel reader received it
     msg::VelocitySetpoint setpoint;
     Clock::time_point received;  // when the listener got it (not when this thread drained it)
+    dds::WriterGuid writer{};
   };
 
   bool awaitDiscovery();
@@ -87,13 +95,18 @@ class SimNode {
   std::vector<std::optional<agent::StampNs>> publishSensors(std::optional<Clock::time_point> due);
   void publishTruth();
   void publishEvent(msg::EventKind kind, int uav, int other, double value, const std::string& text);
-  void awaitSensorAcks(Clock::time_point deadline);
+  // Moves `deadline` by any stall of the simulator seen while waiting.
+  void awaitSensorAcks(Clock::time_point& deadline);
+
   void drainLockstep(Clock::duration wait);
   void drainRealtime(Clock::duration wait);
   void collectLateAnswers(Clock::time_point until);  // realtime, after the last step: statistics only
   void recordLatency(const Answer& a);
   void finishLatency();
   void apply(const Answer& a);
+  bool fromCommander(const Answer& a);  // the UAV's current commander (command_gate.h); refusals counted, reported
+  bool olderTwinRuns();                 // another swa_sim older than us in this swarm: refuse (logged)
+  void noteYoungerTwin();
   bool agentAlive(int uav) const;
 
   sim::Scenario scenario_;
@@ -101,6 +114,8 @@ class SimNode {
   sim::World world_;
   int n_;
   LockstepTracker lockstep_;
+  CommandGate gate_;
+  dds::PeerKey reported_twin_{};
   StallWatch stall_;
   void noteStall(Clock::duration lost);  // logs and counts a stall of the simulator itself
   SimSummary summary_;

@@ -3,6 +3,7 @@
 // every shared-memory file a killed process leaves is removed on the way out, also when a check fails.
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -15,8 +16,10 @@
 #include <gtest/gtest.h>
 
 #include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
+#include <swa/msg/VelocitySetpointPubSubTypes.h>
 
 #include "process_support.h"
 #include "swa/agent/agent.h"
@@ -412,6 +415,79 @@ TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {
   ASSERT_FALSE(monitor_->truth().empty());
   EXPECT_FALSE(monitor_->truth().back().uavs().at(3).alive());
   EXPECT_EQ(agent_status_[2], 0);  // the stalled agent still shuts down cleanly
+}
+
+// Issue #11: a second `swa_agent --id 1` in the same swarm started without a word, and any program could write a UAV's
+// cmd_vel. Now the younger agent refuses to run (exit 3) and the older one logs it; the simulator applies the
+// commands of one writer per UAV and refuses another's while the first is active.
+TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored) {
+  // GIVEN a lockstep run of the 4-UAV scenario
+  const std::vector<std::string> overrides{"duration_s=20"};
+  start(overrides, {"--agent-timeout-s", "10"});
+  ASSERT_FALSE(HasFatalFailure());
+  ASSERT_TRUE(monitor_->waitForSimTime(2.0, 60.0)) << logs();
+
+  // WHEN a rogue in this process answers every IMU sample of UAV 2 at once with a full-speed command
+  std::atomic<int> rogue_commands{0};
+  auto rogue = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
+  auto rogue_cmd = rogue->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(2), "swa_command_writer");
+  std::mutex rogue_mutex;
+  rogue->reader<msg::ImuPubSubType>(dds::topics::imu(2), "swa_sensor_reader", [&](msg::Imu&& imu) {
+    const std::lock_guard<std::mutex> lock(rogue_mutex);
+    msg::VelocitySetpoint sp;
+    sp.header().stamp_ns(imu.header().stamp_ns());
+    sp.uav_id(2);
+    sp.vx_mps(2.0);
+    sp.answered_stamp_ns(imu.header().stamp_ns());
+    sp.answered_seq(imu.header().seq());
+    if (rogue_cmd.write(sp)) ++rogue_commands;
+  });
+  // AND a second agent with id 1 starts in the same swarm
+  Child twin({SWA_AGENT_BINARY, "--id", "1", "--config", (dir_ / "agent.yaml").string(), "--domain",
+              std::to_string(domain_)},
+             dir_ / "twin.log");
+  // THEN the second agent refuses to run, saying why
+  const std::optional<int> twin_status = twin.wait(20.0);
+  const std::string twin_log = readFile(dir_ / "twin.log");
+  EXPECT_EQ(twin_status.value_or(-1), 3) << twin_log;
+  EXPECT_NE(twin_log.find("REFUSING to run: another swa_agent 1"), std::string::npos) << twin_log;
+  ASSERT_TRUE(waitFor([&] { return rogue_commands.load() > 100; }, 20.0)) << "the rogue never got going";
+  rogue.reset();
+
+  // THEN the run completes as if neither had been there: the simulator refused the rogue's commands, and the run is
+  // still the in-process closed loop bit for bit
+  ASSERT_EQ(finish(), 0) << logs();
+  const std::string summary = readFile(dir_ / "summary.json");
+  EXPECT_GT(jsonNumber(summary, "refused_commands"), 0.0) << summary;
+  EXPECT_GE(jsonNumber(summary, "refused_writers"), 1.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "command_handovers"), 0.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "agent_dead_events"), 0.0) << logs();
+  EXPECT_NE(readFile(dir_ / "sim.log").find("a second writer on swa/uav2/cmd_vel"), std::string::npos) << logs();
+  EXPECT_NE(readFile(dir_ / "agent1.log").find("a second swa_agent 1"), std::string::npos) << logs();
+  const std::vector<TruthRow> final_rows = lastStep(readTruthCsv(dir_ / "truth.csv"));
+  const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
+  ASSERT_EQ(final_rows.size(), 4u);
+  ASSERT_EQ(ref.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(final_rows[i].x, ref[i].position_m.x()) << "UAV " << i;
+    EXPECT_EQ(final_rows[i].y, ref[i].position_m.y()) << "UAV " << i;
+  }
+}
+
+TEST_F(SwarmRun, SecondAgentWithTheSameIdInAnotherSwarmIsNotATwin) {
+  // GIVEN agent 1 running in swarm A
+  Child first({SWA_AGENT_BINARY, "--id", "1", "--domain", std::to_string(domain_)}, dir_ / "first.log");
+  // WHEN agent 1 of another swarm starts on the same domain
+  const std::string other = "other-" + std::to_string(::getpid());
+  Child second({SWA_AGENT_BINARY, "--id", "1", "--domain", std::to_string(domain_)}, dir_ / "second.log",
+               {"SWA_SWARM=" + other});
+  // THEN both keep running (3 s: discovery takes well under a second here), and neither calls the other a twin
+  EXPECT_FALSE(second.wait(3.0)) << readFile(dir_ / "second.log");
+  EXPECT_FALSE(first.wait(0.0)) << readFile(dir_ / "first.log");
+  EXPECT_EQ(second.stop(), 0);
+  EXPECT_EQ(first.stop(), 0);
+  EXPECT_EQ(readFile(dir_ / "first.log").find("a second swa_agent"), std::string::npos) << readFile(dir_ / "first.log");
+  EXPECT_EQ(readFile(dir_ / "second.log").find("REFUSING"), std::string::npos) << readFile(dir_ / "second.log");
 }
 
 // Issue #11: stopping the simulator for 2 s declared every healthy agent dead (realtime). Stopped for 5 s here: that

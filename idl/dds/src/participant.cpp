@@ -8,6 +8,9 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <vector>
+
+#include <unistd.h>
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 #include <fastdds/dds/core/status/SubscriptionMatchedStatus.hpp>
@@ -90,21 +93,41 @@ void addSecurity(fdds::DomainParticipantQos& qos, const SecurityFiles& f) {
   set("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
 }
 
-// SWA_DDS_TRACE=1: one line on stderr per remote participant discovered / lost / authenticated, to see on a real
-// network (or with DDS Security) who found whom. Only participant events: the data callbacks stay with the readers.
-class TraceListener : public fdds::DomainParticipantListener {
+PeerKey keyOf(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) {
+  PeerKey key{};
+  std::copy(prefix.value, prefix.value + key.size(), key.begin());
+  return key;
+}
+
+}  // namespace
+
+// Feeds the participant's PeerBook from discovery (peer_book.h). With SWA_DDS_TRACE=1 also one line on stderr per
+// remote participant discovered / lost / authenticated, to see on a real network (or with DDS Security) who found
+// whom. Only participant events: the data callbacks stay with the readers.
+class Participant::PeerListener : public fdds::DomainParticipantListener {
  public:
-  explicit TraceListener(std::string self) : self_(std::move(self)) {}
+  PeerListener(std::string self, PeerCard card, bool trace)
+      : self_(self), book_(std::move(self), std::move(card)), trace_(trace) {}
 
   void on_participant_discovery(fdds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info)
       override {
     using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
-    const char* what = info.status == Status::DISCOVERED_PARTICIPANT  ? "discovered"
-                       : info.status == Status::CHANGED_QOS_PARTICIPANT ? "changed"
-                       : info.status == Status::REMOVED_PARTICIPANT     ? "removed"
-                       : info.status == Status::DROPPED_PARTICIPANT     ? "dropped (lease expired)"
-                                                                        : "ignored";
-    if (info.status == Status::CHANGED_QOS_PARTICIPANT) return;
+    const PeerKey key = keyOf(info.info.m_guid.guidPrefix);
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (info.status == Status::DISCOVERED_PARTICIPANT || info.status == Status::CHANGED_QOS_PARTICIPANT) {
+        const auto& bytes = info.info.m_userData.data_vec();
+        book_.discovered(Peer{key, info.info.m_participantName.to_string(),
+                              decodePeerCard(std::string(bytes.begin(), bytes.end()))});
+      } else if (info.status == Status::REMOVED_PARTICIPANT || info.status == Status::DROPPED_PARTICIPANT) {
+        book_.lost(key, info.status == Status::DROPPED_PARTICIPANT);
+      }
+    }
+    if (!trace_ || info.status == Status::CHANGED_QOS_PARTICIPANT) return;
+    const char* what = info.status == Status::DISCOVERED_PARTICIPANT ? "discovered"
+                       : info.status == Status::REMOVED_PARTICIPANT  ? "removed"
+                       : info.status == Status::DROPPED_PARTICIPANT  ? "dropped (lease expired)"
+                                                                     : "ignored";
     std::ostringstream guid;
     guid << info.info.m_guid;
     std::fprintf(stderr, "%s: [dds trace] participant %s %s (%s)\n", self_.c_str(), info.info.m_participantName.c_str(),
@@ -114,6 +137,7 @@ class TraceListener : public fdds::DomainParticipantListener {
 #if HAVE_SECURITY
   void onParticipantAuthentication(fdds::DomainParticipant*,
                                    eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override {
+    if (!trace_) return;
     std::ostringstream guid;
     guid << info.guid;
     std::fprintf(stderr, "%s: [dds trace] participant %s %s\n", self_.c_str(), guid.str().c_str(),
@@ -123,9 +147,34 @@ class TraceListener : public fdds::DomainParticipantListener {
   }
 #endif
 
+  template <class F>
+  auto withBook(F&& f) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return f(book_);
+  }
+
  private:
   std::string self_;
+  std::mutex mutex_;
+  PeerBook book_;
+  bool trace_;
 };
+
+namespace {
+
+PeerCard selfCard(const std::string& swarm) {
+  PeerCard card;
+  card.swarm = swarm;
+  // The process's start, not the participant's: a participant re-created later must not look younger than a twin.
+  static const std::int64_t process_started_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                                     std::chrono::system_clock::now().time_since_epoch())
+                                                     .count();
+  card.started_ns = process_started_ns;
+  card.pid = static_cast<long>(::getpid());
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) == 0) card.host = host;
+  return card;
+}
 
 // SWA_TRANSPORT=discovery-server: a CLIENT of the servers listed (position in the list = server id, as
 // fast-discovery-server -i expects).
@@ -188,10 +237,12 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     security = securityFiles(deployment.security_dir, name);
     useSecurity(qos, *security, deployment.security_dir, name);
   }
-  if (const char* trace = std::getenv("SWA_DDS_TRACE"); trace != nullptr && std::string(trace) == "1") {
-    trace_listener_ = std::make_unique<TraceListener>(name);
-  }
-  participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos, trace_listener_.get(),
+  const char* trace = std::getenv("SWA_DDS_TRACE");
+  const PeerCard card = selfCard(deployment.swarm);
+  const std::string card_text = encodePeerCard(card);
+  qos.user_data().data_vec(std::vector<eprosima::fastrtps::rtps::octet>(card_text.begin(), card_text.end()));
+  peer_listener_ = std::make_unique<PeerListener>(name, card, trace != nullptr && std::string(trace) == "1");
+  participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos, peer_listener_.get(),
                                              fdds::StatusMask::none());
   if (participant_ == nullptr) {
     if (security) {
@@ -201,6 +252,8 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     throw DdsError("cannot create DDS participant '" + name + "' on domain " + std::to_string(domain_id) +
                    " (transport " + transportName(deployment.transport) + ")");
   }
+  const PeerKey self_key = keyOf(participant_->guid().guidPrefix);
+  peer_listener_->withBook([&](PeerBook& book) { book.setSelfKey(self_key); });
   // SWA_SWARM: every reader and writer of this process in the swarm's partition (deployment.h).
   fdds::PublisherQos publisher_qos = fdds::PUBLISHER_QOS_DEFAULT;
   fdds::SubscriberQos subscriber_qos = fdds::SUBSCRIBER_QOS_DEFAULT;
@@ -270,6 +323,19 @@ fdds::DataReader* Participant::createReader(fdds::Topic* topic, const std::strin
   fdds::DataReader* r = subscriber_->create_datareader(topic, qos, listener);
   if (r == nullptr) throw DdsError("cannot create reader on " + topic->get_name() + " with profile " + profile);
   return r;
+}
+
+std::optional<Peer> Participant::twin() const {
+  return peer_listener_->withBook([](PeerBook& book) { return book.oldestTwin(); });
+}
+
+bool Participant::mustGiveWay() const {
+  return peer_listener_->withBook([](PeerBook& book) { return book.mustGiveWay(); });
+}
+
+std::pair<int, std::string> Participant::peersBackAfterLease() const {
+  return peer_listener_->withBook(
+      [](PeerBook& book) { return std::make_pair(book.returnedAfterLease(), book.lastReturned()); });
 }
 
 }  // namespace swa::dds

@@ -17,9 +17,13 @@
 // Threading: a reader's callback runs on a Fast DDS thread. Keep it to a push into a SampleQueue, and let whatever
 // it captures outlive the Participant.
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -36,6 +40,8 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TopicDataType.hpp>
 
+#include "swa/dds/peer_book.h"
+
 namespace swa::dds {
 
 class DdsError : public std::runtime_error {
@@ -49,6 +55,9 @@ constexpr const char* kParticipantProfile = "swa_participant";
 // Longest wait for outstanding acknowledgments on destruction: above the profile's 4 s participant lease.
 constexpr double kShutdownAckWaitS = 6.0;
 
+// The GUID of the writer a sample came from (its DDS publication handle).
+using WriterGuid = std::array<std::uint8_t, 16>;
+
 namespace detail {
 int publicationMatched(eprosima::fastdds::dds::DataWriter* writer);
 int subscriptionMatched(eprosima::fastdds::dds::DataReader* reader);
@@ -57,19 +66,25 @@ bool waitForAcknowledgments(eprosima::fastdds::dds::DataWriter* writer, double s
 template <class Msg>
 class CallbackListener : public eprosima::fastdds::dds::DataReaderListener {
  public:
-  explicit CallbackListener(std::function<void(Msg&&)> on_sample) : on_sample_(std::move(on_sample)) {}
+  explicit CallbackListener(std::function<void(Msg&&, const WriterGuid&)> on_sample)
+      : on_sample_(std::move(on_sample)) {}
 
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
     eprosima::fastdds::dds::SampleInfo info;
     Msg msg;
     while (reader->take_next_sample(&msg, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
-      if (info.valid_data) on_sample_(std::move(msg));
+      if (info.valid_data) {
+        WriterGuid writer{};
+        const eprosima::fastrtps::rtps::octet* h = info.publication_handle.value;
+        std::copy(h, h + writer.size(), writer.begin());
+        on_sample_(std::move(msg), writer);
+      }
       msg = Msg();
     }
   }
 
  private:
-  std::function<void(Msg&&)> on_sample_;
+  std::function<void(Msg&&, const WriterGuid&)> on_sample_;
 };
 }  // namespace detail
 
@@ -127,6 +142,16 @@ class Participant {
   Reader<typename PubSubType::type> reader(const std::string& topic_name, const std::string& profile,
                                            std::function<void(typename PubSubType::type&&)> on_sample) {
     using Msg = typename PubSubType::type;
+    return readerWithOrigin<PubSubType>(
+        topic_name, profile, [f = std::move(on_sample)](Msg&& m, const WriterGuid&) { f(std::move(m)); });
+  }
+
+  // The same, with the GUID of the writer each sample came from.
+  template <class PubSubType>
+  Reader<typename PubSubType::type> readerWithOrigin(
+      const std::string& topic_name, const std::string& profile,
+      std::function<void(typename PubSubType::type&&, const WriterGuid&)> on_sample) {
+    using Msg = typename PubSubType::type;
     auto listener = std::make_unique<detail::CallbackListener<Msg>>(std::move(on_sample));
     eprosima::fastdds::dds::DataReader* r = createReader(topic(topic_name, new PubSubType()), profile, listener.get());
     listeners_.push_back(std::move(listener));
@@ -136,11 +161,18 @@ class Participant {
   const std::string& name() const { return name_; }
   int domainId() const { return domain_id_; }
 
+  // Discovery (peer_book.h). The oldest live participant with our name in our swarm, if any; whether one of them is
+  // older than us (we must give way); how many peers came back after their lease had expired, and the last one's name.
+  std::optional<Peer> twin() const;
+  bool mustGiveWay() const;
+  std::pair<int, std::string> peersBackAfterLease() const;
+
  private:
   // Takes ownership of `type`.
   eprosima::fastdds::dds::Topic* topic(const std::string& topic_name, eprosima::fastdds::dds::TopicDataType* type);
-  // SWA_DDS_TRACE=1 only; deleted after the participant (the destructor deletes the participant explicitly).
-  std::unique_ptr<eprosima::fastdds::dds::DomainParticipantListener> trace_listener_;
+  // Deleted after the participant (the destructor deletes the participant explicitly).
+  class PeerListener;
+  std::unique_ptr<PeerListener> peer_listener_;
   eprosima::fastdds::dds::DataWriter* createWriter(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
   eprosima::fastdds::dds::DataReader* createReader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
                                                    eprosima::fastdds::dds::DataReaderListener* listener);

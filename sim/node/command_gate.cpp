@@ -1,0 +1,44 @@
+#include "command_gate.h"
+
+#include <stdexcept>
+
+namespace swa::sim_node {
+namespace {
+// Refused writers remembered for reporting once: beyond this many, further ones are still refused and counted, only
+// not named (a flood of new writers must not grow memory).
+constexpr std::size_t kMaxReported = 1024;
+}  // namespace
+
+CommandGate::CommandGate(int uav_count, Clock::duration handover)
+    : handover_(handover), owners_(static_cast<std::size_t>(uav_count)) {
+  if (uav_count < 0) throw std::invalid_argument("CommandGate: negative UAV count");
+}
+
+Admission CommandGate::admit(int uav, const WriterId& writer, Clock::time_point received) {
+  if (uav < 0 || static_cast<std::size_t>(uav) >= owners_.size()) throw std::out_of_range("CommandGate: UAV");
+  std::optional<Owner>& owner = owners_[static_cast<std::size_t>(uav)];
+  if (owner && owner->writer == writer) {
+    if (received > owner->last_heard) owner->last_heard = received;
+    return Admission::kOwner;
+  }
+  if (owner && received - owner->last_heard < handover_) {
+    ++refused_;
+    return Admission::kRefused;
+  }
+  if (owner) ++handovers_;
+  owner = Owner{writer, received};
+  return Admission::kHandover;
+}
+
+bool CommandGate::firstRefusal(int uav, const WriterId& writer) {
+  if (reported_.size() >= kMaxReported) return false;
+  return reported_.insert({uav, writer}).second;
+}
+
+void CommandGate::shift(Clock::duration lost) {
+  for (std::optional<Owner>& owner : owners_) {
+    if (owner) owner->last_heard += lost;
+  }
+}
+
+}  // namespace swa::sim_node

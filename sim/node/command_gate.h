@@ -1,0 +1,53 @@
+#pragma once
+// One commander per UAV. DDS lets any participant in the swarm write swa/uav<i>/cmd_vel: a second agent started with
+// the same id, a test tool, a rogue. The simulator applies the commands of one writer per UAV, the owner: the first
+// writer heard from, until it has been silent for `handover` (its agent crashed and a restarted one took over);
+// commands of any other writer meanwhile are refused and counted, and each new refused writer is reported once.
+// Pure (no DDS, no clock): the node passes the writer's identity (its GUID) and the time the sample arrived.
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <vector>
+
+namespace swa::sim_node {
+
+using WriterId = std::array<std::uint8_t, 16>;
+
+enum class Admission {
+  kOwner,     // from the owner: apply it as usual
+  kHandover,  // a new owner (the first writer, or the old owner was silent): apply it
+  kRefused,   // another writer while the owner is active: drop it
+};
+
+class CommandGate {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  CommandGate(int uav_count, Clock::duration handover);
+
+  Admission admit(int uav, const WriterId& writer, Clock::time_point received);
+  // A refused writer not reported before (the caller logs it): true once per (UAV, writer).
+  bool firstRefusal(int uav, const WriterId& writer);
+  // Moves every owner's last-heard time by `lost` (a stall of the simulator itself: nobody could be heard).
+  void shift(Clock::duration lost);
+
+  std::uint64_t refused() const { return refused_; }
+  std::uint64_t handovers() const { return handovers_; }  // owner changes after the first owner of each UAV
+  std::size_t refusedWriters() const { return reported_.size(); }
+
+ private:
+  struct Owner {
+    WriterId writer{};
+    Clock::time_point last_heard{};
+  };
+  Clock::duration handover_;
+  std::vector<std::optional<Owner>> owners_;
+  std::set<std::pair<int, WriterId>> reported_;  // bounded by the writers that ever tried, at most a few per UAV
+  std::uint64_t refused_ = 0;
+  std::uint64_t handovers_ = 0;
+};
+
+}  // namespace swa::sim_node

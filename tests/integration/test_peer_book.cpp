@@ -1,0 +1,133 @@
+// The participant book of swa/dds/peer_book.h: the card every SWA participant announces, twins (same name, same
+// swarm) and who gives way, peers back after their lease expired. Pure, no DDS traffic (label unit).
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "swa/dds/peer_book.h"
+
+namespace swa::dds {
+namespace {
+
+PeerKey key(std::uint8_t b) {
+  PeerKey k{};
+  k.fill(b);
+  return k;
+}
+
+PeerCard card(const std::string& swarm, std::int64_t started_ns, long pid = 100, const std::string& host = "h") {
+  return PeerCard{swarm, started_ns, pid, host};
+}
+
+TEST(PeerCard, RoundTripsAndRejectsWhatIsNotACard) {
+  const PeerCard c = card("run-7", 1'700'000'000'123'456'789, 4242, "drone-3");
+  const auto back = decodePeerCard(encodePeerCard(c));
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->swarm, "run-7");
+  EXPECT_EQ(back->started_ns, c.started_ns);
+  EXPECT_EQ(back->pid, 4242);
+  EXPECT_EQ(back->host, "drone-3");
+
+  EXPECT_FALSE(decodePeerCard(""));
+  EXPECT_FALSE(decodePeerCard("ros2 user data"));
+  EXPECT_FALSE(decodePeerCard("swa-peer/1;started_ns=abc;pid=1;swarm=;host="));
+  EXPECT_FALSE(decodePeerCard("swa-peer/1;started_ns=1;pid=1;swarm="));  // no host
+  EXPECT_FALSE(decodePeerCard("swa-peer/1;started_ns=1;pid=1;swarm=;host=" + std::string(300, 'x')));
+  // A later version's extra key is ignored.
+  EXPECT_TRUE(decodePeerCard("swa-peer/1;started_ns=1;pid=1;swarm=;host=h;role=agent"));
+}
+
+TEST(PeerCard, SeparatorsInValuesAndLongHostsCannotBreakTheFormat) {
+  const std::string text = encodePeerCard(card("a;b=c", 5, 1, std::string(400, 'h')));
+  EXPECT_LE(text.size(), 255u);
+  const auto back = decodePeerCard(text);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->swarm, "a_b_c");
+  EXPECT_EQ(back->started_ns, 5);
+}
+
+TEST(PeerBook, TwinIsSameNameSameSwarmAndTheYoungerGivesWay) {
+  // GIVEN agent 3 of swarm "s", started at t = 100
+  PeerBook book("swa_agent_3", card("s", 100), key(5));
+  // WHEN others appear: another id, the same id in another swarm, and a non-SWA participant with our name
+  book.discovered({key(1), "swa_agent_4", card("s", 50)});
+  book.discovered({key(2), "swa_agent_3", card("other", 50)});
+  book.discovered({key(3), "swa_agent_3", std::nullopt});
+  // THEN none of them is a twin
+  EXPECT_FALSE(book.oldestTwin());
+  EXPECT_FALSE(book.mustGiveWay());
+
+  // WHEN a younger agent 3 joins our swarm THEN it is our twin, and we stay
+  book.discovered({key(4), "swa_agent_3", card("s", 200)});
+  ASSERT_TRUE(book.oldestTwin());
+  EXPECT_EQ(book.oldestTwin()->key, key(4));
+  EXPECT_FALSE(book.mustGiveWay());
+
+  // WHEN an older one is there too THEN we give way (and it is the twin named)
+  book.discovered({key(6), "swa_agent_3", card("s", 99)});
+  EXPECT_EQ(book.oldestTwin()->key, key(6));
+  EXPECT_TRUE(book.mustGiveWay());
+
+  // WHEN it leaves THEN we stay again
+  book.lost(key(6), false);
+  EXPECT_FALSE(book.mustGiveWay());
+}
+
+TEST(PeerBook, EqualStartsAreBrokenByTheKeyTheSameWayOnBothSides) {
+  PeerBook a("swa_sim", card("", 7), key(1));
+  PeerBook b("swa_sim", card("", 7), key(2));
+  a.discovered({key(2), "swa_sim", card("", 7)});
+  b.discovered({key(1), "swa_sim", card("", 7)});
+  EXPECT_FALSE(a.mustGiveWay());
+  EXPECT_TRUE(b.mustGiveWay());
+}
+
+TEST(PeerBook, OurOwnAnnouncementIsNotATwin) {
+  PeerBook book("swa_agent_0", card("", 1), key(9));
+  book.discovered({key(9), "swa_agent_0", card("", 1)});
+  EXPECT_FALSE(book.oldestTwin());
+}
+
+TEST(PeerBook, CountsPeersBackAfterTheirLeaseExpiredButNotAfterAGoodbye) {
+  PeerBook book("swa_agent_0", card("", 1), key(9));
+  book.discovered({key(1), "swa_sim", card("", 1)});
+  book.discovered({key(2), "swa_monitor", card("", 1)});
+  // A clean goodbye and a return (not possible for one GUID in practice, but not a lease case either)
+  book.lost(key(2), false);
+  book.discovered({key(2), "swa_monitor", card("", 1)});
+  EXPECT_EQ(book.returnedAfterLease(), 0);
+  // Silent beyond the lease, then back
+  book.lost(key(1), true);
+  EXPECT_EQ(book.returnedAfterLease(), 0);
+  book.discovered({key(1), "swa_sim", card("", 1)});
+  EXPECT_EQ(book.returnedAfterLease(), 1);
+  EXPECT_EQ(book.lastReturned(), "swa_sim");
+  // A QoS change announcement of a live peer is not a return
+  book.discovered({key(1), "swa_sim", card("", 1)});
+  EXPECT_EQ(book.returnedAfterLease(), 1);
+}
+
+TEST(PeerBook, MemoryOfExpiredPeersIsBounded) {
+  PeerBook book("swa_sim", card("", 1), key(0));
+  // 5000 crashed agents that never come back: the book remembers at most kMaxExpired, and a peer lost last is
+  // still known when it returns.
+  for (int i = 0; i < 5000; ++i) {
+    PeerKey k{};
+    k[0] = static_cast<std::uint8_t>(i & 0xff);
+    k[1] = static_cast<std::uint8_t>((i >> 8) & 0xff);
+    k[2] = 1;
+    book.discovered({k, "swa_agent_" + std::to_string(i), card("", 1)});
+    book.lost(k, true);
+  }
+  EXPECT_EQ(book.expiredRemembered(), PeerBook::kMaxExpired);
+  PeerKey last{};
+  last[0] = static_cast<std::uint8_t>(4999 & 0xff);
+  last[1] = static_cast<std::uint8_t>((4999 >> 8) & 0xff);
+  last[2] = 1;
+  book.discovered({last, "swa_agent_4999", card("", 1)});
+  EXPECT_EQ(book.returnedAfterLease(), 1);
+}
+
+}  // namespace
+}  // namespace swa::dds

@@ -1,0 +1,95 @@
+// One commander per UAV (sim/node/command_gate.h): the first writer heard owns a UAV's cmd_vel, another writer is
+// refused while the owner is active and takes over once the owner has been silent for the handover time.
+
+#include <gtest/gtest.h>
+
+#include "command_gate.h"
+
+namespace swa::sim_node {
+namespace {
+
+using Clock = CommandGate::Clock;
+using std::chrono::milliseconds;
+
+WriterId writer(std::uint8_t b) {
+  WriterId w{};
+  w.fill(b);
+  return w;
+}
+
+class CommandGateTest : public ::testing::Test {
+ protected:
+  CommandGate gate{3, milliseconds(500)};
+  Clock::time_point t0{};
+};
+
+TEST_F(CommandGateTest, FirstWriterOwnsTheUavAndASecondIsRefusedWhileTheFirstTalks) {
+  EXPECT_EQ(gate.admit(0, writer(1), t0), Admission::kHandover);
+  for (int k = 1; k <= 100; ++k) {
+    // The agent at 100 Hz, a rogue in between
+    EXPECT_EQ(gate.admit(0, writer(1), t0 + milliseconds(10 * k)), Admission::kOwner);
+    EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(10 * k + 5)), Admission::kRefused);
+  }
+  EXPECT_EQ(gate.refused(), 100u);
+  EXPECT_EQ(gate.handovers(), 0u);
+  // Another UAV is independent
+  EXPECT_EQ(gate.admit(1, writer(2), t0), Admission::kHandover);
+}
+
+TEST_F(CommandGateTest, AWriterTakesOverOnlyAfterTheOwnerFellSilent) {
+  gate.admit(0, writer(1), t0);
+  // The owner crashes; its restarted successor is refused until the owner has been silent for 500 ms
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(499)), Admission::kRefused);
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(500)), Admission::kHandover);
+  EXPECT_EQ(gate.handovers(), 1u);
+  // ... and from then on the old writer is the foreign one
+  EXPECT_EQ(gate.admit(0, writer(1), t0 + milliseconds(510)), Admission::kRefused);
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(520)), Admission::kOwner);
+}
+
+TEST_F(CommandGateTest, LateDeliveredOwnerSamplesDoNotMoveItsLastHeardBack) {
+  gate.admit(0, writer(1), t0 + milliseconds(400));
+  gate.admit(0, writer(1), t0 + milliseconds(100));  // received earlier, drained later
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(800)), Admission::kRefused);
+}
+
+TEST_F(CommandGateTest, AStallOfTheSimulatorIsNotSilenceOfTheOwner) {
+  gate.admit(0, writer(1), t0);
+  // The simulator itself did not run for 5 s: the first sample drained afterwards is the rogue's
+  gate.shift(std::chrono::seconds(5));
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(5100)), Admission::kRefused);
+  EXPECT_EQ(gate.admit(0, writer(1), t0 + milliseconds(5105)), Admission::kOwner);
+}
+
+TEST_F(CommandGateTest, EachRefusedWriterIsReportedOnce) {
+  gate.admit(0, writer(1), t0);
+  EXPECT_TRUE(gate.firstRefusal(0, writer(2)));
+  EXPECT_FALSE(gate.firstRefusal(0, writer(2)));
+  EXPECT_TRUE(gate.firstRefusal(1, writer(2)));
+  EXPECT_TRUE(gate.firstRefusal(0, writer(3)));
+  EXPECT_EQ(gate.refusedWriters(), 3u);
+}
+
+TEST_F(CommandGateTest, AFloodOfNewWritersIsBoundedInMemory) {
+  gate.admit(0, writer(1), t0);
+  std::size_t reported = 0;
+  for (int k = 0; k < 5000; ++k) {
+    WriterId w{};
+    w[0] = static_cast<std::uint8_t>(k & 0xff);
+    w[1] = static_cast<std::uint8_t>(k >> 8);
+    w[15] = 7;
+    EXPECT_EQ(gate.admit(0, w, t0 + milliseconds(1)), Admission::kRefused);
+    if (gate.firstRefusal(0, w)) ++reported;
+  }
+  EXPECT_EQ(gate.refused(), 5000u);
+  EXPECT_EQ(reported, 1024u);
+  EXPECT_EQ(gate.refusedWriters(), 1024u);
+}
+
+TEST_F(CommandGateTest, UnknownUavIsAnError) {
+  EXPECT_THROW(gate.admit(3, writer(1), t0), std::out_of_range);
+  EXPECT_THROW(gate.admit(-1, writer(1), t0), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace swa::sim_node
