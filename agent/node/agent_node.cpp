@@ -35,6 +35,14 @@ constexpr auto kReconnectFirst = std::chrono::seconds(5);
 constexpr auto kReconnectMax = std::chrono::seconds(60);
 // A detection / GNSS sample waits for the IMU of its step at most this much newer sim time (sample_order.h).
 constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
+// After a peer came back from an expired lease, how long its endpoints get to re-match ours before the participant
+// is re-created (peer_book.h). Re-matching takes milliseconds when it works; the lockstep simulator waits 2 s (its
+// default agent timeout) for an answer.
+constexpr auto kRematchWait = std::chrono::milliseconds(500);
+// Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (deploy/dds/profiles.xml): the most a
+// re-created participant's readers can be sent again (replay_filter.h).
+constexpr std::size_t kImuHistory = 1000;
+constexpr std::size_t kDetectionsGnssHistory = 100;
 
 // The Participant validates the whole deployment environment (and reports a bad one as DdsError); here only
 // whether security is on matters.
@@ -65,12 +73,37 @@ void AgentNode::connect() {
   // Writers first: a command must have somewhere to go as soon as the first IMU sample is processed.
   cmd_writer_ = participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), "swa_command_writer");
   state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), "swa_state_writer");
-  participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), "swa_sensor_reader",
-                                           [this](msg::Imu&& m) { onInput(Input(std::move(m))); });
-  participant_->reader<msg::DetectionsPubSubType>(dds::topics::detections(id_), "swa_detections_gnss_reader",
-                                                  [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
-  participant_->reader<msg::GnssFixPubSubType>(dds::topics::gnss(id_), "swa_detections_gnss_reader",
-                                               [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
+  imu_reader_ = participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), "swa_sensor_reader",
+                                                         [this](msg::Imu&& m) { onInput(Input(std::move(m))); });
+  det_reader_ = participant_->reader<msg::DetectionsPubSubType>(
+      dds::topics::detections(id_), "swa_detections_gnss_reader",
+      [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
+  gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
+      dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
+  peers_back_ = 0;
+  peer_back_at_.reset();
+}
+
+std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn() {
+  // A peer that went silent beyond its lease and never dropped us: Fast DDS 2.9 sometimes does not re-send all its
+  // endpoints (peer_book.h), and a UAV loses its sensors or its commands for good. Only then, and only if one of our
+  // endpoints is still unmatched a moment later: a peer lost and back under packet loss is no reason to reconnect.
+  const auto [back, name] = participant_->peersBackAfterLease();
+  const auto now = std::chrono::steady_clock::now();
+  if (back != peers_back_) {
+    peers_back_ = back;
+    peer_back_at_ = now;
+    peer_back_name_ = name;
+  }
+  if (!peer_back_at_ || now - *peer_back_at_ < kRematchWait) return std::nullopt;
+  peer_back_at_.reset();
+  std::string lost;
+  if (cmd_writer_.matched() < 1) lost += " " + dds::topics::cmdVel(id_);
+  if (imu_reader_.matched() < 1) lost += " " + dds::topics::imu(id_);
+  if (det_reader_.matched() < 1) lost += " " + dds::topics::detections(id_);
+  if (gnss_reader_.matched() < 1) lost += " " + dds::topics::gnss(id_);
+  if (lost.empty()) return std::nullopt;
+  return "participant " + peer_back_name_ + " came back after its DDS lease expired and these did not re-match:" + lost;
 }
 
 bool AgentNode::handshakeStalled() {
@@ -104,10 +137,8 @@ int AgentNode::run() {
     if (handshakeStalled()) {
       why = "no reader of " + dds::topics::cmdVel(id_) +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
-    } else if (const auto [back, name] = participant_->peersBackAfterLease(); back > 0) {
-      // The peer went silent beyond its lease and never dropped us: Fast DDS 2.9 may not re-send all its endpoints
-      // (peer_book.h), so a UAV could lose its sensors or its commands for good.
-      why = "participant " + name + " came back after its DDS lease expired (endpoints may not re-match)";
+    } else if (const std::optional<std::string> lost = endpointsLostAfterPeerReturn()) {
+      why = *lost;
     }
     if (!why.empty()) {
       ++reconnects_;
@@ -116,7 +147,15 @@ int AgentNode::run() {
       lock.unlock();  // deleting the participant waits for its listeners, which take the lock
       participant_.reset();
       lock.lock();
+      // The new readers are sent the writers' history again: not news (replay_filter.h).
+      replay_.arm(Stream::kImu, kImuHistory);
+      replay_.arm(Stream::kDetections, kDetectionsGnssHistory);
+      replay_.arm(Stream::kGnss, kDetectionsGnssHistory);
       connect();
+      // The answer to the newest IMU sample may never have arrived (the old writer was not matched), and that sample
+      // comes back only as replayed history: the new writer sends it again (TRANSIENT_LOCAL: once matched). A
+      // simulator that already has it ignores the duplicate.
+      if (last_cmd_ && cmd_writer_.write(*last_cmd_)) ++stats_.commands;
     }
   }
   participant_.reset();
@@ -157,6 +196,10 @@ void AgentNode::onInput(Input&& in) {
       },
       in);
   const std::lock_guard<std::mutex> lock(mutex_);
+  if (!replay_.pass(stream, stamp)) {
+    stats_.replayed = replay_.dropped();
+    return;
+  }
   last_input_ = std::chrono::steady_clock::now();
   const auto* det = std::get_if<msg::Detections>(&in);
   if (det != nullptr && det->detections().size() > agent_.config().limits.max_detections) {
@@ -211,6 +254,7 @@ void AgentNode::handle(Input& in) {
     } else {
       ++stats_.write_failures;
     }
+    last_cmd_ = out;
     if (!state_due_set_ || stamp >= next_state_ns_) {
       pending_state_ns_ = stamp;
       // Next 100 ms boundary after this stamp (floor division, also for negative stamps).

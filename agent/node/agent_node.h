@@ -25,6 +25,7 @@
 #include <swa/msg/Imu.h>
 #include <swa/msg/VelocitySetpoint.h>
 
+#include "replay_filter.h"
 #include "sample_order.h"
 #include "swa/agent/agent.h"
 #include "swa/dds/participant.h"
@@ -37,6 +38,7 @@ struct AgentNodeStats {
   std::uint64_t foreign = 0;         // samples naming another UAV (a wiring error upstream): dropped
   std::uint64_t write_failures = 0;
   std::uint64_t forced_releases = 0;  // samples the stamp orderer let through early (sample_order.h)
+  std::uint64_t replayed = 0;         // history sent again to a re-created participant, dropped (replay_filter.h)
 };
 
 class AgentNode {
@@ -64,6 +66,8 @@ class AgentNode {
   void publishState(agent::StampNs stamp_ns, bool no_input = false);
   void heartbeat();  // run(): the wall-clock state
   void refuseAsTwin();
+  // Why the participant must be re-created after a peer came back from an expired lease, if it must.
+  std::optional<std::string> endpointsLostAfterPeerReturn();
   void noteYoungerTwin();
 
   const int id_;
@@ -89,10 +93,18 @@ class AgentNode {
   std::chrono::steady_clock::time_point connected_at_;
   int reconnects_ = 0;
   dds::PeerKey reported_twin_{};
+  int peers_back_ = 0;  // PeerBook count of the current participant
+  std::optional<std::chrono::steady_clock::time_point> peer_back_at_;
+  std::string peer_back_name_;
+  ReplayFilter replay_;
+  std::optional<msg::VelocitySetpoint> last_cmd_;  // sent again after a reconnection
 
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::VelocitySetpoint> cmd_writer_;
   dds::Writer<msg::AgentState> state_writer_;
+  dds::Reader<msg::Imu> imu_reader_;
+  dds::Reader<msg::Detections> det_reader_;
+  dds::Reader<msg::GnssFix> gnss_reader_;
 };
 
 }  // namespace swa::agent_node

@@ -71,12 +71,13 @@ int agentMain(int argc, char** argv) {
     std::fprintf(stderr,
                  "swa_agent %d: inputs rejected: %llu non-finite, %llu out of order, %llu future stamp, %llu oversize, "
                  "%llu bad id, %llu implausible, %llu before a heading; %llu stamp resync(s), %llu forced release(s) "
-                 "from the stamp orderer\n",
+                 "from the stamp orderer, %llu replayed sample(s) dropped after a reconnection\n",
                  options.id, static_cast<unsigned long long>(r.nonfinite),
                  static_cast<unsigned long long>(r.out_of_order), static_cast<unsigned long long>(r.future),
                  static_cast<unsigned long long>(r.oversize), static_cast<unsigned long long>(r.bad_id),
                  static_cast<unsigned long long>(r.implausible), static_cast<unsigned long long>(r.no_heading),
-                 static_cast<unsigned long long>(d.stamp_resyncs), static_cast<unsigned long long>(s.forced_releases));
+                 static_cast<unsigned long long>(d.stamp_resyncs), static_cast<unsigned long long>(s.forced_releases),
+                 static_cast<unsigned long long>(s.replayed));
     return status;
   } catch (const dds::DdsError& e) {
     std::fprintf(stderr, "swa_agent %d: DDS error: %s\n", options.id, e.what());

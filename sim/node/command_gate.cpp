@@ -1,5 +1,6 @@
 #include "command_gate.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace swa::sim_node {
@@ -35,9 +36,9 @@ bool CommandGate::firstRefusal(int uav, const WriterId& writer) {
   return reported_.insert({uav, writer}).second;
 }
 
-void CommandGate::shift(Clock::duration lost) {
+void CommandGate::shift(Clock::duration lost, Clock::time_point now) {
   for (std::optional<Owner>& owner : owners_) {
-    if (owner) owner->last_heard += lost;
+    if (owner) owner->last_heard = std::min(owner->last_heard + lost, now);
   }
 }
 

@@ -31,8 +31,9 @@ class CommandGate {
   Admission admit(int uav, const WriterId& writer, Clock::time_point received);
   // A refused writer not reported before (the caller logs it): true once per (UAV, writer).
   bool firstRefusal(int uav, const WriterId& writer);
-  // Moves every owner's last-heard time by `lost` (a stall of the simulator itself: nobody could be heard).
-  void shift(Clock::duration lost);
+  // Moves every owner's last-heard time by `lost` (a stall of the simulator itself: nobody could be heard), but not
+  // past `now` (a sample drained after the stall, before it was noticed, is already recent).
+  void shift(Clock::duration lost, Clock::time_point now);
 
   std::uint64_t refused() const { return refused_; }
   std::uint64_t handovers() const { return handovers_; }  // owner changes after the first owner of each UAV

@@ -29,6 +29,11 @@ constexpr auto kPollPeriod = std::chrono::milliseconds(100);
 // A loop iteration longer than one poll plus this means the simulator itself did not run (stall_watch.h). Generous:
 // on a loaded 2-core machine a wake-up can be a few tens of milliseconds late.
 constexpr auto kStallSlack = std::chrono::milliseconds(150);
+// A stall this long (beyond the slack) may have outlasted the 4 s participant lease (deploy/dds/profiles.xml) counted
+// from the simulator's last announcement (every 1 s): the agents dropped the simulator and must find it again, some by
+// re-creating their participant (agent_node.h, peer_book.h). Each then gets kReconnectGrace more for its next answer.
+constexpr auto kLeaseLongStall = std::chrono::seconds(3);
+constexpr auto kReconnectGrace = std::chrono::seconds(4);
 // A UAV's commands may come from another writer once its current one has been silent this long (command_gate.h):
 // longer than any pause of a healthy agent (it answers every 10 ms), shorter than the launcher's restart of a crashed
 // one (0.5 s back-off plus the start).
@@ -205,15 +210,21 @@ void SimNode::runLockstep() {
     // An agent that never answered may still be matching our writers (discovery is not symmetric): it gets the
     // startup timeout, not the agent timeout, for its first answer.
     const double timeout_s = lockstep_.waitingForNewcomer() ? startup_s : options_.agent_timeout_s;
-    auto deadline = Clock::now() + seconds(timeout_s);
-    stall_.restart(Clock::now());  // publishing is not a stall
-    while (!lockstep_.complete() && !dds::shutdownRequested()) {
+    auto deadline = std::max(Clock::now(), reconnect_grace_until_) + seconds(timeout_s);
+    // Checked at least once per step (stepping and publishing take milliseconds), in the answer wait and in the
+    // acknowledgment wait: wherever the simulator is stopped, the stall is seen, and the agents it kept from answering
+    // get that much longer (a stall seen here may predate the deadline: then they get more than needed, harmless).
+    bool checked = false;
+    while (!checked || (!lockstep_.complete() && !dds::shutdownRequested())) {
+      checked = true;
       const auto now = Clock::now();
       const Clock::duration lost = stall_.check(now);
       if (lost > Clock::duration::zero()) {
         deadline += lost;  // the agents had no chance to answer while the simulator did not run
-        noteStall(lost);
+        noteStall(lost, now);
+        deadline = std::max(deadline, reconnect_grace_until_ + seconds(timeout_s));
       }
+      if (lockstep_.complete() || dds::shutdownRequested()) break;
       if (now >= deadline) break;
       drainLockstep(std::min<Clock::duration>(deadline - now, kPollPeriod));
     }
@@ -249,7 +260,7 @@ void SimNode::awaitSensorAcks(Clock::time_point& deadline) {
       const Clock::duration lost = stall_.check(now);
       if (lost > Clock::duration::zero()) {
         deadline += lost;
-        noteStall(lost);
+        noteStall(lost, now);
       }
       if (now >= deadline) return false;
     }
@@ -332,8 +343,9 @@ void SimNode::runRealtime() {
     const Clock::duration lost = stall_.check(now);
     if (lost <= Clock::duration::zero()) return;
     start += lost;
-    for (auto& t : rt_last_answer_) t += lost;
-    noteStall(lost);
+    noteStall(lost, now);
+    // An answer drained after the stall but before this check is already recent: never move it into the future.
+    for (auto& t : rt_last_answer_) t = std::max(std::min(t + lost, now), reconnect_grace_until_);
   };
   stall_.restart(Clock::now());
   while (!world_.finished() && !dds::shutdownRequested()) {
@@ -368,15 +380,18 @@ void SimNode::runRealtime() {
   if (!dds::shutdownRequested()) collectLateAnswers(scheduledTime(world_.time_ns() + dt_ns));
 }
 
-void SimNode::noteStall(Clock::duration lost) {
+void SimNode::noteStall(Clock::duration lost, Clock::time_point now) {
   ++summary_.stalls;
   const double s = std::chrono::duration<double>(lost).count();
   summary_.stalled_s += s;
-  gate_.shift(lost);  // no commander could be heard while the simulator did not run
+  gate_.shift(lost, now);  // no commander could be heard while the simulator did not run
+  const bool lease_long = lost >= kLeaseLongStall;
+  if (lease_long) reconnect_grace_until_ = now + kReconnectGrace;
   std::fprintf(stderr,
-               "swa_sim: t = %.2f s: the simulator itself did not run for %.3f s: its deadlines moved by that much "
+               "swa_sim: t = %.2f s: the simulator itself did not run for %.3f s: its deadlines moved by that much%s "
                "(no agent is blamed for it)\n",
-               sim::stampSeconds(world_.time_ns()), s);
+               sim::stampSeconds(world_.time_ns()), s,
+               lease_long ? ", and the agents get 4 s more to find it again (the stall outlasted the DDS lease)" : "");
 }
 
 void SimNode::drainRealtime(Clock::duration wait) {

@@ -117,7 +117,8 @@ class SimNode {
   CommandGate gate_;
   dds::PeerKey reported_twin_{};
   StallWatch stall_;
-  void noteStall(Clock::duration lost);  // logs and counts a stall of the simulator itself
+  void noteStall(Clock::duration lost, Clock::time_point now);  // logs and counts a stall of the simulator itself
+  Clock::time_point reconnect_grace_until_{};  // after a lease-long stall: agents may need until then to reconnect
   SimSummary summary_;
   CommandLatencyTracker latency_;
   LogHistogram step_lag_;

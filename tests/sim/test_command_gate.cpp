@@ -56,9 +56,18 @@ TEST_F(CommandGateTest, LateDeliveredOwnerSamplesDoNotMoveItsLastHeardBack) {
 TEST_F(CommandGateTest, AStallOfTheSimulatorIsNotSilenceOfTheOwner) {
   gate.admit(0, writer(1), t0);
   // The simulator itself did not run for 5 s: the first sample drained afterwards is the rogue's
-  gate.shift(std::chrono::seconds(5));
+  gate.shift(std::chrono::seconds(5), t0 + milliseconds(5050));
   EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(5100)), Admission::kRefused);
   EXPECT_EQ(gate.admit(0, writer(1), t0 + milliseconds(5105)), Admission::kOwner);
+}
+
+TEST_F(CommandGateTest, AStallNoticedLateDoesNotPushTheOwnerIntoTheFuture) {
+  // The owner's sample of the resumed simulator was drained at 5.0 s, the stall of 4.75 s noticed only at 5.01 s
+  gate.admit(0, writer(1), t0 + milliseconds(5000));
+  gate.shift(milliseconds(4750), t0 + milliseconds(5010));
+  // The owner then falls silent (its agent re-created its participant): its successor takes over 0.5 s later, not
+  // 0.5 s after 9.75 s
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(5600)), Admission::kHandover);
 }
 
 TEST_F(CommandGateTest, EachRefusedWriterIsReportedOnce) {
