@@ -4,11 +4,13 @@
 set -euo pipefail
 
 # libgmock-dev: Debian's GTestConfig.cmake declares the gmock targets too and fails to import without it.
+# libnetfilter-queue-dev: the packet-loss emulator of the `loss` tests (tests/loss/swa_netem.cpp).
 packages=(
   build-essential cmake
   libeigen3-dev libyaml-cpp-dev
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools openssl libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  pkg-config libnetfilter-queue-dev
 )
 
 missing=()

@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   std::fprintf(stderr, "swa_netem: queue %d, loss %.3f, delay %.1f +- %.1f ms, seed %llu\n", queue_num, config.loss,
-               config.delay.count() / 1000.0, config.jitter.count() / 1000.0,
+               static_cast<double>(config.delay.count()) / 1000.0, static_cast<double>(config.jitter.count()) / 1000.0,
                static_cast<unsigned long long>(config.seed));
 
   const int fd = nfq_fd(h);
