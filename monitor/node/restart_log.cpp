@@ -31,7 +31,8 @@ std::optional<AgentRestart> parseRow(std::string_view line, std::string& why) {
   for (const std::string& x : *fields) f.push_back(trim(x));
   AgentRestart r;
   const auto wall = dds::parseReal(f[0], 0.0, 1e12);
-  const auto uav = dds::parseInteger(f[1], 0, 1'000'000);
+  const auto uav = f[1] == "monitor" ? std::optional<long long>(AgentRestart::kMonitor)
+                                     : dds::parseInteger(f[1], 0, 1'000'000);
   const auto count = dds::parseInteger(f[3], 0, std::numeric_limits<long long>::max());
   const auto backoff = dds::parseReal(f[4], 0.0, 1e12);
   // The first problem of the row is the one reported.

@@ -1,7 +1,7 @@
 #pragma once
-// The launcher's agent restart log (--restarts FILE): CSV with the header
+// The launcher's restart log (--restarts FILE): CSV with the header
 //   wall_s,uav,exit_status,restart_count,backoff_s
-// and one row per agent restart, appended while the run goes on and read by the monitor at the end. The file is
+// and one row per agent restart (uav: its index) or monitor restart (uav: "monitor"), appended while the run goes on and read by the monitor at the end. The file is
 // someone else's, possibly still being written: a missing or empty file means no restart, and a malformed row is
 // counted and described, never fatal.
 
@@ -13,6 +13,7 @@
 namespace swa::monitor_node {
 
 struct AgentRestart {
+  static constexpr int kMonitor = -1;  // `uav` of a restart of swa_monitor itself
   double wall_s = 0.0;  // launcher's wall clock, seconds since it started
   int uav = 0;
   std::string exit_status;         // as the launcher wrote it (an exit code, or a signal name / number)
@@ -31,7 +32,7 @@ struct RestartLog {
 inline const char* restartLogHeader() { return "wall_s,uav,exit_status,restart_count,backoff_s"; }
 
 // Blank lines and header lines (anywhere: a restarted launcher may write it again) are skipped. A row needs
-// exactly five fields: wall_s and backoff_s finite reals >= 0, uav an integer in [0, 1000000], exit_status
+// exactly five fields: wall_s and backoff_s finite reals >= 0, uav an integer in [0, 1000000] or "monitor", exit_status
 // non-empty, restart_count an integer >= 0 (spaces around a field are ignored).
 RestartLog parseRestartLog(std::istream& in);
 

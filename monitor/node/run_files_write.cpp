@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
@@ -53,7 +54,11 @@ JsonValue summaryJson(const RunRecord& run) {
   j.set("window_from_s", JsonValue::number(run.window_start_s));
   // The same keys and values as swa_batch's per-seed entries (monitor::toJson(Summary)).
   for (const monitor::NamedValue& f : monitor::summaryFields(run.summary)) j.set(f.key, JsonValue::number(f.value));
-  j.set("agent_restarts", JsonValue::unsignedInteger(run.restarts.restarts.size()));
+  const auto monitor_restarts = static_cast<std::size_t>(
+      std::count_if(run.restarts.restarts.begin(), run.restarts.restarts.end(),
+                    [](const AgentRestart& r) { return r.uav == AgentRestart::kMonitor; }));
+  j.set("agent_restarts", JsonValue::unsignedInteger(run.restarts.restarts.size() - monitor_restarts));
+  j.set("monitor_restarts", JsonValue::unsignedInteger(monitor_restarts));
   j.set("restarts_malformed_rows", JsonValue::integer(run.restarts.malformed_rows));
   j.set("restarts_problems", stringArray(run.restarts.problems));
   JsonValue restarts = JsonValue::array();

@@ -73,7 +73,7 @@ monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs) {
 monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs) {
   monitor::ReportTable t;
   t.id = "restarts";
-  t.title = "Agent restarts";
+  t.title = "Agent and monitor restarts";
   const bool many = runs.size() > 1;
   if (many) t.columns.push_back("run");
   for (const char* c : {"wall time [s]", "UAV", "exit status", "restart count", "backoff [s]"}) t.columns.push_back(c);
@@ -86,7 +86,7 @@ monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs) {
       std::vector<std::string> row;
       if (many) row.push_back(run.label);
       row.push_back(monitor::formatFixed(r.wall_s, 2));
-      row.push_back(std::to_string(r.uav));
+      row.push_back(r.uav == AgentRestart::kMonitor ? std::string("monitor") : std::to_string(r.uav));
       row.push_back(r.exit_status);
       row.push_back(std::to_string(r.restart_count));
       row.push_back(monitor::formatFixed(r.backoff_s, 2));
@@ -96,7 +96,7 @@ monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs) {
   t.note = "From the launcher's restart log; wall time is seconds since the launcher started.";
   if (malformed > 0) t.note += " " + std::to_string(malformed) + " malformed row(s) skipped (see summary.json).";
   if (total > kMaxTableRows) t.note += " Only the first " + std::to_string(kMaxTableRows) + " are listed.";
-  t.empty_text = "No agent restart.";
+  t.empty_text = "No restart.";
   return t;
 }
 

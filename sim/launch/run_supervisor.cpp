@@ -206,6 +206,9 @@ class Supervisor {
         if (Clock::now() >= *monitor_restart_due_) {
           monitor_restart_due_.reset();
           ++monitor_restarts_;
+          std::ofstream(logs_ / "restarts.csv", std::ios::app) << secondsSince(t0_) << ",monitor,"
+                                                               << monitor_exit_ << ',' << monitor_restarts_ << ','
+                                                               << monitor_backoff_s_ << '\n';
           startMonitor();
         }
       } else if (const auto m = monitor_->poll()) {
@@ -219,6 +222,8 @@ class Supervisor {
                         spec_.label.c_str(), describeStatus(*m).c_str(), secondsSince(t0_), delay);
             monitor_restart_due_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                       std::chrono::duration<double>(delay));
+            monitor_exit_ = *m;
+            monitor_backoff_s_ = delay;
             continue;
           }
           std::printf("swa_launch [%s]: swa_monitor failed with %s (see %s)\n", spec_.label.c_str(),
@@ -286,6 +291,8 @@ class Supervisor {
   Clock::time_point t0_;
   std::unique_ptr<ChildProcess> sim_, monitor_;
   int monitor_restarts_ = 0;
+  int monitor_exit_ = 0;  // of the monitor process that is being restarted (restarts.csv)
+  double monitor_backoff_s_ = 0.0;
   std::optional<Clock::time_point> monitor_restart_due_;
   std::vector<AgentSlot> agents_;
   std::map<int, std::pair<int, double>> last_exit_;  // uav -> (exit status, back-off) of the pending restart

@@ -210,7 +210,7 @@ TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
   const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
   bool killed = false;
   // WHEN the monitor is SIGKILLed once the run is past 200 s (the simulator's truth history reaches 100 s back, so
-  // the restarted monitor cannot get the first 100 s)
+  // the restarted monitor cannot get the first 100 s; the chaos test kills it early enough to recover everything)
   while (!killed && SteadyClock::now() < deadline && !launch.wait(0.0)) {
     if (newest_stamp_ns.load() >= 200'000'000'000LL) {
       const int pid = monitorPid(domain_);
@@ -236,6 +236,11 @@ TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
   EXPECT_NE(summary.find("\"verdict\": \"INCOMPLETE\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("the monitor missed"), std::string::npos) << summary;
   EXPECT_GE(jsonNumber(summary, "truth_missed_ms"), 50'000.0) << summary;
+  // AND the restart is in the restart log and the summary, apart from the agents'
+  EXPECT_TRUE(std::regex_search(readFile(out / "logs" / "restarts.csv"), std::regex("\n[0-9.]+,monitor,137,1,")))
+      << readFile(out / "logs" / "restarts.csv");
+  EXPECT_EQ(jsonNumber(summary, "monitor_restarts"), 1.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0) << summary;
   expectNothingLeft(&launcher_files);
 }
 

@@ -54,6 +54,18 @@ TEST(RestartLog, RowsInOrder) {
   EXPECT_DOUBLE_EQ(log.restarts[2].wall_s, 31.25);
 }
 
+TEST(RestartLog, AMonitorRestartIsARowOfItsOwn) {
+  const RestartLog log = parse(
+      "wall_s,uav,exit_status,restart_count,backoff_s\n"
+      "12.5,3,137,1,0.5\n"
+      "20.0,monitor,137,1,0.5\n"
+      "21.0,Monitor,137,1,0.5\n");
+  ASSERT_EQ(log.restarts.size(), 2u);
+  EXPECT_EQ(log.restarts[0].uav, 3);
+  EXPECT_EQ(log.restarts[1].uav, AgentRestart::kMonitor);
+  EXPECT_EQ(log.malformed_rows, 1);  // the spelling is exact
+}
+
 TEST(RestartLog, HeaderOptionalRepeatedCrLfSpacesAndQuotes) {
   const RestartLog log = parse(
       "1,0,1,1,0.5\r\n"
