@@ -25,7 +25,7 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
       list.push(std::move(loaded.summary));
       runs.push_back(std::move(loaded.run));
     }
-  } catch (const agent::ConfigError& e) {
+  } catch (const params::ConfigError& e) {
     err << "swa_monitor: invalid scenario:\n" << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {

@@ -64,7 +64,7 @@ int monitorMain(int argc, char** argv) {
     config = scenario ? liveRunConfig(*scenario) : liveRunConfigWithoutScenario();
     domain = dds::resolveDomain(options.domain);
     monitor::prepareOutputDir(options.out_dir);
-  } catch (const agent::ConfigError& e) {
+  } catch (const params::ConfigError& e) {
     std::fprintf(stderr, "swa_monitor: invalid scenario:\n%s\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {

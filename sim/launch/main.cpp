@@ -144,7 +144,7 @@ int launchMain(int argc, char** argv) {
       throw std::runtime_error(all);
     }
     monitor::prepareOutputDir(o.out_dir);  // last: a run refused for another reason writes nothing
-  } catch (const agent::ConfigError& e) {
+  } catch (const params::ConfigError& e) {
     std::fprintf(stderr, "swa_launch: invalid scenario:\n%s\n", e.what());
     return 2;
   } catch (const std::exception& e) {

@@ -47,7 +47,7 @@ int simMain(int argc, char** argv) {
       summary_file.open(options.summary_out);
       if (!summary_file) throw std::runtime_error("cannot write --summary-out " + options.summary_out);
     }
-  } catch (const agent::ConfigError& e) {
+  } catch (const params::ConfigError& e) {
     std::fprintf(stderr, "swa_sim: invalid scenario:\n%s\n", e.what());
     return 2;
   } catch (const std::exception& e) {

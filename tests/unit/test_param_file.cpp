@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "swa/agent/config_io.h"
-#include "swa/agent/param_file.h"
+#include "swa/params/file.h"
 
 namespace swa::agent {
 namespace {
@@ -35,7 +35,7 @@ class ParamFile : public ::testing::Test {
 
 std::string problemOf(const std::string& path) {
   std::string problem;
-  EXPECT_FALSE(param::readTextFile(path, "configuration", problem).has_value()) << path;
+  EXPECT_FALSE(params::readTextFile(path, "configuration", problem).has_value()) << path;
   return problem;
 }
 
@@ -49,10 +49,10 @@ TEST_F(ParamFile, DevicesArePlainErrorsNotHangsOrGigabytes) {
 }
 
 TEST_F(ParamFile, SizeIsCappedAtOneMebibyte) {
-  const fs::path at_limit = write("at.yaml", "# " + std::string(param::kMaxFileBytes - 3, 'x') + "\n");
+  const fs::path at_limit = write("at.yaml", "# " + std::string(params::kMaxFileBytes - 3, 'x') + "\n");
   std::string problem;
-  EXPECT_TRUE(param::readTextFile(at_limit.string(), "configuration", problem).has_value()) << problem;
-  const fs::path over = write("over.yaml", std::string(param::kMaxFileBytes + 1, '#'));
+  EXPECT_TRUE(params::readTextFile(at_limit.string(), "configuration", problem).has_value()) << problem;
+  const fs::path over = write("over.yaml", std::string(params::kMaxFileBytes + 1, '#'));
   EXPECT_EQ(problemOf(over.string()), "is 1048577 bytes; a configuration file may have at most 1048576 (1 MiB)");
 }
 
@@ -84,15 +84,15 @@ TEST(ParamProblems, RepeatsAreMergedLongOnesCutAndTheListCapped) {
   std::vector<std::string> problems(1000, "formation.k = 0 is out of range [1, 16]");
   problems.push_back("x = '" + std::string(5000, 'a') + "' is not valid");
   for (int i = 0; i < 40; ++i) problems.push_back("unknown key 'k" + std::to_string(i) + "'");
-  const std::vector<std::string> s = param::summariseProblems(problems);
-  ASSERT_EQ(s.size(), param::kMaxProblems + 1);
+  const std::vector<std::string> s = params::summariseProblems(problems);
+  ASSERT_EQ(s.size(), params::kMaxProblems + 1);
   EXPECT_EQ(s[0], "formation.k = 0 is out of range [1, 16] (1000 times)");
-  EXPECT_EQ(s[1].size(), param::kMaxProblemChars);
+  EXPECT_EQ(s[1].size(), params::kMaxProblemChars);
   EXPECT_EQ(s[1].substr(s[1].size() - 3), "...");
   EXPECT_EQ(s.back(), "... and 22 more distinct problems");
   // AND ConfigError applies it: its message is a screenful
   const ConfigError e("f.yaml", problems);
-  EXPECT_EQ(e.problems().size(), param::kMaxProblems + 1);
+  EXPECT_EQ(e.problems().size(), params::kMaxProblems + 1);
   EXPECT_LT(std::string(e.what()).size(), 8000u);
 }
 

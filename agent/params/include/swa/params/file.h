@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace swa::agent::param {
+namespace swa::params {
 
 constexpr std::size_t kMaxFileBytes = 1 << 20;   // 1 MiB: the full default scenario is 5 kB
 constexpr std::size_t kMaxProblems = 20;
@@ -24,4 +24,4 @@ std::optional<std::string> readTextFile(const std::string& path, const std::stri
 // counted in a last line.
 std::vector<std::string> summariseProblems(const std::vector<std::string>& problems);
 
-}  // namespace swa::agent::param
+}  // namespace swa::params

@@ -1,4 +1,4 @@
-#include "swa/agent/param_file.h"
+#include "swa/params/file.h"
 
 #include <cerrno>
 #include <cstring>
@@ -7,7 +7,7 @@
 #include <map>
 #include <system_error>
 
-namespace swa::agent::param {
+namespace swa::params {
 
 std::optional<std::string> readTextFile(const std::string& path, const std::string& kind, std::string& problem) {
   namespace fs = std::filesystem;
@@ -74,4 +74,4 @@ std::vector<std::string> summariseProblems(const std::vector<std::string>& probl
   return out;
 }
 
-}  // namespace swa::agent::param
+}  // namespace swa::params

@@ -1,4 +1,4 @@
-#include "swa/agent/param_text.h"
+#include "swa/params/text.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <limits>
 #include <system_error>
 
-namespace swa::agent::param {
+namespace swa::params {
 
 bool inRange(const Range& r, double v) {
   const bool above_min = r.min_open ? v > r.min : v >= r.min;
@@ -94,6 +94,8 @@ bool startsWith(const std::string& text, std::string_view prefix) {
   return text.size() >= prefix.size() && text.compare(0, prefix.size(), prefix) == 0;
 }
 
+namespace {
+
 std::size_t editDistance(const std::string& a, const std::string& b) {
   const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
   std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
@@ -110,6 +112,8 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   }
   return d[a.size()][b.size()];
 }
+
+}  // namespace
 
 std::string closestMatch(const std::string& key, const std::vector<std::string>& candidates) {
   std::string best;
@@ -135,10 +139,6 @@ std::string sameLeafMatch(const std::string& key, const std::vector<std::string>
 
 std::string didYouMean(const std::string& suggestion) {
   return suggestion.empty() ? std::string() : " (did you mean '" + suggestion + "'?)";
-}
-
-std::string unknownKeyMessage(const std::string& key, const std::string& suggestion) {
-  return "unknown key '" + key + "'" + didYouMean(suggestion);
 }
 
 std::string formatTable(const std::vector<std::vector<std::string>>& rows) {
@@ -174,4 +174,4 @@ std::string alignComments(const std::vector<CommentedLine>& lines) {
   return out;
 }
 
-}  // namespace swa::agent::param
+}  // namespace swa::params

@@ -1,0 +1,105 @@
+#pragma once
+// The parameter engine's vocabulary. A Schema declares every parameter of one file layout (the agent
+// configuration, the scenario) once: key, kind, unit, range, meaning, and the rules between parameters. Values are
+// held by key while a file is read; table.h binds a Schema to the struct it fills. Nothing here includes yaml-cpp.
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "swa/params/text.h"
+
+namespace swa::params {
+
+enum class Kind { kReal, kInteger, kSeed, kBool, kChoice, kIntList, kRecordList };
+
+using Record = std::vector<double>;  // one kRecordList element: a value per Spec::fields entry, in that order
+// kReal and kInteger hold a double (integers up to 2^53 are exact), kSeed a uint64, kChoice the chosen name.
+using Value = std::variant<double, std::uint64_t, bool, std::string, std::vector<long long>, std::vector<Record>>;
+using Values = std::map<std::string, Value>;  // by dotted key
+
+struct Spec {
+  std::string key;  // dotted: "formation.radius_m" is written nested in a file (a 'formation:' map)
+  Kind kind = Kind::kReal;
+  std::string unit;                  // empty = dimensionless
+  Range range{};                     // numeric kinds, and each element of a kIntList
+  bool allow_infinity = false;       // kReal: +.inf is valid, meaning "never"
+  std::vector<std::string> choices;  // kChoice
+  std::string meaning;
+  // kRecordList: the fields of one element (kReal or kInteger specs keyed by field name); a field with a default
+  // may be left out. `later` > `earlier` must hold in every element, for the reason `order_why`.
+  std::vector<Spec> fields;
+  std::optional<double> default_value;
+  std::string earlier, later, order_why;
+  std::string example;     // kRecordList: one element as YAML, for messages
+  std::string expected;    // lists: what a valid value is, in messages ("a list of UAV indices such as [0] ...")
+  std::string range_text;  // lists: the range column of the description
+  std::string comment;     // lists: the comment of the dump
+  std::string type_name;   // kRecordList: the type column of the description
+};
+
+inline Spec makeSpec(std::string key, Kind kind, std::string unit = "", Range range = {}) {
+  Spec s;
+  s.key = std::move(key);
+  s.kind = kind;
+  s.unit = std::move(unit);
+  s.range = range;
+  return s;
+}
+
+// lhs < rhs (strict) or lhs <= rhs between two numeric parameters.
+struct Relation {
+  std::string lhs;
+  bool strict;
+  std::string rhs;
+  std::string why;
+};
+
+// A rule between parameters that is more than an order: `run` adds a message per violation. Skipped while any of
+// `keys` has an invalid value of its own.
+struct Check {
+  std::vector<std::string> keys;
+  std::function<void(const Values&, std::vector<std::string>& problems)> run;
+};
+
+// A second spelling of a parameter; giving both in one file is an error, a --set of either replaces the other.
+struct Alias {
+  std::string alias;
+  std::string key;
+};
+
+// `key` takes the value of `source` unless it is given (a file or a --set); messages call it "key (= source)".
+struct Derived {
+  std::string key;
+  std::string source;
+};
+
+struct Schema {
+  std::string title;              // "SWA scenario": first line of the dump and of the description
+  std::string file_kind;          // "scenario": "... is not a scenario file"
+  std::string top_level_example;  // "uav_count: 8"
+  std::string override_example;   // "uav_count=16"
+  std::string notes;              // the description's rules between parameters, in words
+  std::vector<Spec> specs;
+  std::vector<Relation> relations;
+  std::vector<Check> checks;
+  std::vector<Alias> aliases;
+  std::vector<Derived> derived;
+  std::map<std::string, std::string> mounts;  // prefix -> comment of its section in the dump
+
+  const Spec* find(const std::string& key) const;
+  // Puts every parameter and rule of `inner` under "prefix." (the scenario's `agent:` section is the agent's
+  // configuration schema).
+  void mount(const std::string& prefix, const Schema& inner, const std::string& comment);
+};
+
+// Typed reads of a Values map, for checks.
+double number(const Values& values, const std::string& key);
+const std::vector<long long>& intList(const Values& values, const std::string& key);
+const std::vector<Record>& records(const Values& values, const std::string& key);
+
+}  // namespace swa::params

@@ -1,0 +1,193 @@
+// Writing parameters: the commented YAML dump and the --help description, and the wording they share with the
+// messages of read.cpp.
+
+#include <limits>
+
+#include "spec_text.h"
+#include "swa/params/engine.h"
+
+namespace swa::params {
+
+namespace detail {
+
+std::string expectation(const Spec& s) {
+  switch (s.kind) {
+    case Kind::kReal:
+      return "a number" + (s.unit.empty() ? std::string() : " in " + s.unit) + " within " + rangeText(s);
+    case Kind::kInteger:
+      return "an integer within " + rangeText(s);
+    case Kind::kSeed:
+      return "a non-negative integer (64 bit)";
+    case Kind::kBool:
+      return "true or false";
+    case Kind::kChoice:
+      return "one of: " + join(s.choices, ", ");
+    case Kind::kIntList:
+    case Kind::kRecordList:
+      return s.expected;
+  }
+  return {};
+}
+
+std::string rangeText(const Spec& s) {
+  switch (s.kind) {
+    case Kind::kChoice:
+    case Kind::kBool:
+      return join(s.choices, "|");
+    case Kind::kSeed:
+      return "[0, " + std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]";
+    case Kind::kIntList:
+      return "list of integers in " + formatRange(s.range, true);
+    case Kind::kRecordList:
+      return s.range_text;
+    case Kind::kReal:
+    case Kind::kInteger:
+      break;
+  }
+  return formatRange(s.range, s.kind == Kind::kInteger) + (s.allow_infinity ? " or .inf" : "");
+}
+
+std::string unitSuffix(const Spec& s) { return s.unit.empty() ? "" : " " + s.unit; }
+
+std::string formatRecord(const Spec& s, const Record& record) {
+  std::vector<std::string> items;
+  for (std::size_t i = 0; i < s.fields.size(); ++i) {
+    const Spec& f = s.fields[i];
+    items.push_back(f.key + ": " + (f.kind == Kind::kInteger ? std::to_string(static_cast<long long>(record[i]))
+                                                             : formatYamlReal(record[i])));
+  }
+  return "{" + join(items, ", ") + "}";
+}
+
+std::string plainValue(const Spec& s, const Value& v) {
+  switch (s.kind) {
+    case Kind::kReal:
+      return formatYamlNumber(std::get<double>(v));
+    case Kind::kInteger:
+      return std::to_string(static_cast<long long>(std::get<double>(v)));
+    case Kind::kSeed:
+      return std::to_string(std::get<std::uint64_t>(v));
+    case Kind::kBool:
+      return std::get<bool>(v) ? "true" : "false";
+    case Kind::kChoice:
+      return std::get<std::string>(v).empty() ? "<invalid>" : std::get<std::string>(v);
+    case Kind::kIntList: {
+      std::vector<std::string> items;
+      for (const long long i : std::get<std::vector<long long>>(v)) items.push_back(std::to_string(i));
+      return "[" + join(items, ", ") + "]";
+    }
+    case Kind::kRecordList: {
+      std::vector<std::string> items;
+      for (const Record& r : std::get<std::vector<Record>>(v)) items.push_back(formatRecord(s, r));
+      return "[" + join(items, ", ") + "]";
+    }
+  }
+  return {};
+}
+
+std::string yamlValue(const Spec& s, const Value& v) {
+  return s.kind == Kind::kReal ? formatYamlReal(std::get<double>(v)) : plainValue(s, v);
+}
+
+}  // namespace detail
+
+namespace {
+
+using namespace detail;
+
+std::string dumpComment(const Spec& s) {
+  switch (s.kind) {
+    case Kind::kChoice:
+    case Kind::kBool:
+      return join(s.choices, " | ");
+    case Kind::kIntList:
+    case Kind::kRecordList:
+      return s.comment;
+    case Kind::kReal:
+    case Kind::kInteger:
+    case Kind::kSeed:
+      break;
+  }
+  return s.unit + (s.allow_infinity ? " (.inf = never)" : "");
+}
+
+const char* typeName(const Spec& s) {
+  switch (s.kind) {
+    case Kind::kReal:
+      return "real";
+    case Kind::kInteger:
+      return "integer";
+    case Kind::kSeed:
+      return "uint64";
+    case Kind::kBool:
+      return "bool";
+    case Kind::kChoice:
+      return "choice";
+    case Kind::kIntList:
+      return "int list";
+    case Kind::kRecordList:
+      return s.type_name.c_str();
+  }
+  return "";
+}
+
+std::vector<std::string> sectionsOf(const std::string& key) {
+  std::vector<std::string> out;
+  for (auto dot = key.find('.'); dot != std::string::npos; dot = key.find('.', dot + 1)) {
+    out.push_back(key.substr(0, dot));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string dump(const Schema& schema, const Values& values) {
+  // Comments are aligned anew from each mounted section on, so a mounted configuration reads as it does alone.
+  std::string out = "# " + schema.title + ": every parameter, as used\n";
+  std::vector<CommentedLine> group;
+  std::vector<std::string> open;  // the sections the previous key was in
+  for (const Spec& s : schema.specs) {
+    const std::vector<std::string> sections = sectionsOf(s.key);
+    std::size_t same = 0;
+    while (same < open.size() && same < sections.size() && open[same] == sections[same]) ++same;
+    for (std::size_t level = same; level < sections.size(); ++level) {
+      const std::string indent(2 * level, ' ');
+      const std::string name = sections[level].substr(level == 0 ? 0 : sections[level - 1].size() + 1);
+      const auto mount = schema.mounts.find(sections[level]);
+      if (mount == schema.mounts.end()) {
+        group.push_back({indent + name + ":", ""});
+        continue;
+      }
+      out += alignComments(group);
+      group.clear();
+      out += indent + name + ":  # " + mount->second + "\n";
+    }
+    open = sections;
+    const std::string indent(2 * sections.size(), ' ');
+    const std::string leaf = s.key.substr(sections.empty() ? 0 : sections.back().size() + 1);
+    const Value& v = values.at(s.key);
+    if (s.kind == Kind::kRecordList && !std::get<std::vector<Record>>(v).empty()) {
+      // One element per line, so a long list does not push every comment to the right.
+      group.push_back({indent + leaf + ":", dumpComment(s)});
+      for (const Record& r : std::get<std::vector<Record>>(v)) group.push_back({indent + "  - " + formatRecord(s, r), ""});
+      continue;
+    }
+    group.push_back({indent + leaf + ": " + yamlValue(s, v), dumpComment(s)});
+  }
+  return out + alignComments(group);
+}
+
+std::string describe(const Schema& schema, const Values& defaults) {
+  std::vector<std::vector<std::string>> rows = {{"key", "type", "unit", "default", "range", "meaning"}};
+  for (const Spec& s : schema.specs) {
+    rows.push_back({s.key, typeName(s), s.unit.empty() ? "-" : s.unit, plainValue(s, defaults.at(s.key)),
+                    rangeText(s), s.meaning});
+  }
+  for (const Alias& a : schema.aliases) rows.push_back({a.alias, "alias", "-", "-", "-", "the same as " + a.key});
+  return schema.title +
+         " parameters. In the YAML file a key a.b is written nested (a map 'a:' holding 'b:'); on the command\n"
+         "line use --set a.b=value. Ranges: [ ] includes the bound, ( ) excludes it; '-' = dimensionless.\n\n" +
+         formatTable(rows) + (schema.notes.empty() ? "" : "\n" + schema.notes);
+}
+
+}  // namespace swa::params

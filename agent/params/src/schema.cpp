@@ -1,0 +1,65 @@
+#include "swa/params/schema.h"
+
+#include "swa/params/error.h"
+#include "swa/params/file.h"
+
+namespace swa::params {
+
+namespace {
+
+std::string joinWithSource(const std::string& source, const std::vector<std::string>& problems) {
+  std::string text;
+  for (const std::string& problem : problems) text += (text.empty() ? "" : "\n") + source + ": " + problem;
+  return text;
+}
+
+}  // namespace
+
+ConfigError::ConfigError(std::string source, std::vector<std::string> problems)
+    : ConfigError(Summarised{}, std::move(source), summariseProblems(problems)) {}
+
+ConfigError::ConfigError(Summarised, std::string source, std::vector<std::string> problems)
+    : std::runtime_error(joinWithSource(source, problems)), source_(std::move(source)),
+      problems_(std::move(problems)) {}
+
+const Spec* Schema::find(const std::string& key) const {
+  for (const Spec& s : specs) {
+    if (s.key == key) return &s;
+  }
+  return nullptr;
+}
+
+void Schema::mount(const std::string& prefix, const Schema& inner, const std::string& comment) {
+  const std::string p = prefix + ".";
+  for (Spec s : inner.specs) {
+    s.key = p + s.key;
+    specs.push_back(std::move(s));
+  }
+  for (const Relation& r : inner.relations) relations.push_back({p + r.lhs, r.strict, p + r.rhs, r.why});
+  for (const Alias& a : inner.aliases) aliases.push_back({p + a.alias, p + a.key});
+  for (const Derived& d : inner.derived) derived.push_back({p + d.key, p + d.source});
+  for (const Check& c : inner.checks) {
+    Check outer{{}, [p, run = c.run](const Values& values, std::vector<std::string>& problems) {
+                  Values own;  // the inner check reads its own keys
+                  for (const auto& [key, value] : values) {
+                    if (startsWith(key, p)) own.emplace(key.substr(p.size()), value);
+                  }
+                  run(own, problems);
+                }};
+    for (const std::string& k : c.keys) outer.keys.push_back(p + k);
+    checks.push_back(std::move(outer));
+  }
+  mounts[prefix] = comment;
+}
+
+double number(const Values& values, const std::string& key) { return std::get<double>(values.at(key)); }
+
+const std::vector<long long>& intList(const Values& values, const std::string& key) {
+  return std::get<std::vector<long long>>(values.at(key));
+}
+
+const std::vector<Record>& records(const Values& values, const std::string& key) {
+  return std::get<std::vector<Record>>(values.at(key));
+}
+
+}  // namespace swa::params

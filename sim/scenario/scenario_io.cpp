@@ -1,0 +1,251 @@
+#include "swa/sim/scenario_io.h"
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "swa/agent/config_io.h"
+#include "swa/params/table.h"
+
+namespace swa::sim {
+
+namespace {
+
+using params::closed;
+using params::closedOpen;
+using params::formatYamlNumber;
+using params::openClosed;
+using params::Values;
+
+constexpr int kMaxUavs = 256;
+constexpr double kMaxTime_s = 1e6;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// gnss.windows: a list of {uav, start_s, end_s} records.
+params::Spec windowsSpec() {
+  params::Spec s = params::makeSpec("gnss.windows", params::Kind::kRecordList, "s");
+  s.meaning = "extra outages of single UAVs on top of the common one (keep_uavs does not exempt them)";
+  s.fields = {params::makeSpec("uav", params::Kind::kInteger, "", closed(0, kMaxUavs - 1)),
+              params::makeSpec("start_s", params::Kind::kReal, "s", closed(0, kMaxTime_s)),
+              params::makeSpec("end_s", params::Kind::kReal, "s", openClosed(0, kMaxTime_s))};
+  s.fields[2].allow_infinity = true;
+  s.fields[2].default_value = kInf;
+  s.earlier = "start_s";
+  s.later = "end_s";
+  s.order_why = "the outage would be empty (leave end_s out for one that never ends)";
+  s.example = "{uav: 3, start_s: 20, end_s: 40}";
+  s.expected = "a list of outage windows such as [" + s.example + "] or [] (end_s optional: .inf = never restored)";
+  s.range_text = "list of {uav, start_s, end_s}: uav in [0, uav_count), 0 <= start_s < end_s <= " +
+                 formatYamlNumber(kMaxTime_s) + " or .inf";
+  s.comment = "per-UAV outages {uav, start_s, end_s} (end_s .inf = never restored)";
+  s.type_name = "window list";
+  return s;
+}
+
+std::string uavIndices(const Values& v) {
+  const int n = static_cast<int>(params::number(v, "uav_count"));
+  return "the UAV indices are 0.." + std::to_string(n - 1) + " (uav_count = " + std::to_string(n) + ")";
+}
+
+// The rules between scenario parameters (the agent's own come with its table).
+std::vector<params::Check> scenarioChecks() {
+  std::vector<params::Check> checks;
+  for (const std::string key : {"imu.rate_hz", "mps.rate_hz", "gnss.rate_hz"}) {
+    checks.push_back({{key, "dynamics.rate_hz"}, [key](const Values& v, std::vector<std::string>& problems) {
+                        const double rate = params::number(v, key);
+                        const double sim = params::number(v, "dynamics.rate_hz");
+                        const double ratio = sim / rate;
+                        const double steps = std::round(ratio);
+                        if (steps >= 1.0 && std::fabs(ratio - steps) <= 1e-9 * steps) return;
+                        std::ostringstream ratio_text;
+                        ratio_text.precision(4);
+                        ratio_text << ratio;
+                        problems.push_back(key + " = " + formatYamlNumber(rate) +
+                                           " Hz must divide dynamics.rate_hz = " + formatYamlNumber(sim) +
+                                           " Hz exactly: the sensor samples every n-th simulation step, and " +
+                                           formatYamlNumber(sim) + " / " + formatYamlNumber(rate) + " = " +
+                                           ratio_text.str() + " is not a whole number >= 1");
+                      }});
+  }
+  checks.push_back({{"gnss.dropout_start_s", "gnss.dropout_end_s"}, [](const Values& v, auto& problems) {
+                      const double start = params::number(v, "gnss.dropout_start_s");
+                      const double end = params::number(v, "gnss.dropout_end_s");
+                      if (end > start) return;
+                      problems.push_back("gnss.dropout_end_s = " + formatYamlNumber(end) +
+                                         " s must be > gnss.dropout_start_s = " + formatYamlNumber(start) +
+                                         " s: the outage would be empty (to run without a dropout, set "
+                                         "gnss.dropout_start_s >= duration_s)");
+                    }});
+  checks.push_back({{"gnss.keep_uavs", "uav_count"}, [](const Values& v, auto& problems) {
+                      std::set<long long> listed;
+                      for (const long long id : params::intList(v, "gnss.keep_uavs")) {
+                        if (static_cast<double>(id) >= params::number(v, "uav_count")) {
+                          problems.push_back("gnss.keep_uavs lists UAV " + std::to_string(id) + ", but " +
+                                             uavIndices(v));
+                        } else if (!listed.insert(id).second) {
+                          problems.push_back("gnss.keep_uavs lists UAV " + std::to_string(id) + " more than once");
+                        }
+                      }
+                    }});
+  checks.push_back({{"gnss.windows", "uav_count"}, [](const Values& v, auto& problems) {
+                      const auto& windows = params::records(v, "gnss.windows");
+                      for (std::size_t i = 0; i < windows.size(); ++i) {
+                        if (windows[i][0] < params::number(v, "uav_count")) continue;
+                        problems.push_back("gnss.windows[" + std::to_string(i) + "].uav = " +
+                                           std::to_string(static_cast<long long>(windows[i][0])) +
+                                           " is not a UAV of the swarm: " + uavIndices(v));
+                      }
+                    }});
+  checks.push_back({{"formation.spacing_m", "mps.range_m"}, [](const Values& v, auto& problems) {
+                      const double spacing = params::number(v, "formation.spacing_m");
+                      const double range = params::number(v, "mps.range_m");
+                      if (spacing < range) return;
+                      problems.push_back("formation.spacing_m = " + formatYamlNumber(spacing) +
+                                         " m must be < mps.range_m = " + formatYamlNumber(range) +
+                                         " m: otherwise no UAV detects its neighbours");
+                    }});
+  return checks;
+}
+
+const char* const kNotes =
+    "Rules between parameters:\n"
+    "  - imu.rate_hz, mps.rate_hz and gnss.rate_hz must each divide dynamics.rate_hz exactly.\n"
+    "  - gnss.dropout_end_s > gnss.dropout_start_s; gnss.dropout_end_s may be .inf (never restored).\n"
+    "  - gnss.keep_uavs: distinct UAV indices in [0, uav_count).\n"
+    "  - gnss.windows: extra outages of single UAVs, e.g. [{uav: 3, start_s: 20, end_s: 40}, {uav: 5, start_s: 0}]\n"
+    "    (--set gnss.windows='[...]' replaces the whole list). uav in [0, uav_count), 0 <= start_s < end_s;\n"
+    "    end_s may be .inf or left out (never restored). A UAV has no GNSS inside the common window (unless it\n"
+    "    is in keep_uavs) or inside any of its own windows; windows may overlap.\n"
+    "  - formation.spacing_m < mps.range_m.\n"
+    "  - agent.*: the agent configuration (swa_agent --parameters); agent.formation.radius_m defaults to\n"
+    "    formation.spacing_m unless given; agent.k and agent.circle_fit are aliases (a file gives one spelling).\n";
+
+params::Table<Scenario> makeTable() {
+  params::Table<Scenario> t("SWA scenario", "scenario", "uav_count: 8", "uav_count=16", kNotes);
+#define FIELD(f) [](auto& s) -> auto& { return s.f; }  // an accessor for const and mutable scenarios
+  t.number("uav_count", FIELD(uav_count), "", closed(1, kMaxUavs),
+           "number of UAVs in the swarm (indices 0 .. uav_count-1)");
+  t.seed("seed", FIELD(seed), "random seed of the world (initial positions, headings, wind, sensor noise)");
+  t.number("duration_s", FIELD(duration_s), "s", openClosed(0, 86400), "simulated time the run lasts");
+
+  t.number("formation.spacing_m", FIELD(formation.spacing_m), "m", openClosed(0, 1000),
+           "initial neighbour spacing; also agent.formation.radius_m unless that is given");
+  t.number("formation.position_jitter_m", FIELD(formation.position_jitter_m), "m", closed(0, 1000),
+           "initial position error around the lattice slots");
+
+  t.number("dynamics.rate_hz", FIELD(dynamics.rate_hz), "Hz", openClosed(0, 10000),
+           "simulation step rate; every sensor rate must divide it");
+  t.number("dynamics.velocity_lag_s", FIELD(dynamics.velocity_lag_s), "s", openClosed(0, 60),
+           "first-order time constant of the velocity response to the command");
+  t.number("dynamics.speed_limit_mps", FIELD(dynamics.speed_limit_mps), "m/s", openClosed(0, 100),
+           "horizontal speed limit of a UAV");
+  t.number("dynamics.failsafe_timeout_s", FIELD(dynamics.failsafe_timeout_s), "s", openClosed(0, 60),
+           "a UAV whose commands are older than this brakes to hover");
+  t.choice("dynamics.heading", FIELD(dynamics.heading),
+           std::vector<std::pair<HeadingMode, std::string>>{{HeadingMode::kRandom, "random"},
+                                                            {HeadingMode::kZero, "zero"}},
+           "initial heading of each UAV: random per UAV, or zero (body = world axes)");
+  t.number("dynamics.heading_rate_std_radps", FIELD(dynamics.heading_rate_std_radps), "rad/s", closed(0, 10),
+           "std of a per-UAV constant turn rate (0 = constant heading)");
+
+  t.number("wind.gust_std", FIELD(wind.gust_std), "m/s^2", closed(0, 100),
+           "std of the per-UAV Ornstein-Uhlenbeck gust acceleration");
+  t.number("wind.gust_corr_s", FIELD(wind.gust_corr_s), "s", openClosed(0, 3600), "correlation time of the per-UAV gust");
+  t.number("wind.common_std", FIELD(wind.common_std), "m/s^2", closed(0, 100),
+           "std of the gust common to every UAV (moves the swarm as a block)");
+  t.number("wind.common_corr_s", FIELD(wind.common_corr_s), "s", openClosed(0, 3600),
+           "correlation time of the common gust");
+
+  t.number("imu.rate_hz", FIELD(imu.rate_hz), "Hz", openClosed(0, 10000), "IMU sample rate; must divide dynamics.rate_hz");
+  t.number("imu.bias_std", FIELD(imu.bias_std), "m/s^2", closed(0, 100),
+           "std of the constant per-UAV bias of the tilt-derived acceleration");
+  t.number("imu.noise_std", FIELD(imu.noise_std), "m/s^2", closed(0, 100),
+           "std of the white noise of the tilt-derived acceleration");
+  t.number("imu.heading_noise_std_rad", FIELD(imu.heading_noise_std_rad), "rad", closed(0, 1),
+           "std of the heading (magnetometer) noise");
+
+  t.number("mps.rate_hz", FIELD(mps.rate_hz), "Hz", openClosed(0, 10000),
+           "mutual-perception sensor scan rate; must divide dynamics.rate_hz");
+  t.number("mps.range_m", FIELD(mps.range_m), "m", openClosed(0, 10000), "neighbours farther than this are not detected");
+  t.number("mps.fov_deg", FIELD(mps.fov_deg), "deg", openClosed(0, 360),
+           "horizontal field of view, centred on the body x axis");
+  t.choice("mps.noise_model", FIELD(mps.noise_model),
+           std::vector<std::pair<MpsNoiseModel, std::string>>{{MpsNoiseModel::kIsotropic, "isotropic"},
+                                                              {MpsNoiseModel::kRangeBearing, "range_bearing"}},
+           "isotropic (noise_var_m2, UVDAR-like) or range_bearing (range_std_m/bearing_std_rad, LiDAR-like)");
+  t.number("mps.noise_var_m2", FIELD(mps.noise_var_m2), "m^2", closed(0, 100),
+           "isotropic model: variance of each position coordinate (R_o)");
+  t.number("mps.range_std_m", FIELD(mps.range_std_m), "m", closed(0, 100), "range_bearing model: range noise std");
+  t.number("mps.bearing_std_rad", FIELD(mps.bearing_std_rad), "rad", closed(0, 1),
+           "range_bearing model: bearing noise std");
+  t.number("mps.miss_probability", FIELD(mps.miss_probability), "", closedOpen(0, 1),
+           "probability that a neighbour in range is not detected in a scan");
+  t.number("mps.clutter_rate", FIELD(mps.clutter_rate), "1/scan", closed(0, 1000),
+           "mean number of false detections per scan, uniform in the sensing disc");
+  t.flag("mps.ids", FIELD(mps.ids),
+         "true: detections carry the target's ID (UVDAR-like); false: anonymous (LiDAR-like)");
+  t.number("mps.latency_s", FIELD(mps.latency_s), "s", closed(0, 10),
+           "delay between a scan and the delivery of its detections");
+
+  t.number("gnss.rate_hz", FIELD(gnss.rate_hz), "Hz", openClosed(0, 10000), "GNSS fix rate; must divide dynamics.rate_hz");
+  t.number("gnss.std_m", FIELD(gnss.std_m), "m", closed(0, 100), "std of each horizontal coordinate of a fix");
+  t.number("gnss.dropout_start_s", FIELD(gnss.dropout_start_s), "s", closed(0, kMaxTime_s),
+           "every UAV (except keep_uavs) loses GNSS at this time");
+  t.number("gnss.dropout_end_s", FIELD(gnss.dropout_end_s), "s", openClosed(0, kMaxTime_s),
+           "GNSS comes back at this time; .inf (default) = never", /*allow_infinity=*/true);
+  t.intList("gnss.keep_uavs", FIELD(gnss.keep_uavs), closed(0, kMaxUavs - 1),
+            "UAVs that never lose GNSS, e.g. [0] for one anchored member; indices in [0, uav_count)",
+            "a list of UAV indices such as [0] or [] (indices in [0, uav_count))", "UAV indices in [0, uav_count)");
+  t.add(
+      windowsSpec(),
+      [](const Scenario& s) {
+        std::vector<params::Record> out;
+        for (const GnssWindow& w : s.gnss.windows) out.push_back({static_cast<double>(w.uav), w.start_s, w.end_s});
+        return params::Value(out);
+      },
+      [](Scenario& s, const params::Value& v) {
+        s.gnss.windows.clear();
+        for (const params::Record& r : std::get<std::vector<params::Record>>(v)) {
+          s.gnss.windows.push_back({static_cast<int>(r[0]), r[1], r[2]});
+        }
+      });
+
+  t.choice("clock.mode", FIELD(clock.mode),
+           std::vector<std::pair<ClockMode, std::string>>{{ClockMode::kLockstep, "lockstep"},
+                                                          {ClockMode::kRealtime, "realtime"}},
+           "lockstep: deterministic, as fast as the agents answer; realtime: wall-clock pacing");
+  t.number("clock.speed", FIELD(clock.speed), "", openClosed(0, 1000),
+           "realtime mode: simulated seconds per wall-clock second");
+#undef FIELD
+
+  t.mount("agent", agent::configTable(), [](auto& s) -> auto& { return s.agent; },
+          "the agents' configuration (swa_agent --parameters); formation.radius_m as used");
+  params::Schema& schema = t.schema();
+  schema.checks = scenarioChecks();
+  schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
+  schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"}};
+  return t;
+}
+
+const params::Table<Scenario>& table() {
+  static const params::Table<Scenario> t = makeTable();
+  return t;
+}
+
+}  // namespace
+
+Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
+  return table().load(path, overrides);
+}
+
+Scenario parseScenario(const std::string& yaml_text, const std::string& source,
+                       const std::vector<std::string>& overrides) {
+  return table().parse(yaml_text, source, overrides);
+}
+
+std::string scenarioToYaml(const Scenario& scenario) { return table().dump(scenario); }
+
+std::string describeScenarioParameters() { return table().describe(); }
+
+}  // namespace swa::sim
