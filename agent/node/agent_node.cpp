@@ -82,12 +82,21 @@ void AgentNode::connect() {
       dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
   peers_back_ = 0;
   peer_back_at_.reset();
+  matched_once_ = {};
 }
 
 std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn() {
   // A peer that went silent beyond its lease and never dropped us: Fast DDS 2.9 sometimes does not re-send all its
   // endpoints (peer_book.h), and a UAV loses its sensors or its commands for good. Only then, and only if one of our
-  // endpoints is still unmatched a moment later: a peer lost and back under packet loss is no reason to reconnect.
+  // endpoints that had matched is still unmatched a moment later: a peer lost and back under packet loss is no
+  // reason to reconnect, nor one that returns while our endpoints are still being discovered (a starved host).
+  const std::array<std::pair<std::string, bool>, 4> endpoints{{
+      {dds::topics::cmdVel(id_), cmd_writer_.matched() >= 1},
+      {dds::topics::imu(id_), imu_reader_.matched() >= 1},
+      {dds::topics::detections(id_), det_reader_.matched() >= 1},
+      {dds::topics::gnss(id_), gnss_reader_.matched() >= 1},
+  }};
+  for (std::size_t k = 0; k < endpoints.size(); ++k) matched_once_[k] = matched_once_[k] || endpoints[k].second;
   const auto [back, name] = participant_->peersBackAfterLease();
   const auto now = std::chrono::steady_clock::now();
   if (back != peers_back_) {
@@ -98,10 +107,9 @@ std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn() {
   if (!peer_back_at_ || now - *peer_back_at_ < kRematchWait) return std::nullopt;
   peer_back_at_.reset();
   std::string lost;
-  if (cmd_writer_.matched() < 1) lost += " " + dds::topics::cmdVel(id_);
-  if (imu_reader_.matched() < 1) lost += " " + dds::topics::imu(id_);
-  if (det_reader_.matched() < 1) lost += " " + dds::topics::detections(id_);
-  if (gnss_reader_.matched() < 1) lost += " " + dds::topics::gnss(id_);
+  for (std::size_t k = 0; k < endpoints.size(); ++k) {
+    if (matched_once_[k] && !endpoints[k].second) lost += " " + endpoints[k].first;
+  }
   if (lost.empty()) return std::nullopt;
   return "participant " + peer_back_name_ + " came back after its DDS lease expired and these did not re-match:" + lost;
 }
@@ -121,6 +129,9 @@ AgentNode::~AgentNode() { participant_.reset(); }
 int AgentNode::run() {
   while (!dds::shutdownRequested()) {
     std::this_thread::sleep_for(kQuietPoll);
+    // Matched-status queries stay outside mutex_: a listener delivering a sample may hold its reader's lock while it
+    // waits for mutex_ (seen: every agent of a loaded host stuck after its first samples).
+    const std::optional<std::string> lost = endpointsLostAfterPeerReturn();
     std::unique_lock<std::mutex> lock(mutex_);
     if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
@@ -137,7 +148,7 @@ int AgentNode::run() {
     if (handshakeStalled()) {
       why = "no reader of " + dds::topics::cmdVel(id_) +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
-    } else if (const std::optional<std::string> lost = endpointsLostAfterPeerReturn()) {
+    } else if (lost) {
       why = *lost;
     }
     if (!why.empty()) {

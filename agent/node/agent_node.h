@@ -11,6 +11,7 @@
 //     state never goes silent while the process lives, and says STAGE_NO_INPUT after a second without a valid IMU
 //     sample (a rejected sample gets no command, so the autopilot's offboard timeout is what holds the UAV).
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -96,6 +97,8 @@ class AgentNode {
   int peers_back_ = 0;  // PeerBook count of the current participant
   std::optional<std::chrono::steady_clock::time_point> peer_back_at_;
   std::string peer_back_name_;
+  // Which of our endpoints (cmd_vel, imu, detections, gnss) have matched since connect(): only those can be lost.
+  std::array<bool, 4> matched_once_{};
   ReplayFilter replay_;
   std::optional<msg::VelocitySetpoint> last_cmd_;  // sent again after a reconnection
 

@@ -8,7 +8,7 @@ namespace swa::monitor_node {
 
 LiveRun::LiveRun(const LiveRunConfig& config)
     : config_(config),
-      joiner_(config.join_horizon),
+      joiner_(config.join_horizon, config.join_grace_s),
       metrics_(config.metrics),
       trajectories_(config.trajectory_period_s),
       mode_(config.mode) {}
@@ -23,6 +23,11 @@ void LiveRun::onState(int topic_uav, StateSample state) {
   if (state.uav != topic_uav) state.uav = -1;
   if (!mode_ && state.mode) mode_ = state.mode;
   joiner_.addState(state);
+  for (const JoinedStep& step : joiner_.takeReady()) score(step);
+}
+
+void LiveRun::tick(double wall_s) {
+  joiner_.advanceClock(wall_s);
   for (const JoinedStep& step : joiner_.takeReady()) score(step);
 }
 

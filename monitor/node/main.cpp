@@ -62,6 +62,7 @@ int monitorMain(int argc, char** argv) {
     if (options.combineMode()) return runCombine(options, std::cout, std::cerr);
     if (!options.scenario_path.empty()) scenario = sim::loadScenario(options.scenario_path, options.overrides);
     config = scenario ? liveRunConfig(*scenario) : liveRunConfigWithoutScenario();
+    config.join_grace_s = 2.0;  // several heartbeat repair rounds of a lost state (the node ticks the wall clock)
     domain = dds::resolveDomain(options.domain);
     monitor::prepareOutputDir(options.out_dir);
   } catch (const params::ConfigError& e) {

@@ -133,6 +133,7 @@ RunEnd MonitorNode::run() {
   while (true) {
     batch.clear();
     queue_.drain(batch, kPollPeriod);
+    run_.tick(elapsed());
     for (Input& input : batch) process(input);
     createRunReadersWhenReady();
     reconnectIfHandshakeStalled();

@@ -14,8 +14,9 @@ constexpr std::size_t kReleasedMemory = 1000;
 
 }  // namespace
 
-StepJoiner::StepJoiner(int horizon) : horizon_(horizon) {
+StepJoiner::StepJoiner(int horizon, double grace_s) : horizon_(horizon), grace_s_(grace_s) {
   if (horizon < 1) throw std::invalid_argument("StepJoiner: horizon must be >= 1");
+  if (!(grace_s >= 0.0)) throw std::invalid_argument("StepJoiner: grace must be >= 0 s");
 }
 
 void StepJoiner::addTruth(TruthSample truth) {
@@ -42,6 +43,7 @@ void StepJoiner::addTruth(TruthSample truth) {
   dropEarlyBefore(truth.stamp_ns);
 
   Pending p;
+  p.arrived_s = now_s_;
   p.step.states.resize(truth.uavs.size());
   for (std::size_t k = 0; k < truth.uavs.size(); ++k) p.index[truth.uavs[k].id] = k;
   p.step.truth = std::move(truth);
@@ -98,8 +100,11 @@ bool StepJoiner::complete(const Pending& p) const {
 
 std::vector<JoinedStep> StepJoiner::takeReady() {
   std::vector<JoinedStep> out;
+  const auto overdue = [this](const Pending& p) {
+    return pending_.size() - 1 >= static_cast<std::size_t>(horizon_) && now_s_ - p.arrived_s >= grace_s_;
+  };
   while (!pending_.empty() &&
-         (complete(pending_.front()) || pending_.size() - 1 >= static_cast<std::size_t>(horizon_))) {
+         (complete(pending_.front()) || overdue(pending_.front()) || pending_.size() > kMaxPending)) {
     out.push_back(release());
   }
   return out;

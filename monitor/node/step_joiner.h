@@ -7,14 +7,17 @@
 //   - Truth must arrive with strictly increasing stamps; an older or equal stamp, or a sample naming a UAV id twice
 //     (or a negative id), is dropped and counted.
 //   - A step (one truth sample) is complete when every UAV whose agent the truth calls alive has a state with that
-//     stamp; it is also released, incomplete, once `horizon` newer truth samples have arrived, or by flush() at the
-//     end. Missing states mean "no estimate for that UAV at that step" (counted).
+//     stamp; it is also released, incomplete, once `horizon` newer truth samples have arrived and `grace_s` of wall
+//     time has passed since it arrived (advanceClock), or by flush() at the end. Missing states mean "no estimate
+//     for that UAV at that step" (counted). The grace matters in lockstep, where `horizon` samples pass in a
+//     fraction of a second: a state lost on the wire is repaired only after its writer's next heartbeat.
 //   - Steps are released strictly in stamp order, each exactly once.
 //   - A state is attached to the pending truth sample of its stamp (the first one per UAV wins, later ones are
 //     duplicates), held while its truth sample may still come (stamp newer than every truth so far), and dropped
 //     and counted when its UAV is not in that truth sample, its step was already released (late), or no truth
 //     sample with its stamp ever arrives (unmatched).
-// Memory: at most `horizon` + 1 pending truth samples and kMaxEarlyStates held states.
+// Memory: at most kMaxPending pending truth samples (the oldest is released when more arrive) and kMaxEarlyStates
+// held states.
 
 #include <cstdint>
 #include <deque>
@@ -50,9 +53,14 @@ struct JoinedStep {
 class StepJoiner {
  public:
   static constexpr std::size_t kMaxEarlyStates = 4096;
+  static constexpr std::size_t kMaxPending = 4096;
 
-  // `horizon`: newer truth samples after which a step is released incomplete (>= 1).
-  explicit StepJoiner(int horizon = 5);
+  // `horizon`: newer truth samples after which a step may be released incomplete (>= 1); `grace_s`: wall time after
+  // its arrival before it may (>= 0).
+  explicit StepJoiner(int horizon = 5, double grace_s = 0.0);
+
+  // The wall clock (any monotonic seconds) that the grace is measured on; steps arriving from now on carry it.
+  void advanceClock(double wall_s) { now_s_ = wall_s; }
 
   void addTruth(TruthSample truth);
   void addState(const StateSample& state);
@@ -70,6 +78,7 @@ class StepJoiner {
  private:
   struct Pending {
     JoinedStep step;
+    double arrived_s = 0.0;
     std::map<int, std::size_t> index;  // UAV id -> entry of step.truth.uavs
   };
 
@@ -80,6 +89,8 @@ class StepJoiner {
   bool wasReleased(agent::StampNs stamp) const;
 
   int horizon_;
+  double grace_s_;
+  double now_s_ = 0.0;
   std::deque<Pending> pending_;  // ascending stamps
   std::map<agent::StampNs, std::vector<StateSample>> early_;
   std::size_t early_count_ = 0;

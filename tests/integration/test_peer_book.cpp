@@ -108,6 +108,26 @@ TEST(PeerBook, CountsPeersBackAfterTheirLeaseExpiredButNotAfterAGoodbye) {
   EXPECT_EQ(book.returnedAfterLease(), 1);
 }
 
+TEST(PeerBook, APeerOfAnotherSwarmBackAfterItsLeaseIsNotCounted) {
+  // GIVEN our swarm "a", a peer of swarm "b", one of ours and one without a card (another vendor's bridge)
+  PeerBook book("swa_agent_0", card("a", 1), key(9));
+  book.discovered({key(1), "swa_sim", card("b", 1)});
+  book.discovered({key(2), "swa_sim", card("a", 1)});
+  book.discovered({key(3), "px4_bridge_0", std::nullopt});
+  // WHEN the other swarm's simulator is silent beyond its lease and comes back
+  book.lost(key(1), true);
+  book.discovered({key(1), "swa_sim", card("b", 1)});
+  // THEN that is nothing to us
+  EXPECT_EQ(book.returnedAfterLease(), 0);
+  // WHEN ours and the card-less one do the same THEN both count
+  book.lost(key(2), true);
+  book.discovered({key(2), "swa_sim", card("a", 1)});
+  book.lost(key(3), true);
+  book.discovered({key(3), "px4_bridge_0", std::nullopt});
+  EXPECT_EQ(book.returnedAfterLease(), 2);
+  EXPECT_EQ(book.lastReturned(), "px4_bridge_0");
+}
+
 TEST(PeerBook, MemoryOfExpiredPeersIsBounded) {
   PeerBook book("swa_sim", card("", 1), key(0));
   // 5000 crashed agents that never come back: the book remembers at most kMaxExpired, and a peer lost last is

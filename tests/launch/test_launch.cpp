@@ -278,7 +278,7 @@ TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
     EXPECT_NE(summary.find("\"end_reason\": \"completed\""), std::string::npos) << summary;
     EXPECT_EQ(jsonNumber(summary, "duration_s"), oracle.summary.duration_s) << summary;
     EXPECT_EQ(jsonNumber(summary, "mean_neighbor_distance_m"), oracle.summary.mean_neighbor_distance_m);
-    EXPECT_EQ(jsonNumber(summary, "anees_position"), oracle.summary.anees_position);
+    EXPECT_EQ(jsonNumber(summary, "anees_position"), oracle.summary.anees_position) << summary;
   }
   EXPECT_NE(readFile(dir_ / "a.log").find("swarm " + swarm_ + "-a"), std::string::npos);
   expectNothingLeft();

@@ -235,5 +235,60 @@ TEST(StepJoiner, FlushReleasesIncompleteStepsInOrder) {
 
 TEST(StepJoiner, HorizonMustBePositive) { EXPECT_THROW(StepJoiner(0), std::invalid_argument); }
 
+// In lockstep the horizon's samples pass in a fraction of a second; a state lost on the wire and repaired after its
+// writer's next heartbeat arrived "late" and the step was scored without it (a launch test under CPU load).
+TEST(StepJoiner, IncompleteStepWaitsForTheGraceEvenPastTheHorizon) {
+  // GIVEN a joiner with a horizon of 2 samples and 1 s of wall-clock grace, at wall time 10 s
+  StepJoiner j(2, 1.0);
+  j.advanceClock(10.0);
+  // WHEN step 0 misses UAV 1's state and 5 newer complete steps arrive within 0.5 s
+  j.addTruth(truth(0, 2));
+  j.addState(state(0, 0));
+  for (int k = 1; k <= 5; ++k) {
+    j.addTruth(truth(k, 2));
+    allStates(j, k, 2);
+  }
+  j.advanceClock(10.5);
+  // THEN nothing is released: steps leave in order and step 0 may still complete
+  EXPECT_TRUE(j.takeReady().empty());
+  // WHEN the late state comes within the grace THEN every step is complete
+  j.addState(state(1, 0));
+  std::vector<JoinedStep> ready = j.takeReady();
+  ASSERT_EQ(ready.size(), 6u);
+  EXPECT_EQ(j.counters().steps_incomplete, 0u);
+  EXPECT_EQ(j.counters().state_late, 0u);
+
+  // GIVEN another incomplete step WHEN the grace has passed THEN it is released incomplete, the rest after it
+  j.addTruth(truth(6, 2));
+  for (int k = 7; k <= 9; ++k) {
+    j.addTruth(truth(k, 2));
+    allStates(j, k, 2);
+  }
+  j.advanceClock(11.49);
+  EXPECT_TRUE(j.takeReady().empty());
+  j.advanceClock(11.5);
+  ready = j.takeReady();
+  ASSERT_EQ(ready.size(), 4u);
+  EXPECT_FALSE(ready[0].states[0].has_value());
+  EXPECT_EQ(j.counters().steps_incomplete, 1u);
+  EXPECT_EQ(j.counters().missing_states, 2u);
+}
+
+TEST(StepJoiner, PendingStepsAreBoundedWhateverTheGrace) {
+  // GIVEN a grace that never passes and a UAV that never reports
+  StepJoiner j(1, 1e9);
+  // WHEN far more steps arrive than may be pending
+  std::size_t released = 0;
+  for (int k = 0; k < static_cast<int>(StepJoiner::kMaxPending) + 100; ++k) {
+    j.addTruth(truth(k, 1));
+    released += j.takeReady().size();
+  }
+  // THEN the oldest were released (incomplete), in order, and kMaxPending are left
+  EXPECT_EQ(released, 100u);
+  EXPECT_EQ(j.counters().steps_incomplete, 100u);
+  EXPECT_EQ(j.flush().size(), StepJoiner::kMaxPending);
+  EXPECT_THROW(StepJoiner(1, -1.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace swa::monitor_node

@@ -89,7 +89,11 @@ void PeerBook::discovered(const Peer& peer) {
 void PeerBook::lost(const PeerKey& key, bool lease_expired) {
   const auto it = live_.find(key);
   if (it == live_.end()) return;
-  if (lease_expired) {
+  // A peer of another swarm never matches our endpoints, so its return cannot have cost us any (with two swarms on
+  // a starved host, every return of the other swarm's participants made a whole swarm reconnect). A peer without a
+  // card (another vendor's bridge) may be ours.
+  const bool ours = !it->second.card || it->second.card->swarm == self_card_.swarm;
+  if (lease_expired && ours) {
     if (expired_.size() >= kMaxExpired) expired_.erase(expired_.begin());
     expired_[key] = it->second.name;
   }

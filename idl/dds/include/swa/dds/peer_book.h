@@ -58,7 +58,8 @@ class PeerBook {
   std::optional<Peer> oldestTwin() const;
   // Whether some twin is older than us (we must give way).
   bool mustGiveWay() const;
-  // Peers that announced themselves again after their lease had expired, since construction.
+  // Peers of our swarm (or without a card) that announced themselves again after their lease had expired, since
+  // construction.
   int returnedAfterLease() const { return returned_; }
   const std::string& lastReturned() const { return last_returned_; }
   // Peers remembered as expired (bounded: crashed peers never come back).
