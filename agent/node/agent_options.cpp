@@ -36,6 +36,11 @@ AgentOptions parseAgentOptions(const std::vector<std::string>& args) {
         if (v->empty()) problems.push_back("--config needs a file name");
         o.config_path = *v;
       }
+    } else if (key == "--scenario") {
+      if (const auto v = value()) {
+        if (v->empty()) problems.push_back("--scenario needs a file name");
+        o.scenario_path = *v;
+      }
     } else if (key == "--set") {
       if (const auto v = value()) o.overrides.push_back(*v);
     } else if (key == "--domain") {
@@ -45,6 +50,9 @@ AgentOptions parseAgentOptions(const std::vector<std::string>& args) {
     }
   }
   if (!have_id && !o.help && !o.list_parameters && problems.empty()) problems.push_back("--id is required");
+  if (!o.config_path.empty() && !o.scenario_path.empty()) {
+    problems.push_back("--config and --scenario both give the agent's parameters; use one");
+  }
   if (!problems.empty()) {
     std::ostringstream msg;
     for (std::size_t k = 0; k < problems.size(); ++k) msg << (k ? "\n" : "") << problems[k];
@@ -56,7 +64,7 @@ AgentOptions parseAgentOptions(const std::vector<std::string>& args) {
 std::string agentUsage() {
   return R"(swa_agent: the SWA agent of one UAV as a Fast DDS process.
 
-Usage: swa_agent --id I [--config FILE] [--set key=value]... [--domain D]
+Usage: swa_agent --id I [--config FILE | --scenario FILE] [--set key=value]... [--domain D]
 
 Reads only   swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss
 Writes only  swa/uav<I>/cmd_vel (one VelocitySetpoint per IMU sample, echoing its stamp and seq)
@@ -66,6 +74,7 @@ Options:
   --id I            UAV index, 0..9999 (required); participant name swa_agent_<I>
   --config FILE     agent parameters (YAML, layout of deploy/config/agent.yaml); default: built-in defaults.
                     `swa_sim --export-agent-config FILE` writes the one a scenario implies.
+  --scenario FILE   the `agent:` section of a scenario file (swa_launch passes its run's scenario.yaml)
   --set key=value   override one parameter, e.g. --set formation.k=2 (repeatable, applied in order)
   --domain D        DDS domain id 0..232 (default: $SWA_DOMAIN, else 0)
   --parameters      list every agent parameter (key, unit, bounds, default) and exit

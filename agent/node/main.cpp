@@ -11,6 +11,7 @@
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/shutdown.h"
+#include "swa/sim/scenario_io.h"
 
 // Fast DDS declares a global `namespace dds = eprosima::fastdds::dds;`: stay inside namespace swa so `dds::` is ours.
 namespace swa::agent_node {
@@ -32,6 +33,7 @@ int agentMain(int argc, char** argv) {
       return 0;
     }
     if (!options.config_path.empty()) config = agent::loadAgentConfig(options.config_path);
+    if (!options.scenario_path.empty()) config = sim::loadScenario(options.scenario_path).agent;
     config = agent::applyOverrides(config, options.overrides);
     domain = dds::resolveDomain(options.domain);
   } catch (const agent::ConfigError& e) {

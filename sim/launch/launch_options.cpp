@@ -125,8 +125,9 @@ Usage: swa_launch --scenario FILE [--set key=value]... [--out DIR] [--compare st
 
 What it does, per run:
   1. loads the scenario (with every --set) and stops here, exit 2, if anything is wrong with it;
-  2. writes DIR/agent.yaml (the agents' configuration the scenario implies) and starts swa_monitor, the agents
-     (swa_agent --id I --config DIR/agent.yaml) and swa_sim (which waits until all of them are discovered);
+  2. writes the effective scenario to DIR/scenario.yaml, the one file every child reads (no --set is passed on),
+     and starts swa_monitor, the agents (swa_agent --id I --scenario DIR/scenario.yaml) and swa_sim (which waits
+     until all of them are discovered);
   3. supervises: an agent that dies while the scenario runs is restarted after a back-off (0.5 s, doubling per
      restart of that agent, at most 8 s; at most --max-restarts times), and every restart is appended to
      DIR/logs/restarts.csv, which the monitor puts into the report;

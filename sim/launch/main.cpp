@@ -96,17 +96,10 @@ std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_cou
   return server;
 }
 
-RunSpec makeSpec(const LaunchOptions& o, const std::string& label, const fs::path& dir,
-                 const std::vector<std::string>& extra_overrides) {
-  RunSpec spec;
-  spec.label = label;
-  spec.dir = dir;
-  spec.overrides = o.overrides;
-  spec.overrides.insert(spec.overrides.end(), extra_overrides.begin(), extra_overrides.end());
-  const sim::Scenario scenario = sim::loadScenario(o.scenario_path, spec.overrides);
-  spec.uav_count = scenario.uav_count;
-  spec.agent_config_yaml = agent::toYaml(scenario.agent);
-  return spec;
+std::string originOf(const LaunchOptions& o) {
+  std::string origin = o.scenario_path;
+  for (const std::string& set : o.overrides) origin += " --set " + set;
+  return origin;
 }
 
 int launchMain(int argc, char** argv) {
@@ -123,19 +116,20 @@ int launchMain(int argc, char** argv) {
       return 0;
     }
     domain = dds::resolveDomain(o.domain);
+    // The user's files are read once, here; each run's directory gets the effective scenario (run_supervisor.h).
     const sim::Scenario base = sim::loadScenario(o.scenario_path, o.overrides);
     const fs::path out(o.out_dir);
+    const std::string first = agent::toString(base.agent.mode);
     if (o.compare && *o.compare != base.agent.mode) {
-      const std::string first = agent::toString(base.agent.mode);
       const std::string second = agent::toString(*o.compare);
-      runs.push_back(makeSpec(o, first, out / first, {}));
-      runs.push_back(makeSpec(o, second, out / second, {"agent.mode=" + second}));
+      sim::Scenario other = base;
+      other.agent.mode = *o.compare;
+      runs.push_back({first, out / first, base, originOf(o)});
+      runs.push_back({second, out / second, other, originOf(o) + " --compare " + second});
     } else {
-      runs.push_back(makeSpec(o, agent::toString(base.agent.mode), out, {}));
+      runs.push_back({first, out, base, originOf(o)});
     }
-    int max_uav_count = 0;
-    for (const RunSpec& r : runs) max_uav_count = std::max(max_uav_count, r.uav_count);
-    discovery_server = applyDeployment(o, max_uav_count);
+    discovery_server = applyDeployment(o, base.uav_count);
     std::vector<std::string> problems;
     bin = findBinaries(o.bin_dir, problems);
     if (!problems.empty()) {
@@ -196,11 +190,7 @@ int launchMain(int argc, char** argv) {
     argv_combine.push_back("--out");
     argv_combine.push_back(o.out_dir);
     argv_combine.push_back("--scenario");
-    argv_combine.push_back(o.scenario_path);
-    for (const std::string& s : o.overrides) {
-      argv_combine.push_back("--set");
-      argv_combine.push_back(s);
-    }
+    argv_combine.push_back((runs.front().dir / "scenario.yaml").string());
     ChildProcess combine(argv_combine, (fs::path(o.out_dir) / "combine.log").string());
     while (combine.running()) ::usleep(20000);
     const int c = combine.poll().value_or(-1);

@@ -15,6 +15,7 @@
 #include "child_process.h"
 #include "restart_policy.h"
 #include "swa/dds/shutdown.h"
+#include "swa/sim/scenario_io.h"
 
 namespace swa::launch {
 namespace {
@@ -61,18 +62,18 @@ class Supervisor {
         spec_(spec),
         logs_(spec.dir / "logs"),
         policy_(options.max_restarts, options.restart_backoff_s, options.restart_backoff_max_s),
-        agents_(static_cast<std::size_t>(spec.uav_count)) {}
+        agents_(static_cast<std::size_t>(spec.scenario.uav_count)) {}
 
   RunOutcome run() {
     prepareDirectory();
     t0_ = Clock::now();
     const char* swarm = std::getenv("SWA_SWARM");
     std::printf("swa_launch [%s]: sim + %d agents + monitor on DDS domain %s, swarm %s, logs in %s\n",
-                spec_.label.c_str(), spec_.uav_count, domain_.c_str(),
+                spec_.label.c_str(), spec_.scenario.uav_count, domain_.c_str(),
                 swarm != nullptr && *swarm ? swarm : "(default partition)", logs_.c_str());
     std::fflush(stdout);
     startMonitor();
-    for (int i = 0; i < spec_.uav_count; ++i) startAgent(i);
+    for (int i = 0; i < spec_.scenario.uav_count; ++i) startAgent(i);
     startSim();
     supervise();
     stopAll();
@@ -86,24 +87,19 @@ class Supervisor {
     fs::remove_all(logs_, ec);  // logs of an earlier run in the same directory would be appended to
     for (const char* stale : {"summary.json", "sim_summary.json"}) fs::remove(spec_.dir / stale, ec);
     fs::create_directories(logs_);
-    std::ofstream config(spec_.dir / "agent.yaml");
-    config << "# Agent configuration implied by " << o_.scenario_path << " (written by swa_launch)\n"
-           << spec_.agent_config_yaml;
+    // The one configuration of the run: every child reads this file (no --set), so the directory holds exactly
+    // what ran.
+    std::ofstream config(scenarioFile());
+    config << "# The effective scenario of this run, written by swa_launch from " << spec_.origin << "\n"
+           << sim::scenarioToYaml(spec_.scenario);
     std::ofstream restarts(logs_ / "restarts.csv");
     restarts << "wall_s,uav,exit_status,restart_count,backoff_s\n";
     if (!config.flush() || !restarts.flush()) throw std::runtime_error("cannot write into " + spec_.dir.string());
   }
 
-  std::vector<std::string> scenarioArgs() const {
-    std::vector<std::string> a{"--scenario", o_.scenario_path};
-    for (const std::string& s : spec_.overrides) {
-      a.push_back("--set");
-      a.push_back(s);
-    }
-    a.push_back("--domain");
-    a.push_back(domain_);
-    return a;
-  }
+  std::string scenarioFile() const { return (spec_.dir / "scenario.yaml").string(); }
+
+  std::vector<std::string> scenarioArgs() const { return {"--scenario", scenarioFile(), "--domain", domain_}; }
 
   void startMonitor() {
     if (monitor_restarts_ > 0) {
@@ -138,8 +134,8 @@ class Supervisor {
                                         << " s ====\n";
     }
     slot.process = std::make_unique<ChildProcess>(
-        std::vector<std::string>{bin_.agent, "--id", std::to_string(i), "--domain", domain_, "--config",
-                                 (spec_.dir / "agent.yaml").string()},
+        std::vector<std::string>{bin_.agent, "--id", std::to_string(i), "--domain", domain_, "--scenario",
+                                 scenarioFile()},
         log.string());
   }
 
@@ -154,7 +150,7 @@ class Supervisor {
   }
 
   void superviseAgents() {
-    for (int i = 0; i < spec_.uav_count; ++i) {
+    for (int i = 0; i < spec_.scenario.uav_count; ++i) {
       AgentSlot& slot = agents_[static_cast<std::size_t>(i)];
       if (!slot.process || slot.given_up) continue;
       const std::optional<int> status = slot.process->poll();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "launch_options.h"
+#include "swa/sim/scenario.h"
 
 namespace swa::launch {
 
@@ -16,11 +17,10 @@ struct Binaries {
 };
 
 struct RunSpec {
-  std::string label;                     // "swa", "standalone", ...: monitor label
-  std::filesystem::path dir;             // outputs; logs in dir/logs
-  std::vector<std::string> overrides;    // the user's --set list plus the run's own (e.g. agent.mode)
-  int uav_count = 0;
-  std::string agent_config_yaml;         // written to dir/agent.yaml
+  std::string label;          // "swa", "standalone", ...: monitor label
+  std::filesystem::path dir;  // outputs; logs in dir/logs
+  sim::Scenario scenario;     // the effective scenario: written to dir/scenario.yaml, which every child reads
+  std::string origin;         // where it came from, for the file's header: "FILE --set k=v ..."
 };
 
 struct RunOutcome {

@@ -4,6 +4,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <memory>
@@ -134,10 +135,46 @@ TEST_F(LaunchTest, FourAgentsSixtySecondsStayCohesive) {
     ++compared;
   }
   EXPECT_GE(compared, 20);
-  for (const char* f : {"report.html", "timeseries.csv", "agent.yaml", "logs/sim.log", "logs/monitor.log",
+  for (const char* f : {"report.html", "timeseries.csv", "scenario.yaml", "logs/sim.log", "logs/monitor.log",
                         "logs/agent_0.log", "logs/agent_3.log", "logs/restarts.csv"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
+  expectNothingLeft();
+}
+
+// Issue #12: the user's files are read once, by the launcher; every child reads the run's effective scenario.yaml and
+// no --set, so an `agent.k` lives in one file and the run directory holds exactly the configuration that ran.
+TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveScenarioAndNoSet) {
+  // GIVEN a realtime launch with overrides of the scenario and of the agents
+  Child launch(launchArgs({"--set", "clock.mode=realtime", "--set", "duration_s=60", "--set", "agent.k=2", "--set",
+                           "agent.formation.neighbourhood=k_nearest"}),
+               dir_ / "launch.log");
+  const fs::path out = dir_ / "out";
+  const fs::path effective = out / "scenario.yaml";
+  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
+  while (SteadyClock::now() < deadline && readFile(out / "logs" / "sim.log").find("discovered") == std::string::npos &&
+         !launch.wait(0.0)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  // WHEN the swarm runs THEN the run directory holds the effective scenario, overrides applied
+  const sim::Scenario expected = sim::loadScenario(
+      kScenario, {"clock.mode=realtime", "duration_s=60", "agent.k=2", "agent.formation.neighbourhood=k_nearest"});
+  EXPECT_EQ(sim::scenarioToYaml(sim::loadScenario(effective.string())), sim::scenarioToYaml(expected));
+  EXPECT_EQ(sim::loadScenario(effective.string()).agent.formation.k, 2);
+  // AND every child on the domain (simulator, 4 agents, monitor) was given that file and no --set
+  int children = 0;
+  for (int pid : processesOnDomain(domain_)) {
+    std::string cmdline = readFile(fs::path("/proc") / std::to_string(pid) / "cmdline");
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    const std::string program = cmdline.substr(0, cmdline.find(' '));
+    if (program.size() >= 10 && program.compare(program.size() - 10, 10, "swa_launch") == 0) continue;
+    ++children;
+    EXPECT_NE(cmdline.find("--scenario " + effective.string()), std::string::npos) << cmdline;
+    EXPECT_EQ(cmdline.find("--set"), std::string::npos) << cmdline;
+  }
+  EXPECT_EQ(children, 6);
+  launch.signal(SIGTERM);
+  EXPECT_TRUE(launch.wait(60.0).has_value());
   expectNothingLeft();
 }
 
