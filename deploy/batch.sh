@@ -6,6 +6,6 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${SWA_BUILD_DIR:-$root/build}
 
-bash "$root/deploy/build.sh"
+bash "$root/deploy/build.sh" swa_batch
 "$build/bin/swa_batch" --scenario "$root/deploy/scenarios/dropout_8.yaml" --seeds 10 --jobs "$(nproc)" \
   --compare standalone --out "$root/out/batch" "$@"

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Install what is missing (Debian packages only), configure a Release build and build everything.
+# Install what is missing (Debian packages only), configure a Release build with warnings as errors, and build.
+#   bash deploy/build.sh               everything: programs, tests, benchmarks (the test command's build)
+#   bash deploy/build.sh TARGET...     only these targets and what they need, e.g. swa_launch swa_sim
 #   SWA_BUILD_DIR   build directory (default: <repo>/build)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -7,4 +9,8 @@ build=${SWA_BUILD_DIR:-$root/build}
 
 bash "$root/deploy/install-deps.sh"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSWA_WERROR=ON
-cmake --build "$build" -j "$(nproc)"
+if [ $# -gt 0 ]; then
+  cmake --build "$build" -j "$(nproc)" --target "$@"
+else
+  cmake --build "$build" -j "$(nproc)"
+fi
