@@ -5,7 +5,7 @@
 #include <optional>
 #include <system_error>
 
-#include "run_files.h"
+#include "swa/record/run_dir.h"
 #include "run_report.h"
 #include "swa/sim/scenario_io.h"
 
@@ -14,15 +14,14 @@ namespace swa::monitor_node {
 int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& err) {
   std::optional<sim::Scenario> scenario;
   std::vector<RunRecord> runs;
-  JsonValue combined = JsonValue::object();
-  JsonValue list = JsonValue::array();
+  record::Json list = record::Json::array();
   try {
     if (!options.scenario_path.empty()) scenario = sim::loadScenario(options.scenario_path, options.overrides);
     for (const CombineInput& input : options.combine) {
-      LoadedRun loaded = readRunDir(input.dir);
+      record::LoadedRun loaded = record::readRunDir(input.dir);
       loaded.run.label = input.label;
-      loaded.summary.set("label", JsonValue::string(input.label));
-      list.push(std::move(loaded.summary));
+      loaded.summary["label"] = input.label;
+      list.push_back(std::move(loaded.summary));
       runs.push_back(std::move(loaded.run));
     }
   } catch (const params::ConfigError& e) {
@@ -32,7 +31,6 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
     err << "swa_monitor --combine: " << e.what() << "\n";
     return kExitBadInput;
   }
-  combined.set("runs", std::move(list));
 
   monitor::ReportNotes notes = reportNotes(runs, "SWA monitor report — comparison");
   if (scenario) {
@@ -48,19 +46,16 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
     std::error_code ec;
     fs::create_directories(options.out_dir, ec);
     if (ec) throw std::runtime_error("cannot create " + options.out_dir + ": " + ec.message());
-    const fs::path summary_path = fs::path(options.out_dir) / kSummaryFile;
-    std::ofstream summary(summary_path, std::ios::binary | std::ios::trunc);
-    summary << combined.dump();
-    summary.close();
-    if (!summary) throw std::runtime_error("cannot write " + summary_path.string());
+    record::writeTextFile((fs::path(options.out_dir) / record::kSummaryFile).string(),
+                          record::jsonText(record::Json{{"runs", std::move(list)}}));
     const std::vector<std::string> written = monitor::writeReport(options.out_dir, reportRuns(runs), notes);
-    for (const RunRecord& r : runs) out << "swa_monitor: " << r.label << ": " << verdictText(r.verdict) << "\n";
+    for (const RunRecord& r : runs) out << "swa_monitor: " << r.label << ": " << record::verdictText(r.verdict) << "\n";
     out << "swa_monitor: report " << written.front() << "\n";
   } catch (const std::exception& e) {
     err << "swa_monitor --combine: " << e.what() << "\n";
     return kExitBadInput;
   }
-  return exitCode(runs.front().verdict.outcome);
+  return record::exitCode(runs.front().verdict.outcome);
 }
 
 }  // namespace swa::monitor_node

@@ -1,14 +1,15 @@
 #include "live_config.h"
 
+#include "swa/record/scoring.h"
+
 namespace swa::monitor_node {
 
 LiveRunConfig liveRunConfig(const sim::Scenario& scenario) {
   LiveRunConfig c;
-  c.metrics.formation_radius_m = scenario.agent.formation.radius_m;
-  c.metrics.window_start_s = sim::driftWindowStart(scenario);
+  const record::Scoring scoring = record::scoringOf(scenario);  // as swa_batch's closed loop
+  c.metrics = scoring.metrics;
+  c.score_estimates = scoring.score_estimates;
   c.window_from_events = false;
-  // As swa_batch's closed loop: standalone agents estimate in their take-off frame, nothing to score.
-  c.score_estimates = scenario.agent.mode != agent::Mode::kStandalone;
   c.mode = scenario.agent.mode;
   c.formation = scenario.agent.formation;
   return c;

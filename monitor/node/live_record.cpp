@@ -42,7 +42,7 @@ RunRecord makeRunRecord(const LiveRun& run, const LiveRunConfig& config, const R
   r.collision_distance_m = config.metrics.collision_distance_m;
   r.window_start_s = run.windowStartS();
   r.summary = run.summary();
-  r.verdict = judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.formation_radius_m, r.tolerance,
+  r.verdict = record::judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.formation_radius_m, r.tolerance,
                      run.coverage().missed()});
   r.counts = inputCounts(run);
   r.restarts = context.restarts;

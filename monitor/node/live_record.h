@@ -8,10 +8,12 @@
 #include <vector>
 
 #include "live_run.h"
-#include "restart_log.h"
-#include "run_record.h"
+#include "swa/record/run_record.h"
 
 namespace swa::monitor_node {
+
+using record::RestartLog;
+using record::RunRecord;
 
 struct RunEnd {
   bool completed = false;  // EVENT_SCENARIO_END with text "completed"

@@ -18,8 +18,8 @@
 #include "live_run.h"
 #include "monitor_node.h"
 #include "monitor_options.h"
-#include "restart_log.h"
-#include "run_files.h"
+#include "swa/record/restarts.h"
+#include "swa/record/run_dir.h"
 #include "run_report.h"
 #include "swa/dds/options.h"
 #include "swa/monitor/output_dir.h"
@@ -31,17 +31,17 @@
 namespace swa::monitor_node {
 namespace {
 
-int writeOutputs(const std::string& dir, const RunRecord& record) {
+int writeOutputs(const std::string& dir, const RunRecord& run) {
   try {
-    writeRunFiles(dir, record);
-    const monitor::ReportNotes notes = reportNotes({record}, "SWA monitor report — " + record.label);
-    const std::vector<std::string> written = monitor::writeReport(dir, reportRuns({record}), notes);
-    std::printf("swa_monitor: %s\n", verdictText(record.verdict).c_str());
+    record::writeRunFiles(dir, run);
+    const monitor::ReportNotes notes = reportNotes({run}, "SWA monitor report — " + run.label);
+    const std::vector<std::string> written = monitor::writeReport(dir, reportRuns({run}), notes);
+    std::printf("swa_monitor: %s\n", record::verdictText(run.verdict).c_str());
     std::printf("swa_monitor: report %s\n", written.front().c_str());
-    return exitCode(record.verdict.outcome);
+    return record::exitCode(run.verdict.outcome);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "swa_monitor: %s\n", e.what());
-    std::printf("swa_monitor: %s (outputs incomplete)\n", verdictText(record.verdict).c_str());
+    std::printf("swa_monitor: %s (outputs incomplete)\n", record::verdictText(run.verdict).c_str());
     return kExitIncomplete;
   }
 }
@@ -106,7 +106,7 @@ int monitorMain(int argc, char** argv) {
   if (scenario) context.seed = scenario->seed;
   context.tolerance = options.tolerance;
   context.end = end;
-  if (!options.restarts_path.empty()) context.restarts = readRestartLog(options.restarts_path);
+  if (!options.restarts_path.empty()) context.restarts = record::readRestartLog(options.restarts_path);
   return writeOutputs(options.out_dir, makeRunRecord(run, config, context));
 }
 

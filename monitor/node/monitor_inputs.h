@@ -9,6 +9,7 @@
 #include "swa/agent/config.h"
 #include "swa/agent/samples.h"
 #include "swa/monitor/swarm_metrics.h"
+#include "swa/record/events.h"
 
 namespace swa::monitor_node {
 
@@ -32,28 +33,9 @@ struct StateSample {
   monitor::EstimateRecord estimate;  // monitor::estimateFromDiagnostics of the state
 };
 
-// Event kinds as written to events.csv and summary.json.
-namespace event_kind {
-inline constexpr const char* kGnssLost = "gnss_lost";
-inline constexpr const char* kGnssRestored = "gnss_restored";
-inline constexpr const char* kAgentDead = "agent_dead";
-inline constexpr const char* kAgentRejoined = "agent_rejoined";
-inline constexpr const char* kCollision = "collision";
-inline constexpr const char* kFailsafe = "failsafe";
-inline constexpr const char* kScenarioEnd = "scenario_end";
-}  // namespace event_kind
-
-// uav / other_uav value of an event about every UAV (ScenarioEvent.idl ALL_UAVS) or about no second UAV.
-constexpr int kAllUavs = -1;
-
-// One swa/events sample.
-struct EventRecord {
-  double t_s = 0.0;  // sim time the event took effect
-  std::string kind;  // one of event_kind
-  int uav = kAllUavs;
-  int other_uav = -1;
-  double value = 0.0;
-  std::string text;
-};
+// Events are the run record's (swa/record/events.h).
+using record::EventRecord;
+using record::kAllUavs;
+namespace event_kind = record::event_kind;
 
 }  // namespace swa::monitor_node

@@ -6,10 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "run_record.h"
+#include "swa/record/run_record.h"
 #include "swa/monitor/report_html.h"
 
 namespace swa::monitor_node {
+
+using record::RunRecord;
 
 // Longest events / restarts table; the rest is summarised in the table's note (summary.json has them all).
 constexpr std::size_t kMaxTableRows = 500;

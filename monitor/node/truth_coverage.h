@@ -8,13 +8,11 @@
 #include <vector>
 
 #include "swa/agent/samples.h"
+#include "swa/record/verdict.h"
 
 namespace swa::monitor_node {
 
-struct MissedSpan {
-  double from_s;
-  double to_s;
-};
+using record::MissedSpan;
 
 class TruthCoverage {
  public:

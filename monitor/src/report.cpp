@@ -67,28 +67,6 @@ void assignField(T& field, double value) {
 
 }  // namespace
 
-std::string jsonNumber(double v) { return std::isfinite(v) ? formatNumber(v) : std::string("null"); }
-
-std::string jsonQuote(std::string_view s) {
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string out = "\"";
-  for (const char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (u < 0x20) {
-      out += "\\u00";
-      out += kHex[u >> 4];
-      out += kHex[u & 0xF];
-    } else {
-      out += c;
-    }
-  }
-  out += '"';
-  return out;
-}
-
 TimeSeriesRow toRow(const StepMetrics& step) {
   TimeSeriesRow row;
   row.t_s = step.t_s;
@@ -158,18 +136,6 @@ Summary summaryFromFields(const std::vector<NamedValue>& fields) {
   return s;
 }
 
-std::string toJson(const Summary& summary) {
-  std::string out = "{";
-  bool first = true;
-  for (const NamedValue& f : summaryFields(summary)) {
-    out += first ? "\n  " : ",\n  ";
-    first = false;
-    out += jsonQuote(f.key) + ": " + jsonNumber(f.value);
-  }
-  out += "\n}\n";
-  return out;
-}
-
 const Statistic* Aggregate::find(std::string_view key) const {
   for (const Statistic& s : metrics) {
     if (s.key == key) return &s;
@@ -219,20 +185,6 @@ Aggregate aggregate(const std::vector<Summary>& runs) {
   fields.reserve(runs.size());
   for (const Summary& s : runs) fields.push_back(summaryFields(s));
   return aggregate(fields);
-}
-
-std::string toJson(const Aggregate& aggregate) {
-  std::string out = "{\n  \"runs\": " + std::to_string(aggregate.runs) + ",\n  \"metrics\": {";
-  bool first = true;
-  for (const Statistic& s : aggregate.metrics) {
-    out += first ? "\n    " : ",\n    ";
-    first = false;
-    out += jsonQuote(s.key) + ": {\"runs\": " + std::to_string(s.runs) + ", \"mean\": " + jsonNumber(s.mean) +
-           ", \"std\": " + jsonNumber(s.std) + ", \"min\": " + jsonNumber(s.min) + ", \"max\": " + jsonNumber(s.max) +
-           "}";
-  }
-  out += first ? "}\n}\n" : "\n  }\n}\n";
-  return out;
 }
 
 }  // namespace swa::monitor

@@ -4,6 +4,7 @@
 
 #include "swa/agent/agent.h"
 #include "swa/monitor/swarm_metrics.h"
+#include "swa/record/scoring.h"
 #include "swa/sim/world.h"
 
 namespace swa::batch {
@@ -13,12 +14,9 @@ RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& option
   const int n = world.uav_count();
   std::vector<agent::Agent> agents(static_cast<std::size_t>(n), agent::Agent(scenario.agent));
 
-  monitor::MetricsConfig mc;
-  mc.formation_radius_m = scenario.agent.formation.radius_m;
-  mc.window_start_s = sim::driftWindowStart(scenario);
-  monitor::MetricsAccumulator metrics(mc);
-  // Standalone agents estimate in their take-off frame: there is no floating frame to score them against.
-  const bool score_estimates = scenario.agent.mode != agent::Mode::kStandalone;
+  const record::Scoring scoring = record::scoringOf(scenario);  // as the live monitor's
+  monitor::MetricsAccumulator metrics(scoring.metrics);
+  const bool score_estimates = scoring.score_estimates;
 
   RunResult result;
   result.seed = scenario.seed;

@@ -12,6 +12,8 @@
 #include "batch_runner.h"
 #include "swa/agent/config_io.h"
 #include "swa/monitor/output_dir.h"
+#include "swa/record/events.h"
+#include "swa/record/run_dir.h"
 #include "swa/sim/scenario_io.h"
 
 namespace fs = std::filesystem;
@@ -39,47 +41,29 @@ void printSeed(const batch::RunResult& r) {
   std::fflush(stdout);
 }
 
-std::string modeJson(const std::vector<batch::RunResult>& runs) {
+record::Json modeJson(const std::vector<batch::RunResult>& runs) {
   std::vector<monitor::Summary> summaries;
-  std::ostringstream seeds;
-  seeds << "[";
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    summaries.push_back(runs[i].summary);
-    const std::string body = monitor::toJson(runs[i].summary);  // a flat object "{...}"
-    seeds << (i ? ",\n    " : "\n    ") << "{\"seed\": " << runs[i].seed << ", \"rejected_inputs\": "
-          << runs[i].rejected_inputs << ", " << body.substr(1);
+  record::Json seeds = record::Json::array();
+  for (const batch::RunResult& r : runs) {
+    summaries.push_back(r.summary);
+    record::Json seed{{"seed", r.seed}, {"rejected_inputs", r.rejected_inputs}};
+    seed.update(record::metricsJson(r.summary));
+    seeds.push_back(std::move(seed));
   }
-  seeds << "\n  ]";
-  std::ostringstream out;
-  out << "{\n  \"mode\": \"" << agent::toString(runs.front().mode) << "\",\n  \"aggregate\": "
-      << monitor::toJson(monitor::aggregate(summaries)) << ",\n  \"seeds\": " << seeds.str() << "\n}";
-  return out.str();
+  return record::Json{{"mode", agent::toString(runs.front().mode)},
+                      {"aggregate", record::aggregateJson(monitor::aggregate(summaries))},
+                      {"seeds", std::move(seeds)}};
 }
 
-const char* eventName(sim::EventKind k) {
-  switch (k) {
-    case sim::EventKind::kGnssLost: return "gnss_lost";
-    case sim::EventKind::kGnssRestored: return "gnss_restored";
-    case sim::EventKind::kCollision: return "collision";
-    case sim::EventKind::kFailsafeOn: return "failsafe_on";
-    case sim::EventKind::kFailsafeOff: return "failsafe_off";
-  }
-  return "unknown";
-}
-
+// Per seed, the time series and the world's events, in the run directory's dialect (swa/record/run_dir.h).
 void writeSeries(const fs::path& dir, const std::vector<batch::RunResult>& runs) {
   fs::create_directories(dir);
   for (const batch::RunResult& r : runs) {
-    std::ofstream events(dir / ("seed_" + std::to_string(r.seed) + "_events.csv"));
-    events << "t_s,event,uav,other_uav,value\n";
-    for (const sim::Event& e : r.events) {
-      events << monitor::formatNumber(static_cast<double>(e.stamp_ns) * 1e-9) << "," << eventName(e.kind) << ","
-             << e.uav << "," << e.other_uav << "," << monitor::formatNumber(e.value) << "\n";
-    }
-    std::ofstream csv(dir / ("seed_" + std::to_string(r.seed) + ".csv"));
-    csv << monitor::csvHeader() << "\n";
-    for (const auto& row : r.series) csv << monitor::formatCsvRow(row) << "\n";
-    if (!csv) throw std::runtime_error("cannot write " + (dir / ("seed_" + std::to_string(r.seed) + ".csv")).string());
+    const std::string seed = "seed_" + std::to_string(r.seed);
+    std::vector<record::EventRecord> events;
+    for (const sim::Event& e : r.events) events.push_back(record::eventOf(e));
+    record::writeTextFile((dir / (seed + "_events.csv")).string(), record::eventsCsv(events));
+    record::writeTextFile((dir / (seed + ".csv")).string(), record::timeSeriesCsv(r.series));
   }
 }
 
@@ -149,15 +133,17 @@ int main(int argc, char** argv) {
 
     const fs::path out(opt.out_dir);
     fs::create_directories(out);
-    std::ofstream json(out / "summary.json");
-    json << "{\n\"scenario\": \"" << opt.scenario_path << "\",\n\"uav_count\": " << scenario.uav_count
-         << ",\n\"duration_s\": " << scenario.duration_s << ",\n\"seeds\": " << opt.seeds << ",\n\"runs\": [\n";
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      json << (i ? ",\n" : "") << modeJson(results[i]);
-      writeSeries(out / agent::toString(results[i].front().mode), results[i]);
+    record::Json summary{{"scenario", opt.scenario_path},
+                         {"uav_count", scenario.uav_count},
+                         {"duration_s", scenario.duration_s},
+                         {"seeds", opt.seeds},
+                         {"runs", record::Json::array()}};
+    for (const std::vector<batch::RunResult>& runs : results) {
+      summary["runs"].push_back(modeJson(runs));
+      writeSeries(out / agent::toString(runs.front().mode), runs);
     }
-    json << "\n]\n}\n";
-    std::ofstream(out / "scenario.yaml") << sim::scenarioToYaml(scenario);
+    record::writeTextFile((out / record::kSummaryFile).string(), record::jsonText(summary));
+    record::writeTextFile((out / record::kScenarioFile).string(), sim::scenarioToYaml(scenario));
     // The report shows the first seed of every mode side by side (the paper's comparison figure).
     std::vector<monitor::RunReport> report_runs;
     for (const auto& runs : results) {
@@ -173,7 +159,6 @@ int main(int argc, char** argv) {
     notes.gnss_loss_s = sim::driftWindowStart(scenario) > 0.0 ? sim::driftWindowStart(scenario) : monitor::kNaN;
     notes.extra.push_back({"plots", "first seed of each mode; summary.json has every seed and the aggregate"});
     monitor::writeReport((out / "report").string(), report_runs, notes);
-    if (!json) throw std::runtime_error("cannot write " + (out / "summary.json").string());
     const double simulated = scenario.duration_s * opt.seeds * static_cast<double>(modes.size());
     std::printf("\n%.0f simulated s in %.2f s wall, %.2f s CPU (%.0fx real time per CPU second)\nwrote %s and %s\n",
                 simulated, wall, cpu, simulated / std::max(cpu, 1e-9), (out / "summary.json").c_str(),

@@ -15,6 +15,7 @@
 #include "child_process.h"
 #include "restart_policy.h"
 #include "swa/dds/shutdown.h"
+#include "swa/record/run_dir.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::launch {
@@ -37,21 +38,6 @@ struct AgentSlot {
   std::optional<Clock::time_point> restart_due;
   bool given_up = false;
 };
-
-// The "verdict" member of the monitor's flat summary.json, without a JSON parser: our own writer puts it on one line.
-std::string readVerdict(const fs::path& summary) {
-  std::ifstream in(summary);
-  std::string line;
-  const std::string key = "\"verdict\": \"";
-  while (std::getline(in, line)) {
-    const auto at = line.find(key);
-    if (at == std::string::npos) continue;
-    const auto start = at + key.size();
-    const auto end = line.find('"', start);
-    return line.substr(start, end == std::string::npos ? std::string::npos : end - start);
-  }
-  return "";
-}
 
 class Supervisor {
  public:
@@ -77,7 +63,7 @@ class Supervisor {
     startSim();
     supervise();
     stopAll();
-    outcome_.verdict = readVerdict(spec_.dir / "summary.json");
+    outcome_.verdict = record::recordedVerdict(spec_.dir.string());
     return outcome_;
   }
 

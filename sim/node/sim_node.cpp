@@ -1,5 +1,7 @@
 #include "sim_node.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -64,14 +66,6 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 
 WallNs wallNs(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
-}
-
-// JSON has no NaN: a statistic of an empty set is null.
-std::string jsonReal(double x) {
-  if (!std::isfinite(x)) return "null";
-  std::ostringstream o;
-  o << std::setprecision(17) << x;
-  return o.str();
 }
 
 }  // namespace
@@ -611,35 +605,48 @@ void SimNode::publishEvent(msg::EventKind kind, int uav, int other, double value
 }
 
 std::string SimNode::summaryJson() const {
-  std::ostringstream o;
-  o << std::setprecision(17);
-  o << "{\n  \"completed\": " << (summary_.completed ? "true" : "false") << ",\n  \"clock_mode\": \""
-    << clockModeName(scenario_.clock.mode) << "\",\n  \"uav_count\": " << n_ << ",\n  \"seed\": " << scenario_.seed
-    << ",\n  \"steps\": " << summary_.steps << ",\n  \"sim_time_s\": " << summary_.sim_time_s
-    << ",\n  \"wall_time_s\": " << summary_.wall_time_s << ",\n  \"discovery_s\": " << summary_.discovery_s
-    << ",\n  \"handshake_s\": " << summary_.handshake_s
-    << ",\n  \"collisions\": " << summary_.collisions << ",\n  \"applied_commands\": " << summary_.applied_commands
-    << ",\n  \"ignored_commands\": " << summary_.ignored_commands
-    << ",\n  \"refused_commands\": " << summary_.refused_commands
-    << ",\n  \"refused_writers\": " << summary_.refused_writers
-    << ",\n  \"command_handovers\": " << summary_.command_handovers
-    << ",\n  \"unacknowledged_sensor_steps\": " << summary_.unacknowledged_sensor_steps
-    << ",\n  \"agent_dead_events\": " << summary_.agent_dead_events
-    << ",\n  \"agent_rejoined_events\": " << summary_.agent_rejoined_events << ",\n  \"stalls\": " << summary_.stalls
-    << ",\n  \"stalled_s\": " << jsonReal(summary_.stalled_s) << ",\n  \"dead_at_end\": [";
-  for (std::size_t k = 0; k < summary_.dead_at_end.size(); ++k) o << (k ? ", " : "") << summary_.dead_at_end[k];
   const LatencyReport& l = summary_.latency;
-  o << "],\n  \"write_failures\": " << summary_.write_failures
-    << ",\n  \"latency_commands_judged\": " << l.published << ",\n  \"latency_commands_answered\": " << l.answered
-    << ",\n  \"latency_p50_us\": " << jsonReal(l.p50_us) << ",\n  \"latency_p99_us\": " << jsonReal(l.p99_us)
-    << ",\n  \"latency_max_us\": " << jsonReal(l.max_us) << ",\n  \"latency_mean_us\": " << jsonReal(l.mean_us)
-    << ",\n  \"latency_quantile_resolution\": " << jsonReal(LogHistogram::relativeResolution())
-    << ",\n  \"late_commands\": " << l.late << ",\n  \"late_fraction\": " << jsonReal(l.lateFraction())
-    << ",\n  \"missing_answers\": " << l.missing << ",\n  \"missing_fraction\": " << jsonReal(l.missingFraction())
-    << ",\n  \"duplicate_answers\": " << l.duplicates << ",\n  \"unmatched_answers\": " << l.unmatched
-    << ",\n  \"step_lag_p99_us\": " << jsonReal(summary_.step_lag_p99_us)
-    << ",\n  \"step_lag_max_us\": " << jsonReal(summary_.step_lag_max_us) << "\n}\n";
-  return o.str();
+  // Members in this order; NaN (a statistic of an empty set) is written as null.
+  const nlohmann::ordered_json j{
+      {"completed", summary_.completed},
+      {"clock_mode", clockModeName(scenario_.clock.mode)},
+      {"uav_count", n_},
+      {"seed", scenario_.seed},
+      {"steps", summary_.steps},
+      {"sim_time_s", summary_.sim_time_s},
+      {"wall_time_s", summary_.wall_time_s},
+      {"discovery_s", summary_.discovery_s},
+      {"handshake_s", summary_.handshake_s},
+      {"collisions", summary_.collisions},
+      {"applied_commands", summary_.applied_commands},
+      {"ignored_commands", summary_.ignored_commands},
+      {"refused_commands", summary_.refused_commands},
+      {"refused_writers", summary_.refused_writers},
+      {"command_handovers", summary_.command_handovers},
+      {"unacknowledged_sensor_steps", summary_.unacknowledged_sensor_steps},
+      {"agent_dead_events", summary_.agent_dead_events},
+      {"agent_rejoined_events", summary_.agent_rejoined_events},
+      {"stalls", summary_.stalls},
+      {"stalled_s", summary_.stalled_s},
+      {"dead_at_end", summary_.dead_at_end},
+      {"write_failures", summary_.write_failures},
+      {"latency_commands_judged", l.published},
+      {"latency_commands_answered", l.answered},
+      {"latency_p50_us", l.p50_us},
+      {"latency_p99_us", l.p99_us},
+      {"latency_max_us", l.max_us},
+      {"latency_mean_us", l.mean_us},
+      {"latency_quantile_resolution", LogHistogram::relativeResolution()},
+      {"late_commands", l.late},
+      {"late_fraction", l.lateFraction()},
+      {"missing_answers", l.missing},
+      {"missing_fraction", l.missingFraction()},
+      {"duplicate_answers", l.duplicates},
+      {"unmatched_answers", l.unmatched},
+      {"step_lag_p99_us", summary_.step_lag_p99_us},
+      {"step_lag_max_us", summary_.step_lag_max_us},
+  };
+  return j.dump(2) + "\n";
 }
 
 }  // namespace swa::sim_node

@@ -46,6 +46,7 @@ namespace {
 
 using testing::Child;
 using testing::ShmJanitor;
+using testing::jsonNumber;
 using testing::readFile;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -162,16 +163,6 @@ std::string selfPath() {
 int nextDomain() {
   static int counter = 0;
   return 1 + static_cast<int>((::getpid() * 7 + 13 * counter++) % 230);
-}
-
-double jsonNumber(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\": (-?[0-9.eE+-]+|true|false|null)");
-  std::smatch m;
-  if (!std::regex_search(json, m, re)) return std::nan("");
-  if (m[1] == "true") return 1.0;
-  if (m[1] == "false") return 0.0;
-  if (m[1] == "null") return std::nan("");
-  return std::strtod(m[1].str().c_str(), nullptr);
 }
 
 double median(std::vector<double> v) {

@@ -14,7 +14,8 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <regex>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -34,12 +35,26 @@ inline std::string readFile(const fs::path& p) {
   return s.str();
 }
 
-// A number member of the flat JSON objects our programs write ("key": value); NaN when absent or null.
+// A number member of the JSON documents our programs write (summary.json, the simulator's summary): the first
+// member `key`, depth first; true / false read as 1 / 0; NaN when absent, null, or the text is not JSON.
 inline double jsonNumber(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\"\\s*:\\s*([-+0-9.eE]+|null)");
-  std::smatch m;
-  if (!std::regex_search(json, m, re) || m[1] == "null") return std::nan("");
-  return std::strtod(m[1].str().c_str(), nullptr);
+  const std::function<const nlohmann::json*(const nlohmann::json&)> find =
+      [&](const nlohmann::json& j) -> const nlohmann::json* {
+    if (j.is_object()) {
+      if (const auto it = j.find(key); it != j.end()) return &*it;
+    }
+    if (j.is_structured()) {
+      for (const nlohmann::json& child : j) {
+        if (const nlohmann::json* hit = find(child)) return hit;
+      }
+    }
+    return nullptr;
+  };
+  const nlohmann::json doc = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json* v = find(doc);
+  if (v == nullptr) return std::nan("");
+  if (v->is_boolean()) return v->get<bool>() ? 1.0 : 0.0;
+  return v->is_number() ? v->get<double>() : std::nan("");
 }
 
 // Polls `done` every 20 ms for at most `seconds`; its last answer.

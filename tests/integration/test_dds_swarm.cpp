@@ -99,16 +99,6 @@ double minSeparation(const std::vector<agent::Vec2>& p) {
   return m;
 }
 
-// "key": number from swa_sim's flat summary JSON; NaN when absent.
-double jsonNumber(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\": (-?[0-9.eE+-]+|true|false)");
-  std::smatch m;
-  if (!std::regex_search(json, m, re)) return std::nan("");
-  if (m[1] == "true") return 1.0;
-  if (m[1] == "false") return 0.0;
-  return std::strtod(m[1].str().c_str(), nullptr);
-}
-
 // The oracle: the same scenario in one process, samples fed as sim/batch/closed_loop.cpp does.
 std::vector<sim::UavTruth> inProcessFinalTruth(const sim::Scenario& scenario) {
   sim::World world(scenario);
@@ -411,7 +401,7 @@ TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {
   EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD, 3), 1) << logs();
   EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_REJOINED, 3), 0);
   EXPECT_GE(monitor_->count(msg::EVENT_FAILSAFE, 3), 1);
-  EXPECT_NE(summary.find("\"dead_at_end\": [3]"), std::string::npos) << summary;
+  EXPECT_EQ(nlohmann::json::parse(summary)["dead_at_end"], nlohmann::json::array({3})) << summary;
   ASSERT_FALSE(monitor_->truth().empty());
   EXPECT_FALSE(monitor_->truth().back().uavs().at(3).alive());
   EXPECT_EQ(agent_status_[2], 0);  // the stalled agent still shuts down cleanly

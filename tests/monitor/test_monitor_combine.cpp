@@ -10,12 +10,13 @@
 #include <string>
 
 #include "combine.h"
-#include "json_value.h"
-#include "run_files.h"
 #include "run_report.h"
+#include "swa/record/run_dir.h"
 
 namespace swa::monitor_node {
 namespace {
+
+using record::Outcome;
 
 namespace fs = std::filesystem;
 
@@ -84,15 +85,15 @@ TEST_F(CombineTest, OneReportOneSummaryFirstRunsVerdict) {
   EXPECT_EQ(combine({"--combine", "SWA=" + a, "baseline=" + b, "--out", out_dir}, out, err), 0) << err;
   EXPECT_NE(out.find("report " + (fs::path(out_dir) / "report.html").string()), std::string::npos) << out;
 
-  const JsonValue summary = JsonValue::parse(read(fs::path(out_dir) / "summary.json"));
-  const JsonValue* runs = summary.find("runs");
-  ASSERT_NE(runs, nullptr);
-  ASSERT_EQ(runs->items().size(), 2u);
-  EXPECT_EQ(*runs->items()[0].find("label")->asString(), "SWA");  // the --combine label
-  EXPECT_EQ(*runs->items()[1].find("label")->asString(), "baseline");
-  EXPECT_EQ(*runs->items()[1].find("verdict")->asString(), "FAIL");
-  EXPECT_DOUBLE_EQ(*runs->items()[1].find("mean_neighbor_distance_m")->asNumber(), 19.0);
-  EXPECT_EQ(runs->items()[0].find("events")->items().size(), 1u);  // each run's whole summary.json
+  const record::Json summary = record::Json::parse(read(fs::path(out_dir) / "summary.json"));
+  ASSERT_TRUE(summary.contains("runs"));
+  const record::Json& runs = summary["runs"];
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0]["label"].get<std::string>(), "SWA");  // the --combine label
+  EXPECT_EQ(runs[1]["label"].get<std::string>(), "baseline");
+  EXPECT_EQ(runs[1]["verdict"].get<std::string>(), "FAIL");
+  EXPECT_DOUBLE_EQ(runs[1]["mean_neighbor_distance_m"].get<double>(), 19.0);
+  EXPECT_EQ(runs[0]["events"].size(), 1u);  // each run's whole summary.json
 
   const std::string html = read(fs::path(out_dir) / "report.html");
   for (const char* must : {"SWA", "baseline", "something &lt;failed&gt;", "table-events", "agent_dead",

@@ -4,10 +4,15 @@
 #include <gtest/gtest.h>
 
 #include "truth_coverage.h"
-#include "verdict.h"
+#include "swa/record/verdict.h"
 
 namespace swa::monitor_node {
 namespace {
+
+using record::judge;
+using record::Outcome;
+using record::Verdict;
+using record::VerdictInput;
 
 constexpr agent::StampNs kMs = 1'000'000;
 

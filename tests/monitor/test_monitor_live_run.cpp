@@ -12,9 +12,12 @@
 #include "live_record.h"
 #include "live_run.h"
 #include "status_line.h"
+#include "swa/record/run_dir.h"
 
 namespace swa::monitor_node {
 namespace {
+
+using record::Outcome;
 
 constexpr agent::StampNs kStep = 100'000'000;
 
@@ -90,7 +93,7 @@ TEST(LiveRun, ScoresStepsInStampOrderWhateverTheArrivalOrder) {
   for (std::size_t k = 0; k < 30; ++k) {
     EXPECT_EQ(monitor::formatCsvRow(in_order.series()[k]), monitor::formatCsvRow(scrambled.series()[k])) << k;
   }
-  EXPECT_EQ(monitor::toJson(in_order.summary()), monitor::toJson(scrambled.summary()));
+  EXPECT_EQ(record::metricsJson(in_order.summary()).dump(), record::metricsJson(scrambled.summary()).dump());
   EXPECT_EQ(scrambled.joinCounters().missing_states, 0u);
   EXPECT_EQ(in_order.summary().nees_samples, 4u * 30u);
 }
@@ -192,7 +195,7 @@ TEST(LiveRun, WindowFromTheGnssLossEventWhenThereIsNoScenario) {
   for (int k = 0; k < 40; ++k) direct.onTruth(square(k));
   direct.finish();
   run = runWith({event(1.5, event_kind::kGnssLost, 0)}, true);
-  EXPECT_EQ(monitor::toJson(run->summary()), monitor::toJson(direct.summary()));
+  EXPECT_EQ(record::metricsJson(run->summary()).dump(), record::metricsJson(direct.summary()).dump());
 }
 
 TEST(LiveRun, EndEventModeAndEvents) {

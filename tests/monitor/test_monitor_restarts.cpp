@@ -9,9 +9,9 @@
 #include <sstream>
 #include <string>
 
-#include "restart_log.h"
+#include "swa/record/restarts.h"
 
-namespace swa::monitor_node {
+namespace swa::record {
 namespace {
 
 RestartLog parse(const std::string& text) {
@@ -122,4 +122,4 @@ TEST(RestartLog, ReadsAFile) {
 }
 
 }  // namespace
-}  // namespace swa::monitor_node
+}  // namespace swa::record

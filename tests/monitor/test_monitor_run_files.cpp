@@ -1,6 +1,6 @@
 // A run directory's files: what the writers produce reads back to the same run (numbers bit for bit, NaN gaps,
 // quoted event text), summary.json carries swa_batch's per-seed keys, and malformed files are refused with the
-// file and line named. Also the small JSON and CSV readers underneath.
+// file and line named. Also the CSV reader underneath (JSON is nlohmann::json's).
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,11 +12,10 @@
 #include <sstream>
 #include <string>
 
-#include "csv_text.h"
-#include "json_value.h"
-#include "run_files.h"
+#include "swa/record/csv.h"
+#include "swa/record/run_dir.h"
 
-namespace swa::monitor_node {
+namespace swa::record {
 namespace {
 
 namespace fs = std::filesystem;
@@ -88,54 +87,6 @@ RunRecord sampleRun() {
   return r;
 }
 
-TEST(MonitorJson, ParsesAndPrintsWhatWeWrite) {
-  const JsonValue v = JsonValue::parse(
-      R"({"a": 1, "b": [true, false, null], "c": {"d": "x\"y\\z\n\u00e9\ud83d\ude00"}, "e": -1.5e-3, "f": []})");
-  ASSERT_TRUE(v.isObject());
-  EXPECT_EQ(v.find("a")->asInteger(), 1);
-  EXPECT_EQ(v.find("b")->items().size(), 3u);
-  EXPECT_TRUE(v.find("b")->items()[2].isNull());
-  EXPECT_EQ(*v.find("c")->find("d")->asString(), "x\"y\\z\n\xc3\xa9\xf0\x9f\x98\x80");
-  EXPECT_DOUBLE_EQ(*v.find("e")->asNumber(), -1.5e-3);
-  EXPECT_FALSE(v.find("e")->asInteger().has_value());
-  EXPECT_EQ(v.find("zz"), nullptr);
-  // Printed and parsed again: the same document.
-  EXPECT_EQ(JsonValue::parse(v.dump()).dump(), v.dump());
-  // Number text is kept verbatim.
-  EXPECT_EQ(JsonValue::parse("[18446744073709551615, 0.30000000000000004]").dump(),
-            "[\n  18446744073709551615,\n  0.30000000000000004\n]\n");
-}
-
-TEST(MonitorJson, RejectsMalformedTextWithAPosition) {
-  for (const char* bad : {"", "{", "{\"a\" 1}", "{\"a\": 1,}", "[1 2]", "{\"a\": 1} x", "01", "1.", "-", "tru",
-                          "\"unterminated", "\"bad \\q\"", "\"\\ud800\"", "{\"a\": 1, \"a\": 2}", "\"tab\there\""}) {
-    EXPECT_THROW(JsonValue::parse(bad), JsonError) << bad;
-  }
-  try {
-    JsonValue::parse("{\n  \"a\": ?\n}");
-    FAIL();
-  } catch (const JsonError& e) {
-    EXPECT_NE(std::string(e.what()).find("line 2, column 8"), std::string::npos) << e.what();
-  }
-  std::string deep(200, '[');
-  EXPECT_THROW(JsonValue::parse(deep), JsonError);
-}
-
-TEST(MonitorJson, BuildersAndTypedReads) {
-  JsonValue o = JsonValue::object();
-  o.set("n", JsonValue::number(kNaN));  // JSON has no NaN: null
-  o.set("i", JsonValue::integer(-3));
-  o.set("u", JsonValue::unsignedInteger(7));
-  o.set("i", JsonValue::integer(4));  // replaced in place
-  EXPECT_TRUE(o.find("n")->isNull());
-  EXPECT_EQ(o.members().front().first, "n");
-  EXPECT_EQ(o.members()[1].first, "i");
-  EXPECT_EQ(*o.find("i")->asInteger(), 4);
-  EXPECT_FALSE(JsonValue::integer(-1).asUnsigned().has_value());
-  EXPECT_FALSE(JsonValue::string("1").asNumber().has_value());
-  EXPECT_EQ(o.dump(), "{\n  \"n\": null,\n  \"i\": 4,\n  \"u\": 7\n}\n");
-}
-
 TEST(MonitorCsv, SplitsAndQuotes) {
   EXPECT_EQ(*splitCsvLine("a,b,,c"), (std::vector<std::string>{"a", "b", "", "c"}));
   EXPECT_EQ(*splitCsvLine(""), (std::vector<std::string>{""}));
@@ -153,23 +104,22 @@ TEST(MonitorCsv, SplitsAndQuotes) {
 
 TEST(MonitorRunFiles, SummaryJsonHasTheBatchKeysAndTheMonitorsOwn) {
   const RunRecord run = sampleRun();
-  const JsonValue j = summaryJson(run);
-  // Every key of swa_batch's per-seed entries (monitor::toJson(Summary)), with the same values.
-  const JsonValue batch = JsonValue::parse(monitor::toJson(run.summary));
-  for (const auto& [key, value] : batch.members()) {
-    const JsonValue* mine = j.find(key);
-    ASSERT_NE(mine, nullptr) << key;
-    EXPECT_EQ(mine->dump(), value.dump()) << key;
+  const Json j = summaryJson(run);
+  // Every key of swa_batch's per-seed entries (metricsJson), with the same values.
+  const Json batch = metricsJson(run.summary);
+  for (const auto& [key, value] : batch.items()) {
+    ASSERT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j[key].dump(), value.dump()) << key;
   }
   for (const char* key : {"label", "mode", "scenario", "seed", "completed", "end_reason", "verdict", "verdict_reasons",
                           "formation_radius_m", "tolerance", "agent_restarts", "restarts", "events",
                           "dropped_state_late", "truth_samples"}) {
-    EXPECT_NE(j.find(key), nullptr) << key;
+    EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(*j.find("verdict")->asString(), "FAIL");
-  EXPECT_EQ(*j.find("agent_restarts")->asUnsigned(), 1u);
-  EXPECT_EQ(j.find("events")->items().size(), 4u);
-  EXPECT_EQ(*j.find("seed")->asUnsigned(), 18446744073709551615ull);
+  EXPECT_EQ(j["verdict"].get<std::string>(), "FAIL");
+  EXPECT_EQ(j["agent_restarts"].get<std::uint64_t>(), 1u);
+  EXPECT_EQ(j["events"].size(), 4u);
+  EXPECT_EQ(j["seed"].get<std::uint64_t>(), 18446744073709551615ull);
 }
 
 TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
@@ -299,4 +249,4 @@ TEST(MonitorRunFiles, MissingOrBrokenFilesAreNamed) {
 }
 
 }  // namespace
-}  // namespace swa::monitor_node
+}  // namespace swa::record

@@ -6,9 +6,9 @@
 #include <string>
 
 #include "monitor_options.h"
-#include "verdict.h"
+#include "swa/record/verdict.h"
 
-namespace swa::monitor_node {
+namespace swa::record {
 namespace {
 
 VerdictInput good() {
@@ -146,11 +146,11 @@ TEST(MonitorVerdict, NamesRoundTripAndExitCodesMatchTheOptions) {
     EXPECT_EQ(*parseOutcome(toString(o)), o);
   }
   EXPECT_FALSE(parseOutcome("pass").has_value());
-  EXPECT_EQ(exitCode(Outcome::kPass), kExitPass);
-  EXPECT_EQ(exitCode(Outcome::kFail), kExitFail);
-  EXPECT_EQ(exitCode(Outcome::kIncomplete), kExitIncomplete);
-  EXPECT_EQ(kExitBadInput, 2);
+  EXPECT_EQ(exitCode(Outcome::kPass), monitor_node::kExitPass);
+  EXPECT_EQ(exitCode(Outcome::kFail), monitor_node::kExitFail);
+  EXPECT_EQ(exitCode(Outcome::kIncomplete), monitor_node::kExitIncomplete);
+  EXPECT_EQ(monitor_node::kExitBadInput, 2);
 }
 
 }  // namespace
-}  // namespace swa::monitor_node
+}  // namespace swa::record

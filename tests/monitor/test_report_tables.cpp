@@ -99,12 +99,5 @@ TEST(SummaryFields, MissingNaNAndOddCountsKeepDefaults) {
   EXPECT_TRUE(std::isnan(s.duration_s));  // missing: Summary{}'s default
 }
 
-TEST(ReportJson, QuoteAndNumber) {
-  EXPECT_EQ(jsonQuote("a\"b\\c\n\x01"), "\"a\\\"b\\\\c\\u000a\\u0001\"");
-  EXPECT_EQ(jsonNumber(0.1), "0.1");
-  EXPECT_EQ(jsonNumber(kNaN), "null");
-  EXPECT_EQ(jsonNumber(-INFINITY), "null");
-}
-
 }  // namespace
 }  // namespace swa::monitor

@@ -53,14 +53,6 @@ std::vector<NamedValue> summaryFields(const Summary& summary);
 // values clamp to 0 for unsigned counts) and keeps its default for NaN.
 Summary summaryFromFields(const std::vector<NamedValue>& fields);
 
-// A flat JSON object with one member per summaryFields entry.
-std::string toJson(const Summary& summary);
-
-// JSON building blocks with the conventions above: a number in the shortest round-trip form, null when not finite;
-// a string quoted with ", \ and control characters escaped (other bytes, UTF-8 included, pass through).
-std::string jsonNumber(double value);
-std::string jsonQuote(std::string_view text);
-
 // Statistics of one key over the runs where it is finite (count of them in `runs`). std is the sample standard
 // deviation (n - 1); 0 for a single run. All NaN when no run has a finite value.
 struct Statistic {
@@ -81,8 +73,5 @@ struct Aggregate {
 // Keys are matched by name; a key missing from a run is treated like a NaN value in that run.
 Aggregate aggregate(const std::vector<std::vector<NamedValue>>& runs);
 Aggregate aggregate(const std::vector<Summary>& runs);
-
-// {"runs": n, "metrics": {"<key>": {"runs": .., "mean": .., "std": .., "min": .., "max": ..}, ...}}
-std::string toJson(const Aggregate& aggregate);
 
 }  // namespace swa::monitor

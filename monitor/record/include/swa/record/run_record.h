@@ -1,10 +1,7 @@
 #pragma once
-// One monitored run as it is written to (and read back from) its output directory:
-//   summary.json      the fields below (summary keys = monitor::summaryFields, as swa_batch's per-seed entries)
-//   timeseries.csv    monitor::csvHeader() rows
-//   trajectories.csv  t_s,uav,x_m,y_m (nan,nan: a gap in that UAV's line)
-//   events.csv        t_s,kind,uav,other_uav,value,text
-// run_files.h writes and reads these files; run_report.h turns runs into report.html.
+// One run as its directory records it (run_dir.h): who ran, how it ended, its verdict, its summary metrics, input
+// counters, restarts, events, time series and trajectories. Written by swa_monitor and swa_batch, read by
+// swa_monitor --combine, swa_launch and the tests.
 
 #include <cstdint>
 #include <optional>
@@ -12,20 +9,20 @@
 #include <utility>
 #include <vector>
 
-#include "monitor_inputs.h"
-#include "restart_log.h"
 #include "swa/monitor/accumulator.h"
 #include "swa/monitor/report.h"
 #include "swa/monitor/report_html.h"
-#include "verdict.h"
+#include "swa/record/events.h"
+#include "swa/record/restarts.h"
+#include "swa/record/verdict.h"
 
-namespace swa::monitor_node {
+namespace swa::record {
 
 struct RunRecord {
   std::string label;                  // report column / legend name
   std::string mode;                   // "swa", "standalone", "anchored", or "unknown"
-  std::string scenario;               // scenario file; empty without --scenario
-  std::optional<std::uint64_t> seed;  // the scenario's seed; nullopt without --scenario
+  std::string scenario;               // scenario file; empty without one
+  std::optional<std::uint64_t> seed;  // the scenario's seed; nullopt without a scenario
   bool completed = false;             // EVENT_SCENARIO_END "completed" received
   std::string end_reason;             // "completed", or why not
   Verdict verdict;
@@ -43,4 +40,4 @@ struct RunRecord {
   std::vector<monitor::UavTrajectory> trajectories;
 };
 
-}  // namespace swa::monitor_node
+}  // namespace swa::record

@@ -1,6 +1,10 @@
-#include "csv_text.h"
+#include "swa/record/csv.h"
 
-namespace swa::monitor_node {
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace swa::record {
 
 std::optional<std::vector<std::string>> splitCsvLine(std::string_view line) {
   std::vector<std::string> fields;
@@ -55,4 +59,28 @@ std::string_view chompCr(std::string_view line) {
   return line;
 }
 
-}  // namespace swa::monitor_node
+std::optional<double> csvNumber(const std::string& text) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || (errno == ERANGE && std::isinf(v))) return std::nullopt;
+  return v;
+}
+
+std::optional<double> csvReal(const std::string& text, double min, double max) {
+  const std::optional<double> v = csvNumber(text);
+  if (!v || !std::isfinite(*v) || *v < min || *v > max) return std::nullopt;
+  return v;
+}
+
+std::optional<long long> csvInteger(const std::string& text, long long min, long long max) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (errno != 0 || end != text.c_str() + text.size() || v < min || v > max) return std::nullopt;
+  return v;
+}
+
+}  // namespace swa::record

@@ -1,11 +1,10 @@
-#include "verdict.h"
+#include "swa/record/verdict.h"
 
 #include <cmath>
 
-#include "monitor_options.h"
 #include "swa/monitor/svg_plot.h"
 
-namespace swa::monitor_node {
+namespace swa::record {
 namespace {
 
 std::string fixed(double v, int decimals) { return monitor::formatFixed(v, decimals); }
@@ -74,11 +73,11 @@ std::optional<Outcome> parseOutcome(const std::string& text) {
 
 int exitCode(Outcome outcome) {
   switch (outcome) {
-    case Outcome::kPass: return kExitPass;
-    case Outcome::kFail: return kExitFail;
-    case Outcome::kIncomplete: return kExitIncomplete;
+    case Outcome::kPass: return 0;
+    case Outcome::kFail: return 1;
+    case Outcome::kIncomplete: return 3;
   }
-  return kExitIncomplete;
+  return 3;
 }
 
 std::string verdictText(const Verdict& verdict) {
@@ -87,4 +86,4 @@ std::string verdictText(const Verdict& verdict) {
   return out;
 }
 
-}  // namespace swa::monitor_node
+}  // namespace swa::record

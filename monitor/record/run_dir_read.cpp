@@ -10,30 +10,11 @@
 #include <sstream>
 #include <utility>
 
-#include "csv_text.h"
-#include "run_files.h"
+#include "swa/record/csv.h"
+#include "swa/record/run_dir.h"
 
-namespace swa::monitor_node {
+namespace swa::record {
 namespace {
-
-// A whole field as a double, "nan" / "inf" included (the writers' monitor::formatNumber output).
-std::optional<double> number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || (errno == ERANGE && std::isinf(v))) return std::nullopt;
-  return v;
-}
-
-std::optional<long long> integer(const std::string& text, long long min, long long max) {
-  if (text.empty()) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const long long v = std::strtoll(text.c_str(), &end, 10);
-  if (errno != 0 || end != text.c_str() + text.size() || v < min || v > max) return std::nullopt;
-  return v;
-}
 
 // Walks the lines of one of our CSV files: checks the header, yields each record's fields with its line number.
 class CsvReader {
@@ -83,36 +64,55 @@ std::string readAll(const std::string& path) {
   return text.str();
 }
 
-double numberOrNaN(const JsonValue& j, const char* key) {
-  const JsonValue* v = j.find(key);
-  if (v == nullptr) return monitor::kNaN;
-  return v->asNumber().value_or(monitor::kNaN);
+// A member as a number: NaN when absent, null (how NaN is written) or not a number.
+double numberOrNaN(const Json& j, const char* key) {
+  const auto it = j.find(key);
+  return it != j.end() && it->is_number() ? it->get<double>() : monitor::kNaN;
+}
+
+template <class T>
+T memberOr(const Json& j, const char* key, T fallback) {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  if constexpr (std::is_same_v<T, std::string>) {
+    return it->is_string() ? it->get<std::string>() : fallback;
+  } else {
+    return it->is_number_integer() ? it->get<T>() : fallback;
+  }
+}
+
+std::vector<std::string> strings(const Json& j, const char* key) {
+  std::vector<std::string> out;
+  if (const auto it = j.find(key); it != j.end() && it->is_array()) {
+    for (const Json& item : *it) out.push_back(item.is_string() ? item.get<std::string>() : "");
+  }
+  return out;
 }
 
 }  // namespace
 
-RunRecord runFromSummaryJson(const JsonValue& j, const std::string& source) {
+RunRecord runFromSummaryJson(const Json& j, const std::string& source) {
   const auto fail = [&source](const std::string& what) { throw RunFileError(source + ": " + what); };
-  if (!j.isObject()) fail("not a JSON object");
-  RunRecord run;
-  const JsonValue* label = j.find("label");
-  const JsonValue* verdict = j.find("verdict");
-  const JsonValue* completed = j.find("completed");
-  if (label == nullptr || !label->asString()) fail("no string member 'label'");
-  if (verdict == nullptr || !verdict->asString() || !parseOutcome(*verdict->asString())) {
+  if (!j.is_object()) fail("not a JSON object");
+  const auto label = j.find("label");
+  const auto verdict = j.find("verdict");
+  const auto completed = j.find("completed");
+  if (label == j.end() || !label->is_string()) fail("no string member 'label'");
+  if (verdict == j.end() || !verdict->is_string() || !parseOutcome(verdict->get<std::string>())) {
     fail("no member 'verdict' with PASS, FAIL or INCOMPLETE");
   }
-  if (completed == nullptr || !completed->asBool()) fail("no boolean member 'completed'");
-  run.label = *label->asString();
-  run.verdict.outcome = *parseOutcome(*verdict->asString());
-  run.completed = *completed->asBool();
-  if (const JsonValue* v = j.find("mode")) run.mode = v->asString().value_or("unknown");
-  if (const JsonValue* v = j.find("scenario")) run.scenario = v->asString().value_or("");
-  if (const JsonValue* v = j.find("seed")) run.seed = v->asUnsigned();
-  if (const JsonValue* v = j.find("end_reason")) run.end_reason = v->asString().value_or("");
-  if (const JsonValue* v = j.find("verdict_reasons")) {
-    for (const JsonValue& r : v->items()) run.verdict.reasons.push_back(r.asString().value_or(""));
+  if (completed == j.end() || !completed->is_boolean()) fail("no boolean member 'completed'");
+  RunRecord run;
+  run.label = label->get<std::string>();
+  run.verdict.outcome = *parseOutcome(verdict->get<std::string>());
+  run.completed = completed->get<bool>();
+  run.mode = memberOr<std::string>(j, "mode", "unknown");
+  run.scenario = memberOr<std::string>(j, "scenario", "");
+  if (const auto seed = j.find("seed"); seed != j.end() && seed->is_number_unsigned()) {
+    run.seed = seed->get<std::uint64_t>();
   }
+  run.end_reason = memberOr<std::string>(j, "end_reason", "");
+  run.verdict.reasons = strings(j, "verdict_reasons");
   if (const double r = numberOrNaN(j, "formation_radius_m"); std::isfinite(r)) run.formation_radius_m = r;
   if (const double t = numberOrNaN(j, "tolerance"); std::isfinite(t)) run.tolerance = t;
   if (const double c = numberOrNaN(j, "collision_distance_m"); std::isfinite(c)) run.collision_distance_m = c;
@@ -125,27 +125,21 @@ RunRecord runFromSummaryJson(const JsonValue& j, const std::string& source) {
   run.summary = monitor::summaryFromFields(fields);
 
   run.restarts.found = true;
-  if (const JsonValue* v = j.find("restarts_malformed_rows")) {
-    run.restarts.malformed_rows = static_cast<int>(v->asInteger().value_or(0));
-  }
-  if (const JsonValue* v = j.find("restarts_problems")) {
-    for (const JsonValue& p : v->items()) run.restarts.problems.push_back(p.asString().value_or(""));
-  }
-  if (const JsonValue* v = j.find("restarts")) {
-    for (const JsonValue& r : v->items()) {
+  run.restarts.malformed_rows = memberOr<int>(j, "restarts_malformed_rows", 0);
+  run.restarts.problems = strings(j, "restarts_problems");
+  if (const auto restarts = j.find("restarts"); restarts != j.end() && restarts->is_array()) {
+    for (const Json& r : *restarts) {
       AgentRestart a;
       a.wall_s = numberOrNaN(r, "wall_s");
-      if (const JsonValue* x = r.find("uav")) a.uav = static_cast<int>(x->asInteger().value_or(-1));
-      if (const JsonValue* x = r.find("exit_status")) a.exit_status = x->asString().value_or("");
-      if (const JsonValue* x = r.find("restart_count")) a.restart_count = x->asInteger().value_or(0);
+      a.uav = memberOr<int>(r, "uav", -1);
+      a.exit_status = memberOr<std::string>(r, "exit_status", "");
+      a.restart_count = memberOr<std::int64_t>(r, "restart_count", 0);
       a.backoff_s = numberOrNaN(r, "backoff_s");
       run.restarts.restarts.push_back(a);
     }
   }
-  for (const auto& [key, value] : j.members()) {
-    if (key.rfind("dropped_", 0) == 0) {
-      if (const auto n = value.asUnsigned()) run.counts.emplace_back(key, *n);
-    }
+  for (const auto& [key, value] : j.items()) {
+    if (key.rfind("dropped_", 0) == 0 && value.is_number_unsigned()) run.counts.emplace_back(key, value.get<std::uint64_t>());
   }
   return run;
 }
@@ -158,11 +152,11 @@ std::vector<monitor::TimeSeriesRow> parseTimeSeriesCsv(std::istream& in, const s
     std::optional<double> v[12];
     for (std::size_t k = 0; k < 12; ++k) {
       if (k == 6 || k == 8) continue;  // the integer columns
-      v[k] = number(f[k]);
+      v[k] = csvNumber(f[k]);
       if (!v[k]) csv.fail(csv.line(), "field " + std::to_string(k + 1) + " '" + f[k] + "' is not a number");
     }
-    const auto collisions = integer(f[6], 0, std::numeric_limits<long long>::max());
-    const auto groups = integer(f[8], 0, std::numeric_limits<int>::max());
+    const auto collisions = csvInteger(f[6], 0, std::numeric_limits<long long>::max());
+    const auto groups = csvInteger(f[8], 0, std::numeric_limits<int>::max());
     if (!collisions) csv.fail(csv.line(), "collisions '" + f[6] + "' is not a count");
     if (!groups) csv.fail(csv.line(), "groups '" + f[8] + "' is not a count");
     monitor::TimeSeriesRow row;
@@ -188,10 +182,10 @@ std::vector<monitor::UavTrajectory> parseTrajectoriesCsv(std::istream& in, const
   std::map<int, monitor::UavTrajectory> by_uav;
   std::vector<std::string> f;
   while (csv.next(f, 4)) {
-    const auto t = number(f[0]);
-    const auto uav = integer(f[1], 0, std::numeric_limits<int>::max());
-    const auto x = number(f[2]);
-    const auto y = number(f[3]);
+    const auto t = csvNumber(f[0]);
+    const auto uav = csvInteger(f[1], 0, std::numeric_limits<int>::max());
+    const auto x = csvNumber(f[2]);
+    const auto y = csvNumber(f[3]);
     if (!t || !std::isfinite(*t)) csv.fail(csv.line(), "t_s '" + f[0] + "' is not a time");
     if (!uav) csv.fail(csv.line(), "uav '" + f[1] + "' is not a UAV id");
     if (!x || !y) csv.fail(csv.line(), "x_m / y_m are not numbers");
@@ -209,10 +203,10 @@ std::vector<EventRecord> parseEventsCsv(std::istream& in, const std::string& sou
   std::vector<EventRecord> events;
   std::vector<std::string> f;
   while (csv.next(f, 6)) {
-    const auto t = number(f[0]);
-    const auto uav = integer(f[2], std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
-    const auto other = integer(f[3], std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
-    const auto value = number(f[4]);
+    const auto t = csvNumber(f[0]);
+    const auto uav = csvInteger(f[2], std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+    const auto other = csvInteger(f[3], std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+    const auto value = csvNumber(f[4]);
     if (!t || !std::isfinite(*t)) csv.fail(csv.line(), "t_s '" + f[0] + "' is not a time");
     if (f[1].empty()) csv.fail(csv.line(), "empty kind");
     if (!uav || !other) csv.fail(csv.line(), "uav / other_uav are not integers");
@@ -222,6 +216,18 @@ std::vector<EventRecord> parseEventsCsv(std::istream& in, const std::string& sou
   return events;
 }
 
+Json readJsonFile(const std::string& path) {
+  const std::string text = readAll(path);
+  try {
+    return Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    // "[json.exception.parse_error.101] parse error at line 1, column 14: syntax error ..." -> "line 1, ..."
+    const std::string what = e.what();
+    const auto at = what.find(" at line ");
+    throw RunFileError(path + ": " + (at == std::string::npos ? what : what.substr(at + 4)));
+  }
+}
+
 LoadedRun readRunDir(const std::string& dir) {
   namespace fs = std::filesystem;
   const auto path = [&dir](const char* name) { return (fs::path(dir) / name).string(); };
@@ -229,11 +235,7 @@ LoadedRun readRunDir(const std::string& dir) {
 
   LoadedRun loaded;
   const std::string summary_path = path(kSummaryFile);
-  try {
-    loaded.summary = JsonValue::parse(readAll(summary_path));
-  } catch (const JsonError& e) {
-    throw RunFileError(summary_path + ": " + e.what());
-  }
+  loaded.summary = readJsonFile(summary_path);
   loaded.run = runFromSummaryJson(loaded.summary, summary_path);
 
   const auto open = [](const std::string& p) {
@@ -250,4 +252,14 @@ LoadedRun readRunDir(const std::string& dir) {
   return loaded;
 }
 
-}  // namespace swa::monitor_node
+std::string recordedVerdict(const std::string& dir) {
+  try {
+    const Json summary = readJsonFile((std::filesystem::path(dir) / kSummaryFile).string());
+    const auto verdict = summary.find("verdict");
+    return summary.is_object() && verdict != summary.end() && verdict->is_string() ? verdict->get<std::string>() : "";
+  } catch (const RunFileError&) {
+    return "";
+  }
+}
+
+}  // namespace swa::record

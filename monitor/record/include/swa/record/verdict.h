@@ -11,10 +11,15 @@
 #include <vector>
 
 #include "swa/monitor/accumulator.h"
-#include "truth_coverage.h"
 #include "swa/monitor/report_html.h"
 
-namespace swa::monitor_node {
+namespace swa::record {
+
+// A stretch of sim time the monitor did not see (monitor/live/truth_coverage.h).
+struct MissedSpan {
+  double from_s;
+  double to_s;
+};
 
 enum class Outcome { kPass, kFail, kIncomplete };
 
@@ -30,7 +35,7 @@ struct VerdictInput {
   monitor::Summary summary;
   double formation_radius_m = 10.0;
   double tolerance = monitor::kDefaultRadiusTolerance;
-  // Parts of the run the monitor did not see (truth_coverage.h): the verdict is INCOMPLETE if there are any.
+  // Parts of the run the monitor did not see: the verdict is INCOMPLETE if there are any.
   std::vector<MissedSpan> missed;
 };
 
@@ -38,8 +43,9 @@ Verdict judge(const VerdictInput& input);
 
 const char* toString(Outcome outcome);                         // "PASS", "FAIL", "INCOMPLETE"
 std::optional<Outcome> parseOutcome(const std::string& text);  // the inverse
+// The exit status that carries it: 0 PASS, 1 FAIL, 3 INCOMPLETE (2 is a bad command line or input).
 int exitCode(Outcome outcome);
 // "PASS", or "FAIL: reason; reason" (the report's verdict line).
 std::string verdictText(const Verdict& verdict);
 
-}  // namespace swa::monitor_node
+}  // namespace swa::record

@@ -1,16 +1,16 @@
 #pragma once
 // The launcher's restart log (--restarts FILE): CSV with the header
 //   wall_s,uav,exit_status,restart_count,backoff_s
-// and one row per agent restart (uav: its index) or monitor restart (uav: "monitor"), appended while the run goes on and read by the monitor at the end. The file is
-// someone else's, possibly still being written: a missing or empty file means no restart, and a malformed row is
-// counted and described, never fatal.
+// and one row per agent restart (uav: its index) or monitor restart (uav: "monitor"), appended while the run goes
+// on and read by the monitor at the end. The file is someone else's, possibly still being written: a missing or
+// empty file means no restart, and a malformed row is counted and described, never fatal.
 
 #include <cstdint>
 #include <istream>
 #include <string>
 #include <vector>
 
-namespace swa::monitor_node {
+namespace swa::record {
 
 struct AgentRestart {
   static constexpr int kMonitor = -1;  // `uav` of a restart of swa_monitor itself
@@ -39,4 +39,4 @@ RestartLog parseRestartLog(std::istream& in);
 // A missing file is an empty log with found = false.
 RestartLog readRestartLog(const std::string& path);
 
-}  // namespace swa::monitor_node
+}  // namespace swa::record
