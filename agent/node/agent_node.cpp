@@ -14,8 +14,8 @@
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "agent_state_msg.h"
-#include "swa/dds/convert.h"
+#include "swa/wire/agent_state.h"
+#include "swa/wire/samples.h"
 #include "swa/dds/shutdown.h"
 #include "swa/dds/topics.h"
 
@@ -246,7 +246,7 @@ void AgentNode::handle(Input& in) {
       pending_state_ns_.reset();
     }
     const std::uint64_t resyncs = agent_.diagnostics().stamp_resyncs;
-    const agent::VelocityCommand cmd = agent_.onImu(dds::fromMsg(*imu));
+    const agent::VelocityCommand cmd = agent_.onImu(wire::fromMsg(*imu));
     if (agent_.diagnostics().stamp_resyncs != resyncs) {
       std::fprintf(stderr,
                    "swa_agent %d: the IMU clock restarted (now at stamp %lld ns): estimates restarted on the new "
@@ -259,7 +259,7 @@ void AgentNode::handle(Input& in) {
     if (!cmd.fresh) return;
     had_fresh_imu_ = true;
     last_fresh_imu_ = std::chrono::steady_clock::now();
-    msg::VelocitySetpoint out = dds::toMsg(cmd, self, ++cmd_seq_, imu->header().seq());
+    msg::VelocitySetpoint out = wire::toMsg(cmd, self, ++cmd_seq_, imu->header().seq());
     if (cmd_writer_.write(out)) {
       ++stats_.commands;
     } else {
@@ -277,11 +277,11 @@ void AgentNode::handle(Input& in) {
   } else if (const auto* det = std::get_if<msg::Detections>(&in)) {
     if (foreign(det->observer_id())) return;
     ++stats_.detections;
-    agent_.onDetections(dds::fromMsg(*det));
+    agent_.onDetections(wire::fromMsg(*det));
   } else if (const auto* gnss = std::get_if<msg::GnssFix>(&in)) {
     if (foreign(gnss->uav_id())) return;
     ++stats_.gnss;
-    agent_.onGnss(dds::fromMsg(*gnss));
+    agent_.onGnss(wire::fromMsg(*gnss));
   }
 }
 
@@ -296,7 +296,7 @@ void AgentNode::heartbeat() {
 }
 
 void AgentNode::publishState(agent::StampNs stamp_ns, bool no_input) {
-  msg::AgentState state = toStateMsg(agent_.diagnostics(), static_cast<std::uint32_t>(id_), ++state_seq_);
+  msg::AgentState state = wire::toMsg(agent_.diagnostics(), static_cast<std::uint32_t>(id_), ++state_seq_);
   state.header().stamp_ns(stamp_ns);  // the step whose samples have all been processed (also if one was rejected)
   if (no_input) state.stage(msg::STAGE_NO_INPUT);
   last_state_ = std::chrono::steady_clock::now();

@@ -18,7 +18,8 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "swa/dds/convert.h"
+#include "swa/wire/samples.h"
+#include "swa/wire/world.h"
 #include "swa/dds/shutdown.h"
 #include "swa/dds/topics.h"
 #include "swa/sim/timing.h"
@@ -47,12 +48,6 @@ std::string guidText(const dds::WriterGuid& g) {
   return text;
 }
 
-msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq) {
-  msg::Header h;
-  h.stamp_ns(stamp_ns);
-  h.seq(seq);
-  return h;
-}
 
 const char* clockModeName(sim::ClockMode m) { return m == sim::ClockMode::kLockstep ? "lockstep" : "realtime"; }
 
@@ -152,7 +147,7 @@ int SimNode::run() {
   if (!awaitDiscovery()) {
     if (summary_.refused_as_twin) return 1;  // publishes nothing: the running simulator owns the swarm's topics
     if (dds::shutdownRequested()) std::fprintf(stderr, "swa_sim: interrupted before the first step\n");
-    publishEvent(msg::EVENT_SCENARIO_END, msg::ALL_UAVS, -1, 0.0,
+    publishEvent(record::event_kind::kScenarioEnd, record::kAllUavs, 0.0,
                  dds::shutdownRequested() ? "interrupted before start" : "discovery timeout");
     events_.waitForAcknowledgments(1.0);
     return 1;
@@ -173,7 +168,7 @@ int SimNode::run() {
     if (!agentAlive(i)) summary_.dead_at_end.push_back(i);
   }
   if (last_truth_step_ != world_.step_index()) publishTruth();
-  publishEvent(msg::EVENT_SCENARIO_END, msg::ALL_UAVS, -1, 0.0, summary_.completed ? "completed" : "interrupted");
+  publishEvent(record::event_kind::kScenarioEnd, record::kAllUavs, 0.0, summary_.completed ? "completed" : "interrupted");
   // Give late readers of the last samples a moment; events are TRANSIENT_LOCAL anyway.
   events_.waitForAcknowledgments(2.0);
   truth_.waitForAcknowledgments(2.0);
@@ -227,7 +222,7 @@ void SimNode::runLockstep() {
       ++summary_.agent_dead_events;
       std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d did not answer within %.3f s: dead, UAV %d on failsafe\n",
                    sim::stampSeconds(world_.time_ns()), i, timeout_s, i);
-      publishEvent(msg::EVENT_AGENT_DEAD, i, -1, timeout_s, "no answer within the agent timeout");
+      publishEvent(record::event_kind::kAgentDead, i, timeout_s, "no answer within the agent timeout");
     }
     awaitSensorAcks(deadline);
     if (dds::shutdownRequested()) break;
@@ -286,7 +281,7 @@ void SimNode::drainLockstep(Clock::duration wait) {
         ++summary_.agent_rejoined_events;
         std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n",
                      sim::stampSeconds(world_.time_ns()), a.uav);
-        publishEvent(msg::EVENT_AGENT_REJOINED, a.uav, -1, 0.0, "answering again");
+        publishEvent(record::event_kind::kAgentRejoined, a.uav, 0.0, "answering again");
         break;
       case Verdict::kIgnore:
         ++summary_.ignored_commands;
@@ -360,7 +355,7 @@ void SimNode::runRealtime() {
         ++summary_.agent_dead_events;
         std::fprintf(stderr, "swa_sim: t = %.2f s: no setpoint from agent %d for %.3f s: dead, UAV %d on failsafe\n",
                      sim::stampSeconds(world_.time_ns()), i, options_.agent_timeout_s, i);
-        publishEvent(msg::EVENT_AGENT_DEAD, i, -1, options_.agent_timeout_s, "no setpoint within the agent timeout");
+        publishEvent(record::event_kind::kAgentDead, i, options_.agent_timeout_s, "no setpoint within the agent timeout");
       }
     }
     if (dds::shutdownRequested()) break;
@@ -411,7 +406,7 @@ void SimNode::drainRealtime(Clock::duration wait) {
       ++summary_.agent_rejoined_events;
       std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n", sim::stampSeconds(now_ns),
                    a.uav);
-      publishEvent(msg::EVENT_AGENT_REJOINED, a.uav, -1, 0.0, "answering again");
+      publishEvent(record::event_kind::kAgentRejoined, a.uav, 0.0, "answering again");
     }
   }
 }
@@ -494,7 +489,7 @@ void SimNode::noteYoungerTwin() {
 }
 
 void SimNode::apply(const Answer& a) {
-  world_.command(a.uav, dds::fromMsg(a.setpoint));
+  world_.command(a.uav, wire::fromMsg(a.setpoint));
   ++summary_.applied_commands;
 }
 
@@ -505,32 +500,12 @@ bool SimNode::agentAlive(int uav) const {
 
 void SimNode::publishStepOutputs() {
   if (world_.step_index() % 10 == 0) noteYoungerTwin();
-  for (const sim::Event& e : world_.events()) {
-    switch (e.kind) {
-      case sim::EventKind::kGnssLost:
-        publishEvent(msg::EVENT_GNSS_LOST, e.uav, -1, 0.0, "GNSS lost");
-        break;
-      case sim::EventKind::kGnssRestored:
-        publishEvent(msg::EVENT_GNSS_RESTORED, e.uav, -1, 0.0, "GNSS restored");
-        break;
-      case sim::EventKind::kCollision:
-        publishEvent(msg::EVENT_COLLISION, e.uav, e.other_uav, e.value, "collision (value: distance, m)");
-        break;
-      case sim::EventKind::kFailsafeOn:
-        publishEvent(msg::EVENT_FAILSAFE, e.uav, -1, e.value, "failsafe on (value: setpoint age, s)");
-        break;
-      case sim::EventKind::kFailsafeOff:
-        publishEvent(msg::EVENT_FAILSAFE, e.uav, -1, 0.0, "failsafe off");
-        break;
-    }
-  }
+  for (const sim::Event& e : world_.events()) publishEvent(record::eventOf(e));
   if (world_.step_index() % options_.truth_every == 0 || world_.finished()) publishTruth();
-  msg::Clock tick;
-  tick.header(header(world_.time_ns(), ++clock_seq_));
-  tick.step(static_cast<std::uint64_t>(world_.step_index()));
-  tick.sim_time_ns(world_.time_ns());
-  tick.step_period_ns(sim::stepPeriodNs(scenario_.dynamics.rate_hz));
-  if (!clock_.write(tick)) ++summary_.write_failures;
+  const wire::ClockTick tick{static_cast<std::uint64_t>(world_.step_index()), world_.time_ns(),
+                             sim::stepPeriodNs(scenario_.dynamics.rate_hz)};
+  msg::Clock m = wire::toMsg(tick, ++clock_seq_);
+  if (!clock_.write(m)) ++summary_.write_failures;
 }
 
 std::vector<std::optional<agent::StampNs>> SimNode::publishSensors(std::optional<Clock::time_point> due) {
@@ -544,7 +519,7 @@ std::vector<std::optional<agent::StampNs>> SimNode::publishSensors(std::optional
     side_written_[k] = s.detections.has_value() || s.gnss.has_value();
     // The closed loop's equal-stamp order (IMU, detections, GNSS); the agent restores it whatever the arrival order.
     if (s.imu) {
-      msg::Imu m = dds::toMsg(*s.imu, id, ++imu_seq_[k]);
+      msg::Imu m = wire::toMsg(*s.imu, id, ++imu_seq_[k]);
       const WallNs published_ns = wallNs(Clock::now());
       if (imu_[k].write(m)) {
         if (time_latency_) latency_.published(i, imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
@@ -554,11 +529,11 @@ std::vector<std::optional<agent::StampNs>> SimNode::publishSensors(std::optional
       }
     }
     if (s.detections) {
-      msg::Detections m = dds::toMsg(*s.detections, id, ++det_seq_[k]);
+      msg::Detections m = wire::toMsg(*s.detections, id, ++det_seq_[k]);
       if (!det_[k].write(m)) ++summary_.write_failures;
     }
     if (s.gnss) {
-      msg::GnssFix m = dds::toMsg(*s.gnss, id, ++gnss_seq_[k]);
+      msg::GnssFix m = wire::toMsg(*s.gnss, id, ++gnss_seq_[k]);
       if (!gnss_[k].write(m)) ++summary_.write_failures;
     }
   }
@@ -567,21 +542,9 @@ std::vector<std::optional<agent::StampNs>> SimNode::publishSensors(std::optional
 
 void SimNode::publishTruth() {
   last_truth_step_ = world_.step_index();
-  msg::SwarmTruth m;
-  m.header(header(world_.time_ns(), ++truth_seq_));
-  for (const sim::UavTruth& t : world_.truth()) {
-    msg::UavTruth u;
-    u.id(static_cast<std::uint32_t>(t.id));
-    u.x_m(t.position_m.x());
-    u.y_m(t.position_m.y());
-    u.vx_mps(t.velocity_mps.x());
-    u.vy_mps(t.velocity_mps.y());
-    u.ax_mps2(t.acceleration_mps2.x());
-    u.ay_mps2(t.acceleration_mps2.y());
-    u.heading_rad(t.heading_rad);
-    u.alive(agentAlive(t.id));
-    u.gnss_valid(t.gnss_valid);
-    m.uavs().push_back(u);
+  wire::SwarmTruth truth{world_.time_ns(), world_.truth(), {}};
+  for (const sim::UavTruth& t : truth.uavs) {
+    truth.agent_alive.push_back(agentAlive(t.id));
     if (truth_csv_.is_open()) {
       truth_csv_ << world_.step_index() << ',' << world_.time_ns() << ',' << t.id << ',' << t.position_m.x() << ','
                  << t.position_m.y() << ',' << t.velocity_mps.x() << ',' << t.velocity_mps.y() << ','
@@ -590,18 +553,17 @@ void SimNode::publishTruth() {
                  << '\n';
     }
   }
+  msg::SwarmTruth m = wire::toMsg(truth, ++truth_seq_);
   if (!truth_.write(m)) ++summary_.write_failures;
 }
 
-void SimNode::publishEvent(msg::EventKind kind, int uav, int other, double value, const std::string& text) {
-  msg::ScenarioEvent e;
-  e.header(header(world_.time_ns(), ++event_seq_));
-  e.kind(kind);
-  e.uav_id(uav);
-  e.other_uav_id(other);
-  e.value(value);
-  e.text(text);
-  if (!events_.write(e)) ++summary_.write_failures;
+void SimNode::publishEvent(const char* kind, int uav, double value, const std::string& text) {
+  publishEvent({static_cast<double>(world_.time_ns()) * 1e-9, kind, uav, -1, value, text});
+}
+
+void SimNode::publishEvent(const record::EventRecord& event) {
+  msg::ScenarioEvent m = wire::toMsg(event, ++event_seq_);
+  if (!events_.write(m)) ++summary_.write_failures;
 }
 
 std::string SimNode::summaryJson() const {

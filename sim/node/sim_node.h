@@ -28,6 +28,7 @@
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/sim/scenario.h"
+#include "swa/record/events.h"
 #include "swa/sim/world.h"
 
 namespace swa::sim_node {
@@ -94,7 +95,9 @@ class SimNode {
   // `due`: when the UAVs' next IMU samples are due (realtime), for the latency statistics; nullopt in lockstep.
   std::vector<std::optional<agent::StampNs>> publishSensors(std::optional<Clock::time_point> due);
   void publishTruth();
-  void publishEvent(msg::EventKind kind, int uav, int other, double value, const std::string& text);
+  // An event of this node (agent dead / rejoined, scenario end) at the current sim time, or one of the world's.
+  void publishEvent(const char* kind, int uav, double value, const std::string& text);
+  void publishEvent(const record::EventRecord& event);
   // Moves `deadline` by any stall of the simulator seen while waiting.
   void awaitSensorAcks(Clock::time_point& deadline);
 

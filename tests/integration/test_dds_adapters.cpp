@@ -1,5 +1,5 @@
 // The pure parts of the DDS adapters, without DDS traffic: sample ordering, lockstep bookkeeping, message
-// conversion, state message, command lines, domain resolution.
+// command lines, domain resolution (the message conversions are tested in tests/msgs).
 
 #include <cmath>
 #include <cstdlib>
@@ -11,12 +11,10 @@
 #include <gtest/gtest.h>
 
 #include "agent_options.h"
-#include "agent_state_msg.h"
 #include "lockstep.h"
 #include "sample_order.h"
 #include "stall_watch.h"
 #include "sim_options.h"
-#include "swa/dds/convert.h"
 #include "swa/dds/options.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/dds/topics.h"
@@ -193,91 +191,6 @@ TEST(LockstepTracker, DeadAgentAnsweringTheCurrentStepIsDoneForIt) {
   EXPECT_TRUE(t.complete());  // nobody alive to wait for
   EXPECT_EQ(t.onAnswer(0, 10), sim_node::Verdict::kRejoin);
   EXPECT_TRUE(t.complete());
-}
-
-// ---- Conversion: bit-exact both ways ---------------------------------------------------------------------------
-
-TEST(Convert, SamplesSurviveTheMessageRoundTripBitForBit) {
-  agent::ImuSample imu{123456789, 0.1234567890123, -1e-17, 3.0 * M_PI};
-  const agent::ImuSample imu2 = dds::fromMsg(dds::toMsg(imu, 3, 7));
-  EXPECT_EQ(imu2.stamp_ns, imu.stamp_ns);
-  EXPECT_EQ(imu2.roll_rad, imu.roll_rad);
-  EXPECT_EQ(imu2.pitch_rad, imu.pitch_rad);
-  EXPECT_EQ(imu2.heading_rad, imu.heading_rad);
-  EXPECT_EQ(dds::toMsg(imu, 3, 7).uav_id(), 3u);
-  EXPECT_EQ(dds::toMsg(imu, 3, 7).header().seq(), 7u);
-
-  agent::DetectionSet det;
-  det.stamp_ns = 42;
-  agent::Detection a;
-  a.target_id = 5;
-  a.position_body_m = agent::Vec2(1.0 / 3.0, -7.25);
-  agent::Detection b;
-  b.target_id = agent::kAnonymousId;
-  b.position_body_m = agent::Vec2(std::nextafter(1.0, 2.0), 0.0);
-  agent::Mat2 c;
-  c << 0.2, 0.01, 0.01, 0.3;
-  b.covariance_m2 = c;
-  det.detections = {a, b};
-  const agent::DetectionSet det2 = dds::fromMsg(dds::toMsg(det, 1, 2));
-  ASSERT_EQ(det2.detections.size(), 2u);
-  EXPECT_EQ(det2.stamp_ns, 42);
-  EXPECT_EQ(det2.detections[0].target_id, 5);
-  EXPECT_EQ(det2.detections[0].position_body_m, a.position_body_m);
-  EXPECT_FALSE(det2.detections[0].covariance_m2.has_value());
-  EXPECT_EQ(det2.detections[1].target_id, agent::kAnonymousId);
-  EXPECT_EQ(det2.detections[1].position_body_m, b.position_body_m);
-  ASSERT_TRUE(det2.detections[1].covariance_m2.has_value());
-  EXPECT_EQ(*det2.detections[1].covariance_m2, c);
-
-  agent::GnssSample g{99, true, agent::Vec2(12.5, -3.0 / 7.0), 0.5};
-  const agent::GnssSample g2 = dds::fromMsg(dds::toMsg(g, 0, 1));
-  EXPECT_EQ(g2.stamp_ns, 99);
-  EXPECT_TRUE(g2.valid);
-  EXPECT_EQ(g2.position_m, g.position_m);
-  EXPECT_EQ(g2.std_m, 0.5);
-
-  agent::VelocityCommand cmd;
-  cmd.stamp_ns = 1000;
-  cmd.answered_stamp_ns = 1000;
-  cmd.velocity_mps = agent::Vec2(0.1, -1.0 / 9.0);
-  const msg::VelocitySetpoint sp = dds::toMsg(cmd, 2, 11, 17);
-  EXPECT_EQ(sp.answered_seq(), 17u);
-  EXPECT_EQ(sp.uav_id(), 2u);
-  const agent::VelocityCommand cmd2 = dds::fromMsg(sp);
-  EXPECT_EQ(cmd2.answered_stamp_ns, 1000);
-  EXPECT_EQ(cmd2.seq, 11u);
-  EXPECT_EQ(cmd2.velocity_mps, cmd.velocity_mps);
-}
-
-TEST(AgentStateMsg, CarriesDiagnosticsAndCutsNeighbourIds) {
-  agent::Diagnostics d;
-  d.stamp_ns = 5;
-  d.mode = agent::Mode::kAnchored;
-  d.stage = agent::Stage::kTracking;
-  d.position_m = agent::Vec2(1, 2);
-  d.position_cov_m2 << 0.1, 0.02, 0.02, 0.3;
-  d.neighbour_count = 3;
-  d.neighbour_ids = {};
-  d.neighbour_ids[0] = 4;
-  d.neighbour_ids[1] = 9;
-  d.neighbour_ids[2] = 1;
-  d.rejected.bad_id = 6;
-  d.commands = 77;
-  const msg::AgentState m = agent_node::toStateMsg(d, 3, 8);
-  EXPECT_EQ(m.uav_id(), 3u);
-  EXPECT_EQ(m.header().seq(), 8u);
-  EXPECT_EQ(m.mode(), msg::MODE_ANCHORED);
-  EXPECT_EQ(m.stage(), msg::STAGE_TRACKING);
-  EXPECT_EQ(m.est_y_m(), 2.0);
-  EXPECT_EQ(m.pos_cov_xy_m2(), 0.02);
-  EXPECT_EQ(m.neighbour_ids(), (std::vector<std::int32_t>{4, 9, 1}));
-  EXPECT_EQ(m.rejected_bad_id(), 6u);
-  EXPECT_EQ(m.commands_sent(), 77u);
-  // More neighbours than the array holds (corrupt count) is cut, never read past the array.
-  d.neighbour_count = 1000;
-  EXPECT_EQ(agent_node::toStateMsg(d, 3, 9).neighbour_ids().size(),
-            std::min<std::size_t>(d.neighbour_ids.size(), agent_node::kMaxStateNeighbourIds));
 }
 
 // ---- Command lines ---------------------------------------------------------------------------------------------

@@ -1,5 +1,5 @@
 // swa_monitor scores a run exactly as swa_batch does: the in-process closed loop is run here once more, but its
-// truth and agent diagnostics go through the messages (the agent node's own AgentState conversion) and the
+// truth and agent diagnostics go through the messages (the wire bridge the simulator and the agents use) and the
 // monitor's join, in scrambled order; the time series and summary must be identical to runClosedLoop's, bit for
 // bit. With one agent dead half-way, the geometry is unchanged (its UAV still flies) and only its NEES is missing.
 
@@ -11,7 +11,6 @@
 
 #include <swa/msg/SwarmTruth.h>
 
-#include "agent_state_msg.h"
 #include "closed_loop.h"
 #include "live_config.h"
 #include "live_run.h"
@@ -19,6 +18,8 @@
 #include "swa/agent/agent.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/sim/world.h"
+#include "swa/wire/agent_state.h"
+#include "swa/wire/world.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -30,19 +31,9 @@ sim::Scenario scenario(const std::string& mode) {
 }
 
 msg::SwarmTruth truthMsg(const sim::World& world, int dead_agent) {
-  msg::SwarmTruth m;
-  m.header().stamp_ns(world.time_ns());
-  for (const sim::UavTruth& t : world.truth()) {
-    msg::UavTruth u;
-    u.id(static_cast<std::uint32_t>(t.id));
-    u.x_m(t.position_m.x());
-    u.y_m(t.position_m.y());
-    u.vx_mps(t.velocity_mps.x());
-    u.vy_mps(t.velocity_mps.y());
-    u.alive(t.id != dead_agent);
-    m.uavs().push_back(u);
-  }
-  return m;
+  wire::SwarmTruth truth{world.time_ns(), world.truth(), {}};
+  for (const sim::UavTruth& t : truth.uavs) truth.agent_alive.push_back(t.id != dead_agent);
+  return wire::toMsg(truth, 0);
 }
 
 // The closed loop of runClosedLoop, feeding a LiveRun through the messages. From `dead_from_s` on, agent
@@ -69,8 +60,8 @@ std::unique_ptr<LiveRun> monitorLoop(const sim::Scenario& s, int dead_agent = -1
       std::vector<StateSample> states;
       for (int i = n - 1; i >= 0; --i) {  // reverse UAV order on purpose
         if (dead_now && i == dead_agent) continue;
-        msg::AgentState m = agent_node::toStateMsg(agents[static_cast<std::size_t>(i)].diagnostics(),
-                                                   static_cast<std::uint32_t>(i), ++seq);
+        msg::AgentState m = wire::toMsg(agents[static_cast<std::size_t>(i)].diagnostics(),
+                                        static_cast<std::uint32_t>(i), ++seq);
         m.header().stamp_ns(world.time_ns());
         states.push_back(fromStateMsg(m, config.formation));
       }

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "agent_state_msg.h"
 #include "msg_convert.h"
+#include "swa/wire/agent_state.h"
 #include "swa/agent/diagnostics.h"
 
 namespace swa::monitor_node {
@@ -58,7 +58,7 @@ TEST(MonitorConvert, StateGivesTheRecordOfTheAgentsOwnDiagnostics) {
   const agent::FormationConfig f = formation(12.5, agent::CircleFit::kAlgebraic);
   for (const agent::Mode mode : {agent::Mode::kSwa, agent::Mode::kAnchored, agent::Mode::kStandalone}) {
     const agent::Diagnostics d = tracking(mode);
-    const StateSample s = fromStateMsg(agent_node::toStateMsg(d, 3, 17), f);
+    const StateSample s = fromStateMsg(wire::toMsg(d, 3, 17), f);
     EXPECT_EQ(s.uav, 3);
     EXPECT_EQ(s.stamp_ns, d.stamp_ns);
     ASSERT_TRUE(s.mode.has_value());
@@ -74,7 +74,7 @@ TEST(MonitorConvert, StateGivesTheRecordOfTheAgentsOwnDiagnostics) {
 TEST(MonitorConvert, OnlyATrackedFloatingFrameIsValid) {
   const agent::FormationConfig f = formation(10.0, agent::CircleFit::kFixedRadius);
   const auto valid = [&f](const agent::Diagnostics& d) {
-    return fromStateMsg(agent_node::toStateMsg(d, 0, 1), f).estimate.valid;
+    return fromStateMsg(wire::toMsg(d, 0, 1), f).estimate.valid;
   };
   EXPECT_TRUE(valid(tracking()));
   agent::Diagnostics d = tracking();
@@ -92,13 +92,13 @@ TEST(MonitorConvert, OnlyATrackedFloatingFrameIsValid) {
 
 TEST(MonitorConvert, UnknownEnumValuesMakeTheEstimateInvalid) {
   const agent::FormationConfig f;
-  msg::AgentState m = agent_node::toStateMsg(tracking(), 0, 1);
+  msg::AgentState m = wire::toMsg(tracking(), 0, 1);
   m.mode(static_cast<msg::AgentMode>(42));
   StateSample s = fromStateMsg(m, f);
   EXPECT_FALSE(s.mode.has_value());
   EXPECT_FALSE(s.estimate.valid);
 
-  m = agent_node::toStateMsg(tracking(), 0, 1);
+  m = wire::toMsg(tracking(), 0, 1);
   m.stage(static_cast<msg::AgentStage>(42));
   s = fromStateMsg(m, f);
   EXPECT_TRUE(s.mode.has_value());
@@ -108,7 +108,7 @@ TEST(MonitorConvert, UnknownEnumValuesMakeTheEstimateInvalid) {
 TEST(MonitorConvert, NonFiniteNumbersMakeTheEstimateInvalid) {
   const agent::FormationConfig f;
   for (int field = 0; field < 4; ++field) {
-    msg::AgentState m = agent_node::toStateMsg(tracking(), 0, 1);
+    msg::AgentState m = wire::toMsg(tracking(), 0, 1);
     if (field == 0) m.est_x_m(kNaN);
     if (field == 1) m.est_vy_mps(std::numeric_limits<double>::infinity());
     if (field == 2) m.pos_cov_xy_m2(kNaN);
@@ -120,7 +120,7 @@ TEST(MonitorConvert, NonFiniteNumbersMakeTheEstimateInvalid) {
 }
 
 TEST(MonitorConvert, TooManyNeighboursNeverScoreATruncatedFrame) {
-  msg::AgentState m = agent_node::toStateMsg(tracking(), 0, 1);
+  msg::AgentState m = wire::toMsg(tracking(), 0, 1);
   m.neighbour_ids().assign(40, 1);
   const StateSample s = fromStateMsg(m, agent::FormationConfig{});
   EXPECT_EQ(s.estimate.neighbour_count, 40);  // more than kMaxNeighbours: the NEES skips it as invalid
@@ -133,7 +133,7 @@ TEST(MonitorConvert, TooManyNeighboursNeverScoreATruncatedFrame) {
 }
 
 TEST(MonitorConvert, HugeUavIdsNeverAliasAUav) {
-  msg::AgentState m = agent_node::toStateMsg(tracking(), 0, 1);
+  msg::AgentState m = wire::toMsg(tracking(), 0, 1);
   m.uav_id(std::numeric_limits<std::uint32_t>::max());
   EXPECT_EQ(fromStateMsg(m, agent::FormationConfig{}).uav, -1);
   msg::SwarmTruth t;

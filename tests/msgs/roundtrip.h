@@ -1,6 +1,7 @@
 #pragma once
 // Goes through the TopicDataType entry points a DataWriter/DataReader uses (size provider, serialize,
-// deserialize), so the tests cover the wire path and not only the structs' own CDR methods.
+// deserialize), so the tests cover the wire path and not only the structs' own CDR methods. The mapping tests send
+// core types through the wire bridge and this path and back.
 #include <fastdds/rtps/common/SerializedPayload.h>
 #include <gtest/gtest.h>
 
@@ -38,6 +39,17 @@ std::optional<Msg> round_trip(Msg in)
         return std::nullopt;
     }
     return out;
+}
+
+// The message after the wire, which must equal what was sent; also checks the registered type name.
+template <class PubSubType, class Msg>
+Msg through_the_wire(const Msg& in, const char* type_name)
+{
+    EXPECT_STREQ(PubSubType().getName(), type_name);
+    const std::optional<Msg> out = round_trip<PubSubType>(in);
+    if (!out) return Msg{};
+    EXPECT_TRUE(*out == in) << type_name << ": the copy differs from the original";
+    return *out;
 }
 
 } // namespace swa::msg::test

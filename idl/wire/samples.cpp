@@ -1,7 +1,6 @@
-#include "swa/dds/convert.h"
+#include "swa/wire/samples.h"
 
-namespace swa::dds {
-namespace {
+namespace swa::wire {
 
 msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq) {
   msg::Header h;
@@ -9,8 +8,6 @@ msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq) {
   h.seq(seq);
   return h;
 }
-
-}  // namespace
 
 agent::ImuSample fromMsg(const msg::Imu& m) {
   agent::ImuSample s;
@@ -111,4 +108,4 @@ msg::VelocitySetpoint toMsg(const agent::VelocityCommand& c, std::uint32_t uav_i
   return m;
 }
 
-}  // namespace swa::dds
+}  // namespace swa::wire

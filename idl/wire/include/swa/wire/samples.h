@@ -1,18 +1,22 @@
 #pragma once
-// Messages <-> the agent core's sample types (agent/include/swa/agent/samples.h). Field for field, no arithmetic:
-// sample -> message -> sample reproduces every value bit for bit, so a lockstep DDS run sees exactly what the
-// in-process closed loop sees. Shared by the agent node (inputs in, commands out) and the sim node (the reverse).
+// The sensor and command messages <-> the agent core's sample types (agent/include/swa/agent/samples.h). Field for
+// field, no arithmetic: sample -> message -> sample reproduces every value bit for bit, so a lockstep DDS run sees
+// exactly what the in-process closed loop sees. Shared by the agent node (inputs in, commands out) and the sim node
+// (the reverse).
 
 #include <cstdint>
 
 #include <swa/msg/Detections.h>
+#include <swa/msg/Header.h>
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
 #include <swa/msg/VelocitySetpoint.h>
 
 #include "swa/agent/samples.h"
 
-namespace swa::dds {
+namespace swa::wire {
+
+msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq);
 
 agent::ImuSample fromMsg(const msg::Imu& m);
 agent::DetectionSet fromMsg(const msg::Detections& m);
@@ -26,4 +30,4 @@ msg::GnssFix toMsg(const agent::GnssSample& s, std::uint32_t uav_id, std::uint32
 msg::VelocitySetpoint toMsg(const agent::VelocityCommand& c, std::uint32_t uav_id, std::uint32_t seq,
                             std::uint32_t answered_seq);
 
-}  // namespace swa::dds
+}  // namespace swa::wire
