@@ -7,7 +7,7 @@ set -euo pipefail
 # libnetfilter-queue-dev: the packet-loss emulator of the `loss` tests (tests/loss/swa_netem.cpp).
 packages=(
   build-essential cmake
-  libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
+  libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools openssl libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   pkg-config libnetfilter-queue-dev

@@ -1,9 +1,8 @@
 #include "monitor_options.h"
 
 #include <set>
-#include <sstream>
-#include <stdexcept>
 
+#include "swa/app/cli.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 
@@ -13,109 +12,10 @@ namespace {
 // Longest --timeout-s: far beyond any scenario, small enough for any clock arithmetic.
 constexpr double kMaxTimeoutS = 1e6;
 
-}  // namespace
+// The options that only make sense while joining a running swarm.
+constexpr const char* kLiveOnly[] = {"--label", "--domain", "--restarts", "--timeout-s"};
 
-MonitorOptions parseMonitorOptions(const std::vector<std::string>& args) {
-  MonitorOptions o;
-  std::vector<std::string> problems;
-  std::vector<std::string> live_only;  // live-mode options given, checked against --combine at the end
-  dds::ArgWalker walker(args, problems);
-  bool after_combine = false;  // a bare LABEL=DIR continues the list of the preceding --combine
-
-  const auto addCombine = [&](const std::string& entry) {
-    const auto eq = entry.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size()) {
-      problems.push_back("--combine '" + entry + "' is not LABEL=DIR");
-      return;
-    }
-    o.combine.push_back({entry.substr(0, eq), entry.substr(eq + 1)});
-  };
-
-  while (walker.next()) {
-    const std::string& key = walker.key();
-    if (after_combine && !key.empty() && key.front() != '-') {
-      addCombine(walker.raw());
-      continue;
-    }
-    after_combine = false;
-    const auto path = [&](std::string& out) {
-      if (const auto v = walker.value()) {
-        if (v->empty()) problems.push_back(key + " needs a file name");
-        out = *v;
-      }
-    };
-    const auto real = [&](double& out, double min, double max, const char* what) {
-      if (const auto v = walker.value()) {
-        if (const auto x = dds::parseReal(*v, min, max)) {
-          out = *x;
-        } else {
-          problems.push_back(key + " '" + *v + "' is not " + what);
-        }
-      }
-    };
-    if (key == "--help" || key == "-h") {
-      o.help = true;
-    } else if (key == "--out") {
-      path(o.out_dir);
-      o.out_given = true;
-    } else if (key == "--scenario") {
-      path(o.scenario_path);
-    } else if (key == "--set") {
-      if (const auto v = walker.value()) o.overrides.push_back(*v);
-    } else if (key == "--label") {
-      live_only.push_back(key);
-      if (const auto v = walker.value()) {
-        if (v->empty()) problems.push_back("--label needs a name");
-        o.label = *v;
-      }
-    } else if (key == "--domain") {
-      live_only.push_back(key);
-      if (const auto v = walker.value()) o.domain = *v;
-    } else if (key == "--restarts") {
-      live_only.push_back(key);
-      path(o.restarts_path);
-    } else if (key == "--timeout-s") {
-      live_only.push_back(key);
-      real(o.timeout_s, 0.0, kMaxTimeoutS, "a wall time in seconds in [0, 1000000]");
-    } else if (key == "--tolerance") {
-      real(o.tolerance, 0.0, 1.0, "a fraction of r in (0, 1]");
-      o.tolerance_given = true;
-      if (!(o.tolerance > 0.0)) problems.push_back("--tolerance must be > 0");
-    } else if (key == "--quiet") {
-      o.quiet = true;
-    } else if (key == "--combine") {
-      if (const auto v = walker.value()) addCombine(*v);
-      after_combine = true;
-    } else {
-      problems.push_back("unknown argument '" + walker.raw() + "' (see --help)");
-    }
-  }
-
-  if (!o.overrides.empty() && o.scenario_path.empty()) problems.push_back("--set needs --scenario");
-  if (o.combineMode()) {
-    for (const std::string& k : live_only) problems.push_back(k + " applies to the live mode only, not to --combine");
-    if (!o.out_given) problems.push_back("--combine needs --out DIR (where the combined report goes)");
-    std::set<std::string> labels;
-    for (const CombineInput& c : o.combine) {
-      if (!labels.insert(c.label).second) problems.push_back("--combine label '" + c.label + "' given twice");
-    }
-  }
-  if (!problems.empty() && !o.help) {
-    std::ostringstream msg;
-    for (std::size_t k = 0; k < problems.size(); ++k) msg << (k ? "\n" : "") << problems[k];
-    throw std::invalid_argument(msg.str());
-  }
-  return o;
-}
-
-std::string monitorUsage() {
-  return R"(swa_monitor: swarm metrics, verdict and report of a run, from ground truth and the agents' diagnostics.
-
-Usage: swa_monitor [--out DIR] [--scenario FILE [--set key=value]...] [--label NAME] [--domain D]
-                   [--restarts FILE] [--timeout-s S] [--tolerance F] [--quiet]
-       swa_monitor --combine LABEL=DIR [LABEL=DIR]... --out DIR [--scenario FILE [--set key=value]...]
-
-Live mode (the default) joins a running swarm as the Fast DDS participant "swa_monitor":
+const char* const kDetails = R"(Live mode (the default) joins a running swarm as the Fast DDS participant "swa_monitor":
 Reads      swa/truth, swa/events, swa/uav<i>/state for every UAV (i < scenario uav_count with --scenario;
            without it, the UAV ids of the first truth sample)
 It joins each truth sample with the agents' states of the same stamp (both on 100 ms boundaries): a step is
@@ -142,7 +42,7 @@ it writes into --out DIR:
   report.html        plots, summary, events and agent restarts (and the plots as .svg files)
 and prints the verdict and the report's path.
 
-Verdict (--tolerance F, default 0.05):
+Verdict (--tolerance F):
   PASS        EVENT_SCENARIO_END "completed", final d_NB (mean over the last 5 s) within r (1 +- F), no collision,
               one group at the end
   FAIL        completed, but one of those failed (reasons in summary.json and printed)
@@ -152,29 +52,76 @@ Verdict (--tolerance F, default 0.05):
 --combine LABEL=DIR...  builds one report.html in --out from run directories written by live monitors (reads
   their summary.json, timeseries.csv, trajectories.csv, events.csv), one column per run (e.g. swa=out/swa
   standalone=out/standalone), and writes summary.json {"runs": [each run's summary with "label" = LABEL]}.
-  r, the GNSS loss time and the scenario name come from --scenario if given, else from the first run.
+  r, the GNSS loss time and the scenario name come from --scenario if given, else from the first run.)";
 
-Options:
-  --out DIR           output directory (default out/monitor; required with --combine); created if needed
-  --scenario FILE     the run's scenario YAML (see swa_sim --parameters)
-  --set key=value     override a scenario key as given to swa_sim (repeatable)
-  --label NAME        run name in the report and summary.json (default: the agents' mode, e.g. swa)
-  --domain D          DDS domain id 0..232 (default: $SWA_DOMAIN, else 0)
-  --restarts FILE     the launcher's restart log, read at the end: CSV with header
-                      wall_s,uav,exit_status,restart_count,backoff_s and one row per agent restart
-                      (missing or empty file: no restart; malformed rows are counted and reported)
-  --timeout-s S       give up S wall seconds after start without EVENT_SCENARIO_END (default 0: never)
-  --tolerance F       PASS band for the final d_NB, as a fraction of r (default 0.05); with --combine only the
-                      band drawn in the report (default: the first run's)
-  --quiet             no status line (default: refreshed in place on a terminal, else a line every 10 s of
-                      sim time, on stderr)
-  -h, --help          this text
-
-Exit status: 0 PASS; 1 FAIL; 3 INCOMPLETE; 2 bad arguments or scenario, output directory not writable, DDS
+app::Cli makeCli(MonitorOptions& o) {
+  app::Cli cli("swa_monitor",
+               "swarm metrics, verdict and report of a run, from ground truth and the agents' diagnostics.");
+  cli.usage(R"(swa_monitor [--out DIR] [--scenario FILE [--set key=value]...] [--label NAME] [--domain D]
+                   [--restarts FILE] [--timeout-s S] [--tolerance F] [--quiet]
+       swa_monitor --combine LABEL=DIR [LABEL=DIR]... --out DIR [--scenario FILE [--set key=value]...])");
+  cli.details(kDetails);
+  cli.path("--out", "DIR", o.out_dir, "output directory (required with --combine); created if needed");
+  cli.scenario(o.scenario_path, "the run's scenario YAML (see swa_sim --parameters)");
+  cli.overrides(o.overrides, "override a scenario key as given to swa_sim; needs --scenario");
+  cli.text("--label", "NAME", o.label, "run name in the report and summary.json (default: the agents' mode, e.g. swa)",
+           "a name");
+  cli.domain(o.domain, dds::kMaxDomainId);
+  cli.path("--restarts", "FILE", o.restarts_path,
+           "the launcher's restart log, read at the end: CSV with header wall_s,uav,exit_status,restart_count,"
+           "backoff_s and one row per agent restart (missing or empty file: no restart; malformed rows are counted "
+           "and reported)");
+  cli.real("--timeout-s", "S", o.timeout_s, 0.0, kMaxTimeoutS, "a wall time in seconds",
+           "give up S wall seconds after start without EVENT_SCENARIO_END, 0 for never");
+  cli.real("--tolerance", "F", o.tolerance, 0.0, 1.0, "a fraction of r",
+           "PASS band for the final d_NB, as a fraction of r, not 0; with --combine only the band drawn in the "
+           "report, by default the first run's");
+  cli.flag("--quiet", o.quiet,
+           "no status line (default: refreshed in place on a terminal, else a line every 10 s of sim time, on "
+           "stderr)");
+  cli.value("--combine", "LABEL=DIR",
+            [&o](const std::string& entry, app::Problems& p) {
+              const auto eq = entry.find('=');
+              if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size()) {
+                p.push_back("--combine '" + entry + "' is not LABEL=DIR");
+              } else {
+                o.combine.push_back({entry.substr(0, eq), entry.substr(eq + 1)});
+              }
+            },
+            "offline mode: one report of these run directories, one column per LABEL (see above); the list goes "
+            "on up to the next option, and --combine may be repeated",
+            true);
+  cli.footer(R"(Exit status: 0 PASS; 1 FAIL; 3 INCOMPLETE; 2 bad arguments or scenario, output directory not writable, DDS
              participant not created (nothing started). --combine: the verdict of the FIRST run (0, 1 or 3),
              2 for bad arguments or an unreadable run directory.
 
-)" + dds::environmentHelp();
+)" + dds::environmentHelp());
+  return cli;
 }
+
+// Completes what the options alone do not say: which were given, and how they go together.
+void finish(MonitorOptions& o, const app::Cli& cli, app::Problems& problems) {
+  o.out_given = cli.given("--out");
+  o.tolerance_given = cli.given("--tolerance");
+  if (o.tolerance_given && !(o.tolerance > 0.0)) problems.push_back("--tolerance must be > 0");
+  if (!o.overrides.empty() && o.scenario_path.empty()) problems.push_back("--set needs --scenario");
+  if (!o.combineMode()) return;
+  for (const char* live : kLiveOnly) {
+    if (cli.given(live)) problems.push_back(std::string(live) + " applies to the live mode only, not to --combine");
+  }
+  if (!o.out_given) problems.push_back("--combine needs --out DIR (where the combined report goes)");
+  std::set<std::string> labels;
+  for (const CombineInput& c : o.combine) {
+    if (!labels.insert(c.label).second) problems.push_back("--combine label '" + c.label + "' given twice");
+  }
+}
+
+}  // namespace
+
+MonitorOptions parseMonitorOptions(const std::vector<std::string>& args) {
+  return app::parseOptions<MonitorOptions>(args, makeCli, finish);
+}
+
+std::string monitorUsage() { return app::helpText(makeCli); }
 
 }  // namespace swa::monitor_node

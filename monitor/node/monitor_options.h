@@ -41,7 +41,7 @@ struct MonitorOptions {
   bool combineMode() const { return !combine.empty(); }
 };
 
-// Accepts "--opt value" and "--opt=value"; after --combine, further arguments not starting with "-" are more
+// Accepts "--opt value" and "--opt=value"; after --combine, further arguments up to the next option are more
 // LABEL=DIR entries. Throws std::invalid_argument listing every problem, one per line.
 MonitorOptions parseMonitorOptions(const std::vector<std::string>& args);
 std::string monitorUsage();

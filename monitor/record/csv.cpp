@@ -68,19 +68,4 @@ std::optional<double> csvNumber(const std::string& text) {
   return v;
 }
 
-std::optional<double> csvReal(const std::string& text, double min, double max) {
-  const std::optional<double> v = csvNumber(text);
-  if (!v || !std::isfinite(*v) || *v < min || *v > max) return std::nullopt;
-  return v;
-}
-
-std::optional<long long> csvInteger(const std::string& text, long long min, long long max) {
-  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const long long v = std::strtoll(text.c_str(), &end, 10);
-  if (errno != 0 || end != text.c_str() + text.size() || v < min || v > max) return std::nullopt;
-  return v;
-}
-
 }  // namespace swa::record

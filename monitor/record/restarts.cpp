@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "swa/record/csv.h"
+#include "swa/app/number.h"
 
 namespace swa::record {
 namespace {
@@ -29,11 +30,11 @@ std::optional<AgentRestart> parseRow(std::string_view line, std::string& why) {
   std::vector<std::string> f;
   for (const std::string& x : *fields) f.push_back(trim(x));
   AgentRestart r;
-  const auto wall = csvReal(f[0], 0.0, 1e12);
+  const auto wall = app::parseReal(f[0], 0.0, 1e12);
   const auto uav = f[1] == "monitor" ? std::optional<long long>(AgentRestart::kMonitor)
-                                     : csvInteger(f[1], 0, 1'000'000);
-  const auto count = csvInteger(f[3], 0, std::numeric_limits<long long>::max());
-  const auto backoff = csvReal(f[4], 0.0, 1e12);
+                                     : app::parseInteger(f[1], 0, 1'000'000);
+  const auto count = app::parseInteger(f[3], 0, std::numeric_limits<long long>::max());
+  const auto backoff = app::parseReal(f[4], 0.0, 1e12);
   // The first problem of the row is the one reported.
   why = !wall          ? "wall_s '" + f[0] + "' is not a time >= 0"
         : !uav         ? "uav '" + f[1] + "' is not a UAV index"

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "swa/app/number.h"
 #include "swa/record/csv.h"
 #include "swa/record/run_dir.h"
 
@@ -155,8 +156,8 @@ std::vector<monitor::TimeSeriesRow> parseTimeSeriesCsv(std::istream& in, const s
       v[k] = csvNumber(f[k]);
       if (!v[k]) csv.fail(csv.line(), "field " + std::to_string(k + 1) + " '" + f[k] + "' is not a number");
     }
-    const auto collisions = csvInteger(f[6], 0, std::numeric_limits<long long>::max());
-    const auto groups = csvInteger(f[8], 0, std::numeric_limits<int>::max());
+    const auto collisions = app::parseInteger(f[6], 0, std::numeric_limits<long long>::max());
+    const auto groups = app::parseInteger(f[8], 0, std::numeric_limits<int>::max());
     if (!collisions) csv.fail(csv.line(), "collisions '" + f[6] + "' is not a count");
     if (!groups) csv.fail(csv.line(), "groups '" + f[8] + "' is not a count");
     monitor::TimeSeriesRow row;
@@ -183,7 +184,7 @@ std::vector<monitor::UavTrajectory> parseTrajectoriesCsv(std::istream& in, const
   std::vector<std::string> f;
   while (csv.next(f, 4)) {
     const auto t = csvNumber(f[0]);
-    const auto uav = csvInteger(f[1], 0, std::numeric_limits<int>::max());
+    const auto uav = app::parseInteger(f[1], 0, std::numeric_limits<int>::max());
     const auto x = csvNumber(f[2]);
     const auto y = csvNumber(f[3]);
     if (!t || !std::isfinite(*t)) csv.fail(csv.line(), "t_s '" + f[0] + "' is not a time");
@@ -204,8 +205,8 @@ std::vector<EventRecord> parseEventsCsv(std::istream& in, const std::string& sou
   std::vector<std::string> f;
   while (csv.next(f, 6)) {
     const auto t = csvNumber(f[0]);
-    const auto uav = csvInteger(f[2], std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
-    const auto other = csvInteger(f[3], std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+    const auto uav = app::parseInteger(f[2], std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+    const auto other = app::parseInteger(f[3], std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
     const auto value = csvNumber(f[4]);
     if (!t || !std::isfinite(*t)) csv.fail(csv.line(), "t_s '" + f[0] + "' is not a time");
     if (f[1].empty()) csv.fail(csv.line(), "empty kind");

@@ -35,6 +35,7 @@
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
 #include "process_support.h"
+#include "swa/app/cli.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
@@ -71,84 +72,37 @@ struct Options {
   bool help = false;
 };
 
-Options parseOptions(int argc, char** argv) {
-  Options o;
-  std::vector<std::string> args(argv + 1, argv + argc), problems;
-  dds::ArgWalker w(args, problems);
-  bool duration_given = false, pings_given = false;
-  while (w.next()) {
-    const std::string& k = w.key();
-    if (k == "--help" || k == "-h") {
-      o.help = true;
-    } else if (k == "--quick") {
-      o.quick = true;
-    } else if (k == "--only") {
-      if (auto v = w.value()) {
-        if (*v != "latency" && *v != "lockstep" && *v != "scale" && *v != "pingpong" && *v != "security") {
-          problems.push_back("--only latency|lockstep|scale|pingpong|security");
-        }
-        o.only = *v;
-      }
-    } else if (k == "--duration") {
-      if (auto v = w.value()) {
-        if (auto x = dds::parseReal(*v, 2.0, 3600.0)) {
-          o.duration_s = *x;
-          duration_given = true;
-        } else {
-          problems.push_back("--duration needs seconds in [2, 3600]");
-        }
-      }
-    } else if (k == "--reps") {
-      if (auto v = w.value()) {
-        if (auto x = dds::parseInteger(*v, 1, 100)) o.reps = static_cast<int>(*x);
-        else problems.push_back("--reps needs a count in [1, 100]");
-      }
-    } else if (k == "--pings") {
-      if (auto v = w.value()) {
-        if (auto x = dds::parseInteger(*v, 10, 1'000'000)) {
-          o.pings = static_cast<int>(*x);
-          pings_given = true;
-        } else {
-          problems.push_back("--pings needs a count in [10, 1000000]");
-        }
-      }
-    } else if (k == "--keep") {
-      if (auto v = w.value()) o.keep = *v;
-    } else {
-      problems.push_back("unknown argument " + w.raw());
-    }
-  }
-  if (o.quick) {
-    if (!duration_given) o.duration_s = 10.0;
-    if (!pings_given) o.pings = 500;
-  }
-  if (!problems.empty()) {
-    std::string all;
-    for (const auto& p : problems) all += p + "\n";
-    throw std::invalid_argument(all);
-  }
-  return o;
-}
-
-const char* const kUsage = R"(bench_dds: the SWA swarm over Fast DDS, measured (see BENCHMARKS.md).
-
-Usage: bench_dds [--quick] [--only latency|lockstep|scale|pingpong|security] [--duration S] [--reps R]
-                 [--pings N] [--keep DIR]
-
-  --only latency   (a) raw ping-pong (Imu -> VelocitySetpoint, the loop's profiles) and (b) the realtime loop
+app::Cli makeCli(Options& o) {
+  app::Cli cli("bench_dds", "the SWA swarm over Fast DDS, measured (see BENCHMARKS.md).");
+  cli.usage(R"(bench_dds [--quick] [--only latency|lockstep|scale|pingpong|security] [--duration S] [--reps R]
+                 [--pings N] [--keep DIR])");
+  cli.details(R"(  --only latency   (a) raw ping-pong (Imu -> VelocitySetpoint, the loop's profiles) and (b) the realtime loop
                    with 8 agents, plus the loop with 1, 2, 4 agents (informative: how it grows with N)
   --only pingpong  (a) alone
   --only lockstep  (c) lockstep speed N = 4, 8, 16, 32
   --only scale     (d) realtime scale N = 8 .. 48 and (e) per-agent RSS / PSS
   --only security  (f) the N = 8 realtime loop with DDS Security off and on (credentials made by
                    deploy/security/make-credentials.sh), alternating, R repetitions each
-  Without --only: all of them but (f). SWA_DDS_PROFILES (as for swa_sim / swa_agent) applies to every process.
-  --duration S   wall seconds of the realtime run of (b) (default 30; --quick 10); (d) runs 2/3 of it, (c) 2x of
-                 simulated time
-  --reps R       repeat (a)+(b) and each (c) run R times, report medians (default 1)
-  --pings N      round trips per ping-pong (default 3000; --quick 500)
-  --keep DIR     keep every log and summary in DIR (default: a temporary directory, removed)
-)";
+  Without --only: all of them but (f). SWA_DDS_PROFILES (as for swa_sim / swa_agent) applies to every process.)");
+  cli.flag("--quick", o.quick, "shorter runs: --duration 10 and --pings 500 unless given");
+  const std::vector<std::string> parts{"latency", "lockstep", "scale", "pingpong", "security"};
+  cli.choice("--only", "PART", parts, [&o, parts](std::size_t k) { o.only = parts[k]; }, "run only this part (above)");
+  cli.real("--duration", "S", o.duration_s, 2.0, 3600.0, "a duration in seconds",
+           "wall seconds of the realtime run of (b); (d) runs 2/3 of it, (c) 2x of simulated time");
+  cli.integer("--reps", "R", o.reps, 1, 100, "a count", "repeat (a)+(b) and each (c) run R times, report medians");
+  cli.integer("--pings", "N", o.pings, 10, 1'000'000, "a count", "round trips per ping-pong");
+  cli.path("--keep", "DIR", o.keep, "keep every log and summary in DIR (default: a temporary directory, removed)");
+  return cli;
+}
+
+Options parseOptions(int argc, char** argv) {
+  return app::parseOptions<Options>(std::vector<std::string>(argv + 1, argv + argc), makeCli,
+                                    [](Options& o, const app::Cli& cli, app::Problems&) {
+                                      if (!o.quick) return;
+                                      if (!cli.given("--duration")) o.duration_s = 10.0;
+                                      if (!cli.given("--pings")) o.pings = 500;
+                                    });
+}
 
 // ---- small helpers ----------------------------------------------------------------------------------------------
 
@@ -755,7 +709,7 @@ int main(int argc, char** argv) {
     }
     const swa::bench::Options opt = swa::bench::parseOptions(argc, argv);
     if (opt.help) {
-      std::fputs(swa::bench::kUsage, stdout);
+      std::fputs(swa::app::helpText(swa::bench::makeCli).c_str(), stdout);
       return 0;
     }
     return swa::bench::benchMain(opt);

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "swa/dds/options.h"
+#include "swa/app/number.h"
 
 namespace swa::dds {
 namespace {
@@ -17,7 +17,7 @@ bool isDottedIpv4(const std::string& s) {
   while (true) {
     const std::size_t dot = s.find('.', start);
     const std::string part = s.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    if (part.empty() || part.size() > 3 || !parseInteger(part, 0, 255)) return false;
+    if (part.empty() || part.size() > 3 || !app::parseInteger(part, 0, 255)) return false;
     ++parts;
     if (dot == std::string::npos) break;
     start = dot + 1;
@@ -61,7 +61,7 @@ std::vector<std::string> checkServerList(const std::string& list) {
     const std::string entry = list.substr(start, semi == std::string::npos ? std::string::npos : semi - start);
     const std::size_t colon = entry.rfind(':');
     if (colon == std::string::npos || !isDottedIpv4(entry.substr(0, colon)) ||
-        !parseInteger(entry.substr(colon + 1), 1, 65535)) {
+        !app::parseInteger(entry.substr(colon + 1), 1, 65535)) {
       problems.push_back("'" + entry + "' is not IPv4:PORT (e.g. 10.0.0.1:11811)");
     }
     if (semi == std::string::npos) break;

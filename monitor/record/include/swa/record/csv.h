@@ -23,8 +23,6 @@ std::string_view chompCr(std::string_view line);
 
 // A whole field as a number ("nan" and "inf" included, as monitor::formatNumber writes them).
 std::optional<double> csvNumber(const std::string& text);
-// A whole field as a finite number in [min, max] / an integer in [min, max].
-std::optional<double> csvReal(const std::string& text, double min, double max);
-std::optional<long long> csvInteger(const std::string& text, long long min, long long max);
+
 
 }  // namespace swa::record

@@ -1,0 +1,23 @@
+#pragma once
+// How every SWA program's --help looks: CLI11's layout (options in one column, "=default", REQUIRED), with the
+// program's own usage lines and details instead of CLI11's one-line usage, and the meanings wrapped to the line.
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace swa::app {
+
+class HelpFormat : public CLI::Formatter {
+ public:
+  HelpFormat(std::string usage, std::string details);
+
+  std::string make_usage(const CLI::App* app, std::string name) const override;
+  std::string make_option_desc(const CLI::Option* option) const override;
+
+ private:
+  std::string usage_;
+  std::string details_;
+};
+
+}  // namespace swa::app
