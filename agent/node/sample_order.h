@@ -1,7 +1,7 @@
 #pragma once
 // Puts the samples of the agent's three input topics back into one deterministic order before they reach the agent
 // core. DDS orders samples within a topic, not across topics: IMU, detections and GNSS of one simulator step can
-// arrive in any interleaving. The in-process closed loop (sim/batch/closed_loop.cpp) feeds them by stamp, and at
+// arrive in any interleaving. The in-process closed loop (deploy/batch/closed_loop.cpp) feeds them by stamp, and at
 // equal stamps IMU first, then detections, then GNSS; this class reproduces that order from any arrival order.
 //
 // Rule: entries leave in (stamp, stream, arrival) order. An IMU sample leaves at once. A detection set or GNSS fix

@@ -196,12 +196,6 @@ BankUpdateStats TrackBank::update(StampNs stamp, const std::vector<StableDetecti
   return stats;
 }
 
-int TrackBank::predictAndPrune(StampNs stamp) {
-  const int removed = prune(stamp);
-  for (Track& t : tracks_) predict(t, stamp);
-  return removed;
-}
-
 int TrackBank::prune(StampNs stamp) {
   const auto before = tracks_.size();
   const double confirmed_timeout = config_.track_timeout_s;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # DDS Security credentials for an SWA swarm: one CA, one identity per participant, the governance document and
-# per-participant permissions, laid out as swa::dds::Participant expects them (idl/dds/include/swa/dds/deployment.h).
+# per-participant permissions, laid out as swa::dds::Participant expects them (deploy/dds/include/swa/dds/deployment.h).
 # Run with --help for the layout, the options and the overwrite rules.
 set -euo pipefail
 
@@ -300,7 +300,7 @@ topics_xml() {
   echo "        </$kind>"
 }
 
-# The topics of each role, from idl/dds/include/swa/dds/topics.h and the nodes (sim/node, agent/node,
+# The topics of each role, from deploy/dds/include/swa/dds/topics.h and the nodes (sim/node, agent/node,
 # monitor/node). fnmatch patterns: uav* stands for every UAV index.
 publishes() {
   case $1 in

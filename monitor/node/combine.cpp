@@ -6,14 +6,14 @@
 #include <system_error>
 
 #include "swa/record/run_dir.h"
-#include "run_report.h"
+#include "swa/record/run_report.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::monitor_node {
 
 int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& err) {
   std::optional<sim::Scenario> scenario;
-  std::vector<RunRecord> runs;
+  std::vector<record::RunRecord> runs;
   record::Json list = record::Json::array();
   try {
     if (!options.scenario_path.empty()) scenario = sim::loadScenario(options.scenario_path, options.overrides);
@@ -32,7 +32,7 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
     return kExitBadInput;
   }
 
-  monitor::ReportNotes notes = reportNotes(runs, "SWA monitor report — comparison");
+  monitor::ReportNotes notes = record::reportNotes(runs, "SWA monitor report — comparison");
   if (scenario) {
     notes.scenario = options.scenario_path;
     notes.formation_radius_m = scenario->agent.formation.radius_m;
@@ -48,8 +48,8 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
     if (ec) throw std::runtime_error("cannot create " + options.out_dir + ": " + ec.message());
     record::writeTextFile((fs::path(options.out_dir) / record::kSummaryFile).string(),
                           record::jsonText(record::Json{{"runs", std::move(list)}}));
-    const std::vector<std::string> written = monitor::writeReport(options.out_dir, reportRuns(runs), notes);
-    for (const RunRecord& r : runs) out << "swa_monitor: " << r.label << ": " << record::verdictText(r.verdict) << "\n";
+    const std::vector<std::string> written = monitor::writeReport(options.out_dir, record::reportRuns(runs), notes);
+    for (const record::RunRecord& r : runs) out << "swa_monitor: " << r.label << ": " << record::verdictText(r.verdict) << "\n";
     out << "swa_monitor: report " << written.front() << "\n";
   } catch (const std::exception& e) {
     err << "swa_monitor --combine: " << e.what() << "\n";

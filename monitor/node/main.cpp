@@ -20,7 +20,7 @@
 #include "monitor_options.h"
 #include "swa/record/restarts.h"
 #include "swa/record/run_dir.h"
-#include "run_report.h"
+#include "swa/record/run_report.h"
 #include "swa/dds/options.h"
 #include "swa/monitor/output_dir.h"
 #include "swa/dds/participant.h"
@@ -34,8 +34,8 @@ namespace {
 int writeOutputs(const std::string& dir, const RunRecord& run) {
   try {
     record::writeRunFiles(dir, run);
-    const monitor::ReportNotes notes = reportNotes({run}, "SWA monitor report — " + run.label);
-    const std::vector<std::string> written = monitor::writeReport(dir, reportRuns({run}), notes);
+    const monitor::ReportNotes notes = record::reportNotes({run}, "SWA monitor report — " + run.label);
+    const std::vector<std::string> written = monitor::writeReport(dir, record::reportRuns({run}), notes);
     std::printf("swa_monitor: %s\n", record::verdictText(run.verdict).c_str());
     std::printf("swa_monitor: report %s\n", written.front().c_str());
     return record::exitCode(run.verdict.outcome);

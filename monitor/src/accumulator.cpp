@@ -88,7 +88,7 @@ const StepMetrics& MetricsAccumulator::add(const StepInput& step) {
       nees_samples_ += static_cast<std::uint64_t>(m.nees.evaluated);
       nees_pos_sum_ += m.nees.position;
       nees_vel_sum_ += m.nees.velocity;
-      const agent::AneesBand& band = bandFor(m.nees.evaluated);
+      const AneesBand& band = bandFor(m.nees.evaluated);
       if (m.nees.position >= band.low && m.nees.position <= band.high) ++pos_in_band_;
       if (m.nees.velocity >= band.low && m.nees.velocity <= band.high) ++vel_in_band_;
     }
@@ -186,9 +186,9 @@ double MetricsAccumulator::finalMean(double FinalSample::*field) const {
   return n > 0 ? sum / n : kNaN;
 }
 
-const agent::AneesBand& MetricsAccumulator::bandFor(int k) {
+const AneesBand& MetricsAccumulator::bandFor(int k) {
   while (static_cast<int>(bands_.size()) < k) {
-    bands_.push_back(agent::aneesBand(static_cast<int>(bands_.size()) + 1, 2, config_.anees_alpha));
+    bands_.push_back(aneesBand(static_cast<int>(bands_.size()) + 1, 2, config_.anees_alpha));
   }
   return bands_[static_cast<std::size_t>(k - 1)];
 }
@@ -229,7 +229,7 @@ Summary MetricsAccumulator::summary() const {
     s.anees_position = nees_pos_sum_ / nees_steps_;
     s.anees_velocity = nees_vel_sum_ / nees_steps_;
     s.anees_agents = std::max(1, static_cast<int>(std::llround(static_cast<double>(nees_samples_) / nees_steps_)));
-    const agent::AneesBand band = agent::aneesBand(s.anees_agents, 2, config_.anees_alpha);
+    const AneesBand band = aneesBand(s.anees_agents, 2, config_.anees_alpha);
     s.anees_band_low = band.low;
     s.anees_band_high = band.high;
     s.anees_position_in_band = static_cast<double>(pos_in_band_) / nees_steps_;

@@ -177,7 +177,7 @@ class Child {
   std::optional<int> status_;
 };
 
-// The launcher's janitor (sim/launch/shm_janitor.h: removes only abandoned Fast DDS files created after
+// The launcher's janitor (deploy/launch/shm_janitor.h: removes only abandoned Fast DDS files created after
 // construction), which in a test also cleans up when it goes out of scope, so a failing check leaves nothing behind.
 class ShmJanitor : public launch::ShmJanitor {
  public:

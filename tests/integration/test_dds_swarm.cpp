@@ -99,7 +99,7 @@ double minSeparation(const std::vector<agent::Vec2>& p) {
   return m;
 }
 
-// The oracle: the same scenario in one process, samples fed as sim/batch/closed_loop.cpp does.
+// The oracle: the same scenario in one process, samples fed as deploy/batch/closed_loop.cpp does.
 std::vector<sim::UavTruth> inProcessFinalTruth(const sim::Scenario& scenario) {
   sim::World world(scenario);
   std::vector<agent::Agent> agents(static_cast<std::size_t>(world.uav_count()), agent::Agent(scenario.agent));

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "swa/agent/chi2.h"
+#include "swa/monitor/chi2.h"
 #include "swa/record/run_dir.h"
 #include "swa/monitor/accumulator.h"
 #include "swa/monitor/report.h"
@@ -248,7 +248,7 @@ TEST(MetricsAccumulator, AneesIsTheWindowTimeAverageOfTheStepMeanWithTheChiSquar
   EXPECT_EQ(s.nees_samples, 303u);
   // AND the band is that of K = 3 agents with 2 dof: chi2(6) quantiles 1.2373, 14.4494 over 3
   EXPECT_EQ(s.anees_agents, 3);
-  const agent::AneesBand band = agent::aneesBand(3, 2, 0.05);
+  const AneesBand band = aneesBand(3, 2, 0.05);
   EXPECT_DOUBLE_EQ(s.anees_band_low, band.low);
   EXPECT_DOUBLE_EQ(s.anees_band_high, band.high);
   EXPECT_NEAR(s.anees_band_low, 1.237344 / 3.0, 1e-6);

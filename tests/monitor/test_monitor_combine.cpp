@@ -10,13 +10,15 @@
 #include <string>
 
 #include "combine.h"
-#include "run_report.h"
+#include "swa/record/run_report.h"
 #include "swa/record/run_dir.h"
 
 namespace swa::monitor_node {
 namespace {
 
 using record::Outcome;
+using record::RunRecord;
+using record::writeRunFiles;
 
 namespace fs = std::filesystem;
 

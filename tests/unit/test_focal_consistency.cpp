@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "focal_scenario.h"
-#include "swa/agent/chi2.h"
+#include "swa/monitor/chi2.h"
 #include "swa/agent/focal_estimator.h"
 #include "swa/agent/frame_fit.h"
 #include "swa/agent/imu_bias.h"
@@ -109,7 +109,7 @@ double mean(const std::vector<double>& v) {
   return s / static_cast<double>(v.size());
 }
 
-double fractionInside(const std::vector<double>& v, const AneesBand& band) {
+double fractionInside(const std::vector<double>& v, const monitor::AneesBand& band) {
   const auto n = std::count_if(v.begin(), v.end(), [&](double x) { return x >= band.low && x <= band.high; });
   return static_cast<double>(n) / static_cast<double>(v.size());
 }
@@ -118,7 +118,7 @@ TEST(FocalConsistency, AneesOfPositionAndVelocityIsInsideTheChi2BandWithDefaults
   // GIVEN K = 24 seeded runs of 60 s of the §IV-C scenario with the default (tuned) configuration
   constexpr int kRuns = 24;
   const AgentConfig cfg;
-  const AneesBand band = aneesBand(kRuns, 2);
+  const monitor::AneesBand band = monitor::aneesBand(kRuns, 2);
   // WHEN the ANEES of position and velocity is computed per 10 ms step after a 5 s warm-up
   const AneesSeries s = runMonteCarlo(cfg, kRuns, 60.0, 5.0);
   const double p_mean = mean(s.position), v_mean = mean(s.velocity);
@@ -145,7 +145,7 @@ TEST(FocalConsistency, PaperQfAsWrittenIsConservative) {
   cfg.focal.q_vel_m2ps2 = 5e-1;
   cfg.focal.q_acc_m2ps4 = 5.0;
   cfg.focal.r_pos_m2 = 0.02;
-  const AneesBand band = aneesBand(kRuns, 2);
+  const monitor::AneesBand band = monitor::aneesBand(kRuns, 2);
   // WHEN evaluated
   const AneesSeries s = runMonteCarlo(cfg, kRuns, 60.0, 5.0);
   std::cout << "paper Q_f: ANEES position mean " << mean(s.position) << " velocity mean " << mean(s.velocity) << "\n";

@@ -50,8 +50,6 @@ class TrackBank {
 
   // Predicts every track to `stamp`, associates and corrects, then starts and prunes tracks.
   BankUpdateStats update(StampNs stamp, const std::vector<StableDetection>& detections);
-  // Prediction and pruning only (used when a detection set was rejected or is empty).
-  int predictAndPrune(StampNs stamp);
 
   const std::vector<Track>& tracks() const { return tracks_; }
   const Track* find(int id) const;

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "swa/agent/chi2.h"
+#include "swa/monitor/chi2.h"
 #include "swa/monitor/swarm_metrics.h"
 
 namespace swa::monitor {
@@ -55,7 +55,7 @@ struct Summary {
   // ANEES: time average over the window steps with at least one evaluated agent of the per-step mean NEES.
   double anees_position = kNaN;
   double anees_velocity = kNaN;
-  // The chi-square band for a mean over K agents of 2-dof NEES (agent::aneesBand(K, 2, alpha)), K = the mean number
+  // The chi-square band for a mean over K agents of 2-dof NEES (aneesBand(K, 2, alpha)), K = the mean number
   // of agents evaluated per contributing step, rounded. Time averaging does not narrow it: successive steps are
   // strongly correlated, so the band is the per-step one.
   int anees_agents = 0;
@@ -96,7 +96,7 @@ class MetricsAccumulator {
 
   int updateCollisions(const StepInput& step);
   double updateDrift(agent::StampNs stamp, const Geometry& geometry);
-  const agent::AneesBand& bandFor(int k);
+  const AneesBand& bandFor(int k);
 
   MetricsConfig config_;
   agent::StampNs window_start_ns_;
@@ -134,7 +134,7 @@ class MetricsAccumulator {
   int vel_in_band_ = 0;
   std::uint64_t skipped_unknown_ = 0;
   std::uint64_t skipped_invalid_ = 0;
-  std::vector<agent::AneesBand> bands_;  // bands_[k - 1] for k agents, filled on demand
+  std::vector<AneesBand> bands_;  // bands_[k - 1] for k agents, filled on demand
 };
 
 }  // namespace swa::monitor

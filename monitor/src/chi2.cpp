@@ -1,11 +1,11 @@
-#include "swa/agent/chi2.h"
+#include "swa/monitor/chi2.h"
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-namespace swa::agent {
+namespace swa::monitor {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -154,4 +154,4 @@ AneesBand aneesBand(int runs_K, int state_dim, double alpha) {
   return {chi2Quantile(0.5 * alpha, dof) / k, chi2Quantile(1.0 - 0.5 * alpha, dof) / k};
 }
 
-}  // namespace swa::agent
+}  // namespace swa::monitor

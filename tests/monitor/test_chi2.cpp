@@ -2,7 +2,7 @@
 // against an independent formula (closed forms, a finite Poisson sum, Simpson integration, Wilson–Hilferty), so a
 // shared mistake in the incomplete gamma cannot make the implementation agree with itself.
 
-#include "swa/agent/chi2.h"
+#include "swa/monitor/chi2.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace swa::agent {
+namespace swa::monitor {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -198,4 +198,4 @@ TEST(Chi2Errors, RejectsInvalidArguments) {
 }
 
 }  // namespace
-}  // namespace swa::agent
+}  // namespace swa::monitor

@@ -1,8 +1,8 @@
 #pragma once
-// Chi-square toolkit for Mahalanobis gating and the ANEES acceptance band. Self-contained on purpose: the agent
+// Chi-square toolkit for the ANEES acceptance band. Self-contained on purpose: the agent
 // core must not pull in Boost or a stats library for two numbers that are computed once per configuration.
 
-namespace swa::agent {
+namespace swa::monitor {
 
 // Lower regularized incomplete gamma P(a, x) = γ(a, x) / Γ(a). Requires a > 0; x <= 0 gives 0, x = +inf gives 1.
 // Throws std::invalid_argument on a <= 0 or NaN input.
@@ -24,4 +24,4 @@ struct AneesBand {
 // Throws std::invalid_argument unless runs_K >= 1, state_dim >= 1 and 0 < alpha < 1.
 AneesBand aneesBand(int runs_K, int state_dim, double alpha = 0.05);
 
-}  // namespace swa::agent
+}  // namespace swa::monitor

@@ -6,12 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "swa/record/run_record.h"
 #include "swa/monitor/report_html.h"
+#include "swa/record/run_record.h"
 
-namespace swa::monitor_node {
-
-using record::RunRecord;
+namespace swa::record {
 
 // Longest events / restarts table; the rest is summarised in the table's note (summary.json has them all).
 constexpr std::size_t kMaxTableRows = 500;
@@ -26,4 +24,4 @@ monitor::ReportNotes reportNotes(const std::vector<RunRecord>& runs, const std::
 monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs);
 monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs);
 
-}  // namespace swa::monitor_node
+}  // namespace swa::record

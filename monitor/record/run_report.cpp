@@ -1,14 +1,14 @@
-#include "run_report.h"
+#include "swa/record/run_report.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "swa/monitor/svg_plot.h"
 
-namespace swa::monitor_node {
+namespace swa::record {
 namespace {
 
-std::string uavText(int uav) { return uav == record::kAllUavs ? "all" : std::to_string(uav); }
+std::string uavText(int uav) { return uav == kAllUavs ? "all" : std::to_string(uav); }
 
 std::string droppedText(const RunRecord& run) {
   std::string out;
@@ -33,7 +33,7 @@ std::string restartsText(const RunRecord& run) {
 
 std::vector<monitor::RunReport> reportRuns(const std::vector<RunRecord>& runs) {
   std::vector<monitor::RunReport> out;
-  for (const RunRecord& r : runs) out.push_back({r.label, r.summary, r.series, r.trajectories, record::verdictText(r.verdict)});
+  for (const RunRecord& r : runs) out.push_back({r.label, r.summary, r.series, r.trajectories, verdictText(r.verdict)});
   return out;
 }
 
@@ -46,7 +46,7 @@ monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs) {
   for (const char* c : {"sim time [s]", "event", "UAV", "other UAV", "value", "detail"}) t.columns.push_back(c);
   std::size_t total = 0;
   for (const RunRecord& run : runs) {
-    for (const record::EventRecord& e : run.events) {
+    for (const EventRecord& e : run.events) {
       if (++total > kMaxTableRows) continue;
       std::vector<std::string> row;
       if (many) row.push_back(run.label);
@@ -81,12 +81,12 @@ monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs) {
   int malformed = 0;
   for (const RunRecord& run : runs) {
     malformed += run.restarts.malformed_rows;
-    for (const record::AgentRestart& r : run.restarts.restarts) {
+    for (const AgentRestart& r : run.restarts.restarts) {
       if (++total > kMaxTableRows) continue;
       std::vector<std::string> row;
       if (many) row.push_back(run.label);
       row.push_back(monitor::formatFixed(r.wall_s, 2));
-      row.push_back(r.uav == record::AgentRestart::kMonitor ? std::string("monitor") : std::to_string(r.uav));
+      row.push_back(r.uav == AgentRestart::kMonitor ? std::string("monitor") : std::to_string(r.uav));
       row.push_back(r.exit_status);
       row.push_back(std::to_string(r.restart_count));
       row.push_back(monitor::formatFixed(r.backoff_s, 2));
@@ -116,7 +116,7 @@ monitor::ReportNotes reportNotes(const std::vector<RunRecord>& runs, const std::
       notes.seeds.push_back(*run.seed);
     }
     const std::string prefix = runs.size() > 1 ? run.label + ": " : "";
-    notes.extra.push_back({prefix + "Verdict", record::verdictText(run.verdict)});
+    notes.extra.push_back({prefix + "Verdict", verdictText(run.verdict)});
     notes.extra.push_back({prefix + "Mode", run.mode});
     notes.extra.push_back({prefix + "End", run.end_reason});
     notes.extra.push_back({prefix + "Agent restarts", restartsText(run)});
@@ -127,4 +127,4 @@ monitor::ReportNotes reportNotes(const std::vector<RunRecord>& runs, const std::
   return notes;
 }
 
-}  // namespace swa::monitor_node
+}  // namespace swa::record
