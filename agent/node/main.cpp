@@ -16,28 +16,21 @@ namespace {
 
 app::Plan prepare(const std::vector<std::string>& args) {
   const AgentOptions options = parseAgentOptions(args);
-  if (options.help) {
-    std::fputs(agentUsage().c_str(), stdout);
-    return app::exitWith(0);
-  }
-  if (options.list_parameters) {
-    std::fputs(agent::describeParameters().c_str(), stdout);
-    return app::exitWith(0);
-  }
+  if (auto done = app::printIf(options.help, agentUsage)) return *done;
+  if (auto done = app::printIf(options.list_parameters, agent::describeParameters)) return *done;
   agent::AgentConfig config;
   if (!options.config_path.empty()) config = agent::loadAgentConfig(options.config_path);
   if (!options.scenario_path.empty()) config = sim::loadScenario(options.scenario_path).agent;
   config = agent::applyOverrides(config, options.overrides);
   const int domain = dds::resolveDomain(options.domain);
-  return {std::nullopt, [options, config, domain]() -> std::unique_ptr<app::Role> {
-            const std::string profiles = dds::resolveProfilesFile();
-            auto node = std::make_unique<AgentNode>(options.id, config, domain, profiles);
-            std::fprintf(stderr, "swa_agent %d: up on domain %d (mode %s, neighbourhood %s), profiles %s\n",
-                         options.id, domain, agent::toString(config.mode).c_str(),
-                         agent::toString(config.formation.neighbourhood).c_str(), profiles.c_str());
-            return node;
-          },
-          1};
+  return app::startWith([options, config, domain]() -> std::unique_ptr<app::Role> {
+    const std::string profiles = dds::resolveProfilesFile();
+    auto node = std::make_unique<AgentNode>(options.id, config, domain, profiles);
+    std::fprintf(stderr, "swa_agent %d: up on domain %d (mode %s, neighbourhood %s), profiles %s\n", options.id,
+                 domain, agent::toString(config.mode).c_str(), agent::toString(config.formation.neighbourhood).c_str(),
+                 profiles.c_str());
+    return node;
+  });
 }
 
 }  // namespace

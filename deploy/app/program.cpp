@@ -11,6 +11,12 @@
 
 namespace swa::app {
 
+std::optional<Plan> printIf(bool asked, const std::function<std::string()>& text) {
+  if (!asked) return std::nullopt;
+  std::fputs(text().c_str(), stdout);
+  return exitWith(0);
+}
+
 int runProgram(const std::string& name, const std::string& input, int argc, char** argv,
                const std::function<Plan(const std::vector<std::string>& args)>& prepare) {
   Plan plan;

@@ -169,18 +169,11 @@ int Batch::run() {
 
 app::Plan prepare(const std::vector<std::string>& args) {
   const batch::BatchOptions opt = batch::parseBatchOptions(args);
-  if (opt.help) {
-    std::cout << batch::batchUsage();
-    return app::exitWith(0);
-  }
-  if (opt.list_parameters) {
-    std::cout << sim::describeScenarioParameters();
-    return app::exitWith(0);
-  }
+  if (auto done = app::printIf(opt.help, batch::batchUsage)) return *done;
+  if (auto done = app::printIf(opt.list_parameters, sim::describeScenarioParameters)) return *done;
   const sim::Scenario scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
   monitor::prepareOutputDir(opt.out_dir);  // before hours of seeds, not after
-  return {std::nullopt, [opt, scenario]() -> std::unique_ptr<app::Role> { return std::make_unique<Batch>(opt, scenario); },
-          1};
+  return app::startWith([opt, scenario]() -> std::unique_ptr<app::Role> { return std::make_unique<Batch>(opt, scenario); });
 }
 
 }  // namespace

@@ -108,10 +108,7 @@ std::string originOf(const LaunchOptions& o) {
 app::Plan prepare(const std::vector<std::string>& args) {
   // Everything that can be wrong is found before any process starts.
   const LaunchOptions o = parseLaunchOptions(args);
-  if (o.help) {
-    std::fputs(launchUsage().c_str(), stdout);
-    return app::exitWith(0);
-  }
+  if (auto done = app::printIf(o.help, launchUsage)) return *done;
   std::vector<RunSpec> runs;
   const int domain = dds::resolveDomain(o.domain);
   // The user's files are read once, here; each run's directory gets the effective scenario (run_supervisor.h).
@@ -136,11 +133,11 @@ app::Plan prepare(const std::vector<std::string>& args) {
     throw std::runtime_error(all);
   }
   monitor::prepareOutputDir(o.out_dir);  // last: a run refused for another reason writes nothing
-  return {std::nullopt,
-          [o, runs, bin, domain, discovery_server]() -> std::unique_ptr<app::Role> {
-            return std::make_unique<Launch>(o, runs, bin, domain, discovery_server);
-          },
-          3};
+  return app::startWith(
+      [o, runs, bin, domain, discovery_server]() -> std::unique_ptr<app::Role> {
+        return std::make_unique<Launch>(o, runs, bin, domain, discovery_server);
+      },
+      3);
 }
 
 }  // namespace

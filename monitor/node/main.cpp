@@ -21,10 +21,7 @@ namespace {
 
 app::Plan prepare(const std::vector<std::string>& args) {
   const MonitorOptions options = parseMonitorOptions(args);
-  if (options.help) {
-    std::fputs(monitorUsage().c_str(), stdout);
-    return app::exitWith(kExitPass);
-  }
+  if (auto done = app::printIf(options.help, monitorUsage)) return *done;
   if (options.combineMode()) return app::exitWith(runCombine(options, std::cout, std::cerr));
   std::optional<sim::Scenario> scenario;
   if (!options.scenario_path.empty()) scenario = sim::loadScenario(options.scenario_path, options.overrides);
@@ -32,11 +29,11 @@ app::Plan prepare(const std::vector<std::string>& args) {
   config.join_grace_s = 2.0;  // several heartbeat repair rounds of a lost state (the node ticks the wall clock)
   const int domain = dds::resolveDomain(options.domain);
   monitor::prepareOutputDir(options.out_dir);
-  return {std::nullopt,
-          [options, scenario, config, domain]() -> std::unique_ptr<app::Role> {
-            return std::make_unique<LiveMonitor>(options, scenario, config, domain);
-          },
-          kExitBadInput};
+  return app::startWith(
+      [options, scenario, config, domain]() -> std::unique_ptr<app::Role> {
+        return std::make_unique<LiveMonitor>(options, scenario, config, domain);
+      },
+      kExitBadInput);
 }
 
 }  // namespace

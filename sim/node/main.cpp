@@ -18,14 +18,8 @@ namespace {
 
 app::Plan prepare(const std::vector<std::string>& args) {
   const SimOptions options = parseSimOptions(args);
-  if (options.help) {
-    std::fputs(simUsage().c_str(), stdout);
-    return app::exitWith(0);
-  }
-  if (options.list_parameters) {
-    std::fputs(sim::describeScenarioParameters().c_str(), stdout);
-    return app::exitWith(0);
-  }
+  if (auto done = app::printIf(options.help, simUsage)) return *done;
+  if (auto done = app::printIf(options.list_parameters, sim::describeScenarioParameters)) return *done;
   const sim::Scenario scenario = sim::loadScenario(options.scenario_path, options.overrides);
   if (!options.export_agent_config.empty()) {
     std::ofstream out(options.export_agent_config);
@@ -39,11 +33,9 @@ app::Plan prepare(const std::vector<std::string>& args) {
   if (!options.summary_out.empty() && !std::ofstream(options.summary_out)) {
     throw std::runtime_error("cannot write --summary-out " + options.summary_out);
   }
-  return {std::nullopt,
-          [options, scenario, domain]() -> std::unique_ptr<app::Role> {
-            return std::make_unique<SimNode>(scenario, options, domain, dds::resolveProfilesFile());
-          },
-          1};
+  return app::startWith([options, scenario, domain]() -> std::unique_ptr<app::Role> {
+    return std::make_unique<SimNode>(scenario, options, domain, dds::resolveProfilesFile());
+  });
 }
 
 }  // namespace

@@ -32,6 +32,14 @@ struct Plan {
 
 inline Plan exitWith(int status) { return Plan{status, nullptr, 1}; }
 
+// Start the role `start` makes; a failure to start exits with `failure_status`.
+inline Plan startWith(std::function<std::unique_ptr<Role>()> start, int failure_status = 1) {
+  return Plan{std::nullopt, std::move(start), failure_status};
+}
+
+// --help, --parameters: when `asked`, prints what `text` makes to stdout and the program exits 0.
+std::optional<Plan> printIf(bool asked, const std::function<std::string()>& text);
+
 // `name` prefixes every message ("swa_sim: ..."); `input` names what a params::ConfigError is about ("scenario",
 // "configuration"). `prepare` reads the arguments and the files they name, and throws on any problem: exit 2 with
 // the message (every problem of a file at once) and a pointer to --help.
