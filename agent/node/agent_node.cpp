@@ -30,6 +30,9 @@ constexpr auto kQuietPoll = std::chrono::milliseconds(20);
 // The state is published at least this often once the agent has run, and says STAGE_NO_INPUT after this long
 // without a valid IMU sample.
 constexpr auto kHeartbeat = std::chrono::seconds(1);
+// No IMU sample this long after connecting: the agent says once what has matched (a simulator not started yet, or
+// a discovery that failed).
+constexpr auto kWaitReport = std::chrono::seconds(5);
 // A detection / GNSS sample waits for the IMU of its step at most this much newer sim time (sample_order.h).
 constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 // After a peer came back from an expired lease, how long its endpoints get to re-match ours before the participant
@@ -80,18 +83,36 @@ void AgentNode::connect() {
   peers_back_ = 0;
   peer_back_at_.reset();
   matched_once_ = {};
+  connected_at_ = std::chrono::steady_clock::now();
+  waiting_reported_ = false;
 }
 
-std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn() {
+AgentNode::Matched AgentNode::matchedNow() const {
+  return {cmd_writer_.matched(), imu_reader_.matched(), det_reader_.matched(), gnss_reader_.matched()};
+}
+
+void AgentNode::reportWaiting(const Matched& matched) {
+  // A silent agent that never got a sample looks exactly like one that is fine: say once what it is waiting for.
+  if (waiting_reported_ || stats_.imu > 0 || std::chrono::steady_clock::now() - connected_at_ < kWaitReport) return;
+  waiting_reported_ = true;
+  std::fprintf(stderr,
+               "swa_agent %d: no IMU sample %.0f s after connecting; matched: %d reader(s) of %s, %d writer(s) of %s, "
+               "%d of %s, %d of %s\n",
+               id_, std::chrono::duration<double>(kWaitReport).count(), matched[0], dds::topics::cmdVel(id_).c_str(),
+               matched[1], dds::topics::imu(id_).c_str(), matched[2], dds::topics::detections(id_).c_str(), matched[3],
+               dds::topics::gnss(id_).c_str());
+}
+
+std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn(const Matched& matched) {
   // A peer that went silent beyond its lease and never dropped us: Fast DDS 2.9 sometimes does not re-send all its
   // endpoints (peer_book.h), and a UAV loses its sensors or its commands for good. Only then, and only if one of our
   // endpoints that had matched is still unmatched a moment later: a peer lost and back under packet loss is no
   // reason to reconnect, nor one that returns while our endpoints are still being discovered (a starved host).
   const std::array<std::pair<std::string, bool>, 4> endpoints{{
-      {dds::topics::cmdVel(id_), cmd_writer_.matched() >= 1},
-      {dds::topics::imu(id_), imu_reader_.matched() >= 1},
-      {dds::topics::detections(id_), det_reader_.matched() >= 1},
-      {dds::topics::gnss(id_), gnss_reader_.matched() >= 1},
+      {dds::topics::cmdVel(id_), matched[0] >= 1},
+      {dds::topics::imu(id_), matched[1] >= 1},
+      {dds::topics::detections(id_), matched[2] >= 1},
+      {dds::topics::gnss(id_), matched[3] >= 1},
   }};
   for (std::size_t k = 0; k < endpoints.size(); ++k) matched_once_[k] = matched_once_[k] || endpoints[k].second;
   const auto [back, name] = participant_->peersBackAfterLease();
@@ -118,7 +139,8 @@ int AgentNode::run() {
     std::this_thread::sleep_for(kQuietPoll);
     // Matched-status queries stay outside mutex_: a listener delivering a sample may hold its reader's lock while it
     // waits for mutex_ (seen: every agent of a loaded host stuck after its first samples).
-    const std::optional<std::string> lost = endpointsLostAfterPeerReturn();
+    const Matched matched = matchedNow();
+    const std::optional<std::string> lost = endpointsLostAfterPeerReturn(matched);
     std::unique_lock<std::mutex> lock(mutex_);
     if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
@@ -131,8 +153,9 @@ int AgentNode::run() {
       return kExitTwin;
     }
     noteYoungerTwin();
+    reportWaiting(matched);
     std::string why;
-    if (handshake_.stalled(stats_.imu > 0, cmd_writer_.matched() > 0, std::chrono::steady_clock::now())) {
+    if (handshake_.stalled(stats_.imu > 0, matched[0] > 0, std::chrono::steady_clock::now())) {
       why = "no reader of " + dds::topics::cmdVel(id_) +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {

@@ -70,8 +70,12 @@ class AgentNode : public app::Role {
   void publishState(agent::StampNs stamp_ns, bool no_input = false);
   void heartbeat();  // run(): the wall-clock state
   void refuseAsTwin();
+  // Matched remote endpoints of cmd_vel, imu, detections, gnss (queried outside mutex_, see run()).
+  using Matched = std::array<int, 4>;
+  Matched matchedNow() const;
   // Why the participant must be re-created after a peer came back from an expired lease, if it must.
-  std::optional<std::string> endpointsLostAfterPeerReturn();
+  std::optional<std::string> endpointsLostAfterPeerReturn(const Matched& matched);
+  void reportWaiting(const Matched& matched);  // once per connection: no IMU sample yet, and what has matched
   void noteYoungerTwin();
   void logFinalCounts() const;
 
@@ -103,6 +107,8 @@ class AgentNode : public app::Role {
   std::string peer_back_name_;
   // Which of our endpoints (cmd_vel, imu, detections, gnss) have matched since connect(): only those can be lost.
   std::array<bool, 4> matched_once_{};
+  std::chrono::steady_clock::time_point connected_at_;
+  bool waiting_reported_ = false;
   ReplayFilter replay_;
   std::optional<msg::VelocitySetpoint> last_cmd_;  // sent again after a reconnection
 

@@ -23,6 +23,7 @@
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 
 #include "swa/dds/deployment.h"
+#include "swa/dds/participant_id.h"
 #include "swa/dds/security_check.h"
 
 namespace swa::dds {
@@ -200,6 +201,22 @@ void useSecurity(fdds::DomainParticipantQos& qos, const SecurityFiles& files, co
   addSecurity(qos, files);
 }
 
+// Shared memory only (the local transport): see participant_id.h. A profile that sets an id keeps it.
+void avoidAbandonedSharedMemoryPorts(fdds::DomainParticipantQos& qos, int domain_id) {
+  fdds::WireProtocolConfigQos& wire = qos.wire_protocol();
+  if (wire.participant_id >= 0) return;
+  const auto& p = wire.port;
+  const PortMapping ports{static_cast<int>(p.portBase), static_cast<int>(p.domainIDGain),
+                          static_cast<int>(p.participantIDGain), static_cast<int>(p.offsetd1),
+                          static_cast<int>(p.offsetd3)};
+  const auto exists = [](int port) {
+    std::error_code ec;
+    return std::filesystem::exists("/dev/shm/fastrtps_port" + std::to_string(port), ec);
+  };
+  // None left (120 abandoned ports: `fastdds shm clean`): Fast DDS's own choice.
+  if (const std::optional<int> id = unusedParticipantId(domain_id, ports, exists)) wire.participant_id = *id;
+}
+
 // Fast DDS says only "initialization error" when it refuses credentials: its plugins' checks are repeated on the
 // files to name the one that failed.
 std::string refusalReason(const SecurityFiles& files) {
@@ -231,6 +248,7 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     throw DdsError(std::string("participant profile '") + profile + "' missing in " + profiles_file);
   }
   qos.name(name);
+  if (deployment.transport == Transport::kLocal) avoidAbandonedSharedMemoryPorts(qos, domain_id);
   if (deployment.transport == Transport::kDiscoveryServer) useDiscoveryServers(qos, deployment.discovery_servers);
   std::optional<SecurityFiles> security;
   if (!deployment.security_dir.empty()) {
