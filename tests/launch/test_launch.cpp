@@ -344,16 +344,20 @@ TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
 // SIGTERM to the launcher mid-run: forwarded, the monitor writes what it has (verdict INCOMPLETE = 3), and every
 // process and shared-memory file is gone.
 TEST_F(LaunchTest, SigtermStopsEverythingCleanly) {
-  // GIVEN a realtime launch of 600 s
+  // GIVEN a realtime launch of 600 s, and an observer of agent 0's state in this test
+  // Only to time the signal: the newest stamp agent 0 has published its state for.
+  std::atomic<long long> newest_stamp_ns{0};
+  auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
+  participant->reader<msg::AgentStatePubSubType>(dds::topics::state(0), "swa_state_reader",
+                                                  [&newest_stamp_ns](msg::AgentState&& s) {
+                                                    newest_stamp_ns.store(s.header().stamp_ns());
+                                                  });
   Child launch(launchArgs({"--set", "clock.mode=realtime", "--set", "duration_s=600"}), dir_ / "launch.log");
-  // WHEN the simulator has discovered the swarm and the world has run a little
-  const fs::path sim_log = dir_ / "out" / "logs" / "sim.log";
-  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
-  while (SteadyClock::now() < deadline && readFile(sim_log).find("discovered") == std::string::npos &&
-         !launch.wait(0.0)) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  std::this_thread::sleep_for(std::chrono::seconds(2));  // let the world run a little
+  // WHEN the world has run a little: agent 0 has published its state for 2 s of simulated time, which in realtime is
+  // 2 s of the run (a bounded wait, given up if the launcher exits)
+  waitFor([&] { return newest_stamp_ns.load() >= 2'000'000'000LL || launch.wait(0.0).has_value(); }, 60.0);
+  ASSERT_GE(newest_stamp_ns.load(), 2'000'000'000LL) << "the world never ran\n" << readFile(dir_ / "launch.log");
+  participant.reset();
   // AND the launcher gets SIGTERM
   launch.signal(SIGTERM);
   // THEN it exits with the monitor's INCOMPLETE (3), and the monitor wrote a summary of an incomplete run
