@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <regex>
@@ -18,7 +19,7 @@
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 
-#include "../integration/process_support.h"
+#include "../integration/process_test.h"
 #include "closed_loop.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/dds/options.h"
@@ -49,13 +50,45 @@ int monitorPid(int domain) {
   return -1;
 }
 
+// Only to time what a test does to a run: a participant of the test that keeps the newest stamp agent `uav` has
+// published its state for.
+class StateStampWatch {
+ public:
+  StateStampWatch(int domain, int uav)
+      : participant_(std::make_unique<dds::Participant>("swa_test_observer", domain, dds::resolveProfilesFile())) {
+    participant_->reader<msg::AgentStatePubSubType>(
+        dds::topics::state(uav), "swa_state_reader",
+        [this](msg::AgentState&& s) { newest_ns_.store(s.header().stamp_ns()); });
+  }
+
+  // Waits until that stamp reaches `at_ns`, polling every 5 ms, for 60 s at most and only while `launch` runs.
+  // Whether it did.
+  bool waitUntil(long long at_ns, Child& launch) const {
+    const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
+    while (newest_ns_.load() < at_ns && SteadyClock::now() < deadline && !launch.wait(0.0)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return newest_ns_.load() >= at_ns;
+  }
+
+  // Once that stamp reaches `at_ns` (see waitUntil), SIGKILLs the process `victim` names. The pid killed; -1 when the
+  // stamp never got there, and what `victim` gave (<= 0) when it found no process.
+  int killWhenReached(long long at_ns, Child& launch, const std::function<int()>& victim) const {
+    if (!waitUntil(at_ns, launch)) return -1;
+    const int pid = victim();
+    if (pid > 0) ::kill(pid, SIGKILL);
+    return pid;
+  }
+
+ private:
+  std::atomic<long long> newest_ns_{0};  // declared first: outlives the participant whose listener stores it
+  std::unique_ptr<dds::Participant> participant_;
+};
+
 class LaunchTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_launch_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = freshTestDir("swa_launch_test", /*per_test=*/true);
     swarm_ = useOwnSwarm();  // the launcher takes it from the environment; this test's observers join it
   }
   void TearDown() override {
@@ -193,30 +226,14 @@ TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveScenarioAndNoSet) {
 TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
   // GIVEN a lockstep launch of 240 s, and an observer of agent 2's state in this test
   constexpr int kVictim = 2;
-  // Only to time the kill: the newest stamp agent 2 has published its state for.
-  std::atomic<long long> newest_stamp_ns{0};
-  auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
-  participant->reader<msg::AgentStatePubSubType>(dds::topics::state(kVictim), "swa_state_reader",
-                                                  [&newest_stamp_ns](msg::AgentState&& s) {
-                                                    newest_stamp_ns.store(s.header().stamp_ns());
-                                                  });
+  auto watch = std::make_unique<StateStampWatch>(domain_, kVictim);
   // Long enough in simulated time that the swarm runs well after the restart (lockstep runs ~20x real time).
   ShmJanitor launcher_files;
   Child launch(launchArgs({"--set", "duration_s=240"}), dir_ / "launch.log");
   // WHEN agent 2 is SIGKILLed once the run is past 20 s
-  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
-  bool killed = false;
-  while (!killed && SteadyClock::now() < deadline && !launch.wait(0.0)) {
-    if (newest_stamp_ns.load() >= 20'000'000'000LL) {
-      const int pid = agentPid(domain_, kVictim);
-      ASSERT_GT(pid, 0);
-      ::kill(pid, SIGKILL);
-      killed = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(killed) << readFile(dir_ / "launch.log");
-  participant.reset();
+  ASSERT_GT(watch->killWhenReached(20'000'000'000LL, launch, [&] { return agentPid(domain_, kVictim); }), 0)
+      << readFile(dir_ / "launch.log");
+  watch.reset();
   // THEN the launcher exits with PASS
   const auto status = launch.wait(180.0);
   const std::string log = readFile(dir_ / "launch.log");
@@ -252,30 +269,14 @@ TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
 // report that did not exist. Now the monitor is restarted like an agent, and the new one says what it missed.
 TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
   // GIVEN a lockstep launch of 400 s, and an observer of agent 0's state in this test
-  // Only to time the kill: the newest stamp agent 0 has published its state for.
-  std::atomic<long long> newest_stamp_ns{0};
-  auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
-  participant->reader<msg::AgentStatePubSubType>(dds::topics::state(0), "swa_state_reader",
-                                                  [&newest_stamp_ns](msg::AgentState&& s) {
-                                                    newest_stamp_ns.store(s.header().stamp_ns());
-                                                  });
+  auto watch = std::make_unique<StateStampWatch>(domain_, 0);
   ShmJanitor launcher_files;
   Child launch(launchArgs({"--set", "duration_s=400"}), dir_ / "launch.log");
-  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
-  bool killed = false;
   // WHEN the monitor is SIGKILLed once the run is past 200 s (the simulator's truth history reaches 100 s back, so
   // the restarted monitor cannot get the first 100 s; the chaos test kills it early enough to recover everything)
-  while (!killed && SteadyClock::now() < deadline && !launch.wait(0.0)) {
-    if (newest_stamp_ns.load() >= 200'000'000'000LL) {
-      const int pid = monitorPid(domain_);
-      ASSERT_GT(pid, 0);
-      ::kill(pid, SIGKILL);
-      killed = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(killed) << readFile(dir_ / "launch.log");
-  participant.reset();
+  ASSERT_GT(watch->killWhenReached(200'000'000'000LL, launch, [&] { return monitorPid(domain_); }), 0)
+      << readFile(dir_ / "launch.log");
+  watch.reset();
   const auto status = launch.wait(180.0);
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
@@ -345,19 +346,12 @@ TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
 // process and shared-memory file is gone.
 TEST_F(LaunchTest, SigtermStopsEverythingCleanly) {
   // GIVEN a realtime launch of 600 s, and an observer of agent 0's state in this test
-  // Only to time the signal: the newest stamp agent 0 has published its state for.
-  std::atomic<long long> newest_stamp_ns{0};
-  auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
-  participant->reader<msg::AgentStatePubSubType>(dds::topics::state(0), "swa_state_reader",
-                                                  [&newest_stamp_ns](msg::AgentState&& s) {
-                                                    newest_stamp_ns.store(s.header().stamp_ns());
-                                                  });
+  auto watch = std::make_unique<StateStampWatch>(domain_, 0);
   Child launch(launchArgs({"--set", "clock.mode=realtime", "--set", "duration_s=600"}), dir_ / "launch.log");
   // WHEN the world has run a little: agent 0 has published its state for 2 s of simulated time, which in realtime is
   // 2 s of the run (a bounded wait, given up if the launcher exits)
-  waitFor([&] { return newest_stamp_ns.load() >= 2'000'000'000LL || launch.wait(0.0).has_value(); }, 60.0);
-  ASSERT_GE(newest_stamp_ns.load(), 2'000'000'000LL) << "the world never ran\n" << readFile(dir_ / "launch.log");
-  participant.reset();
+  ASSERT_TRUE(watch->waitUntil(2'000'000'000LL, launch)) << "the world never ran\n" << readFile(dir_ / "launch.log");
+  watch.reset();
   // AND the launcher gets SIGTERM
   launch.signal(SIGTERM);
   // THEN it exits with the monitor's INCOMPLETE (3), and the monitor wrote a summary of an incomplete run

@@ -31,7 +31,7 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "../integration/process_support.h"
+#include "../integration/process_test.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/topics.h"
@@ -154,10 +154,7 @@ std::string tryCreate(dds::Participant& p, Kind kind, const std::string& topic) 
 class SecurityTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_security_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = freshTestDir("swa_security_test", /*per_test=*/true);
     creds_ = dir_ / "creds";
     ASSERT_TRUE(makeCredentials(creds_));
   }
@@ -186,9 +183,8 @@ class SecurityTest : public ::testing::Test {
 
   // swa_agent --id `id` with this test's credentials.
   std::unique_ptr<Child> startAgent(int id, const std::string& log_name) {
-    return std::make_unique<Child>(
-        std::vector<std::string>{kAgent, "--id", std::to_string(id), "--domain", std::to_string(domain_)},
-        dir_ / log_name, std::vector<std::string>{securityEnv()});
+    return std::make_unique<Child>(agentCommand(kAgent, id, domain_), dir_ / log_name,
+                                   std::vector<std::string>{securityEnv()});
   }
 
   void expectNothingLeft() {
