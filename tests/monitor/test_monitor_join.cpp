@@ -42,6 +42,12 @@ void allStates(StepJoiner& j, int k, int n) {
   for (int i = 0; i < n; ++i) j.addState(state(i, k * kStep));
 }
 
+// Step k, complete: the truth of `n` UAVs, then every UAV's state.
+void completeStep(StepJoiner& j, int k, int n) {
+  j.addTruth(truth(k, n));
+  allStates(j, k, n);
+}
+
 TEST(StepJoiner, StepCompleteOnceEveryLiveAgentReported) {
   // GIVEN a joiner with the truth of step 0 for 3 live agents
   StepJoiner j;
@@ -113,8 +119,7 @@ TEST(StepJoiner, MissingStateReleasedAfterHorizonInOrder) {
   j.addState(state(0, 0));  // UAV 1 never reports for step 0
   // WHEN steps 1 to 4 arrive complete THEN none is released ahead of step 0
   for (int k = 1; k <= 4; ++k) {
-    j.addTruth(truth(k, 2));
-    allStates(j, k, 2);
+    completeStep(j, k, 2);
     // Steps 1..4 are complete, but nothing overtakes step 0.
     EXPECT_TRUE(j.takeReady().empty()) << k;
   }
@@ -267,8 +272,7 @@ TEST(StepJoiner, FlushReleasesIncompleteStepsInOrder) {
   // GIVEN a joiner with the truth of steps 0 and 1 for 2 UAVs, and only step 1's states
   StepJoiner j;
   j.addTruth(truth(0, 2));
-  j.addTruth(truth(1, 2));
-  allStates(j, 1, 2);
+  completeStep(j, 1, 2);
   // WHEN it is flushed (the end of the run)
   const std::vector<JoinedStep> rest = j.flush();
   // THEN both steps are released in order, step 0 incomplete with 2 missing states
@@ -293,10 +297,7 @@ TEST(StepJoiner, IncompleteStepWaitsForTheGraceEvenPastTheHorizon) {
   // WHEN step 0 misses UAV 1's state and 5 newer complete steps arrive within 0.5 s
   j.addTruth(truth(0, 2));
   j.addState(state(0, 0));
-  for (int k = 1; k <= 5; ++k) {
-    j.addTruth(truth(k, 2));
-    allStates(j, k, 2);
-  }
+  for (int k = 1; k <= 5; ++k) completeStep(j, k, 2);
   j.advanceClock(10.5);
   // THEN nothing is released: steps leave in order and step 0 may still complete
   EXPECT_TRUE(j.takeReady().empty());
@@ -309,10 +310,7 @@ TEST(StepJoiner, IncompleteStepWaitsForTheGraceEvenPastTheHorizon) {
 
   // GIVEN another incomplete step WHEN the grace has passed THEN it is released incomplete, the rest after it
   j.addTruth(truth(6, 2));
-  for (int k = 7; k <= 9; ++k) {
-    j.addTruth(truth(k, 2));
-    allStates(j, k, 2);
-  }
+  for (int k = 7; k <= 9; ++k) completeStep(j, k, 2);
   j.advanceClock(11.49);
   EXPECT_TRUE(j.takeReady().empty());
   j.advanceClock(11.5);
