@@ -16,7 +16,7 @@
 
 #include "swa/wire/agent_state.h"
 #include "swa/wire/samples.h"
-#include "swa/dds/shutdown.h"
+#include "swa/app/signals.h"
 #include "swa/dds/topics.h"
 
 namespace swa::agent_node {
@@ -30,9 +30,6 @@ constexpr auto kQuietPoll = std::chrono::milliseconds(20);
 // The state is published at least this often once the agent has run, and says STAGE_NO_INPUT after this long
 // without a valid IMU sample.
 constexpr auto kHeartbeat = std::chrono::seconds(1);
-// Secure start without a reader of our commands: re-create the participant after 5 s, then 10, 20, 40, 60 s.
-constexpr auto kReconnectFirst = std::chrono::seconds(5);
-constexpr auto kReconnectMax = std::chrono::seconds(60);
 // A detection / GNSS sample waits for the IMU of its step at most this much newer sim time (sample_order.h).
 constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 // After a peer came back from an expired lease, how long its endpoints get to re-match ours before the participant
@@ -57,19 +54,19 @@ AgentNode::AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id
     : id_(uav_id),
       domain_id_(domain_id),
       profiles_file_(profiles_file),
-      secure_(isSecure()),
       agent_(config),
       order_(kHoldLimitNs),
       started_(std::chrono::steady_clock::now()),
       last_input_(started_),
       last_state_(started_),
-      last_fresh_imu_(started_) {
+      last_fresh_imu_(started_),
+      handshake_(isSecure()) {
   connect();
 }
 
 void AgentNode::connect() {
   participant_ = std::make_unique<dds::Participant>("swa_agent_" + std::to_string(id_), domain_id_, profiles_file_);
-  connected_at_ = std::chrono::steady_clock::now();
+  handshake_.connected(std::chrono::steady_clock::now());
   // Writers first: a command must have somewhere to go as soon as the first IMU sample is processed.
   cmd_writer_ = participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), "swa_command_writer");
   state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), "swa_state_writer");
@@ -114,20 +111,10 @@ std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn() {
   return "participant " + peer_back_name_ + " came back after its DDS lease expired and these did not re-match:" + lost;
 }
 
-bool AgentNode::handshakeStalled() {
-  // With DDS Security, Fast DDS 2.9 sometimes never completes the authentication handshake of one pair of
-  // participants that start together (measured: 8 agents + simulator, the simulator missed one agent for good in
-  // about 1 start in 4; see deploy/README.md). A new participant (new GUID) gets a fresh handshake with everyone.
-  // Only before the first IMU sample and while nobody reads our commands, so a running agent is never disturbed,
-  // and with a growing period, so an absent simulator / bridge costs one reconnection per minute at most.
-  if (!secure_ || stats_.imu > 0 || cmd_writer_.matched() > 0) return false;
-  const auto wait = std::min(kReconnectFirst * (1 << std::min(reconnects_, 4)), kReconnectMax);
-  return std::chrono::steady_clock::now() - connected_at_ >= wait;
-}
 AgentNode::~AgentNode() { participant_.reset(); }
 
 int AgentNode::run() {
-  while (!dds::shutdownRequested()) {
+  while (!stop_requested_) {
     std::this_thread::sleep_for(kQuietPoll);
     // Matched-status queries stay outside mutex_: a listener delivering a sample may hold its reader's lock while it
     // waits for mutex_ (seen: every agent of a loaded host stuck after its first samples).
@@ -145,7 +132,7 @@ int AgentNode::run() {
     }
     noteYoungerTwin();
     std::string why;
-    if (handshakeStalled()) {
+    if (handshake_.stalled(stats_.imu > 0, cmd_writer_.matched() > 0, std::chrono::steady_clock::now())) {
       why = "no reader of " + dds::topics::cmdVel(id_) +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {
@@ -170,7 +157,36 @@ int AgentNode::run() {
     }
   }
   participant_.reset();
+  logFinalCounts();
   return 0;
+}
+
+void AgentNode::logFinalCounts() const {
+  const AgentNodeStats& s = stats_;
+  std::fprintf(stderr,
+               "swa_agent %d: stopping on signal %d after %llu IMU, %llu detection, %llu GNSS samples; %llu commands, "
+               "%llu states, %llu foreign samples, %llu write failures\n",
+               id_, app::shutdownSignal(), static_cast<unsigned long long>(s.imu),
+               static_cast<unsigned long long>(s.detections), static_cast<unsigned long long>(s.gnss),
+               static_cast<unsigned long long>(s.commands), static_cast<unsigned long long>(s.states),
+               static_cast<unsigned long long>(s.foreign), static_cast<unsigned long long>(s.write_failures));
+  // Where the agent stood at the end: a supervisor (or a person reading the log) sees whether it was flying
+  // relative to its neighbours when it stopped.
+  const agent::Diagnostics& d = agent_.diagnostics();
+  const char* stage = d.stage == agent::Stage::kTracking ? "tracking" : d.stage == agent::Stage::kLost ? "lost"
+                                                                                                      : "initializing";
+  std::fprintf(stderr, "swa_agent %d: final stage %s, %d confirmed track(s), frame fitted on %d neighbour(s)\n", id_,
+               stage, d.confirmed_tracks, d.neighbour_count);
+  const agent::RejectCounters& r = d.rejected;
+  std::fprintf(stderr,
+               "swa_agent %d: inputs rejected: %llu non-finite, %llu out of order, %llu future stamp, %llu oversize, "
+               "%llu bad id, %llu implausible, %llu before a heading; %llu stamp resync(s), %llu forced release(s) "
+               "from the stamp orderer, %llu replayed sample(s) dropped after a reconnection\n",
+               id_, static_cast<unsigned long long>(r.nonfinite), static_cast<unsigned long long>(r.out_of_order),
+               static_cast<unsigned long long>(r.future), static_cast<unsigned long long>(r.oversize),
+               static_cast<unsigned long long>(r.bad_id), static_cast<unsigned long long>(r.implausible),
+               static_cast<unsigned long long>(r.no_heading), static_cast<unsigned long long>(d.stamp_resyncs),
+               static_cast<unsigned long long>(order_.forcedReleases()), static_cast<unsigned long long>(s.replayed));
 }
 
 void AgentNode::refuseAsTwin() {

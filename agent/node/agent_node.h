@@ -12,6 +12,7 @@
 //     sample (a rejected sample gets no command, so the autopilot's offboard timeout is what holds the UAV).
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -29,6 +30,8 @@
 #include "replay_filter.h"
 #include "sample_order.h"
 #include "swa/agent/agent.h"
+#include "swa/app/program.h"
+#include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 
 namespace swa::agent_node {
@@ -42,18 +45,19 @@ struct AgentNodeStats {
   std::uint64_t replayed = 0;         // history sent again to a re-created participant, dropped (replay_filter.h)
 };
 
-class AgentNode {
+class AgentNode : public app::Role {
  public:
   // run()'s status when an older agent with this id runs in the same swarm (peer_book.h).
   static constexpr int kExitTwin = 3;
 
   // Creates every DDS entity; throws swa::dds::DdsError.
   AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file);
-  ~AgentNode();
+  ~AgentNode() override;
 
-  // Until swa::dds::shutdownRequested(): publishes the pending state when the inputs go quiet. Then deletes the DDS
-  // entities, so no listener runs any more and stats() / diagnostics() are final. Returns the exit status.
-  int run();
+  // Until stop(): publishes the pending state when the inputs go quiet. Then deletes the DDS entities, so no
+  // listener runs any more and stats() / diagnostics() are final, and logs them. Returns the exit status.
+  int run() override;
+  void stop() override { stop_requested_ = true; }
   const AgentNodeStats& stats() const { return stats_; }
   const agent::Diagnostics& diagnostics() const { return agent_.diagnostics(); }
 
@@ -61,7 +65,6 @@ class AgentNode {
   using Input = std::variant<msg::Imu, msg::Detections, msg::GnssFix>;
 
   void connect();             // creates the participant and the endpoints
-  bool handshakeStalled();    // secure start that never matched a reader of our commands: reconnect?
   void onInput(Input&& in);  // listener threads
   void handle(Input& in);
   void publishState(agent::StampNs stamp_ns, bool no_input = false);
@@ -70,11 +73,11 @@ class AgentNode {
   // Why the participant must be re-created after a peer came back from an expired lease, if it must.
   std::optional<std::string> endpointsLostAfterPeerReturn();
   void noteYoungerTwin();
+  void logFinalCounts() const;
 
   const int id_;
   const int domain_id_;
   const std::string profiles_file_;
-  const bool secure_;
   agent::Agent agent_;
   StampOrderer<Input> order_;
   std::chrono::steady_clock::time_point started_;
@@ -91,8 +94,9 @@ class AgentNode {
   std::chrono::steady_clock::time_point last_state_;      // wall time of the last published state
   std::chrono::steady_clock::time_point last_fresh_imu_;  // wall time of the last accepted IMU sample
   bool had_fresh_imu_ = false;
-  std::chrono::steady_clock::time_point connected_at_;
+  dds::HandshakeWatch handshake_;
   int reconnects_ = 0;
+  std::atomic<bool> stop_requested_{false};
   dds::PeerKey reported_twin_{};
   int peers_back_ = 0;  // PeerBook count of the current participant
   std::optional<std::chrono::steady_clock::time_point> peer_back_at_;

@@ -8,13 +8,14 @@
 
 namespace swa::batch {
 
-std::vector<RunResult> runSeeds(const sim::Scenario& scenario, int seeds, int jobs, const SeedDone& on_done) {
+std::vector<RunResult> runSeeds(const sim::Scenario& scenario, int seeds, int jobs, const SeedDone& on_done,
+                                const std::atomic<bool>& stop) {
   std::vector<RunResult> results(static_cast<std::size_t>(seeds));
   std::atomic<int> next{0};
   std::mutex done_mutex;
   std::exception_ptr failure;
   auto worker = [&] {
-    for (int k = next++; k < seeds; k = next++) {
+    for (int k = next++; k < seeds && !stop; k = next++) {
       try {
         sim::Scenario s = scenario;
         s.seed = scenario.seed + static_cast<std::uint64_t>(k);
@@ -35,6 +36,11 @@ std::vector<RunResult> runSeeds(const sim::Scenario& scenario, int seeds, int jo
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
   return results;
+}
+
+std::vector<RunResult> runSeeds(const sim::Scenario& scenario, int seeds, int jobs, const SeedDone& on_done) {
+  const std::atomic<bool> never{false};
+  return runSeeds(scenario, seeds, jobs, on_done, never);
 }
 
 }  // namespace swa::batch

@@ -1,16 +1,19 @@
 // swa_batch: Monte Carlo runs of the simulator with N in-process agent cores. See --help.
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "batch_options.h"
 #include "batch_runner.h"
 #include "swa/agent/config_io.h"
+#include "swa/app/program.h"
 #include "swa/monitor/output_dir.h"
 #include "swa/record/events.h"
 #include "swa/record/run_dir.h"
@@ -91,81 +94,88 @@ void printAggregate(const std::vector<std::vector<batch::RunResult>>& modes) {
   }
 }
 
+// swa_batch as a process role: the seeds of every mode, then summary.json, the per-seed series and the report.
+class Batch : public app::Role {
+ public:
+  Batch(batch::BatchOptions options, sim::Scenario scenario)
+      : opt_(std::move(options)), scenario_(std::move(scenario)) {}
+  int run() override;
+  void stop() override { stop_ = true; }
+
+ private:
+  const batch::BatchOptions opt_;
+  const sim::Scenario scenario_;
+  std::atomic<bool> stop_{false};
+};
+
+int Batch::run() {
+  const batch::BatchOptions& opt = opt_;
+  const sim::Scenario& scenario = scenario_;
+  std::vector<agent::Mode> modes{scenario.agent.mode};
+  if (opt.compare && *opt.compare != scenario.agent.mode) modes.push_back(*opt.compare);
+  std::printf("swa_batch: %s, %d UAVs, %.0f s, seeds %llu..%llu, %d job(s)\n", opt.scenario_path.c_str(),
+              scenario.uav_count, scenario.duration_s, static_cast<unsigned long long>(scenario.seed),
+              static_cast<unsigned long long>(scenario.seed + static_cast<std::uint64_t>(opt.seeds) - 1), opt.jobs);
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  std::vector<std::vector<batch::RunResult>> results;
+  for (agent::Mode m : modes) {
+    sim::Scenario s = scenario;
+    s.agent.mode = m;
+    results.push_back(batch::runSeeds(s, opt.seeds, opt.jobs, printSeed, stop_));
+  }
+  if (stop_) {
+    std::fprintf(stderr, "swa_batch: interrupted before every seed ran: nothing written\n");
+    return 3;
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  printAggregate(results);
+
+  const fs::path out(opt.out_dir);
+  fs::create_directories(out);
+  record::Json summary{{"scenario", opt.scenario_path},
+                       {"uav_count", scenario.uav_count},
+                       {"duration_s", scenario.duration_s},
+                       {"seeds", opt.seeds},
+                       {"runs", record::Json::array()}};
+  for (const std::vector<batch::RunResult>& runs : results) {
+    summary["runs"].push_back(modeJson(runs));
+    writeSeries(out / agent::toString(runs.front().mode), runs);
+  }
+  record::writeTextFile((out / record::kSummaryFile).string(), record::jsonText(summary));
+  record::writeTextFile((out / record::kScenarioFile).string(), sim::scenarioToYaml(scenario));
+  // The report shows the first seed of every mode side by side (the paper's comparison figure).
+  std::vector<monitor::RunReport> report_runs;
+  for (const auto& runs : results) {
+    const batch::RunResult& r = runs.front();
+    report_runs.push_back({agent::toString(r.mode) + " (seed " + std::to_string(r.seed) + ")", r.summary, r.series,
+                           r.trajectories, ""});
+  }
+  monitor::ReportNotes notes;
+  notes.title = "SWA batch report";
+  notes.scenario = opt.scenario_path;
+  for (int k = 0; k < opt.seeds; ++k) notes.seeds.push_back(scenario.seed + static_cast<std::uint64_t>(k));
+  notes.formation_radius_m = scenario.agent.formation.radius_m;
+  notes.gnss_loss_s = sim::driftWindowStart(scenario) > 0.0 ? sim::driftWindowStart(scenario) : monitor::kNaN;
+  notes.extra.push_back({"plots", "first seed of each mode; summary.json has every seed and the aggregate"});
+  monitor::writeReport((out / "report").string(), report_runs, notes);
+  const double simulated = scenario.duration_s * opt.seeds * static_cast<double>(modes.size());
+  std::printf("\n%.0f simulated s in %.2f s wall, %.2f s CPU (%.0fx real time per CPU second)\nwrote %s and %s\n",
+              simulated, wall, cpu, simulated / std::max(cpu, 1e-9), (out / "summary.json").c_str(),
+              (out / "report" / "report.html").c_str());
+  return 0;
+}
+
+app::Plan prepare(const std::vector<std::string>& args) {
+  const batch::BatchOptions opt = batch::parseBatchOptions(args);
+  if (auto done = app::printIf(opt.help, batch::batchUsage)) return *done;
+  if (auto done = app::printIf(opt.list_parameters, sim::describeScenarioParameters)) return *done;
+  const sim::Scenario scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
+  monitor::prepareOutputDir(opt.out_dir);  // before hours of seeds, not after
+  return app::startWith([opt, scenario]() -> std::unique_ptr<app::Role> { return std::make_unique<Batch>(opt, scenario); });
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  batch::BatchOptions opt;
-  sim::Scenario scenario;
-  try {
-    opt = batch::parseBatchOptions(std::vector<std::string>(argv + 1, argv + argc));
-    if (opt.help) {
-      std::cout << batch::batchUsage();
-      return 0;
-    }
-    if (opt.list_parameters) {
-      std::cout << sim::describeScenarioParameters();
-      return 0;
-    }
-    scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
-    monitor::prepareOutputDir(opt.out_dir);  // before hours of seeds, not after
-  } catch (const std::exception& e) {
-    std::cerr << "swa_batch: " << e.what() << "\n";
-    return 2;
-  }
-
-  try {
-    std::vector<agent::Mode> modes{scenario.agent.mode};
-    if (opt.compare && *opt.compare != scenario.agent.mode) modes.push_back(*opt.compare);
-    std::printf("swa_batch: %s, %d UAVs, %.0f s, seeds %llu..%llu, %d job(s)\n", opt.scenario_path.c_str(),
-                scenario.uav_count, scenario.duration_s, static_cast<unsigned long long>(scenario.seed),
-                static_cast<unsigned long long>(scenario.seed + static_cast<std::uint64_t>(opt.seeds) - 1), opt.jobs);
-    const auto wall0 = std::chrono::steady_clock::now();
-    const std::clock_t cpu0 = std::clock();
-    std::vector<std::vector<batch::RunResult>> results;
-    for (agent::Mode m : modes) {
-      sim::Scenario s = scenario;
-      s.agent.mode = m;
-      results.push_back(batch::runSeeds(s, opt.seeds, opt.jobs, printSeed));
-    }
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
-    printAggregate(results);
-
-    const fs::path out(opt.out_dir);
-    fs::create_directories(out);
-    record::Json summary{{"scenario", opt.scenario_path},
-                         {"uav_count", scenario.uav_count},
-                         {"duration_s", scenario.duration_s},
-                         {"seeds", opt.seeds},
-                         {"runs", record::Json::array()}};
-    for (const std::vector<batch::RunResult>& runs : results) {
-      summary["runs"].push_back(modeJson(runs));
-      writeSeries(out / agent::toString(runs.front().mode), runs);
-    }
-    record::writeTextFile((out / record::kSummaryFile).string(), record::jsonText(summary));
-    record::writeTextFile((out / record::kScenarioFile).string(), sim::scenarioToYaml(scenario));
-    // The report shows the first seed of every mode side by side (the paper's comparison figure).
-    std::vector<monitor::RunReport> report_runs;
-    for (const auto& runs : results) {
-      const batch::RunResult& r = runs.front();
-      report_runs.push_back({agent::toString(r.mode) + " (seed " + std::to_string(r.seed) + ")", r.summary, r.series,
-                             r.trajectories, ""});
-    }
-    monitor::ReportNotes notes;
-    notes.title = "SWA batch report";
-    notes.scenario = opt.scenario_path;
-    for (int k = 0; k < opt.seeds; ++k) notes.seeds.push_back(scenario.seed + static_cast<std::uint64_t>(k));
-    notes.formation_radius_m = scenario.agent.formation.radius_m;
-    notes.gnss_loss_s = sim::driftWindowStart(scenario) > 0.0 ? sim::driftWindowStart(scenario) : monitor::kNaN;
-    notes.extra.push_back({"plots", "first seed of each mode; summary.json has every seed and the aggregate"});
-    monitor::writeReport((out / "report").string(), report_runs, notes);
-    const double simulated = scenario.duration_s * opt.seeds * static_cast<double>(modes.size());
-    std::printf("\n%.0f simulated s in %.2f s wall, %.2f s CPU (%.0fx real time per CPU second)\nwrote %s and %s\n",
-                simulated, wall, cpu, simulated / std::max(cpu, 1e-9), (out / "summary.json").c_str(),
-                (out / "report" / "report.html").c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::cerr << "swa_batch: " << e.what() << "\n";
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return app::runProgram("swa_batch", "scenario", argc, argv, prepare); }

@@ -2,6 +2,7 @@
 
 #include <signal.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,7 +15,7 @@
 
 #include "child_process.h"
 #include "restart_policy.h"
-#include "swa/dds/shutdown.h"
+#include "swa/app/signals.h"
 #include "swa/record/run_dir.h"
 #include "swa/sim/scenario_io.h"
 
@@ -41,8 +42,10 @@ struct AgentSlot {
 
 class Supervisor {
  public:
-  Supervisor(const LaunchOptions& options, const Binaries& bin, int domain, const RunSpec& spec)
+  Supervisor(const LaunchOptions& options, const Binaries& bin, int domain, const RunSpec& spec,
+             const std::atomic<bool>& stop)
       : o_(options),
+        stop_(stop),
         bin_(bin),
         domain_(std::to_string(domain)),
         spec_(spec),
@@ -171,7 +174,7 @@ class Supervisor {
   void supervise() {
     std::optional<Clock::time_point> sim_done_at, monitor_done_at;
     while (true) {
-      if (dds::shutdownRequested()) requestStop(dds::shutdownSignal() == SIGINT ? "SIGINT" : "SIGTERM");
+      if (stop_) requestStop(app::shutdownSignal() == SIGINT ? "SIGINT" : app::shutdownSignal() == 0 ? "stop" : "SIGTERM");
       if (o_.timeout_s > 0.0 && secondsSince(t0_) > o_.timeout_s) requestStop("--timeout-s reached");
 
       if (!sim_done_at) {
@@ -265,6 +268,7 @@ class Supervisor {
   }
 
   const LaunchOptions& o_;
+  const std::atomic<bool>& stop_;
   const Binaries& bin_;
   std::string domain_;
   RunSpec spec_;
@@ -284,8 +288,9 @@ class Supervisor {
 
 }  // namespace
 
-RunOutcome superviseRun(const LaunchOptions& options, const Binaries& bin, int domain, const RunSpec& spec) {
-  return Supervisor(options, bin, domain, spec).run();
+RunOutcome superviseRun(const LaunchOptions& options, const Binaries& bin, int domain, const RunSpec& spec,
+                        const std::atomic<bool>& stop) {
+  return Supervisor(options, bin, domain, spec, stop).run();
 }
 
 }  // namespace swa::launch

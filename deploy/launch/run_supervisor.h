@@ -3,6 +3,7 @@
 // restarted when they crash; everything stopped and reaped at the end. The launcher's main() calls this once, or
 // twice for --compare.
 
+#include <atomic>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -31,8 +32,10 @@ struct RunOutcome {
   std::string verdict;       // the monitor's verdict line from summary.json, if any
 };
 
-// Returns when every child has exited. Throws std::runtime_error only when nothing could be started (e.g. the
-// output directory is not writable); failures of children are reported in the outcome.
-RunOutcome superviseRun(const LaunchOptions& options, const Binaries& bin, int domain, const RunSpec& spec);
+// Returns when every child has exited; `stop` (SIGINT / SIGTERM) ends the run early. Throws std::runtime_error only
+// when nothing could be started (e.g. the output directory is not writable); failures of children are reported in the
+// outcome.
+RunOutcome superviseRun(const LaunchOptions& options, const Binaries& bin, int domain, const RunSpec& spec,
+                        const std::atomic<bool>& stop);
 
 }  // namespace swa::launch

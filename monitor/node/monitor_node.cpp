@@ -15,7 +15,7 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 
 #include "msg_convert.h"
-#include "swa/dds/shutdown.h"
+#include "swa/app/signals.h"
 #include "swa/dds/topics.h"
 
 namespace swa::monitor_node {
@@ -41,7 +41,7 @@ MonitorNode::MonitorNode(LiveRun& run, const MonitorNodeOptions& options, int do
       pacer_(isatty(fileno(stderr)) != 0),
       domain_id_(domain_id),
       profiles_file_(profiles_file),
-      secure_(std::getenv("SWA_SECURITY_DIR") != nullptr && *std::getenv("SWA_SECURITY_DIR") != '\0') {
+      handshake_(std::getenv("SWA_SECURITY_DIR") != nullptr && *std::getenv("SWA_SECURITY_DIR") != '\0') {
   if (options_.uav_count) {
     for (int i = 0; i < *options_.uav_count; ++i) state_readers_.insert(i);
   } else {
@@ -58,6 +58,7 @@ MonitorNode::~MonitorNode() { participant_.reset(); }
 void MonitorNode::connect() {
   participant_ = std::make_unique<dds::Participant>("swa_monitor", domain_id_, profiles_file_);
   connected_at_ = std::chrono::steady_clock::now();
+  handshake_.connected(connected_at_);
   state_reader_handles_.clear();
   truth_reader_ = {};
   for (const int uav : state_readers_) createStateReader(uav);
@@ -108,17 +109,13 @@ void MonitorNode::createStateReader(int uav) {
 }
 
 void MonitorNode::reconnectIfHandshakeStalled() {
-  // The same Fast DDS 2.9 stalled authentication handshake as in swa_agent (agent_node.cpp, deploy/README.md),
-  // here with the simulator: before the first truth sample, with no truth writer matched, a new participant (new
-  // GUID) gets a fresh handshake. After 5 s, then 10, 20, 40, 60 s.
-  if (!secure_ || truth_seen_ || truth_reader_.matched() > 0) return;
-  const auto wait = std::min(std::chrono::seconds(5) * (1 << std::min(reconnects_, 4)), std::chrono::seconds(60));
-  if (std::chrono::steady_clock::now() - connected_at_ < wait) return;
-  ++reconnects_;
+  // The stalled DDS Security handshake of swa_agent (handshake_watch.h), here with the simulator: before the first
+  // truth sample, with no truth writer matched.
+  if (!handshake_.stalled(truth_seen_, truth_reader_.matched() > 0, std::chrono::steady_clock::now())) return;
   std::fprintf(stderr,
                "swa_monitor: no writer of %s with DDS Security on: re-creating the participant (reconnection %d; a "
                "stalled authentication handshake, see deploy/README.md)\n",
-               dds::topics::kTruth, reconnects_);
+               dds::topics::kTruth, handshake_.reconnects());
   participant_.reset();
   connect();
 }
@@ -140,8 +137,8 @@ RunEnd MonitorNode::run() {
     const double now_s = elapsed();
     showStatus(now_s, false);
 
-    if (dds::shutdownRequested()) {
-      end = {false, "interrupted by " + signalName(dds::shutdownSignal())};
+    if (stop_requested_) {
+      end = {false, app::shutdownSignal() != 0 ? "interrupted by " + signalName(app::shutdownSignal()) : "stopped"};
       break;
     }
     if (const std::optional<EventRecord>& e = run_.endEvent()) {

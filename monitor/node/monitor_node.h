@@ -3,6 +3,7 @@
 // swa/uav<i>/state, hands every sample to one worker thread (the listeners only push into a queue), converts it
 // and feeds the LiveRun, prints the status line, and decides when the run has ended. No metric is computed here.
 
+#include <atomic>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -19,6 +20,7 @@
 #include "live_run.h"
 #include "status_line.h"
 #include "swa/agent/config.h"
+#include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
 
@@ -42,8 +44,9 @@ class MonitorNode {
   MonitorNode(const MonitorNode&) = delete;
   MonitorNode& operator=(const MonitorNode&) = delete;
 
-  // Feeds the LiveRun until the end event (plus the grace), a signal, or the timeout. Does not call finish().
+  // Feeds the LiveRun until the end event (plus the grace), stop(), or the timeout. Does not call finish().
   RunEnd run();
+  void stop() { stop_requested_ = true; }
 
  private:
   struct StateInput {
@@ -69,10 +72,10 @@ class MonitorNode {
   bool readers_from_truth_pending_ = false;
   const int domain_id_;
   const std::string profiles_file_;
-  const bool secure_;
   bool truth_seen_ = false;
-  int reconnects_ = 0;
   std::chrono::steady_clock::time_point connected_at_;
+  dds::HandshakeWatch handshake_;
+  std::atomic<bool> stop_requested_{false};
 
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Input> queue_;

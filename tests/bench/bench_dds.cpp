@@ -39,7 +39,7 @@
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
-#include "swa/dds/shutdown.h"
+#include "swa/app/signals.h"
 
 // Fast DDS declares a global `namespace dds`: stay inside namespace swa so `dds::` is ours.
 namespace swa::bench {
@@ -194,7 +194,7 @@ struct PingResult {
 // The echo peer: answers every ping with a pong echoing its seq and stamp, from the listener (raw) or through a
 // queue and this thread (as swa_agent: listener -> queue -> worker -> write).
 int echoMain(int domain, const std::string& mode, int index) {
-  dds::installShutdownHandlers();
+  app::installShutdownHandlers();
   dds::SampleQueue<msg::Imu> queue;
   const bool in_listener = mode == "listener";
   auto participant = std::make_unique<dds::Participant>("swa_bench_echo", domain, dds::resolveProfilesFile());
@@ -216,9 +216,9 @@ int echoMain(int domain, const std::string& mode, int index) {
       queue.push(std::move(m));
     }
   });
-  dds::acceptShutdownSignals();
+  app::acceptShutdownSignals();
   std::vector<msg::Imu> batch;
-  while (!dds::shutdownRequested()) {
+  while (!app::shutdownRequested()) {
     batch.clear();
     queue.drain(batch, std::chrono::milliseconds(100));
     for (const msg::Imu& m : batch) answer(m);
@@ -252,7 +252,7 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
           pongTopic(j), "swa_command_reader",
           [&queue](msg::VelocitySetpoint&& m) { queue.push(Pong{m.uav_id(), m.answered_seq(), Clock::now()}); }));
     }
-    dds::acceptShutdownSignals();
+    app::acceptShutdownSignals();
     const auto allMatched = [&] {
       for (int j = 0; j < peers; ++j) {
         if (pings[static_cast<std::size_t>(j)].matched() < 1 || pongs[static_cast<std::size_t>(j)].matched() < 1) {
@@ -262,7 +262,7 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
       return true;
     };
     const auto t_disc = Clock::now();
-    while (!allMatched() && secondsSince(t_disc) < 30.0 && !dds::shutdownRequested()) {
+    while (!allMatched() && secondsSince(t_disc) < 30.0 && !app::shutdownRequested()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     if (!allMatched()) throw std::runtime_error("ping-pong: echo peers not discovered");
@@ -288,10 +288,10 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
           double& cell = rtt_us[at(x.peer, x.seq)];
           if (std::isnan(cell)) cell = std::chrono::duration<double, std::micro>(x.received - sent[at(x.peer, x.seq)]).count();
         }
-      } while (Clock::now() < until && !dds::shutdownRequested());
+      } while (Clock::now() < until && !app::shutdownRequested());
     };
     const auto t0 = Clock::now();
-    for (int i = 1; i <= total && !dds::shutdownRequested(); ++i) {
+    for (int i = 1; i <= total && !app::shutdownRequested(); ++i) {
       for (int j = 0; j < peers; ++j) {
         msg::Imu m;
         m.header().seq(static_cast<std::uint32_t>(i));
@@ -400,7 +400,7 @@ SwarmResult runSwarm(const SwarmSpec& spec, const fs::path& dir) {
     return s;
   };
   const double bound_s = 180.0 + (spec.realtime ? spec.duration_s : 20.0 * spec.duration_s);
-  while (!(status = sim.wait(0.05)) && secondsSince(t0) < bound_s && !dds::shutdownRequested()) {
+  while (!(status = sim.wait(0.05)) && secondsSince(t0) < bound_s && !app::shutdownRequested()) {
     if (!stepping) {
       if (readFile(base / "sim.log").find("discovered in") != std::string::npos) stepping = Clock::now();
       continue;
@@ -460,7 +460,7 @@ int latencySection(const Options& opt, const fs::path& dir) {
   std::vector<double> raw50, raw99, thr50, thr99, fan50, fan99, fanthr50, fanthr99, loop50, loop99, loopmax, late,
       missing, rss, pss;
   constexpr int kFanOut = 8;  // the loop's N
-  for (int rep = 0; rep < opt.reps && !dds::shutdownRequested(); ++rep) {
+  for (int rep = 0; rep < opt.reps && !app::shutdownRequested(); ++rep) {
     const PingResult raw = pingPong(opt, dir, "listener", 1);
     const PingResult thr = pingPong(opt, dir, "thread", 1);
     const PingResult fan = pingPong(opt, dir, "listener", kFanOut);
@@ -541,7 +541,7 @@ int latencySection(const Options& opt, const fs::path& dir) {
   std::printf("\n| agents N (realtime, %.0f s each) | loop p50 | loop p99 | p50 / raw p50 |\n|---|---|---|---|\n",
               sweep_s);
   for (const int n : {1, 2, 4}) {
-    if (dds::shutdownRequested()) break;
+    if (app::shutdownRequested()) break;
     const SwarmSpec spec{"dropout_8.yaml", n, true, sweep_s, "latency_sweep_n" + std::to_string(n), {}};
     const SwarmResult s = runSwarm(spec, dir);
     if (!s.ok) {
@@ -567,7 +567,7 @@ int lockstepSection(const Options& opt, const fs::path& dir) {
   std::fflush(stdout);
   for (const int n : {4, 8, 16, 32}) {
     std::vector<double> speed, wall, p50, p99;
-    for (int rep = 0; rep < opt.reps && !dds::shutdownRequested(); ++rep) {
+    for (int rep = 0; rep < opt.reps && !app::shutdownRequested(); ++rep) {
       const SwarmSpec spec{scenarioFor(n), n, false, sim_s,
                            "lockstep_n" + std::to_string(n) + "_rep" + std::to_string(rep + 1), {}};
       const SwarmResult s = runSwarm(spec, dir);
@@ -604,7 +604,7 @@ int scaleSection(const Options& opt, const fs::path& dir) {
   std::fflush(stdout);
   int largest = 0;
   for (const int n : {8, 16, 24, 32, 40, 48}) {
-    if (dds::shutdownRequested() || largest != n - 8) break;  // stop at the first failure
+    if (app::shutdownRequested() || largest != n - 8) break;  // stop at the first failure
     if (n > 32 && largest < 32) break;                         // 40 and 48 only if 32 passes
     const SwarmSpec spec{scenarioFor(n), n, true, run_s, "scale_n" + std::to_string(n), {}};
     const SwarmResult s = runSwarm(spec, dir);
@@ -645,7 +645,7 @@ int securitySection(const Options& opt, const fs::path& dir) {
   }
   int failures = 0;
   std::vector<double> off50, off99, on50, on99, late_on;
-  for (int rep = 0; rep < opt.reps && !dds::shutdownRequested(); ++rep) {
+  for (int rep = 0; rep < opt.reps && !app::shutdownRequested(); ++rep) {
     for (const bool secure : {rep % 2 == 1, rep % 2 == 0}) {
       SwarmSpec spec{"dropout_8.yaml", 8, true, opt.duration_s,
                      std::string(secure ? "secure" : "plain") + "_rep" + std::to_string(rep + 1), {}};
@@ -678,7 +678,7 @@ int securitySection(const Options& opt, const fs::path& dir) {
 }
 
 int benchMain(const Options& opt) {
-  dds::installShutdownHandlers();
+  app::installShutdownHandlers();
   const fs::path dir = opt.keep.empty()
                            ? fs::temp_directory_path() / ("swa_bench_dds_" + std::to_string(::getpid()))
                            : fs::path(opt.keep);
@@ -690,13 +690,13 @@ int benchMain(const Options& opt) {
   int failures = 0;
   if (all || opt.only == "latency" || opt.only == "pingpong") failures += latencySection(opt, dir);
   // No DDS participant lives in this process from here on: signals may land in this thread.
-  dds::acceptShutdownSignals();
-  if ((all || opt.only == "lockstep") && !dds::shutdownRequested()) failures += lockstepSection(opt, dir);
-  if ((all || opt.only == "scale") && !dds::shutdownRequested()) failures += scaleSection(opt, dir);
-  if (opt.only == "security" && !dds::shutdownRequested()) failures += securitySection(opt, dir);
+  app::acceptShutdownSignals();
+  if ((all || opt.only == "lockstep") && !app::shutdownRequested()) failures += lockstepSection(opt, dir);
+  if ((all || opt.only == "scale") && !app::shutdownRequested()) failures += scaleSection(opt, dir);
+  if (opt.only == "security" && !app::shutdownRequested()) failures += securitySection(opt, dir);
   std::printf("\nload average at end %s\n", loadAverage().c_str());
   if (opt.keep.empty()) fs::remove_all(dir);
-  return failures == 0 && !dds::shutdownRequested() ? 0 : 1;
+  return failures == 0 && !app::shutdownRequested() ? 0 : 1;
 }
 
 }  // namespace

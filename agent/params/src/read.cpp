@@ -302,51 +302,54 @@ class Reader {
     return params::numberProblem(name, v, shown, s.kind != Kind::kReal, s.range, rangeText(s) + unitSuffix(s));
   }
 
-  // A plain scalar as a valid number for `s`, else nullopt and `fail` told why.
+  // A plain scalar as a valid number for `s`, else nullopt and `fail` told why (`fail` returns std::nullopt).
   template <class Fail>
   static std::optional<double> readNumber(const Spec& s, const YAML::Node& value, const std::string& name,
                                           const Fail& fail) {
-    if (!value.IsScalar()) return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value)), std::nullopt;
+    if (!value.IsScalar()) return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value));
     const std::string& text = value.Scalar();
-    if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected " + expectation(s)), std::nullopt;
+    if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected " + expectation(s));
     double number = 0.0;
     switch (parseNumber(text, number)) {
       case NumberStatus::kNotANumber:
-        return fail(name + " = '" + text + "' is not a number; expected " + expectation(s)), std::nullopt;
+        return fail(name + " = '" + text + "' is not a number; expected " + expectation(s));
       case NumberStatus::kUnrepresentable:
-        return fail(name + " = " + text + " cannot be represented as a double"), std::nullopt;
+        return fail(name + " = " + text + " cannot be represented as a double");
       case NumberStatus::kOk:
         break;
     }
-    if (auto why = numberProblem(s, number, name, text)) return fail(std::move(*why)), std::nullopt;
+    if (auto why = numberProblem(s, number, name, text)) return fail(std::move(*why));
     return number;
   }
 
   // The value of entry `e` for parameter `s`, or nullopt after reporting why it is not valid.
   std::optional<Value> read(const Spec& s, const Entry& e) {
     const std::string& name = e.written;
-    const auto fail = [&](std::string message) { bad(s.key, std::move(message) + e.where); };
+    const auto fail = [&](std::string message) {
+      bad(s.key, std::move(message) + e.where);
+      return std::nullopt;
+    };
     const YAML::Node& value = e.value;
-    if (value.IsNull()) return fail(name + " has no value; expected " + expectation(s)), std::nullopt;
+    if (value.IsNull()) return fail(name + " has no value; expected " + expectation(s));
     if (s.kind == Kind::kIntList || s.kind == Kind::kRecordList) {
       if (!value.IsSequence()) {
-        return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value)), std::nullopt;
+        return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value));
       }
       return s.kind == Kind::kIntList ? readIntList(s, e) : readRecords(s, e);
     }
-    if (!value.IsScalar()) return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value)), std::nullopt;
+    if (!value.IsScalar()) return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value));
     const std::string& text = value.Scalar();
     switch (s.kind) {
       case Kind::kChoice:
         if (std::find(s.choices.begin(), s.choices.end(), text) != s.choices.end()) return Value(text);
-        return fail(name + " = '" + text + "' is not valid; expected " + expectation(s)), std::nullopt;
+        return fail(name + " = '" + text + "' is not valid; expected " + expectation(s));
       case Kind::kBool:
-        if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected true or false"), std::nullopt;
+        if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected true or false");
         if (text == "true" || text == "True" || text == "TRUE") return Value(true);
         if (text == "false" || text == "False" || text == "FALSE") return Value(false);
-        return fail(name + " = '" + text + "' is not valid; expected true or false"), std::nullopt;
+        return fail(name + " = '" + text + "' is not valid; expected true or false");
       case Kind::kSeed:
-        if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected " + expectation(s)), std::nullopt;
+        if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected " + expectation(s));
         return readSeed(s, name, text, fail);
       default:
         if (const auto v = readNumber(s, value, name, fail)) return Value(*v);
@@ -364,11 +367,11 @@ class Reader {
     const bool all_digits = !digits.empty() && std::all_of(digits.begin(), digits.end(), [](char c) {
       return c >= '0' && c <= '9';
     });
-    if (!all_digits) return fail(name + " = '" + text + "' is not " + expectation(s)), std::nullopt;
+    if (!all_digits) return fail(name + " = '" + text + "' is not " + expectation(s));
     std::uint64_t seed = 0;
     const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), seed);
     if (negative || ec != std::errc() || ptr != digits.data() + digits.size()) {
-      return fail(name + " = " + text + " is out of range " + rangeText(s)), std::nullopt;
+      return fail(name + " = " + text + " is out of range " + rangeText(s));
     }
     return Value(seed);
   }
@@ -387,6 +390,7 @@ class Reader {
       const auto fail = [&](std::string message) {
         ok = false;
         bad(s.key, std::move(message) + whereIn(e, item));
+        return std::nullopt;
       };
       const std::string name = e.written + "[" + std::to_string(list.size()) + "]";
       if (const auto v = readNumber(element, item, name, fail)) list.push_back(static_cast<long long>(*v));
@@ -415,7 +419,10 @@ class Reader {
     Record record(s.fields.size(), 0.0);
     std::vector<std::string> names;
     for (const Spec& f : s.fields) names.push_back(f.key);
-    if (!item.IsMap()) return fail(name + " must be a map such as " + s.example + ", got " + nodeKindName(item), item), record;
+    if (!item.IsMap()) {
+      fail(name + " must be a map such as " + s.example + ", got " + nodeKindName(item), item);
+      return record;
+    }
     std::vector<const YAML::Node*> given(s.fields.size(), nullptr);
     std::vector<bool> valid(s.fields.size(), false);
     std::list<YAML::Node> nodes;  // copies: a YAML::Node is never assigned
@@ -439,7 +446,10 @@ class Reader {
         continue;
       }
       given[i] = &nodes.emplace_back(field.second);
-      const auto field_fail = [&](std::string message) { fail(std::move(message), field.second); };
+      const auto field_fail = [&](std::string message) {
+        fail(std::move(message), field.second);
+        return std::nullopt;
+      };
       if (const auto v = readNumber(s.fields[i], field.second, name + "." + key, field_fail)) {
         record[i] = *v;
         valid[i] = true;

@@ -38,17 +38,6 @@ void Schema::mount(const std::string& prefix, const Schema& inner, const std::st
   for (const Relation& r : inner.relations) relations.push_back({p + r.lhs, r.strict, p + r.rhs, r.why});
   for (const Alias& a : inner.aliases) aliases.push_back({p + a.alias, p + a.key});
   for (const Derived& d : inner.derived) derived.push_back({p + d.key, p + d.source});
-  for (const Check& c : inner.checks) {
-    Check outer{{}, [p, run = c.run](const Values& values, std::vector<std::string>& problems) {
-                  Values own;  // the inner check reads its own keys
-                  for (const auto& [key, value] : values) {
-                    if (startsWith(key, p)) own.emplace(key.substr(p.size()), value);
-                  }
-                  run(own, problems);
-                }};
-    for (const std::string& k : c.keys) outer.keys.push_back(p + k);
-    checks.push_back(std::move(outer));
-  }
   mounts[prefix] = comment;
 }
 

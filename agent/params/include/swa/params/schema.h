@@ -92,8 +92,8 @@ struct Schema {
   std::map<std::string, std::string> mounts;  // prefix -> comment of its section in the dump
 
   const Spec* find(const std::string& key) const;
-  // Puts every parameter and rule of `inner` under "prefix." (the scenario's `agent:` section is the agent's
-  // configuration schema).
+  // Puts every parameter, relation, alias and derived default of `inner` under "prefix." (the scenario's `agent:`
+  // section is the agent's configuration schema). Checks are not mounted: they belong to the outer schema.
   void mount(const std::string& prefix, const Schema& inner, const std::string& comment);
 };
 

@@ -1,11 +1,11 @@
-#include "swa/dds/shutdown.h"
+#include "swa/app/signals.h"
 
 #include <pthread.h>
 
 #include <atomic>
 #include <csignal>
 
-namespace swa::dds {
+namespace swa::app {
 namespace {
 
 std::atomic<int> g_signal{0};
@@ -43,4 +43,4 @@ bool shutdownRequested() { return g_signal.load() != 0; }
 
 int shutdownSignal() { return g_signal.load(); }
 
-}  // namespace swa::dds
+}  // namespace swa::app

@@ -1,0 +1,67 @@
+#include "live_monitor.h"
+
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "live_record.h"
+#include "swa/dds/options.h"
+#include "swa/monitor/report_html.h"
+#include "swa/record/restarts.h"
+#include "swa/record/run_dir.h"
+#include "swa/record/run_report.h"
+
+namespace swa::monitor_node {
+namespace {
+
+int writeOutputs(const std::string& dir, const RunRecord& run) {
+  try {
+    record::writeRunFiles(dir, run);
+    const monitor::ReportNotes notes = record::reportNotes({run}, "SWA monitor report — " + run.label);
+    const std::vector<std::string> written = monitor::writeReport(dir, record::reportRuns({run}), notes);
+    std::printf("swa_monitor: %s\n", record::verdictText(run.verdict).c_str());
+    std::printf("swa_monitor: report %s\n", written.front().c_str());
+    return record::exitCode(run.verdict.outcome);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "swa_monitor: %s\n", e.what());
+    std::printf("swa_monitor: %s (outputs incomplete)\n", record::verdictText(run.verdict).c_str());
+    return kExitIncomplete;
+  }
+}
+
+}  // namespace
+
+LiveMonitor::LiveMonitor(const MonitorOptions& options, const std::optional<sim::Scenario>& scenario,
+                         const LiveRunConfig& config, int domain_id)
+    : options_(options), scenario_(scenario), config_(config), run_(config_) {
+  MonitorNodeOptions node_options;
+  if (scenario_) node_options.uav_count = scenario_->uav_count;
+  node_options.formation = config_.formation;
+  node_options.timeout_s = options_.timeout_s;
+  node_options.quiet = options_.quiet;
+  node_ = std::make_unique<MonitorNode>(run_, node_options, domain_id, dds::resolveProfilesFile());
+}
+
+int LiveMonitor::run() {
+  RunEnd end;
+  try {
+    end = node_->run();
+  } catch (const std::exception& e) {
+    end = {false, std::string("monitor error: ") + e.what()};
+    std::fprintf(stderr, "swa_monitor: %s\n", end.reason.c_str());
+  }
+  node_.reset();  // every DDS entity deleted here: no more input
+
+  run_.finish();
+  RunContext context;
+  context.label = options_.label;
+  context.scenario = options_.scenario_path;
+  if (scenario_) context.seed = scenario_->seed;
+  context.tolerance = options_.tolerance;
+  context.end = end;
+  if (!options_.restarts_path.empty()) context.restarts = record::readRestartLog(options_.restarts_path);
+  return writeOutputs(options_.out_dir, makeRunRecord(run_, config_, context));
+}
+
+}  // namespace swa::monitor_node

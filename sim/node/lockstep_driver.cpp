@@ -1,0 +1,106 @@
+#include "lockstep_driver.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "swa/record/events.h"
+#include "swa/sim/timing.h"
+
+namespace swa::sim_node {
+
+LockstepDriver::LockstepDriver(const sim::Scenario& scenario, const SimOptions& options, sim::World& world,
+                               SimPorts& ports, SimSummary& summary, const std::atomic<bool>& stop)
+    : Driver(scenario, options, world, ports, summary, stop), lockstep_(n_) {}
+
+void LockstepDriver::run() {
+  const double startup_s = std::max(options_.agent_timeout_s, options_.startup_timeout_s);
+  while (!stop_) {
+    ports_.publishStepOutputs(aliveFn());
+    lockstep_.begin(ports_.publishSensors(std::nullopt));
+    drain(Clock::duration::zero());  // answers of dead agents are looked at even if nobody is waited for
+    // An agent that never answered may still be matching our writers (discovery is not symmetric): it gets the
+    // startup timeout, not the agent timeout, for its first answer.
+    const double timeout_s = lockstep_.waitingForNewcomer() ? startup_s : options_.agent_timeout_s;
+    auto deadline = std::max(Clock::now(), reconnect_grace_until_) + seconds(timeout_s);
+    // Checked at least once per step (stepping and publishing take milliseconds), in the answer wait and in the
+    // acknowledgment wait: wherever the simulator is stopped, the stall is seen, and the agents it kept from answering
+    // get that much longer (a stall seen here may predate the deadline: then they get more than needed, harmless).
+    bool checked = false;
+    while (!checked || (!lockstep_.complete() && !stop_)) {
+      checked = true;
+      const auto now = Clock::now();
+      const Clock::duration lost = stall_.check(now);
+      if (lost > Clock::duration::zero()) {
+        deadline += lost;  // the agents had no chance to answer while the simulator did not run
+        noteStall(lost, now);
+        deadline = std::max(deadline, reconnect_grace_until_ + seconds(timeout_s));
+      }
+      if (lockstep_.complete() || stop_) break;
+      if (now >= deadline) break;
+      drain(std::min<Clock::duration>(deadline - now, kPollPeriod));
+    }
+    if (stop_) break;
+    for (const int i : lockstep_.expire()) {
+      ++summary_.agent_dead_events;
+      std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d did not answer within %.3f s: dead, UAV %d on failsafe\n",
+                   sim::stampSeconds(world_.time_ns()), i, timeout_s, i);
+      ports_.publishEvent(record::event_kind::kAgentDead, i, timeout_s, "no answer within the agent timeout");
+    }
+    awaitSensorAcks(deadline);
+    if (stop_) break;
+    if (world_.finished()) break;
+    world_.step();
+  }
+}
+
+void LockstepDriver::awaitSensorAcks(Clock::time_point& deadline) {
+  // The agent orders its inputs by stamp (sample_order.h), which reproduces the closed loop only if this step's
+  // detections and GNSS fix are in its queue before the next step's IMU sample. DDS orders samples per topic, not
+  // across topics (a repaired loss on one topic, or another transport path, lets the next IMU overtake them), so
+  // wait until each live agent has acknowledged them: an RTPS acknowledgment follows the reader's listener call.
+  // Bounded by the step's deadline, so a stalled agent costs at most one agent timeout per step. Waited in slices of
+  // one poll period, so a stall of the simulator here is seen and moves the deadline like in the answer wait.
+  const auto acknowledged = [&](int uav) {
+    const auto slice_s = [&] {
+      const auto left = std::min<Clock::duration>(deadline - Clock::now(), kPollPeriod);
+      return std::max(0.0, std::chrono::duration<double>(left).count());
+    };
+    while (!stop_) {
+      if (ports_.detectionsAcknowledged(uav, slice_s()) && ports_.gnssAcknowledged(uav, slice_s())) return true;
+      const auto now = Clock::now();
+      const Clock::duration lost = stall_.check(now);
+      if (lost > Clock::duration::zero()) {
+        deadline += lost;
+        noteStall(lost, now);
+      }
+      if (now >= deadline) return false;
+    }
+    return false;
+  };
+  for (int i = 0; i < n_; ++i) {
+    if (!ports_.sideWritten(i) || !lockstep_.alive(i)) continue;
+    if (!acknowledged(i)) ++summary_.unacknowledged_sensor_steps;
+  }
+}
+
+void LockstepDriver::drain(Clock::duration wait) {
+  for (const SimPorts::Answer& a : ports_.drain(wait)) {
+    switch (lockstep_.onAnswer(a.uav, a.setpoint.answered_stamp_ns())) {
+      case Verdict::kApply:
+        ports_.apply(a);
+        break;
+      case Verdict::kRejoin:
+        ports_.apply(a);
+        ++summary_.agent_rejoined_events;
+        std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n",
+                     sim::stampSeconds(world_.time_ns()), a.uav);
+        ports_.publishEvent(record::event_kind::kAgentRejoined, a.uav, 0.0, "answering again");
+        break;
+      case Verdict::kIgnore:
+        ++summary_.ignored_commands;
+        break;
+    }
+  }
+}
+
+}  // namespace swa::sim_node

@@ -1,0 +1,29 @@
+#pragma once
+// Lockstep: every step's sensor samples are published, then the world waits for each live agent's answer to its IMU
+// sample (lockstep.h) up to the agent timeout, and for the acknowledgment of its detections and GNSS fix, before it
+// steps. Deterministic: the same scenario and seed give the same run as the in-process loop (deploy/batch).
+
+#include <vector>
+
+#include "driver.h"
+#include "lockstep.h"
+
+namespace swa::sim_node {
+
+class LockstepDriver : public Driver {
+ public:
+  LockstepDriver(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimPorts& ports,
+                 SimSummary& summary, const std::atomic<bool>& stop);
+
+  void run() override;
+  bool alive(int uav) const override { return lockstep_.alive(uav); }
+
+ private:
+  void drain(Clock::duration wait);
+  // Moves `deadline` by any stall of the simulator seen while waiting.
+  void awaitSensorAcks(Clock::time_point& deadline);
+
+  LockstepTracker lockstep_;
+};
+
+}  // namespace swa::sim_node

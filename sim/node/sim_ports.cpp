@@ -1,0 +1,280 @@
+#include "sim_ports.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include <swa/msg/ClockPubSubTypes.h>
+#include <swa/msg/DetectionsPubSubTypes.h>
+#include <swa/msg/GnssFixPubSubTypes.h>
+#include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SwarmTruthPubSubTypes.h>
+#include <swa/msg/VelocitySetpointPubSubTypes.h>
+
+#include "swa/dds/topics.h"
+#include "swa/sim/timing.h"
+#include "swa/wire/samples.h"
+#include "swa/wire/world.h"
+
+namespace swa::sim_node {
+namespace {
+
+// A UAV's commands may come from another writer once its current one has been silent this long (command_gate.h):
+// longer than any pause of a healthy agent (it answers every 10 ms), shorter than the launcher's restart of a crashed
+// one (0.5 s back-off plus the start).
+constexpr auto kCommandHandover = std::chrono::milliseconds(500);
+
+std::string guidText(const dds::WriterGuid& g) {
+  char text[3 * 16 + 1] = {};
+  for (std::size_t k = 0; k < g.size(); ++k) std::snprintf(text + 3 * k, 4, k + 1 < g.size() ? "%02x." : "%02x", g[k]);
+  return text;
+}
+
+}  // namespace
+
+SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimSummary& summary,
+                   const std::atomic<bool>& stop, int domain_id, const std::string& profiles_file)
+    : scenario_(scenario),
+      options_(options),
+      world_(world),
+      summary_(summary),
+      stop_(stop),
+      n_(world.uav_count()),
+      gate_(n_, kCommandHandover),
+      latency_(n_),
+      imu_seq_(static_cast<std::size_t>(n_), 0),
+      det_seq_(static_cast<std::size_t>(n_), 0),
+      gnss_seq_(static_cast<std::size_t>(n_), 0),
+      side_written_(static_cast<std::size_t>(n_), false) {
+  if (!options_.truth_out.empty()) {
+    truth_csv_.open(options_.truth_out);
+    if (!truth_csv_) throw std::runtime_error("cannot write --truth-out " + options_.truth_out);
+    truth_csv_ << "step,t_ns,uav,x_m,y_m,vx_mps,vy_mps,ax_mps2,ay_mps2,heading_rad,agent_alive,gnss_valid,failsafe\n";
+    truth_csv_ << std::setprecision(17);
+  }
+
+  participant_ = std::make_unique<dds::Participant>("swa_sim", domain_id, profiles_file);
+  events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
+  truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
+  clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
+  for (int i = 0; i < n_; ++i) {
+    imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
+    det_.push_back(
+        participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), "swa_detections_gnss_writer"));
+    gnss_.push_back(
+        participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), "swa_detections_gnss_writer"));
+    cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
+        dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
+          queue_.push(Answer{i, std::move(m), Clock::now(), w});
+        }));
+  }
+}
+
+SimPorts::~SimPorts() { participant_.reset(); }
+
+bool SimPorts::awaitDiscovery() {
+  const auto t0 = Clock::now();
+  const auto deadline = t0 + seconds(options_.startup_timeout_s);
+  std::fprintf(stderr, "swa_sim: waiting for %d agent(s) on domain %d (startup timeout %.0f s)\n", n_,
+               participant_->domainId(), options_.startup_timeout_s);
+  std::vector<std::string> missing;
+  while (!stop_) {
+    if (olderTwinRuns()) return false;
+    missing.clear();
+    for (int i = 0; i < n_; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (imu_[k].matched() < 1) missing.push_back(dds::topics::imu(i) + " (no reader)");
+      if (det_[k].matched() < 1) missing.push_back(dds::topics::detections(i) + " (no reader)");
+      if (gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
+      if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
+    }
+    if (truth_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kTruth) + " (monitor)");
+    if (events_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kEvents) + " (monitor)");
+    if (missing.empty()) {
+      summary_.discovery_s = secondsSince(t0);
+      std::fprintf(stderr, "swa_sim: all %d agent(s) discovered in %.2f s\n", n_, summary_.discovery_s);
+      return true;
+    }
+    if (Clock::now() >= deadline) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (stop_) return false;
+  std::ostringstream list;
+  for (std::size_t k = 0; k < missing.size() && k < 12; ++k) list << "\n  " << missing[k];
+  if (missing.size() > 12) list << "\n  ... and " << missing.size() - 12 << " more";
+  std::fprintf(stderr, "swa_sim: discovery incomplete after %.0f s; unmatched endpoints:%s\n",
+               options_.startup_timeout_s, list.str().c_str());
+  return false;
+}
+
+void SimPorts::publishStepOutputs(const AliveFn& alive) {
+  if (world_.step_index() % 10 == 0) noteYoungerTwin();
+  for (const sim::Event& e : world_.events()) publishEvent(record::eventOf(e));
+  if (world_.step_index() % options_.truth_every == 0 || world_.finished()) publishTruth(alive);
+  const wire::ClockTick tick{static_cast<std::uint64_t>(world_.step_index()), world_.time_ns(),
+                             sim::stepPeriodNs(scenario_.dynamics.rate_hz)};
+  msg::Clock m = wire::toMsg(tick, ++clock_seq_);
+  if (!clock_.write(m)) ++summary_.write_failures;
+}
+
+std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optional<Clock::time_point> due) {
+  const std::optional<WallNs> due_ns = due ? std::optional<WallNs>(wallNs(*due)) : std::nullopt;
+  std::vector<std::optional<agent::StampNs>> imu_stamps(static_cast<std::size_t>(n_));
+  const std::vector<sim::UavSensors>& sensors = world_.sensors();
+  for (int i = 0; i < n_; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto id = static_cast<std::uint32_t>(i);
+    const sim::UavSensors& s = sensors[k];
+    side_written_[k] = s.detections.has_value() || s.gnss.has_value();
+    // The closed loop's equal-stamp order (IMU, detections, GNSS); the agent restores it whatever the arrival order.
+    if (s.imu) {
+      msg::Imu m = wire::toMsg(*s.imu, id, ++imu_seq_[k]);
+      const WallNs published_ns = wallNs(Clock::now());
+      if (imu_[k].write(m)) {
+        if (time_latency_) latency_.published(i, imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
+        imu_stamps[k] = s.imu->stamp_ns;
+      } else {
+        ++summary_.write_failures;
+      }
+    }
+    if (s.detections) {
+      msg::Detections m = wire::toMsg(*s.detections, id, ++det_seq_[k]);
+      if (!det_[k].write(m)) ++summary_.write_failures;
+    }
+    if (s.gnss) {
+      msg::GnssFix m = wire::toMsg(*s.gnss, id, ++gnss_seq_[k]);
+      if (!gnss_[k].write(m)) ++summary_.write_failures;
+    }
+  }
+  return imu_stamps;
+}
+
+void SimPorts::publishTruth(const AliveFn& alive) {
+  last_truth_step_ = world_.step_index();
+  wire::SwarmTruth truth{world_.time_ns(), world_.truth(), {}};
+  for (const sim::UavTruth& t : truth.uavs) {
+    truth.agent_alive.push_back(alive(t.id));
+    if (truth_csv_.is_open()) {
+      truth_csv_ << world_.step_index() << ',' << world_.time_ns() << ',' << t.id << ',' << t.position_m.x() << ','
+                 << t.position_m.y() << ',' << t.velocity_mps.x() << ',' << t.velocity_mps.y() << ','
+                 << t.acceleration_mps2.x() << ',' << t.acceleration_mps2.y() << ',' << t.heading_rad << ','
+                 << (truth.agent_alive.back() ? 1 : 0) << ',' << (t.gnss_valid ? 1 : 0) << ','
+                 << (t.failsafe ? 1 : 0) << '\n';
+    }
+  }
+  msg::SwarmTruth m = wire::toMsg(truth, ++truth_seq_);
+  if (!truth_.write(m)) ++summary_.write_failures;
+}
+
+void SimPorts::publishEvent(const char* kind, int uav, double value, const std::string& text) {
+  publishEvent({static_cast<double>(world_.time_ns()) * 1e-9, kind, uav, -1, value, text});
+}
+
+void SimPorts::publishEvent(const record::EventRecord& event) {
+  msg::ScenarioEvent m = wire::toMsg(event, ++event_seq_);
+  if (!events_.write(m)) ++summary_.write_failures;
+}
+
+void SimPorts::publishEndBeforeStart(const std::string& why) {
+  publishEvent(record::event_kind::kScenarioEnd, record::kAllUavs, 0.0, why);
+  events_.waitForAcknowledgments(1.0);
+}
+
+void SimPorts::publishEnd(const AliveFn& alive, bool completed) {
+  if (last_truth_step_ != world_.step_index()) publishTruth(alive);
+  publishEvent(record::event_kind::kScenarioEnd, record::kAllUavs, 0.0, completed ? "completed" : "interrupted");
+  // Give late readers of the last samples a moment; events are TRANSIENT_LOCAL anyway.
+  events_.waitForAcknowledgments(2.0);
+  truth_.waitForAcknowledgments(2.0);
+  if (truth_csv_.is_open()) truth_csv_.flush();
+}
+
+const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
+  batch_.clear();
+  admitted_.clear();
+  queue_.drain(batch_, wait);
+  for (Answer& a : batch_) {
+    if (!fromCommander(a)) continue;
+    if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav)) {
+      ++summary_.ignored_commands;
+      continue;
+    }
+    if (time_latency_) {
+      latency_.answered(a.uav, a.setpoint.answered_seq(), a.setpoint.answered_stamp_ns(), wallNs(a.received));
+    }
+    admitted_.push_back(std::move(a));
+  }
+  return admitted_;
+}
+
+void SimPorts::apply(const Answer& a) {
+  world_.command(a.uav, wire::fromMsg(a.setpoint));
+  ++summary_.applied_commands;
+}
+
+void SimPorts::finishLatency(bool realtime, const LogHistogram& step_lag) {
+  latency_.finish(wallNs(Clock::now()));
+  summary_.latency = latency_.report();
+  summary_.step_lag_p99_us = realtime ? step_lag.quantileNs(0.99) * 1e-3 : std::nan("");
+  summary_.step_lag_max_us = realtime ? step_lag.maxNs() * 1e-3 : std::nan("");
+}
+
+bool SimPorts::detectionsAcknowledged(int uav, double wait_s) {
+  return det_[static_cast<std::size_t>(uav)].waitForAcknowledgments(wait_s);
+}
+
+bool SimPorts::gnssAcknowledged(int uav, double wait_s) {
+  return gnss_[static_cast<std::size_t>(uav)].waitForAcknowledgments(wait_s);
+}
+
+bool SimPorts::fromCommander(const Answer& a) {
+  const Admission admission = gate_.admit(a.uav, a.writer, a.received);
+  if (admission == Admission::kRefused) {
+    ++summary_.refused_commands;
+    if (gate_.firstRefusal(a.uav, a.writer)) {
+      summary_.refused_writers = gate_.refusedWriters();
+      std::fprintf(stderr,
+                   "swa_sim: t = %.2f s: a second writer on %s (writer %s) while the current one is active: its "
+                   "commands are refused (a second agent with this id, or another program writing it)\n",
+                   sim::stampSeconds(world_.time_ns()), dds::topics::cmdVel(a.uav).c_str(), guidText(a.writer).c_str());
+    }
+    return false;
+  }
+  if (admission == Admission::kHandover && gate_.handovers() != summary_.command_handovers) {
+    summary_.command_handovers = gate_.handovers();
+    std::fprintf(stderr, "swa_sim: t = %.2f s: %s now written by writer %s (the previous one fell silent)\n",
+                 sim::stampSeconds(world_.time_ns()), dds::topics::cmdVel(a.uav).c_str(), guidText(a.writer).c_str());
+  }
+  return true;
+}
+
+bool SimPorts::olderTwinRuns() {
+  if (!participant_->mustGiveWay()) {
+    noteYoungerTwin();
+    return false;
+  }
+  const std::optional<dds::Peer> twin = participant_->twin();
+  std::fprintf(stderr,
+               "swa_sim: REFUSING to run: another swa_sim (pid %ld on host %s) was already running in %s on domain "
+               "%d; two simulators would publish two worlds to the same agents. Stop it, or use another SWA_SWARM.\n",
+               twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?",
+               twin && !twin->card->swarm.empty() ? ("swarm " + twin->card->swarm).c_str() : "the default swarm",
+               participant_->domainId());
+  summary_.refused_as_twin = true;
+  return true;
+}
+
+void SimPorts::noteYoungerTwin() {
+  const std::optional<dds::Peer> twin = participant_->twin();
+  if (!twin || twin->key == reported_twin_) return;
+  reported_twin_ = twin->key;
+  std::fprintf(stderr, "swa_sim: a second swa_sim (pid %ld on host %s) joined this swarm; it started later and must "
+                       "refuse to run\n",
+               twin->card->pid, twin->card->host.c_str());
+}
+
+}  // namespace swa::sim_node

@@ -1,0 +1,131 @@
+#pragma once
+// The simulator's DDS side, shared by its lockstep and realtime drivers: publishes each UAV's sensor samples on its
+// own topics and the world's truth, events and clock, and collects the agents' setpoints (one commander per UAV,
+// command_gate.h; their loop latency, latency_stats.h). Owns the participant and every endpoint. Message contents
+// come from the wire bridge (idl/wire); which step to publish and when is the driver's.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <swa/msg/Clock.h>
+#include <swa/msg/Detections.h>
+#include <swa/msg/GnssFix.h>
+#include <swa/msg/Imu.h>
+#include <swa/msg/ScenarioEvent.h>
+#include <swa/msg/SwarmTruth.h>
+#include <swa/msg/VelocitySetpoint.h>
+
+#include "command_gate.h"
+#include "latency_stats.h"
+#include "sim_options.h"
+#include "sim_summary.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/sample_queue.h"
+#include "swa/record/events.h"
+#include "swa/sim/world.h"
+
+namespace swa::sim_node {
+
+class SimPorts {
+ public:
+  using Clock = std::chrono::steady_clock;
+  using AliveFn = std::function<bool(int uav)>;
+
+  // One setpoint as a UAV's cmd_vel reader received it.
+  struct Answer {
+    int uav = 0;
+    msg::VelocitySetpoint setpoint;
+    Clock::time_point received;  // when the listener got it (not when the driver drained it)
+    dds::WriterGuid writer{};
+  };
+
+  // Creates every DDS entity (throws swa::dds::DdsError) and opens --truth-out (throws std::runtime_error).
+  SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimSummary& summary,
+           const std::atomic<bool>& stop, int domain_id, const std::string& profiles_file);
+  ~SimPorts();
+
+  // Until every agent's endpoints (and --wait-monitors readers of truth and events) are matched, the startup timeout
+  // passes, stop is requested, or an older simulator runs in this swarm (summary.refused_as_twin). True: all matched.
+  bool awaitDiscovery();
+
+  void publishStepOutputs(const AliveFn& alive);  // the world's events, truth when due, the clock
+  // `due`: when the UAVs' next IMU samples are due (realtime), for the latency statistics; nullopt in lockstep.
+  // Returns the IMU stamp published to each UAV (nullopt: none this step).
+  std::vector<std::optional<agent::StampNs>> publishSensors(std::optional<Clock::time_point> due);
+  // An event of the node (agent dead / rejoined, scenario end) at the current sim time.
+  void publishEvent(const char* kind, int uav, double value, const std::string& text);
+  // The end event of a run that never started (discovery timeout, interrupted), and a moment for it to arrive.
+  void publishEndBeforeStart(const std::string& why);
+  // The last truth (unless published at this step), the end event, then a moment for late readers.
+  void publishEnd(const AliveFn& alive, bool completed);
+
+  // Setpoints received within `wait` that come from their UAV's commander and name their UAV; the others are counted
+  // (refused, ignored) and dropped. Their loop latency is recorded while timing is on.
+  const std::vector<Answer>& drain(Clock::duration wait);
+  void apply(const Answer& a);  // to the world
+  void timeLatency(bool on) { time_latency_ = on; }
+  void finishLatency(bool realtime, const LogHistogram& step_lag);
+  // The simulator did not run for `lost`: no commander could be heard meanwhile.
+  void shiftCommanders(Clock::duration lost, Clock::time_point now) { gate_.shift(lost, now); }
+
+  // Lockstep: whether detections or a GNSS fix went to `uav` this step, and whether its reader acknowledged them.
+  bool sideWritten(int uav) const { return side_written_[static_cast<std::size_t>(uav)]; }
+  bool detectionsAcknowledged(int uav, double wait_s);
+  bool gnssAcknowledged(int uav, double wait_s);
+
+ private:
+  bool fromCommander(const Answer& a);  // the UAV's current commander; refusals counted and reported
+  bool olderTwinRuns();                 // another swa_sim older than us in this swarm: refuse (logged)
+  void noteYoungerTwin();
+  void publishTruth(const AliveFn& alive);
+  void publishEvent(const record::EventRecord& event);
+
+  const sim::Scenario& scenario_;
+  const SimOptions& options_;
+  sim::World& world_;
+  SimSummary& summary_;
+  const std::atomic<bool>& stop_;
+  const int n_;
+  CommandGate gate_;
+  CommandLatencyTracker latency_;
+  bool time_latency_ = true;
+  dds::PeerKey reported_twin_{};
+  std::vector<std::uint32_t> imu_seq_, det_seq_, gnss_seq_;
+  std::vector<bool> side_written_;
+  std::uint32_t truth_seq_ = 0, event_seq_ = 0, clock_seq_ = 0;
+  std::int64_t last_truth_step_ = -1;
+  std::ofstream truth_csv_;
+  std::vector<Answer> batch_;
+  std::vector<Answer> admitted_;
+
+  // The queue outlives the participant, whose listeners push into it.
+  dds::SampleQueue<Answer> queue_;
+  std::unique_ptr<dds::Participant> participant_;
+  std::vector<dds::Writer<msg::Imu>> imu_;
+  std::vector<dds::Writer<msg::Detections>> det_;
+  std::vector<dds::Writer<msg::GnssFix>> gnss_;
+  std::vector<dds::Reader<msg::VelocitySetpoint>> cmd_;
+  dds::Writer<msg::SwarmTruth> truth_;
+  dds::Writer<msg::ScenarioEvent> events_;
+  dds::Writer<msg::Clock> clock_;
+};
+
+// Durations and wall stamps as the drivers and the ports use them.
+inline SimPorts::Clock::duration seconds(double s) {
+  return std::chrono::duration_cast<SimPorts::Clock::duration>(std::chrono::duration<double>(s));
+}
+inline double secondsSince(SimPorts::Clock::time_point t0) {
+  return std::chrono::duration<double>(SimPorts::Clock::now() - t0).count();
+}
+inline WallNs wallNs(SimPorts::Clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+}
+
+}  // namespace swa::sim_node
