@@ -10,6 +10,9 @@
 
 namespace swa::batch::testing {
 
+// r: the formation radius (and lattice spacing) of every shipped scenario.
+inline constexpr double kR = 10.0;
+
 inline sim::Scenario shipped(const std::string& name, const std::vector<std::string>& overrides = {}) {
   return sim::loadScenario(std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/" + name + ".yaml", overrides);
 }

@@ -9,11 +9,10 @@ namespace swa::batch {
 namespace {
 
 using testing::kNearest;
+using testing::kR;
 using testing::runSeeds;
 using testing::shipped;
 using testing::Stats;
-
-constexpr double kR = 10.0;
 
 void expectCohesive(const Stats& s, double tolerance_fraction, const char* what) {
   SCOPED_TRACE(what);

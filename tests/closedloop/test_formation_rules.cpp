@@ -15,11 +15,10 @@ namespace swa::batch {
 namespace {
 
 using testing::kNearest;
+using testing::kR;
 using testing::runSeeds;
 using testing::shipped;
 using testing::Stats;
-
-constexpr double kR = 10.0;
 
 std::vector<std::string> sized(int n, double duration_s, std::vector<std::string> more = {}) {
   more.insert(more.begin(), {"uav_count=" + std::to_string(n), "duration_s=" + std::to_string(duration_s)});

@@ -1,7 +1,9 @@
 #pragma once
-// Helpers for tests that run the SWA processes: a child process that is always reaped (SIGTERM, then SIGKILL),
-// a janitor that removes the Fast DDS shared-memory files our processes leave behind when they die by a signal,
-// the processes left on a test's domain, polling with a bound, and small file and JSON helpers. POSIX only.
+// Helpers for tests that run the SWA processes: a child process that is always reaped (SIGTERM, then SIGKILL), the
+// command lines of an agent and of the agents' configuration export, a janitor that removes the Fast DDS
+// shared-memory files our processes leave behind when they die by a signal, the processes left on a test's domain,
+// samples a test's DDS reader received, polling with a bound, and small file and JSON helpers. POSIX only.
+// (process_test.h adds what needs GoogleTest.)
 
 #include <fcntl.h>
 #include <signal.h>
@@ -22,6 +24,7 @@
 #include <vector>
 
 #include "shm_janitor.h"
+#include "swa/dds/sample_queue.h"
 
 namespace swa::testing {
 
@@ -57,6 +60,20 @@ inline double jsonNumber(const std::string& json, const std::string& key) {
   return v->is_number() ? v->get<double>() : std::nan("");
 }
 
+// The samples of one topic that a DDS reader of the test received: the reader's listener() queues them (on a
+// middleware thread), the test moves what has arrived into `seen` with take(). Must outlive the reader.
+template <class T>
+struct Received {
+  std::function<void(T&&)> listener() {
+    return [this](T&& sample) { queue.push(std::move(sample)); };
+  }
+  // Moves what has arrived into `seen`, waiting up to `wait` for the first new sample.
+  void take(std::chrono::milliseconds wait = std::chrono::milliseconds(0)) { queue.drain(seen, wait); }
+
+  dds::SampleQueue<T> queue;
+  std::vector<T> seen;
+};
+
 // Polls `done` every 20 ms for at most `seconds`; its last answer.
 template <class Predicate>
 bool waitFor(Predicate done, double seconds) {
@@ -83,6 +100,14 @@ inline std::vector<int> processesOnDomain(int domain) {
     }
   }
   return pids;
+}
+
+// swa_agent (`binary`) for UAV `id` on DDS domain `domain`, with the configuration file `config` if one is given.
+inline std::vector<std::string> agentCommand(const std::string& binary, int id, int domain,
+                                             const fs::path& config = {}) {
+  std::vector<std::string> argv{binary, "--id", std::to_string(id), "--domain", std::to_string(domain)};
+  if (!config.empty()) argv.insert(argv.end(), {"--config", config.string()});
+  return argv;
 }
 
 // The simulator's and agents' logs of a run directory (sim.log, agent<i>.log), for failure messages.
@@ -177,6 +202,14 @@ class Child {
   std::optional<int> status_;
 };
 
+// Runs the swa_sim command line `sim_args` with --export-agent-config <dir>/agent.yaml (its output in
+// <dir>/export.log): the agents' configuration of that scenario. Its exit status, nullopt if it ran for 30 s.
+inline std::optional<int> exportAgentConfig(std::vector<std::string> sim_args, const fs::path& dir) {
+  sim_args.insert(sim_args.end(), {"--export-agent-config", (dir / "agent.yaml").string()});
+  Child exporter(sim_args, dir / "export.log");
+  return exporter.wait(30.0);
+}
+
 // The launcher's janitor (deploy/launch/shm_janitor.h: removes only abandoned Fast DDS files created after
 // construction), which in a test also cleans up when it goes out of scope, so a failing check leaves nothing behind.
 class ShmJanitor : public launch::ShmJanitor {
@@ -186,6 +219,13 @@ class ShmJanitor : public launch::ShmJanitor {
   ShmJanitor(const ShmJanitor&) = delete;
   ShmJanitor& operator=(const ShmJanitor&) = delete;
 };
+
+// The abandoned shared-memory files `janitor` finds: "" when there are none, else how many and the first.
+inline std::string shmFilesLeft(const launch::ShmJanitor& janitor) {
+  const std::vector<std::string> left = janitor.zombies();
+  if (left.empty()) return "";
+  return std::to_string(left.size()) + " /dev/shm file(s), first " + left.front();
+}
 
 // A DDS domain of our own: derived from the PID (Fast DDS's own tests do the same), never 0, at most 232.
 inline int testDomain(int offset = 0) { return 1 + static_cast<int>((::getpid() + offset) % 200); }

@@ -21,7 +21,7 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "process_support.h"
+#include "process_test.h"
 #include "swa/agent/agent.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
@@ -99,6 +99,20 @@ double minSeparation(const std::vector<agent::Vec2>& p) {
   return m;
 }
 
+// The mean distance to the two nearest neighbours (d_NB) and the smallest separation of the UAVs in `rows`.
+struct Geometry {
+  double d_nb_m = 0.0;
+  double min_separation_m = 0.0;
+};
+
+Geometry geometryOf(const std::vector<TruthRow>& rows) {
+  std::vector<agent::Vec2> p;
+  for (const TruthRow& r : rows) p.emplace_back(r.x, r.y);
+  const Geometry g{meanTwoNearest(p), minSeparation(p)};
+  std::cout << "final d_NB (2 nearest) = " << g.d_nb_m << " m, min separation = " << g.min_separation_m << " m\n";
+  return g;
+}
+
 // The oracle: the same scenario in one process, samples fed as deploy/batch/closed_loop.cpp does.
 std::vector<sim::UavTruth> inProcessFinalTruth(const sim::Scenario& scenario) {
   sim::World world(scenario);
@@ -123,34 +137,31 @@ class Monitor {
   Monitor(int domain, int uav_count)
       : participant_(std::make_unique<dds::Participant>("swa_test_monitor", domain, dds::resolveProfilesFile())) {
     for (int i = 0; i < uav_count; ++i) {
-      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), "swa_state_reader",
-                                                      [this](msg::AgentState&& a) { states_.push(std::move(a)); });
+      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), "swa_state_reader", states_.listener());
     }
-    participant_->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader",
-                                                    [this](msg::SwarmTruth&& t) { truth_.push(std::move(t)); });
-    participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
-                                                       [this](msg::ScenarioEvent&& e) { events_.push(std::move(e)); });
+    participant_->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader", truth_.listener());
+    participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader", events_.listener());
   }
   ~Monitor() { participant_.reset(); }
 
-  // Collects what arrived; waits up to `wait` for the first new item.
+  // Collects what arrived; waits up to `wait` for the first new truth sample.
   void poll(std::chrono::milliseconds wait = std::chrono::milliseconds(0)) {
-    truth_.drain(truth_seen_, wait);
-    events_.drain(events_seen_, std::chrono::milliseconds(0));
-    states_.drain(states_seen_, std::chrono::milliseconds(0));
+    truth_.take(wait);
+    events_.take();
+    states_.take();
   }
   // AgentState samples of one UAV, in arrival order.
   std::vector<msg::AgentState> states(int uav) const {
     std::vector<msg::AgentState> out;
-    for (const msg::AgentState& a : states_seen_) {
+    for (const msg::AgentState& a : states_.seen) {
       if (a.uav_id() == static_cast<std::uint32_t>(uav)) out.push_back(a);
     }
     return out;
   }
-  const std::vector<msg::SwarmTruth>& truth() const { return truth_seen_; }
-  const std::vector<msg::ScenarioEvent>& events() const { return events_seen_; }
+  const std::vector<msg::SwarmTruth>& truth() const { return truth_.seen; }
+  const std::vector<msg::ScenarioEvent>& events() const { return events_.seen; }
   int count(msg::EventKind kind, int uav = -2) const {
-    return static_cast<int>(std::count_if(events_seen_.begin(), events_seen_.end(), [&](const msg::ScenarioEvent& e) {
+    return static_cast<int>(std::count_if(events_.seen.begin(), events_.seen.end(), [&](const msg::ScenarioEvent& e) {
       return e.kind() == kind && (uav == -2 || e.uav_id() == uav);
     }));
   }
@@ -168,7 +179,7 @@ class Monitor {
     const auto deadline = SteadyClock::now() + std::chrono::duration<double>(bound_s);
     while (SteadyClock::now() < deadline) {
       poll(std::chrono::milliseconds(20));
-      if (!truth_seen_.empty() && static_cast<double>(truth_seen_.back().header().stamp_ns()) * 1e-9 >= t_s) {
+      if (!truth_.seen.empty() && static_cast<double>(truth_.seen.back().header().stamp_ns()) * 1e-9 >= t_s) {
         return true;
       }
     }
@@ -176,36 +187,23 @@ class Monitor {
   }
 
  private:
-  // Queues outlive the participant, whose listeners push into them.
-  dds::SampleQueue<msg::SwarmTruth> truth_;
-  dds::SampleQueue<msg::ScenarioEvent> events_;
-  dds::SampleQueue<msg::AgentState> states_;
-  std::vector<msg::SwarmTruth> truth_seen_;
-  std::vector<msg::AgentState> states_seen_;
-  std::vector<msg::ScenarioEvent> events_seen_;
+  // Declared before the participant, whose listeners push into them: they outlive it.
+  Received<msg::SwarmTruth> truth_;
+  Received<msg::ScenarioEvent> events_;
+  Received<msg::AgentState> states_;
   std::unique_ptr<dds::Participant> participant_;
 };
 
-// One run: the agent configuration exported from the scenario, N agents, the simulator.
-class SwarmRun : public ::testing::Test {
+// One run: the agent configuration exported from the scenario, N agents, the simulator, and the monitor participant.
+class SwarmRun : public ProcessRun {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_dds_it_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = freshTestDir("swa_dds_it");
     domain_ = testDomain();
     useOwnSwarm();  // no sample of another DDS user on this domain can reach the run
   }
 
-  void TearDown() override {
-    // Children first (each one SIGTERM, then SIGKILL), the monitor's participant, then leftover shared memory.
-    sim_.reset();
-    agents_.clear();
-    monitor_.reset();
-    const std::vector<std::string> removed = janitor_.clean();
-    if (!removed.empty()) std::cerr << "removed " << removed.size() << " abandoned /dev/shm file(s)\n";
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
+  void stopObservers() override { monitor_.reset(); }
 
   std::vector<std::string> simArgs(const std::vector<std::string>& overrides) const {
     std::vector<std::string> a{SWA_SIM_BINARY, "--scenario", kScenario};
@@ -220,17 +218,12 @@ class SwarmRun : public ::testing::Test {
   // environment of the swa_sim / swa_agent processes (not of the monitor in this process).
   void start(const std::vector<std::string>& overrides, const std::vector<std::string>& sim_extra, int n = 4,
              const std::vector<std::string>& env = {}) {
-    std::vector<std::string> exp = simArgs(overrides);
-    exp.insert(exp.end(), {"--export-agent-config", (dir_ / "agent.yaml").string()});
-    Child exporter(exp, dir_ / "export.log");
-    ASSERT_EQ(exporter.wait(30.0), 0) << readFile(dir_ / "export.log");
+    ASSERT_EQ(exportAgentConfig(simArgs(overrides), dir_), 0) << readFile(dir_ / "export.log");
 
     monitor_ = std::make_unique<Monitor>(domain_, n);
     for (int i = 0; i < n; ++i) {
-      agents_.push_back(std::make_unique<Child>(
-          std::vector<std::string>{SWA_AGENT_BINARY, "--id", std::to_string(i), "--config",
-                                   (dir_ / "agent.yaml").string(), "--domain", std::to_string(domain_)},
-          dir_ / ("agent" + std::to_string(i) + ".log"), env));
+      agents_.push_back(std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, i, domain_, dir_ / "agent.yaml"),
+                                                dir_ / ("agent" + std::to_string(i) + ".log"), env));
     }
     std::vector<std::string> args = simArgs(overrides);
     args.insert(args.end(), {"--domain", std::to_string(domain_), "--truth-out", (dir_ / "truth.csv").string(),
@@ -255,13 +248,10 @@ class SwarmRun : public ::testing::Test {
   void stopSimulator(const char* clock_mode, bool stall_reported);
 
   std::string logs() const { return runLogs(dir_, agents_.size()); }
+  // The UAVs at the last step of the simulator's truth.csv, by id.
+  std::vector<TruthRow> finalTruth() const { return lastStep(readTruthCsv(dir_ / "truth.csv")); }
 
-  ShmJanitor janitor_;  // first member: sees /dev/shm before anything of ours exists
-  fs::path dir_;
-  int domain_ = 0;
   std::unique_ptr<Monitor> monitor_;
-  std::vector<std::unique_ptr<Child>> agents_;
-  std::unique_ptr<Child> sim_;
   std::vector<int> agent_status_;
   SteadyClock::time_point started_;
   double wall_s_ = 0.0;
@@ -296,15 +286,12 @@ void SwarmRun::lockstepDropout4(const std::vector<std::string>& overrides, doubl
   EXPECT_GT(jsonNumber(summary, "latency_p50_us"), 0.0);
 
   // THEN the swarm is cohesive at the end
-  const std::vector<TruthRow> final_rows = lastStep(readTruthCsv(dir_ / "truth.csv"));
+  const std::vector<TruthRow> final_rows = finalTruth();
   ASSERT_EQ(final_rows.size(), 4u);
   EXPECT_EQ(final_rows.front().t_ns, 20'000'000'000LL);
-  std::vector<agent::Vec2> p;
-  for (const TruthRow& r : final_rows) p.emplace_back(r.x, r.y);
-  const double d_nb = meanTwoNearest(p);
-  std::cout << "final d_NB (2 nearest) = " << d_nb << " m, min separation = " << minSeparation(p) << " m\n";
-  EXPECT_NEAR(d_nb, expected_d_nb_m, 0.15 * expected_d_nb_m);
-  EXPECT_GT(minSeparation(p), 2.0);
+  const Geometry final_geometry = geometryOf(final_rows);
+  EXPECT_NEAR(final_geometry.d_nb_m, expected_d_nb_m, 0.15 * expected_d_nb_m);
+  EXPECT_GT(final_geometry.min_separation_m, 2.0);
 
   // THEN the monitor saw the same truth on swa/truth and the events on swa/events
   ASSERT_FALSE(monitor_->truth().empty());
@@ -338,9 +325,8 @@ void SwarmRun::lockstepDropout4(const std::vector<std::string>& overrides, doubl
   // THEN, once our monitor participant is gone too, no process left shared memory behind (a port stays while any
   // participant that ever sent to it is alive, so this is checked after the monitor)
   monitor_.reset();
-  const std::vector<std::string> left = janitor_.zombies();
-  EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left.size()
-                            << " /dev/shm file(s), first " << (left.empty() ? "" : left.front());
+  const std::string left = shmFilesLeft(janitor_);
+  EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left;
 
   // THEN lockstep reproduces the in-process closed loop bit for bit (same scenario, seed, sample order)
   const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
@@ -433,9 +419,7 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
     if (rogue_cmd.write(sp)) ++rogue_commands;
   });
   // AND a second agent with id 1 starts in the same swarm
-  Child twin({SWA_AGENT_BINARY, "--id", "1", "--config", (dir_ / "agent.yaml").string(), "--domain",
-              std::to_string(domain_)},
-             dir_ / "twin.log");
+  Child twin(agentCommand(SWA_AGENT_BINARY, 1, domain_, dir_ / "agent.yaml"), dir_ / "twin.log");
   // THEN the second agent refuses to run, saying why
   const std::optional<int> twin_status = twin.wait(20.0);
   const std::string twin_log = readFile(dir_ / "twin.log");
@@ -454,7 +438,7 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
   EXPECT_EQ(jsonNumber(summary, "agent_dead_events"), 0.0) << logs();
   EXPECT_NE(readFile(dir_ / "sim.log").find("a second writer on swa/uav2/cmd_vel"), std::string::npos) << logs();
   EXPECT_NE(readFile(dir_ / "agent1.log").find("a second swa_agent 1"), std::string::npos) << logs();
-  const std::vector<TruthRow> final_rows = lastStep(readTruthCsv(dir_ / "truth.csv"));
+  const std::vector<TruthRow> final_rows = finalTruth();
   const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
   ASSERT_EQ(final_rows.size(), 4u);
   ASSERT_EQ(ref.size(), 4u);
@@ -466,11 +450,10 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
 
 TEST_F(SwarmRun, SecondAgentWithTheSameIdInAnotherSwarmIsNotATwin) {
   // GIVEN agent 1 running in swarm A
-  Child first({SWA_AGENT_BINARY, "--id", "1", "--domain", std::to_string(domain_)}, dir_ / "first.log");
+  Child first(agentCommand(SWA_AGENT_BINARY, 1, domain_), dir_ / "first.log");
   // WHEN agent 1 of another swarm starts on the same domain
   const std::string other = "other-" + std::to_string(::getpid());
-  Child second({SWA_AGENT_BINARY, "--id", "1", "--domain", std::to_string(domain_)}, dir_ / "second.log",
-               {"SWA_SWARM=" + other});
+  Child second(agentCommand(SWA_AGENT_BINARY, 1, domain_), dir_ / "second.log", {"SWA_SWARM=" + other});
   // THEN both keep running (3 s: discovery takes well under a second here), and neither calls the other a twin
   EXPECT_FALSE(second.wait(3.0)) << readFile(dir_ / "second.log");
   EXPECT_FALSE(first.wait(0.0)) << readFile(dir_ / "first.log");
@@ -530,15 +513,12 @@ TEST_F(SwarmRun, RealtimeFourAgentsTwentySecondsCohesiveAndEveryCommandWithinIts
 
   // THEN it is cohesive: d_NB within +-10 % of r (Gabriel as shipped) and nobody closer than 2 m. Realtime is not
   // deterministic, so this is the band, not a value.
-  const std::vector<TruthRow> final_rows = lastStep(readTruthCsv(dir_ / "truth.csv"));
+  const std::vector<TruthRow> final_rows = finalTruth();
   ASSERT_EQ(final_rows.size(), 4u);
   EXPECT_EQ(final_rows.front().t_ns, 20'000'000'000LL);
-  std::vector<agent::Vec2> p;
-  for (const TruthRow& r : final_rows) p.emplace_back(r.x, r.y);
-  const double d_nb = meanTwoNearest(p);
-  std::cout << "final d_NB (2 nearest) = " << d_nb << " m, min separation = " << minSeparation(p) << " m\n";
-  EXPECT_NEAR(d_nb, 10.0, 1.0);
-  EXPECT_GT(minSeparation(p), 2.0);
+  const Geometry final_geometry = geometryOf(final_rows);
+  EXPECT_NEAR(final_geometry.d_nb_m, 10.0, 1.0);
+  EXPECT_GT(final_geometry.min_separation_m, 2.0);
 
   // THEN commands were answered within their period: every IMU sample after the start handshake (steps 1 .. 2000:
   // step 0 only starts the clock once every agent has answered it) was judged; fewer than 1 % of the answers arrived
@@ -564,10 +544,7 @@ TEST_F(SwarmRun, RealtimeFourAgentsTwentySecondsCohesiveAndEveryCommandWithinIts
 
 class BadInput : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_dds_bad_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = freshTestDir("swa_dds_bad"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // Exit status and everything the process printed.

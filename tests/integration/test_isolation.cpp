@@ -34,7 +34,7 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 
 #include "isolation_audit.h"
-#include "process_support.h"
+#include "process_test.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/topics.h"
@@ -172,12 +172,10 @@ class DiscoveryObserver {
   fdds::DomainParticipant* participant_ = nullptr;
 };
 
-class IsolationRun : public ::testing::Test {
+class IsolationRun : public ProcessRun {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_isolation_it_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = freshTestDir("swa_isolation_it");
     // A private domain (100..199, never 0) that is also quiet: anything already on it would pollute the audit, so
     // the observer listens for a moment first (the profile announces every 1 s) and moves on if it hears anyone.
     for (int attempt = 0; attempt < 5 && !observer_; ++attempt) {
@@ -192,15 +190,7 @@ class IsolationRun : public ::testing::Test {
     ASSERT_TRUE(observer_) << "no quiet DDS domain found";
   }
 
-  void TearDown() override {
-    // Children first (each one SIGTERM, then SIGKILL), the observer's participant, then leftover shared memory.
-    sim_.reset();
-    agents_.clear();
-    observer_.reset();
-    const std::vector<std::string> removed = janitor_.clean();
-    if (!removed.empty()) std::cerr << "removed " << removed.size() << " abandoned /dev/shm file(s)\n";
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
+  void stopObservers() override { observer_.reset(); }
 
   std::vector<std::string> simArgs() const {
     return {SWA_SIM_BINARY, "--scenario", kScenario, "--set", "duration_s=10"};
@@ -208,20 +198,12 @@ class IsolationRun : public ::testing::Test {
 
   std::string logs() const { return runLogs(dir_, static_cast<std::size_t>(kAgents)); }
 
-  ShmJanitor janitor_;  // first member: sees /dev/shm before anything of ours exists
-  fs::path dir_;
-  int domain_ = 0;
   std::unique_ptr<DiscoveryObserver> observer_;
-  std::vector<std::unique_ptr<Child>> agents_;
-  std::unique_ptr<Child> sim_;
 };
 
 TEST_F(IsolationRun, NoAgentReadsWhatAnotherAgentWritesOrAnythingOutsideItsNamespace) {
   // GIVEN the observer listening on a private domain, and the agents' configuration exported from the scenario
-  std::vector<std::string> exp = simArgs();
-  exp.insert(exp.end(), {"--export-agent-config", (dir_ / "agent.yaml").string()});
-  Child exporter(exp, dir_ / "export.log");
-  ASSERT_EQ(exporter.wait(30.0), 0) << readFile(dir_ / "export.log");
+  ASSERT_EQ(exportAgentConfig(simArgs(), dir_), 0) << readFile(dir_ / "export.log");
 
   // WHEN swa_sim and 4 swa_agent processes run the GNSS-loss scenario for 10 s of simulated time (lockstep). The
   // simulator starts first and waits for the agents; the agents start once the observer has discovered the
@@ -234,10 +216,8 @@ TEST_F(IsolationRun, NoAgentReadsWhatAnotherAgentWritesOrAnythingOutsideItsNames
   sim_ = std::make_unique<Child>(args, dir_ / "sim.log");
   const bool sim_seen = waitFor([&] { return simEndpointsSeen(observer_->log().endpoints()); }, kLateDiscoveryS);
   for (int i = 0; i < kAgents; ++i) {
-    agents_.push_back(std::make_unique<Child>(
-        std::vector<std::string>{SWA_AGENT_BINARY, "--id", std::to_string(i), "--domain", std::to_string(domain_),
-                                 "--config", (dir_ / "agent.yaml").string()},
-        dir_ / ("agent" + std::to_string(i) + ".log")));
+    agents_.push_back(std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, i, domain_, dir_ / "agent.yaml"),
+                                              dir_ / ("agent" + std::to_string(i) + ".log")));
   }
   // ... and the observer collects until the simulator exits, then (bounded) until it has every agent endpoint,
   // then until the agents exit
@@ -277,9 +257,8 @@ TEST_F(IsolationRun, NoAgentReadsWhatAnotherAgentWritesOrAnythingOutsideItsNames
 
   // THEN, once the observer is gone too, no process left shared memory behind
   observer_.reset();
-  const std::vector<std::string> left = janitor_.zombies();
-  EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left.size()
-                            << " /dev/shm file(s), first " << (left.empty() ? "" : left.front());
+  const std::string left = shmFilesLeft(janitor_);
+  EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left;
 }
 
 }  // namespace
@@ -291,9 +270,7 @@ namespace {
 TEST_F(IsolationRun, AuditCatchesARogueParticipantReadingAnotherAgentsOutput) {
   // GIVEN agent 2 running, and in this process a rogue participant that calls itself swa_agent_1 and reads agent 2's
   // state and the ground truth (real readers: they match agent 2's and anyone's writers)
-  agents_.push_back(std::make_unique<Child>(
-      std::vector<std::string>{SWA_AGENT_BINARY, "--id", "2", "--domain", std::to_string(domain_)},
-      dir_ / "agent2.log"));
+  agents_.push_back(std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, 2, domain_), dir_ / "agent2.log"));
   auto rogue = std::make_unique<dds::Participant>("swa_agent_1", domain_, dds::resolveProfilesFile());
   rogue->reader<msg::AgentStatePubSubType>(dds::topics::state(2), "swa_state_reader", [](msg::AgentState&&) {});
   rogue->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader", [](msg::SwarmTruth&&) {});

@@ -24,7 +24,7 @@
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "process_support.h"
+#include "process_test.h"
 #include "swa/agent/samples.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
@@ -57,22 +57,16 @@ long rssKb(pid_t pid) {
 class RogueInput : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_rogue_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = freshTestDir("swa_rogue");
     domain_ = testDomain(37);
     useOwnSwarm();
-    agent_ = std::make_unique<Child>(
-        std::vector<std::string>{SWA_AGENT_BINARY, "--id", std::to_string(kUav), "--domain", std::to_string(domain_)},
-        dir_ / "agent.log");
+    agent_ = std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, kUav, domain_), dir_ / "agent.log");
     rogue_ = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
     imu_ = rogue_->writer<msg::ImuPubSubType>(dds::topics::imu(kUav), "swa_sensor_writer");
     det_ = rogue_->writer<msg::DetectionsPubSubType>(dds::topics::detections(kUav), "swa_detections_gnss_writer");
     gnss_ = rogue_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(kUav), "swa_detections_gnss_writer");
-    rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(kUav), "swa_command_reader",
-                                                    [this](msg::VelocitySetpoint&& c) { cmds_.push(std::move(c)); });
-    rogue_->reader<msg::AgentStatePubSubType>(dds::topics::state(kUav), "swa_state_reader",
-                                              [this](msg::AgentState&& s) { states_.push(std::move(s)); });
+    rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(kUav), "swa_command_reader", cmds_.listener());
+    rogue_->reader<msg::AgentStatePubSubType>(dds::topics::state(kUav), "swa_state_reader", states_.listener());
   }
 
   void TearDown() override {
@@ -83,17 +77,12 @@ class RogueInput : public ::testing::Test {
   }
 
   bool waitMatched(double bound_s) {
-    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(bound_s);
-    while (SteadyClock::now() < deadline) {
-      if (imu_.matched() > 0 && det_.matched() > 0 && gnss_.matched() > 0) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return false;
+    return waitFor([this] { return imu_.matched() > 0 && det_.matched() > 0 && gnss_.matched() > 0; }, bound_s);
   }
 
   void poll() {
-    cmds_.drain(cmds_seen_, std::chrono::milliseconds(0));
-    states_.drain(states_seen_, std::chrono::milliseconds(0));
+    cmds_.take();
+    states_.take();
   }
 
   // A genuine-looking step: IMU level, every 10th step detections of three neighbours on a ring around the UAV.
@@ -132,7 +121,7 @@ class RogueInput : public ::testing::Test {
 
   // Commands answering IMU stamps in [from, to).
   int commandsAnswering(agent::StampNs from, agent::StampNs to) const {
-    return static_cast<int>(std::count_if(cmds_seen_.begin(), cmds_seen_.end(), [&](const msg::VelocitySetpoint& c) {
+    return static_cast<int>(std::count_if(cmds_.seen.begin(), cmds_.seen.end(), [&](const msg::VelocitySetpoint& c) {
       return c.answered_stamp_ns() >= from && c.answered_stamp_ns() < to;
     }));
   }
@@ -141,10 +130,8 @@ class RogueInput : public ::testing::Test {
   int domain_ = 0;
   ShmJanitor janitor_;
   std::unique_ptr<Child> agent_;
-  dds::SampleQueue<msg::VelocitySetpoint> cmds_;
-  dds::SampleQueue<msg::AgentState> states_;
-  std::vector<msg::VelocitySetpoint> cmds_seen_;
-  std::vector<msg::AgentState> states_seen_;
+  Received<msg::VelocitySetpoint> cmds_;
+  Received<msg::AgentState> states_;
   std::unique_ptr<dds::Participant> rogue_;
   dds::Writer<msg::Imu> imu_;
   dds::Writer<msg::Detections> det_;
@@ -258,13 +245,13 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   EXPECT_LT(rss_after - rss_before, 16 * 1024);
 #endif
   // AND every command was finite and within the 2 m/s limit
-  for (const msg::VelocitySetpoint& c : cmds_seen_) {
+  for (const msg::VelocitySetpoint& c : cmds_.seen) {
     ASSERT_TRUE(std::isfinite(c.vx_mps()) && std::isfinite(c.vy_mps()));
     ASSERT_LE(std::hypot(c.vx_mps(), c.vy_mps()), 2.0);
   }
   // AND the latest state counts what the rogue did
-  ASSERT_FALSE(states_seen_.empty());
-  const msg::AgentState& s = states_seen_.back();
+  ASSERT_FALSE(states_.seen.empty());
+  const msg::AgentState& s = states_.seen.back();
   EXPECT_GE(s.rejected_oversize(), 3000u);  // of 6000 written (KEEP_LAST history may drop part of a burst)
   EXPECT_GE(s.rejected_future_stamp(), 2u);
   EXPECT_GE(s.rejected_nonfinite(), 1u);
@@ -274,12 +261,12 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   EXPECT_EQ(s.stamp_resyncs(), 1u);
 
   // WHEN the rogue falls silent
-  const std::size_t states_before = states_seen_.size();
+  const std::size_t states_before = states_.seen.size();
   std::this_thread::sleep_for(std::chrono::milliseconds(3200));
   poll();
   // THEN the agent still publishes its state, every second, and says it has no input
-  ASSERT_GE(states_seen_.size(), states_before + 2) << "the state went silent";
-  EXPECT_EQ(states_seen_.back().stage(), msg::STAGE_NO_INPUT);
+  ASSERT_GE(states_.seen.size(), states_before + 2) << "the state went silent";
+  EXPECT_EQ(states_.seen.back().stage(), msg::STAGE_NO_INPUT);
   EXPECT_FALSE(agent_->wait(0.0).has_value());
   // AND it stops cleanly when asked (in the sanitizer build, LeakSanitizer's verdict on the agent is this status)
   EXPECT_EQ(agent_->stop(10.0), 0) << readFile(dir_ / "agent.log");

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <regex>
@@ -18,7 +19,7 @@
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 
-#include "../integration/process_support.h"
+#include "../integration/process_test.h"
 #include "closed_loop.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/dds/options.h"
@@ -49,13 +50,45 @@ int monitorPid(int domain) {
   return -1;
 }
 
+// Only to time what a test does to a run: a participant of the test that keeps the newest stamp agent `uav` has
+// published its state for.
+class StateStampWatch {
+ public:
+  StateStampWatch(int domain, int uav)
+      : participant_(std::make_unique<dds::Participant>("swa_test_observer", domain, dds::resolveProfilesFile())) {
+    participant_->reader<msg::AgentStatePubSubType>(
+        dds::topics::state(uav), "swa_state_reader",
+        [this](msg::AgentState&& s) { newest_ns_.store(s.header().stamp_ns()); });
+  }
+
+  // Waits until that stamp reaches `at_ns`, polling every 5 ms, for 60 s at most and only while `launch` runs.
+  // Whether it did.
+  bool waitUntil(long long at_ns, Child& launch) const {
+    const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
+    while (newest_ns_.load() < at_ns && SteadyClock::now() < deadline && !launch.wait(0.0)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return newest_ns_.load() >= at_ns;
+  }
+
+  // Once that stamp reaches `at_ns` (see waitUntil), SIGKILLs the process `victim` names. The pid killed; -1 when the
+  // stamp never got there, and what `victim` gave (<= 0) when it found no process.
+  int killWhenReached(long long at_ns, Child& launch, const std::function<int()>& victim) const {
+    if (!waitUntil(at_ns, launch)) return -1;
+    const int pid = victim();
+    if (pid > 0) ::kill(pid, SIGKILL);
+    return pid;
+  }
+
+ private:
+  std::atomic<long long> newest_ns_{0};  // declared first: outlives the participant whose listener stores it
+  std::unique_ptr<dds::Participant> participant_;
+};
+
 class LaunchTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_launch_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = freshTestDir("swa_launch_test", /*per_test=*/true);
     swarm_ = useOwnSwarm();  // the launcher takes it from the environment; this test's observers join it
   }
   void TearDown() override {
@@ -88,10 +121,13 @@ class LaunchTest : public ::testing::Test {
 };
 
 TEST_F(LaunchTest, MalformedScenarioStartsNothing) {
+  // GIVEN a scenario file with two invalid values
   const fs::path bad = dir_ / "bad.yaml";
   std::ofstream(bad) << "uav_count: -3\nagent:\n  k: many\n";
+  // WHEN the launcher is given it
   Child c({kLaunch, "--scenario", bad.string(), "--out", (dir_ / "out").string(), "--domain", std::to_string(domain_)},
           dir_ / "launch.log");
+  // THEN it exits 2, naming every problem, and starts or writes nothing
   EXPECT_EQ(c.wait(30.0), 2);
   const std::string log = readFile(dir_ / "launch.log");
   EXPECT_NE(log.find("invalid scenario"), std::string::npos) << log;
@@ -99,20 +135,25 @@ TEST_F(LaunchTest, MalformedScenarioStartsNothing) {
   EXPECT_NE(log.find("k"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir_ / "out")) << "nothing may be started or written";
 
+  // WHEN it is given an unknown option and an override that is no number THEN it exits 2, naming the option
   Child unknown({kLaunch, "--scenario", kScenario, "--bogus", "--set", "duration_s=abc"}, dir_ / "launch2.log");
   EXPECT_EQ(unknown.wait(30.0), 2);
   const std::string log2 = readFile(dir_ / "launch2.log");
   EXPECT_NE(log2.find("--bogus"), std::string::npos) << log2;
+  // AND nothing of either launch is left
   expectNothingLeft();
 }
 
 TEST_F(LaunchTest, FourAgentsSixtySecondsStayCohesive) {
+  // WHEN the launcher runs the 4-UAV GNSS-loss scenario for 60 s (lockstep)
   Child launch(launchArgs({"--set", "duration_s=60"}), dir_ / "launch.log");
+  // THEN it exits with the monitor's PASS
   const auto status = launch.wait(180.0);
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
   EXPECT_EQ(*status, 0) << log;  // PASS verdict
 
+  // AND the monitor's summary shows a cohesive swarm: d_NB within 10 % of r, no collision, no restart
   const fs::path out = dir_ / "out";
   const std::string summary = readFile(out / "summary.json");
   ASSERT_FALSE(summary.empty()) << log;
@@ -121,7 +162,7 @@ TEST_F(LaunchTest, FourAgentsSixtySecondsStayCohesive) {
   EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
   EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0);
 
-  // The DDS processes and the in-process loop (swa_batch's) agree exactly: lockstep delivers every sample in the
+  // AND the DDS processes and the in-process loop (swa_batch's) agree exactly: lockstep delivers every sample in the
   // closed loop's order, and each agent publishes its state once all of a step's samples are processed.
   const batch::RunResult oracle = batch::runClosedLoop(sim::loadScenario(kScenario, {"duration_s=60"}));
   int compared = 0;
@@ -135,10 +176,12 @@ TEST_F(LaunchTest, FourAgentsSixtySecondsStayCohesive) {
     ++compared;
   }
   EXPECT_GE(compared, 20);
+  // AND the run directory holds the report, the time series, the effective scenario, the logs and the restart log
   for (const char* f : {"report.html", "timeseries.csv", "scenario.yaml", "logs/sim.log", "logs/monitor.log",
                         "logs/agent_0.log", "logs/agent_3.log", "logs/restarts.csv"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
+  // AND nothing is left: no process on the domain, no shared-memory file
   expectNothingLeft();
 }
 
@@ -181,35 +224,22 @@ TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveScenarioAndNoSet) {
 // Agent 2 is SIGKILLed mid-run. The launcher must restart it; the new process must rebuild its picture of the
 // swarm (it ends tracking its neighbours), and the run must stay cohesive.
 TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
+  // GIVEN a lockstep launch of 240 s, and an observer of agent 2's state in this test
   constexpr int kVictim = 2;
-  // Only to time the kill: the newest stamp agent 2 has published its state for.
-  std::atomic<long long> newest_stamp_ns{0};
-  auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
-  participant->reader<msg::AgentStatePubSubType>(dds::topics::state(kVictim), "swa_state_reader",
-                                                  [&newest_stamp_ns](msg::AgentState&& s) {
-                                                    newest_stamp_ns.store(s.header().stamp_ns());
-                                                  });
+  auto watch = std::make_unique<StateStampWatch>(domain_, kVictim);
   // Long enough in simulated time that the swarm runs well after the restart (lockstep runs ~20x real time).
   ShmJanitor launcher_files;
   Child launch(launchArgs({"--set", "duration_s=240"}), dir_ / "launch.log");
-  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
-  bool killed = false;
-  while (!killed && SteadyClock::now() < deadline && !launch.wait(0.0)) {
-    if (newest_stamp_ns.load() >= 20'000'000'000LL) {
-      const int pid = agentPid(domain_, kVictim);
-      ASSERT_GT(pid, 0);
-      ::kill(pid, SIGKILL);
-      killed = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(killed) << readFile(dir_ / "launch.log");
-  participant.reset();
+  // WHEN agent 2 is SIGKILLed once the run is past 20 s
+  ASSERT_GT(watch->killWhenReached(20'000'000'000LL, launch, [&] { return agentPid(domain_, kVictim); }), 0)
+      << readFile(dir_ / "launch.log");
+  watch.reset();
+  // THEN the launcher exits with PASS
   const auto status = launch.wait(180.0);
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
   EXPECT_EQ(*status, 0) << log;
-  // The restarted process tracked its neighbours again: its own final line, after the launcher's restart marker.
+  // AND the restarted process tracked its neighbours again: its own final line, after the launcher's restart marker.
   // (Not checked through this test's participant: in about 1 run in 6 that participant, which had been receiving
   // from the killed process, received nothing from the new agent 2 process, while the simulator, the monitor and the
   // other agents did — an open question about Fast DDS 2.9 recorded in the note of issue #4.)
@@ -220,6 +250,8 @@ TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
                                 std::regex("final stage tracking, [0-9]+ confirmed track\\(s\\), frame fitted on [2-9] "
                                            "neighbour")))
       << agent_log;
+  // AND the restart is in the restart log, the summary and the report, the run stayed cohesive, and the launcher
+  // logged the agent's end
   const fs::path out = dir_ / "out";
   const std::string restarts = readFile(out / "logs" / "restarts.csv");
   EXPECT_TRUE(std::regex_search(restarts, std::regex("\n[0-9.]+,2,137,1,"))) << restarts;  // uav 2, SIGKILL
@@ -229,36 +261,22 @@ TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
   EXPECT_NEAR(jsonNumber(summary, "mean_neighbor_distance_m"), 10.0, 1.0);
   EXPECT_NE(readFile(out / "report.html").find("restart"), std::string::npos) << "the restart is not in the report";
   EXPECT_NE(log.find("agent 2 ended (signal 9"), std::string::npos) << log;
+  // AND nothing of the run is left
   expectNothingLeft(&launcher_files);
 }
 
 // Issue #11: kill -9 of the monitor under swa_launch ended the whole run with no summary and printed the path of a
 // report that did not exist. Now the monitor is restarted like an agent, and the new one says what it missed.
 TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
-  // Only to time the kill: the newest stamp agent 0 has published its state for.
-  std::atomic<long long> newest_stamp_ns{0};
-  auto participant = std::make_unique<dds::Participant>("swa_test_observer", domain_, dds::resolveProfilesFile());
-  participant->reader<msg::AgentStatePubSubType>(dds::topics::state(0), "swa_state_reader",
-                                                  [&newest_stamp_ns](msg::AgentState&& s) {
-                                                    newest_stamp_ns.store(s.header().stamp_ns());
-                                                  });
+  // GIVEN a lockstep launch of 400 s, and an observer of agent 0's state in this test
+  auto watch = std::make_unique<StateStampWatch>(domain_, 0);
   ShmJanitor launcher_files;
   Child launch(launchArgs({"--set", "duration_s=400"}), dir_ / "launch.log");
-  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
-  bool killed = false;
   // WHEN the monitor is SIGKILLed once the run is past 200 s (the simulator's truth history reaches 100 s back, so
   // the restarted monitor cannot get the first 100 s; the chaos test kills it early enough to recover everything)
-  while (!killed && SteadyClock::now() < deadline && !launch.wait(0.0)) {
-    if (newest_stamp_ns.load() >= 200'000'000'000LL) {
-      const int pid = monitorPid(domain_);
-      ASSERT_GT(pid, 0);
-      ::kill(pid, SIGKILL);
-      killed = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(killed) << readFile(dir_ / "launch.log");
-  participant.reset();
+  ASSERT_GT(watch->killWhenReached(200'000'000'000LL, launch, [&] { return monitorPid(domain_); }), 0)
+      << readFile(dir_ / "launch.log");
+  watch.reset();
   const auto status = launch.wait(180.0);
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
@@ -278,6 +296,7 @@ TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
       << readFile(out / "logs" / "restarts.csv");
   EXPECT_EQ(jsonNumber(summary, "monitor_restarts"), 1.0) << summary;
   EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0) << summary;
+  // AND nothing of the run is left
   expectNothingLeft(&launcher_files);
 }
 
@@ -285,7 +304,7 @@ TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
 // one domain mixed silently. Each launch is a swarm of its own (a DDS partition): two of them side by side on one
 // domain, and a stray publisher there, change nothing.
 TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
-  // GIVEN two launches of the same scenario at once on this test's domain, each its own swarm
+  // GIVEN two launches of the same scenario at once on this test's domain, each its own swarm (20 s each)
   ::unsetenv("SWA_SWARM");
   Child a(launchArgs({"--set", "duration_s=20", "--swarm", swarm_ + "-a"}), dir_ / "a.log");
   std::vector<std::string> b_args = launchArgs({"--set", "duration_s=20", "--swarm", swarm_ + "-b"});
@@ -300,6 +319,7 @@ TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
   end.kind(msg::EVENT_SCENARIO_END);
   end.text("completed");
   const auto deadline = SteadyClock::now() + std::chrono::seconds(120);
+  // WHEN both run to their end, the stray publisher writing all the while
   while ((!a.wait(0.0) || !b.wait(0.0)) && SteadyClock::now() < deadline) {
     events.write(end);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -317,6 +337,7 @@ TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
     EXPECT_EQ(jsonNumber(summary, "mean_neighbor_distance_m"), oracle.summary.mean_neighbor_distance_m);
     EXPECT_EQ(jsonNumber(summary, "anees_position"), oracle.summary.anees_position) << summary;
   }
+  // AND the first launch logged its swarm, and nothing of either is left
   EXPECT_NE(readFile(dir_ / "a.log").find("swarm " + swarm_ + "-a"), std::string::npos);
   expectNothingLeft();
 }
@@ -324,37 +345,43 @@ TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
 // SIGTERM to the launcher mid-run: forwarded, the monitor writes what it has (verdict INCOMPLETE = 3), and every
 // process and shared-memory file is gone.
 TEST_F(LaunchTest, SigtermStopsEverythingCleanly) {
+  // GIVEN a realtime launch of 600 s, and an observer of agent 0's state in this test
+  auto watch = std::make_unique<StateStampWatch>(domain_, 0);
   Child launch(launchArgs({"--set", "clock.mode=realtime", "--set", "duration_s=600"}), dir_ / "launch.log");
-  const fs::path sim_log = dir_ / "out" / "logs" / "sim.log";
-  const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
-  while (SteadyClock::now() < deadline && readFile(sim_log).find("discovered") == std::string::npos &&
-         !launch.wait(0.0)) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  std::this_thread::sleep_for(std::chrono::seconds(2));  // let the world run a little
+  // WHEN the world has run a little: agent 0 has published its state for 2 s of simulated time, which in realtime is
+  // 2 s of the run (a bounded wait, given up if the launcher exits)
+  ASSERT_TRUE(watch->waitUntil(2'000'000'000LL, launch)) << "the world never ran\n" << readFile(dir_ / "launch.log");
+  watch.reset();
+  // AND the launcher gets SIGTERM
   launch.signal(SIGTERM);
+  // THEN it exits with the monitor's INCOMPLETE (3), and the monitor wrote a summary of an incomplete run
   const auto status = launch.wait(60.0);
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
   EXPECT_EQ(*status, 3) << log;
   const std::string summary = readFile(dir_ / "out" / "summary.json");
   EXPECT_NE(summary.find("\"completed\": false"), std::string::npos) << summary;
+  // AND every process and shared-memory file is gone
   expectNothingLeft();
 }
 
 // --compare standalone: the same seed twice, both runs in one report, exit status = the SWA run's verdict.
 TEST_F(LaunchTest, CompareStandaloneWritesOneReport) {
+  // WHEN the launcher runs a 30 s scenario with --compare standalone
   Child launch(launchArgs({"--set", "duration_s=30", "--compare", "standalone"}), dir_ / "launch.log");
+  // THEN it exits with the SWA run's PASS
   const auto status = launch.wait(180.0);
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
   EXPECT_EQ(*status, 0) << log;
+  // AND each run has its own summary, and one report shows both
   const fs::path out = dir_ / "out";
   EXPECT_TRUE(fs::exists(out / "swa" / "summary.json"));
   EXPECT_TRUE(fs::exists(out / "standalone" / "summary.json"));
   const std::string report = readFile(out / "report.html");
   EXPECT_NE(report.find("swa"), std::string::npos);
   EXPECT_NE(report.find("standalone"), std::string::npos);
+  // AND nothing of either run is left
   expectNothingLeft();
 }
 
@@ -362,22 +389,28 @@ TEST_F(LaunchTest, CompareStandaloneWritesOneReport) {
 // every child is a UDP-only client of it, and the server is stopped with the run. The run is the same experiment:
 // lockstep gives the in-process loop's d_NB exactly over this transport too.
 TEST_F(LaunchTest, DiscoveryServerTransportStaysCohesiveAndStopsTheServer) {
+  // GIVEN a port of this test's own for a discovery server
   const std::string port = std::to_string(20000 + domain_);  // distinct per domain, as concurrent launches need
+  // WHEN the launcher runs a 30 s scenario over the discovery-server transport without a server address
   Child launch(launchArgs({"--set", "duration_s=30", "--transport", "discovery-server", "--discovery-port", port}),
                dir_ / "launch.log");
+  // THEN it exits with PASS
   const auto status = launch.wait(180.0);
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
   EXPECT_EQ(*status, 0) << log;
+  // AND it started a discovery server on 127.0.0.1 at that port and shut it down cleanly
   const fs::path out = dir_ / "out";
   const std::string server_log = readFile(out / "discovery_server.log");
   EXPECT_NE(server_log.find("UDPv4:[127.0.0.1]:" + port), std::string::npos) << server_log;
   EXPECT_NE(server_log.find("Server shut down"), std::string::npos) << "stopped cleanly: " << server_log;
+  // AND the run is the in-process loop's, d_NB within 10 % of r, with no collision
   const std::string summary = readFile(out / "summary.json");
   const batch::RunResult oracle = batch::runClosedLoop(sim::loadScenario(kScenario, {"duration_s=30"}));
   EXPECT_EQ(jsonNumber(summary, "mean_neighbor_distance_m"), oracle.summary.mean_neighbor_distance_m) << log;
   EXPECT_NEAR(jsonNumber(summary, "mean_neighbor_distance_m"), 10.0, 1.0);
   EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
+  // AND no discovery server is left running, nor anything else of the run
   for (const auto& e : fs::directory_iterator("/proc")) {
     const std::string cmdline = readFile(e.path() / "cmdline");
     EXPECT_FALSE(cmdline.find("fast-discovery-server") != std::string::npos && cmdline.find(port) != std::string::npos)
@@ -398,18 +431,21 @@ TEST_F(LaunchTest, UnwritableOutputStartsNothingAndExits2) {
 }
 
 TEST_F(LaunchTest, BadDeploymentStartsNothing) {
-  // A transport typo, and credentials that do not exist: both found before anything starts.
+  // WHEN the launcher is given a transport typo THEN it exits 2 before anything starts, naming the transports
   Child typo(launchArgs({"--transport", "shm"}), dir_ / "typo.log");
   EXPECT_EQ(typo.wait(30.0), 2);
   EXPECT_NE(readFile(dir_ / "typo.log").find("--transport must be local, network or discovery-server"),
             std::string::npos)
       << readFile(dir_ / "typo.log");
+  // WHEN it is given credentials that do not exist THEN it exits 2, naming every missing file and the script that
+  // makes them
   Child insecure(launchArgs({"--secure", (dir_ / "no_such_creds").string()}), dir_ / "secure.log");
   EXPECT_EQ(insecure.wait(30.0), 2);
   const std::string log = readFile(dir_ / "secure.log");
   EXPECT_NE(log.find("missing credentials"), std::string::npos) << log;
   EXPECT_NE(log.find("swa_agent_3/permissions.p7s"), std::string::npos) << "every missing file named: " << log;
   EXPECT_NE(log.find("make-credentials.sh"), std::string::npos) << log;
+  // AND nothing was written, and nothing is left
   EXPECT_FALSE(fs::exists(dir_ / "out")) << "nothing may be started or written";
   expectNothingLeft();
 }

@@ -7,16 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include "markup_support.h"
 #include "swa/monitor/report.h"
 
 namespace swa::monitor {
 namespace {
 
-int occurrences(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (std::size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-  return n;
-}
+using testing::occurrences;
 
 TEST(MetricsReport, CsvHeaderIsTheDocumentedColumnList) {
   EXPECT_EQ(csvHeader(),

@@ -95,16 +95,21 @@ void expectSameSummary(const monitor::Summary& a, const monitor::Summary& b) {
 TEST(MonitorClosedLoop, ReproducesSwaBatchExactly) {
   for (const std::string mode : {"swa", "standalone"}) {
     SCOPED_TRACE(mode);
+    // GIVEN the 4-UAV GNSS-loss scenario (20 s) in this mode, and swa_batch's in-process run of it as the reference
     const sim::Scenario s = scenario(mode);
     const batch::RunResult reference = batch::runClosedLoop(s);
+    // WHEN the same loop's truth and agent states reach the monitor through the messages, states early and late
     const std::unique_ptr<LiveRun> live = monitorLoop(s);
+    // THEN the monitor's time series is swa_batch's, row for row
     ASSERT_EQ(live->series().size(), reference.series.size());
     for (std::size_t k = 0; k < reference.series.size(); ++k) {
       ASSERT_EQ(monitor::formatCsvRow(live->series()[k]), monitor::formatCsvRow(reference.series[k])) << k;
     }
+    // AND so is its summary, bit for bit, with no state missing, late or unmatched
     expectSameSummary(live->summary(), reference.summary);
     EXPECT_EQ(live->joinCounters().missing_states, 0u);
     EXPECT_EQ(live->joinCounters().state_late + live->joinCounters().state_unmatched, 0u);
+    // AND with estimates to score (SWA mode) it scored NEES samples
     if (mode == "swa") {
       EXPECT_GT(live->summary().nees_samples, 0u);
     }
@@ -112,17 +117,21 @@ TEST(MonitorClosedLoop, ReproducesSwaBatchExactly) {
 }
 
 TEST(MonitorClosedLoop, DeadAgentKeepsItsUavInTheGeometry) {
+  // GIVEN the SWA-mode scenario and swa_batch's reference run of it
   const sim::Scenario s = scenario("swa");
   const batch::RunResult reference = batch::runClosedLoop(s);
+  // WHEN agent 2 is dead from 10 s on (its UAV still flies, its states stop)
   const std::unique_ptr<LiveRun> live = monitorLoop(s, 2, 10.0);
   const monitor::Summary a = live->summary();
   const monitor::Summary& b = reference.summary;
+  // THEN the geometry is the reference's: the dead agent's UAV is still in it
   EXPECT_EQ(a.uav_count, b.uav_count);
   EXPECT_EQ(a.mean_neighbor_distance_m, b.mean_neighbor_distance_m);
   EXPECT_EQ(a.min_separation_m, b.min_separation_m);
   EXPECT_EQ(a.collisions, b.collisions);
   EXPECT_EQ(a.groups, b.groups);
   EXPECT_EQ(a.drift_velocity_mps, b.drift_velocity_mps);
+  // AND there are fewer NEES samples (agent 2's are missing), no state was waited for, and 3 agents are live
   EXPECT_LT(a.nees_samples, b.nees_samples);           // agent 2's estimates are missing from 10 s on
   EXPECT_EQ(live->joinCounters().missing_states, 0u);  // a dead agent is not waited for
   EXPECT_EQ(live->status().live_agents, 3);

@@ -80,13 +80,17 @@ class CombineTest : public ::testing::Test {
 };
 
 TEST_F(CombineTest, OneReportOneSummaryFirstRunsVerdict) {
+  // GIVEN a passing SWA run and a failing standalone run, each in a run directory written by a live monitor
   const std::string a = writeRun("swa", Outcome::kPass, 9.9);
   const std::string b = writeRun("standalone", Outcome::kFail, 19.0);
   const std::string out_dir = (root_ / "combined").string();
   std::string out, err;
+  // WHEN they are combined under the labels SWA and baseline
+  // THEN the exit status is the first run's PASS (0) and the report's path is printed
   EXPECT_EQ(combine({"--combine", "SWA=" + a, "baseline=" + b, "--out", out_dir}, out, err), 0) << err;
   EXPECT_NE(out.find("report " + (fs::path(out_dir) / "report.html").string()), std::string::npos) << out;
 
+  // AND summary.json holds both runs under their --combine labels, each with its whole summary
   const record::Json summary = record::Json::parse(read(fs::path(out_dir) / "summary.json"));
   ASSERT_TRUE(summary.contains("runs"));
   const record::Json& runs = summary["runs"];
@@ -97,6 +101,7 @@ TEST_F(CombineTest, OneReportOneSummaryFirstRunsVerdict) {
   EXPECT_DOUBLE_EQ(runs[1]["mean_neighbor_distance_m"].get<double>(), 19.0);
   EXPECT_EQ(runs[0]["events"].size(), 1u);  // each run's whole summary.json
 
+  // AND report.html shows both runs' verdict reasons, events, restarts and trajectories, and the d_NB plot is beside it
   const std::string html = read(fs::path(out_dir) / "report.html");
   for (const char* must : {"SWA", "baseline", "something &lt;failed&gt;", "table-events", "agent_dead",
                            "table-restarts", "SIGKILL", "trajectories_SWA", "trajectories_baseline"}) {
@@ -104,45 +109,54 @@ TEST_F(CombineTest, OneReportOneSummaryFirstRunsVerdict) {
   }
   EXPECT_TRUE(fs::exists(fs::path(out_dir) / "d_nb.svg"));
 
-  // The first run decides the exit status.
+  // WHEN the failing run comes first THEN the exit status is its FAIL (1), and an incomplete first run gives 3
   EXPECT_EQ(combine({"--combine", "b=" + b, "a=" + a, "--out", out_dir}, out, err), 1);
   const std::string c = writeRun("cut", Outcome::kIncomplete, 10.0);
   EXPECT_EQ(combine({"--combine", "c=" + c, "a=" + a, "--out", out_dir}, out, err), 3);
 }
 
 TEST_F(CombineTest, ScenarioGivesTheReportsReferenceValues) {
+  // GIVEN a passing run and a scenario file with spacing 12 m and the GNSS loss at 20 s
   const std::string a = writeRun("swa", Outcome::kPass, 9.9);
   const fs::path scenario = root_ / "s.yaml";
   std::ofstream(scenario)
       << "uav_count: 4\nduration_s: 60\nformation:\n  spacing_m: 12.0\ngnss:\n  dropout_start_s: 20\n";
   const std::string out_dir = (root_ / "with_scenario").string();
   std::string out, err;
+  // WHEN the run is combined with --scenario
   ASSERT_EQ(combine({"--combine", "x=" + a, "--out", out_dir, "--scenario", scenario.string()}, out, err), 0) << err;
+  // THEN the report's reference lines come from the scenario
   const std::string html = read(fs::path(out_dir) / "report.html");
   EXPECT_NE(html.find("12 m"), std::string::npos);  // r from the scenario (spacing), not the run's 10 m
   EXPECT_NE(html.find("20 s"), std::string::npos);  // GNSS loss line
 }
 
 TEST_F(CombineTest, BadInputsAreExitTwoAndNamed) {
+  // GIVEN a run directory
   const std::string a = writeRun("swa", Outcome::kPass, 9.9);
   const std::string out_dir = (root_ / "bad").string();
   std::string out, err;
+  // WHEN a directory that does not exist is combined THEN exit status 2, naming it
   EXPECT_EQ(combine({"--combine", "x=" + (root_ / "missing").string(), "--out", out_dir}, out, err), 2);
   EXPECT_NE(err.find("missing: not a directory"), std::string::npos) << err;
 
+  // WHEN a run directory lacks trajectories.csv THEN exit status 2, naming the file
   fs::remove(fs::path(a) / "trajectories.csv");
   EXPECT_EQ(combine({"--combine", "x=" + a, "--out", out_dir}, out, err), 2);
   EXPECT_NE(err.find("trajectories.csv"), std::string::npos) << err;
 
+  // WHEN a run directory's timeseries.csv is garbage THEN exit status 2, naming the file and line
   const std::string b = writeRun("other", Outcome::kPass, 9.9);
   std::ofstream(fs::path(b) / "timeseries.csv") << "garbage\n";
   EXPECT_EQ(combine({"--combine", "x=" + b, "--out", out_dir}, out, err), 2);
   EXPECT_NE(err.find("timeseries.csv:1: header is not"), std::string::npos) << err;
 
+  // WHEN the --scenario file does not exist THEN exit status 2, saying the scenario is invalid
   const std::string c = writeRun("third", Outcome::kPass, 9.9);
   EXPECT_EQ(combine({"--combine", "x=" + c, "--out", out_dir, "--scenario", (root_ / "nope.yaml").string()}, out, err),
             2);
   EXPECT_NE(err.find("invalid scenario"), std::string::npos) << err;
+  // AND no report was written for any of these
   EXPECT_FALSE(fs::exists(fs::path(out_dir) / "report.html"));  // nothing written on bad input
 }
 

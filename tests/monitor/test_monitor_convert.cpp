@@ -55,15 +55,21 @@ void expectSameRecord(const monitor::EstimateRecord& a, const monitor::EstimateR
 }
 
 TEST(MonitorConvert, StateGivesTheRecordOfTheAgentsOwnDiagnostics) {
+  // GIVEN a formation of radius 12.5 m with the algebraic fit
   const agent::FormationConfig f = formation(12.5, agent::CircleFit::kAlgebraic);
   for (const agent::Mode mode : {agent::Mode::kSwa, agent::Mode::kAnchored, agent::Mode::kStandalone}) {
+    // AND a tracking agent's diagnostics in each mode
     const agent::Diagnostics d = tracking(mode);
+    // WHEN they are published as UAV 3's AgentState and converted back
     const StateSample s = fromStateMsg(wire::toMsg(d, 3, 17), f);
+    // THEN the sample carries the UAV, stamp and mode, all finite
     EXPECT_EQ(s.uav, 3);
     EXPECT_EQ(s.stamp_ns, d.stamp_ns);
     ASSERT_TRUE(s.mode.has_value());
     EXPECT_EQ(*s.mode, mode);
     EXPECT_TRUE(s.finite);
+    // AND its estimate is exactly the record the agent's own diagnostics give (valid unless standalone), with the
+    // formation's radius and fit
     expectSameRecord(s.estimate, monitor::estimateFromDiagnostics(d, f));
     EXPECT_EQ(s.estimate.valid, mode != agent::Mode::kStandalone);
     EXPECT_EQ(s.estimate.radius_m, 12.5);  // from the scenario's formation: the message has no radius
@@ -72,32 +78,40 @@ TEST(MonitorConvert, StateGivesTheRecordOfTheAgentsOwnDiagnostics) {
 }
 
 TEST(MonitorConvert, OnlyATrackedFloatingFrameIsValid) {
+  // GIVEN a formation and a conversion that says whether the estimate is valid
   const agent::FormationConfig f = formation(10.0, agent::CircleFit::kFixedRadius);
   const auto valid = [&f](const agent::Diagnostics& d) {
     return fromStateMsg(wire::toMsg(d, 0, 1), f).estimate.valid;
   };
+  // THEN a tracking agent's estimate is valid
   EXPECT_TRUE(valid(tracking()));
+  // WHEN the agent is initialising or lost THEN it is not
   agent::Diagnostics d = tracking();
   d.stage = agent::Stage::kInitializing;
   EXPECT_FALSE(valid(d));
   d.stage = agent::Stage::kLost;
   EXPECT_FALSE(valid(d));
+  // WHEN the frame is not valid THEN it is not
   d = tracking();
   d.frame_valid = false;
   EXPECT_FALSE(valid(d));
+  // WHEN the agent has no neighbour THEN it is not
   d = tracking();
   d.neighbour_count = 0;
   EXPECT_FALSE(valid(d));
 }
 
 TEST(MonitorConvert, UnknownEnumValuesMakeTheEstimateInvalid) {
+  // GIVEN the default formation
   const agent::FormationConfig f;
+  // WHEN a tracking agent's state has an unknown mode value THEN the sample has no mode and the estimate is invalid
   msg::AgentState m = wire::toMsg(tracking(), 0, 1);
   m.mode(static_cast<msg::AgentMode>(42));
   StateSample s = fromStateMsg(m, f);
   EXPECT_FALSE(s.mode.has_value());
   EXPECT_FALSE(s.estimate.valid);
 
+  // WHEN the state has an unknown stage value THEN the mode is kept and the estimate is invalid
   m = wire::toMsg(tracking(), 0, 1);
   m.stage(static_cast<msg::AgentStage>(42));
   s = fromStateMsg(m, f);
@@ -106,13 +120,16 @@ TEST(MonitorConvert, UnknownEnumValuesMakeTheEstimateInvalid) {
 }
 
 TEST(MonitorConvert, NonFiniteNumbersMakeTheEstimateInvalid) {
+  // GIVEN the default formation
   const agent::FormationConfig f;
+  // WHEN one number of a tracking agent's state (position, velocity, a covariance) is NaN or infinite
   for (int field = 0; field < 4; ++field) {
     msg::AgentState m = wire::toMsg(tracking(), 0, 1);
     if (field == 0) m.est_x_m(kNaN);
     if (field == 1) m.est_vy_mps(std::numeric_limits<double>::infinity());
     if (field == 2) m.pos_cov_xy_m2(kNaN);
     if (field == 3) m.vel_cov_yy_m2ps2(kNaN);
+    // THEN the sample is marked non-finite and its estimate invalid
     const StateSample s = fromStateMsg(m, f);
     EXPECT_FALSE(s.finite) << field;
     EXPECT_FALSE(s.estimate.valid) << field;
@@ -120,10 +137,13 @@ TEST(MonitorConvert, NonFiniteNumbersMakeTheEstimateInvalid) {
 }
 
 TEST(MonitorConvert, TooManyNeighboursNeverScoreATruncatedFrame) {
+  // GIVEN a tracking agent's state message that lists 40 neighbours
   msg::AgentState m = wire::toMsg(tracking(), 0, 1);
   m.neighbour_ids().assign(40, 1);
+  // WHEN it is converted THEN all 40 are counted
   const StateSample s = fromStateMsg(m, agent::FormationConfig{});
   EXPECT_EQ(s.estimate.neighbour_count, 40);  // more than kMaxNeighbours: the NEES skips it as invalid
+  // WHEN its estimate is scored in a step THEN the NEES skips it as invalid
   monitor::StepInput step;
   for (int i = 0; i < 2; ++i) step.uavs.push_back({i, agent::Vec2(10.0 * i, 0.0), agent::Vec2::Zero(), true});
   step.estimates = {s.estimate, monitor::EstimateRecord{}};
@@ -133,9 +153,11 @@ TEST(MonitorConvert, TooManyNeighboursNeverScoreATruncatedFrame) {
 }
 
 TEST(MonitorConvert, HugeUavIdsNeverAliasAUav) {
+  // GIVEN a state message of UAV id 2^32 - 1 WHEN it is converted THEN its UAV is -1 (none)
   msg::AgentState m = wire::toMsg(tracking(), 0, 1);
   m.uav_id(std::numeric_limits<std::uint32_t>::max());
   EXPECT_EQ(fromStateMsg(m, agent::FormationConfig{}).uav, -1);
+  // AND a UAV of that id in a truth message converts to -1 too
   msg::SwarmTruth t;
   msg::UavTruth u;
   u.id(std::numeric_limits<std::uint32_t>::max());
@@ -144,6 +166,7 @@ TEST(MonitorConvert, HugeUavIdsNeverAliasAUav) {
 }
 
 TEST(MonitorConvert, TruthKeepsEveryUavInTheAirAndTheAgentFlagApart) {
+  // GIVEN a truth message of 3 UAVs at 2 s, in which agent 1 is dead
   msg::SwarmTruth m;
   m.header().stamp_ns(2'000'000'000);
   for (std::uint32_t i = 0; i < 3; ++i) {
@@ -156,7 +179,9 @@ TEST(MonitorConvert, TruthKeepsEveryUavInTheAirAndTheAgentFlagApart) {
     u.alive(i != 1);  // the simulator's flag: agent 1 is dead, its UAV hovers on the failsafe
     m.uavs().push_back(u);
   }
+  // WHEN it is converted
   const TruthSample t = fromTruthMsg(m);
+  // THEN every UAV is kept with its id, position and velocity, alive (in the air) and present in the metrics
   EXPECT_EQ(t.stamp_ns, 2'000'000'000);
   ASSERT_EQ(t.uavs.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i) {
@@ -166,16 +191,19 @@ TEST(MonitorConvert, TruthKeepsEveryUavInTheAirAndTheAgentFlagApart) {
     EXPECT_EQ(t.uavs[i].position_m, agent::Vec2(1.0 + static_cast<double>(i), -2.0 * static_cast<double>(i)));
     EXPECT_EQ(t.uavs[i].velocity_mps, agent::Vec2(0.5, -0.25 * static_cast<double>(i)));
   }
+  // AND the agent flags are kept apart
   EXPECT_EQ(t.agent_alive, (std::vector<bool>{true, false, true}));
 }
 
 TEST(MonitorConvert, EveryEventKindHasAName) {
+  // GIVEN every event kind the simulator sends, with its name
   const std::pair<msg::EventKind, const char*> kinds[] = {
       {msg::EVENT_GNSS_LOST, "gnss_lost"},      {msg::EVENT_GNSS_RESTORED, "gnss_restored"},
       {msg::EVENT_AGENT_DEAD, "agent_dead"},    {msg::EVENT_AGENT_REJOINED, "agent_rejoined"},
       {msg::EVENT_COLLISION, "collision"},      {msg::EVENT_FAILSAFE, "failsafe"},
       {msg::EVENT_SCENARIO_END, "scenario_end"}};
   for (const auto& [kind, name] : kinds) {
+    // WHEN an event of that kind with every field set is converted
     msg::ScenarioEvent m;
     m.header().stamp_ns(1'500'000'000);
     m.kind(kind);
@@ -184,6 +212,7 @@ TEST(MonitorConvert, EveryEventKindHasAName) {
     m.value(1.25);
     m.text("detail, with a comma");
     const std::optional<EventRecord> e = fromEventMsg(m);
+    // THEN it carries the kind's name and every field, its stamp in seconds
     ASSERT_TRUE(e.has_value()) << name;
     EXPECT_EQ(e->kind, name);
     EXPECT_DOUBLE_EQ(e->t_s, 1.5);
@@ -192,6 +221,7 @@ TEST(MonitorConvert, EveryEventKindHasAName) {
     EXPECT_DOUBLE_EQ(e->value, 1.25);
     EXPECT_EQ(e->text, "detail, with a comma");
   }
+  // AND an unknown kind gives no event
   msg::ScenarioEvent unknown;
   unknown.kind(static_cast<msg::EventKind>(99));
   EXPECT_FALSE(fromEventMsg(unknown).has_value());

@@ -17,14 +17,17 @@ using record::VerdictInput;
 constexpr agent::StampNs kMs = 1'000'000;
 
 TEST(TruthCoverage, AWholeRunAt10HzMissesNothing) {
+  // GIVEN a monitor that saw truth every 100 ms from 0 to 120 s
   TruthCoverage c;
   for (int k = 0; k <= 1200; ++k) c.add(k * 100 * kMs);
+  // THEN it missed nothing
   EXPECT_TRUE(c.missed().empty());
   EXPECT_EQ(c.missedSeconds(), 0.0);
 }
 
 TEST(TruthCoverage, ALateStartAndAGapAreMissed) {
-  // GIVEN a monitor whose first truth is at 28 s, and which then loses 4 s of truth
+  // GIVEN a monitor whose first truth is at 28 s, and which then loses 4 s of truth (samples every 100 ms from 28 s
+  // to 50 s and from 54 s to 60 s)
   TruthCoverage c;
   for (int k = 280; k <= 500; ++k) c.add(k * 100 * kMs);
   for (int k = 540; k <= 600; ++k) c.add(k * 100 * kMs);
@@ -38,12 +41,15 @@ TEST(TruthCoverage, ALateStartAndAGapAreMissed) {
 }
 
 TEST(TruthCoverage, GapsUpToASecondAndRepeatsAreNotMissed) {
+  // GIVEN a monitor that saw truth at 0 s, exactly 1 s later, once more at that stamp, then an older one, then 0.9 s
+  // after the newest
   TruthCoverage c;
   c.add(0);
   c.add(1000 * kMs);      // exactly the allowed gap
   c.add(1000 * kMs);      // repeated: ignored
   c.add(500 * kMs);       // older: ignored
   c.add(1900 * kMs);
+  // THEN nothing was missed
   EXPECT_TRUE(c.missed().empty());
 }
 
@@ -61,6 +67,7 @@ TEST(MonitorVerdict, MissedPartOfTheRunIsIncompleteAndNamed) {
   EXPECT_EQ(v.outcome, Outcome::kIncomplete);
   ASSERT_EQ(v.reasons.size(), 1u);
   EXPECT_EQ(v.reasons[0], "the monitor missed 28 s of the run (0-28 s)");
+  // AND without the missed part the same run passes
   in.missed.clear();
   EXPECT_EQ(judge(in).outcome, Outcome::kPass);
 }

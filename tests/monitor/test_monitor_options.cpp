@@ -26,7 +26,10 @@ std::string errorOf(const std::vector<std::string>& args) {
 bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
 TEST(MonitorOptions, DefaultsWithoutArguments) {
+  // WHEN swa_monitor gets no argument
   const MonitorOptions o = parseMonitorOptions({});
+  // THEN it runs live with the documented defaults: out/monitor, no scenario, label, domain or restart log, no
+  // timeout, a 5 % band, not quiet
   EXPECT_EQ(o.out_dir, "out/monitor");
   EXPECT_FALSE(o.out_given);
   EXPECT_TRUE(o.scenario_path.empty());
@@ -43,9 +46,11 @@ TEST(MonitorOptions, DefaultsWithoutArguments) {
 }
 
 TEST(MonitorOptions, EveryLiveOptionInBothSpellings) {
+  // WHEN every live-mode option is given, some as `--opt value`, some as `--opt=value`, --set twice
   const MonitorOptions o = parseMonitorOptions({"--out", "/tmp/x", "--scenario=s.yaml", "--set", "duration_s=30",
                                                 "--set=seed=7", "--label", "swa run", "--domain=77", "--restarts",
                                                 "r.csv", "--timeout-s=12.5", "--tolerance", "0.05", "--quiet"});
+  // THEN each is read, and the run is live
   EXPECT_EQ(o.out_dir, "/tmp/x");
   EXPECT_TRUE(o.out_given);
   EXPECT_EQ(o.scenario_path, "s.yaml");
@@ -62,12 +67,15 @@ TEST(MonitorOptions, EveryLiveOptionInBothSpellings) {
 }
 
 TEST(MonitorOptions, HelpWinsOverProblems) {
+  // WHEN --help or -h is given, even beside an unknown option, THEN help is asked for
   EXPECT_TRUE(parseMonitorOptions({"--help"}).help);
   EXPECT_TRUE(parseMonitorOptions({"-h", "--bogus"}).help);
 }
 
 TEST(MonitorOptions, CombineListAfterOneFlagAndRepeatedFlags) {
+  // WHEN --combine is followed by two LABEL=DIR arguments and then another option
   const MonitorOptions a = parseMonitorOptions({"--combine", "swa=out/a", "standalone=out/b", "--out", "out/c"});
+  // THEN both runs are combined, in order
   ASSERT_EQ(a.combine.size(), 2u);
   EXPECT_EQ(a.combine[0].label, "swa");
   EXPECT_EQ(a.combine[0].dir, "out/a");
@@ -75,8 +83,10 @@ TEST(MonitorOptions, CombineListAfterOneFlagAndRepeatedFlags) {
   EXPECT_EQ(a.combine[1].dir, "out/b");
   EXPECT_TRUE(a.combineMode());
 
+  // WHEN --combine is repeated, in both spellings, among other options
   const MonitorOptions b =
       parseMonitorOptions({"--combine=x=d1", "--out=o", "--combine", "y=d=2", "--scenario", "s.yaml", "--set", "k=v"});
+  // THEN each gives one run, and only the first '=' separates the label from the directory
   ASSERT_EQ(b.combine.size(), 2u);
   EXPECT_EQ(b.combine[0].label, "x");
   EXPECT_EQ(b.combine[1].dir, "d=2");  // only the first '=' separates
@@ -84,12 +94,14 @@ TEST(MonitorOptions, CombineListAfterOneFlagAndRepeatedFlags) {
 }
 
 TEST(MonitorOptions, BareArgumentOutsideCombineIsUnknown) {
+  // WHEN a LABEL=DIR argument comes without --combine THEN it is an unknown argument
   EXPECT_TRUE(contains(errorOf({"swa=out/a"}), "unknown argument 'swa=out/a'"));
-  // The list ends at the next option.
+  // WHEN it comes after the option that ends the --combine list THEN it is unknown too
   EXPECT_TRUE(contains(errorOf({"--combine", "a=b", "--out", "o", "c=d"}), "unknown argument 'c=d'"));
 }
 
 TEST(MonitorOptions, EachErrorIsReported) {
+  // WHEN an option is unknown, lacks its value, or its value is empty or out of range THEN the error names it
   EXPECT_TRUE(contains(errorOf({"--frobnicate"}), "unknown argument '--frobnicate'"));
   EXPECT_TRUE(contains(errorOf({"--out"}), "--out needs a value"));
   EXPECT_TRUE(contains(errorOf({"--out="}), "--out needs a file name"));
@@ -102,12 +114,14 @@ TEST(MonitorOptions, EachErrorIsReported) {
   EXPECT_TRUE(contains(errorOf({"--timeout-s", "5s"}), "--timeout-s '5s'"));
   EXPECT_TRUE(contains(errorOf({"--tolerance", "0"}), "--tolerance must be > 0"));
   EXPECT_TRUE(contains(errorOf({"--tolerance", "1.5"}), "--tolerance '1.5' is not a fraction"));
+  // WHEN a --combine list is missing, malformed, without --out or with a label twice THEN the error names it
   EXPECT_TRUE(contains(errorOf({"--combine"}), "--combine needs a value"));
   EXPECT_TRUE(contains(errorOf({"--combine", "nolabel", "--out", "o"}), "--combine 'nolabel' is not LABEL=DIR"));
   EXPECT_TRUE(contains(errorOf({"--combine", "=dir", "--out", "o"}), "--combine '=dir' is not LABEL=DIR"));
   EXPECT_TRUE(contains(errorOf({"--combine", "a=", "--out", "o"}), "--combine 'a=' is not LABEL=DIR"));
   EXPECT_TRUE(contains(errorOf({"--combine", "a=x"}), "--combine needs --out DIR"));
   EXPECT_TRUE(contains(errorOf({"--combine", "a=x", "a=y", "--out", "o"}), "label 'a' given twice"));
+  // WHEN a live-mode option is given with --combine THEN the error says it applies to the live mode only
   for (const char* live : {"--label", "--domain", "--restarts", "--timeout-s"}) {
     const std::string e = errorOf({"--combine", "a=x", "--out", "o", live, "1"});
     EXPECT_TRUE(contains(e, std::string(live) + " applies to the live mode only")) << e;
@@ -115,7 +129,9 @@ TEST(MonitorOptions, EachErrorIsReported) {
 }
 
 TEST(MonitorOptions, AllProblemsTogetherOnePerLine) {
+  // WHEN four arguments are wrong at once
   const std::string e = errorOf({"--bogus", "--timeout-s", "x", "--set", "a=b", "--tolerance", "2"});
+  // THEN the error names each of them, one per line
   EXPECT_TRUE(contains(e, "unknown argument '--bogus'"));
   EXPECT_TRUE(contains(e, "--timeout-s 'x'"));
   EXPECT_TRUE(contains(e, "--tolerance '2'"));
@@ -124,7 +140,9 @@ TEST(MonitorOptions, AllProblemsTogetherOnePerLine) {
 }
 
 TEST(MonitorOptions, UsageDocumentsTheContract) {
+  // WHEN the usage text is printed
   const std::string u = monitorUsage();
+  // THEN it documents every option, the run directory's files, the restart log's columns and the exit statuses
   for (const char* must : {"--out DIR",
                            "--scenario FILE",
                            "--set key=value",

@@ -20,16 +20,21 @@ RestartLog parse(const std::string& text) {
 }
 
 TEST(RestartLog, MissingFileIsNoRestart) {
+  // WHEN the restart log file does not exist
   const RestartLog log = readRestartLog("/nonexistent/swa_monitor_restarts.csv");
+  // THEN it is not found, and there was no restart and nothing malformed
   EXPECT_FALSE(log.found);
   EXPECT_TRUE(log.restarts.empty());
   EXPECT_EQ(log.malformed_rows, 0);
 }
 
 TEST(RestartLog, EmptyOrHeaderOnlyIsNoRestart) {
+  // GIVEN an empty log, a blank line, or the header alone (with or without its newline)
   for (const std::string text : {"", "\n", "wall_s,uav,exit_status,restart_count,backoff_s\n",
                                  "wall_s,uav,exit_status,restart_count,backoff_s"}) {
+    // WHEN it is parsed
     const RestartLog log = parse(text);
+    // THEN it is found, with no restart and nothing malformed
     EXPECT_TRUE(log.found);
     EXPECT_TRUE(log.restarts.empty());
     EXPECT_EQ(log.malformed_rows, 0);
@@ -37,11 +42,13 @@ TEST(RestartLog, EmptyOrHeaderOnlyIsNoRestart) {
 }
 
 TEST(RestartLog, RowsInOrder) {
+  // WHEN a log of three restarts is parsed, its last line without its newline
   const RestartLog log = parse(
       "wall_s,uav,exit_status,restart_count,backoff_s\n"
       "12.5,3,-9,1,0.5\n"
       "20,3,SIGKILL,2,1\n"
       "31.25,0,134,1,0.5");  // the last line still being written has no newline, but is complete
+  // THEN every row is read, in order, with every field
   ASSERT_EQ(log.restarts.size(), 3u);
   EXPECT_EQ(log.malformed_rows, 0);
   EXPECT_DOUBLE_EQ(log.restarts[0].wall_s, 12.5);
@@ -55,11 +62,13 @@ TEST(RestartLog, RowsInOrder) {
 }
 
 TEST(RestartLog, AMonitorRestartIsARowOfItsOwn) {
+  // WHEN a log with an agent's restart, the monitor's, and a row naming "Monitor" is parsed
   const RestartLog log = parse(
       "wall_s,uav,exit_status,restart_count,backoff_s\n"
       "12.5,3,137,1,0.5\n"
       "20.0,monitor,137,1,0.5\n"
       "21.0,Monitor,137,1,0.5\n");
+  // THEN the monitor's restart is a row of its own, and the misspelt one is malformed
   ASSERT_EQ(log.restarts.size(), 2u);
   EXPECT_EQ(log.restarts[0].uav, 3);
   EXPECT_EQ(log.restarts[1].uav, AgentRestart::kMonitor);
@@ -67,11 +76,14 @@ TEST(RestartLog, AMonitorRestartIsARowOfItsOwn) {
 }
 
 TEST(RestartLog, HeaderOptionalRepeatedCrLfSpacesAndQuotes) {
+  // WHEN a log is parsed with a row before the header, CRLF line ends, spaces around fields, a quoted comma and a
+  // blank line
   const RestartLog log = parse(
       "1,0,1,1,0.5\r\n"
       "wall_s,uav,exit_status,restart_count,backoff_s\r\n"
       " 2 , 1 ,\"killed, signal 9\", 1 , 1 \r\n"
       "\r\n");
+  // THEN both rows are read, nothing is malformed, and the quoted field keeps its comma
   ASSERT_EQ(log.restarts.size(), 2u);
   EXPECT_EQ(log.malformed_rows, 0);
   EXPECT_EQ(log.restarts[1].uav, 1);
@@ -79,6 +91,7 @@ TEST(RestartLog, HeaderOptionalRepeatedCrLfSpacesAndQuotes) {
 }
 
 TEST(RestartLog, MalformedRowsAreCountedWithLineAndReason) {
+  // WHEN a log with two good rows and one malformed row of each kind is parsed
   const RestartLog log = parse(
       "wall_s,uav,exit_status,restart_count,backoff_s\n"
       "1,0,1,1,0.5\n"
@@ -90,6 +103,7 @@ TEST(RestartLog, MalformedRowsAreCountedWithLineAndReason) {
       "1,0,1,1,nan\n"     // backoff_s
       "1,0,\"open,1,1\n"  // quotes
       "2,1,0,1,0.5\n");
+  // THEN the good rows are read, and each malformed one is counted and described with its line
   EXPECT_EQ(log.restarts.size(), 2u);
   EXPECT_EQ(log.malformed_rows, 7);
   ASSERT_EQ(log.problems.size(), 7u);
@@ -103,19 +117,24 @@ TEST(RestartLog, MalformedRowsAreCountedWithLineAndReason) {
 }
 
 TEST(RestartLog, ProblemListIsBoundedButTheCountIsNot) {
+  // GIVEN a log of 50 garbage lines
   std::string text;
   for (int k = 0; k < 50; ++k) text += "garbage\n";
+  // WHEN it is parsed THEN all 50 are counted as malformed, but only kMaxProblems of them are described
   const RestartLog log = parse(text);
   EXPECT_EQ(log.malformed_rows, 50);
   EXPECT_EQ(log.problems.size(), RestartLog::kMaxProblems);
 }
 
 TEST(RestartLog, ReadsAFile) {
+  // GIVEN a restart log file with one restart of UAV 2
   const std::filesystem::path path =
       std::filesystem::temp_directory_path() / ("swa_restart_log_" + std::to_string(::getpid()) + ".csv");
   std::ofstream(path) << restartLogHeader() << "\n5,2,1,1,0.5\n";
+  // WHEN it is read
   const RestartLog log = readRestartLog(path.string());
   std::filesystem::remove(path);
+  // THEN it is found, with that restart
   EXPECT_TRUE(log.found);
   ASSERT_EQ(log.restarts.size(), 1u);
   EXPECT_EQ(log.restarts[0].uav, 2);

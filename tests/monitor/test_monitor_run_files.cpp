@@ -88,29 +88,38 @@ RunRecord sampleRun() {
 }
 
 TEST(MonitorCsv, SplitsAndQuotes) {
+  // WHEN lines are split THEN empty fields are kept and quoted fields lose their quotes, doubled quotes becoming one
   EXPECT_EQ(*splitCsvLine("a,b,,c"), (std::vector<std::string>{"a", "b", "", "c"}));
   EXPECT_EQ(*splitCsvLine(""), (std::vector<std::string>{""}));
   EXPECT_EQ(*splitCsvLine("\"x, y\",\"he said \"\"hi\"\"\""), (std::vector<std::string>{"x, y", "he said \"hi\""}));
+  // AND a line with an unbalanced or misplaced quote does not split
   EXPECT_FALSE(splitCsvLine("\"open").has_value());
   EXPECT_FALSE(splitCsvLine("\"closed\"x,y").has_value());
+  // WHEN fields are written THEN plain ones stay, ones with a comma, quote or edge space are quoted, a line break
+  // becomes a space
   EXPECT_EQ(csvField("plain"), "plain");
   EXPECT_EQ(csvField("a,b"), "\"a,b\"");
   EXPECT_EQ(csvField("q\"q"), "\"q\"\"q\"");
   EXPECT_EQ(csvField("two\nlines"), "two lines");
   EXPECT_EQ(csvField(" padded"), "\" padded\"");
+  // AND whatever is written splits back to itself
   for (const std::string s : {"a,b", "q\"q", " x ", "", "\"\""}) EXPECT_EQ(splitCsvLine(csvField(s))->at(0), s);
+  // AND a trailing carriage return is chomped
   EXPECT_EQ(chompCr("x\r"), "x");
 }
 
 TEST(MonitorRunFiles, SummaryJsonHasTheBatchKeysAndTheMonitorsOwn) {
+  // GIVEN a finished run's record
   const RunRecord run = sampleRun();
+  // WHEN its summary.json object is made
   const Json j = summaryJson(run);
-  // Every key of swa_batch's per-seed entries (metricsJson), with the same values.
+  // THEN it has every key of swa_batch's per-seed entries (metricsJson), with the same values
   const Json batch = metricsJson(run.summary);
   for (const auto& [key, value] : batch.items()) {
     ASSERT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j[key].dump(), value.dump()) << key;
   }
+  // AND the monitor's own keys, with the verdict, the restart count, the events and the full 64-bit seed
   for (const char* key : {"label", "mode", "scenario", "seed", "completed", "end_reason", "verdict", "verdict_reasons",
                           "formation_radius_m", "tolerance", "agent_restarts", "restarts", "events",
                           "dropped_state_late", "truth_samples"}) {
@@ -123,12 +132,15 @@ TEST(MonitorRunFiles, SummaryJsonHasTheBatchKeysAndTheMonitorsOwn) {
 }
 
 TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
+  // GIVEN a run record with awkward values (NaN gaps, quotes and a line break in event text, a 64-bit seed)
   const TempDir dir("roundtrip");
   const RunRecord in = sampleRun();
+  // WHEN it is written to a run directory and read back
   writeRunFiles(dir.str(), in);
   const LoadedRun loaded = readRunDir(dir.str());
   const RunRecord& out = loaded.run;
 
+  // THEN the run's description, verdict and summary are the same, numbers bit for bit
   EXPECT_EQ(out.label, in.label);
   EXPECT_EQ(out.mode, in.mode);
   EXPECT_EQ(out.scenario, in.scenario);
@@ -144,7 +156,8 @@ TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
   const auto fout = monitor::summaryFields(out.summary);
   ASSERT_EQ(fin.size(), fout.size());
   for (std::size_t k = 0; k < fin.size(); ++k) EXPECT_TRUE(sameDouble(fin[k].value, fout[k].value)) << fin[k].key;
-  // Only the dropped_* counters are read back (they are what the report shows).
+  // AND of the counters only the dropped_* ones are read back (they are what the report shows), and the restart
+  // log is the same
   EXPECT_EQ(out.counts, (std::vector<std::pair<std::string, std::uint64_t>>{{"dropped_state_late", 2},
                                                                             {"dropped_truth_duplicate", 0}}));
   ASSERT_EQ(out.restarts.restarts.size(), 1u);
@@ -153,6 +166,7 @@ TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
   EXPECT_EQ(out.restarts.malformed_rows, 1);
   EXPECT_EQ(out.restarts.problems, in.restarts.problems);
 
+  // AND every event is the same, its text on one line
   ASSERT_EQ(out.events.size(), in.events.size());
   for (std::size_t k = 0; k < in.events.size(); ++k) {
     EXPECT_EQ(out.events[k].t_s, in.events[k].t_s);
@@ -163,6 +177,7 @@ TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
   }
   EXPECT_EQ(out.events[2].text, "text with \"quotes\", commas and a line break");  // one record per line
 
+  // AND the time series and the trajectories are the same, NaN gaps included
   ASSERT_EQ(out.series.size(), in.series.size());
   for (std::size_t k = 0; k < in.series.size(); ++k) {
     EXPECT_EQ(monitor::formatCsvRow(out.series[k]), monitor::formatCsvRow(in.series[k]));
@@ -176,13 +191,15 @@ TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
       EXPECT_TRUE(sameDouble(out.trajectories[t].points[p].y_m, in.trajectories[t].points[p].y_m));
     }
   }
-  // The summary object as read is the summary as written.
+  // AND the summary object as read is the summary as written
   EXPECT_EQ(loaded.summary.dump(), summaryJson(in).dump());
 }
 
 TEST(MonitorRunFiles, CrLfFilesReadTheSame) {
+  // WHEN a trajectories file with CRLF line ends and a blank last line is parsed
   std::istringstream in("t_s,uav,x_m,y_m\r\n0,1,2,3\r\n\r\n");
   const auto t = parseTrajectoriesCsv(in, "x.csv");
+  // THEN it reads as with LF line ends
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].points.at(0).y_m, 3.0);
 }
@@ -200,19 +217,25 @@ std::string errorOf(Reader reader, const std::string& text) {
 }
 
 TEST(MonitorRunFiles, MalformedCsvNamesFileAndLine) {
+  // GIVEN the readers of the three CSV files
   const auto series = [](std::istream& in, const std::string& s) { return parseTimeSeriesCsv(in, s); };
   const auto traj = [](std::istream& in, const std::string& s) { return parseTrajectoriesCsv(in, s); };
   const auto events = [](std::istream& in, const std::string& s) { return parseEventsCsv(in, s); };
   const std::string h = monitor::csvHeader() + "\n";
+  // WHEN a time series file is empty, has the wrong header, a row of the wrong length, a field that is no number, a
+  // negative or fractional count THEN the error names the file and line and says what is wrong
   EXPECT_EQ(errorOf(series, ""), "the.csv:1: empty file, expected the header '" + monitor::csvHeader() + "'");
   EXPECT_NE(errorOf(series, "t,d\n").find("the.csv:1: header is not"), std::string::npos);
   EXPECT_NE(errorOf(series, h + "1,2,3\n").find("the.csv:2: 3 fields, expected 12"), std::string::npos);
   EXPECT_NE(errorOf(series, h + "0,x,0,0,0,0,0,0,1,0,0,0\n").find("the.csv:2: field 2 'x'"), std::string::npos);
   EXPECT_NE(errorOf(series, h + "0,1,0,0,0,0,-1,0,1,0,0,0\n").find("collisions '-1'"), std::string::npos);
   EXPECT_NE(errorOf(series, h + "0,1,0,0,0,0,0,0,1.5,0,0,0\n").find("groups '1.5'"), std::string::npos);
+  // AND NaN where a value may be missing is no error
   EXPECT_EQ(errorOf(series, h + "0,nan,nan,nan,nan,nan,0,nan,0,nan,nan,nan\n"), "");
+  // WHEN a trajectories row has a negative UAV or a NaN time THEN the error names them
   EXPECT_NE(errorOf(traj, "t_s,uav,x_m,y_m\n0,-1,0,0\n").find("the.csv:2: uav '-1'"), std::string::npos);
   EXPECT_NE(errorOf(traj, "t_s,uav,x_m,y_m\nnan,1,0,0\n").find("t_s 'nan'"), std::string::npos);
+  // WHEN an events row has an empty kind, unbalanced quotes or ids that are no integers THEN the error says so
   EXPECT_NE(errorOf(events, "t_s,kind,uav,other_uav,value,text\n1,,0,0,0,x\n").find("empty kind"), std::string::npos);
   EXPECT_NE(errorOf(events, "t_s,kind,uav,other_uav,value,text\n1,k,0,0,0,\"x\n").find("unbalanced quotes"),
             std::string::npos);
@@ -221,6 +244,7 @@ TEST(MonitorRunFiles, MalformedCsvNamesFileAndLine) {
 }
 
 TEST(MonitorRunFiles, MissingOrBrokenFilesAreNamed) {
+  // GIVEN an empty directory and a way to read it as a run directory
   const TempDir dir("broken");
   const auto errorReading = [&dir] {
     try {
@@ -230,16 +254,20 @@ TEST(MonitorRunFiles, MissingOrBrokenFilesAreNamed) {
     }
     return std::string();
   };
+  // THEN reading it names the missing summary.json
   EXPECT_NE(errorReading().find("cannot read " + (dir / "summary.json").string()), std::string::npos);
+  // WHEN a run is written there and events.csv removed THEN reading names events.csv
   writeRunFiles(dir.str(), sampleRun());
   fs::remove(dir / "events.csv");
   EXPECT_NE(errorReading().find("cannot read " + (dir / "events.csv").string()), std::string::npos);
+  // WHEN summary.json lacks the verdict, is cut short, or is not an object THEN reading names the file and the cause
   std::ofstream(dir / "summary.json") << "{\"label\": \"x\", \"completed\": true}";
   EXPECT_NE(errorReading().find("summary.json: no member 'verdict'"), std::string::npos);
   std::ofstream(dir / "summary.json") << "{\"label\": \"x\",";
   EXPECT_NE(errorReading().find("summary.json: line 1"), std::string::npos);
   std::ofstream(dir / "summary.json") << "[]";
   EXPECT_NE(errorReading().find("summary.json: not a JSON object"), std::string::npos);
+  // WHEN the directory does not exist THEN reading says so
   try {
     readRunDir((dir / "nope").string());
     FAIL();

@@ -32,7 +32,9 @@ bool mentions(const Verdict& v, const std::string& what) {
 }
 
 TEST(MonitorVerdict, PassNeedsEveryCriterion) {
+  // WHEN a completed run with d_NB within the band, no collision and one group is judged
   const Verdict v = judge(good());
+  // THEN it passes, for no reason, and exits 0
   EXPECT_EQ(v.outcome, Outcome::kPass);
   EXPECT_TRUE(v.reasons.empty());
   EXPECT_EQ(verdictText(v), "PASS");
@@ -40,15 +42,19 @@ TEST(MonitorVerdict, PassNeedsEveryCriterion) {
 }
 
 TEST(MonitorVerdict, BandEdgesAreInclusive) {
+  // GIVEN a passing run with r = 10 m and a 10 % band
   VerdictInput in = good();
+  // WHEN d_NB is exactly 9 m or 11 m THEN it passes
   in.summary.mean_neighbor_distance_m = 9.0;
   EXPECT_EQ(judge(in).outcome, Outcome::kPass);
   in.summary.mean_neighbor_distance_m = 11.0;
   EXPECT_EQ(judge(in).outcome, Outcome::kPass);
+  // WHEN d_NB is just outside, 11.01 m or 8.99 m, THEN it fails
   in.summary.mean_neighbor_distance_m = 11.01;
   EXPECT_EQ(judge(in).outcome, Outcome::kFail);
   in.summary.mean_neighbor_distance_m = 8.99;
   EXPECT_EQ(judge(in).outcome, Outcome::kFail);
+  // WHEN the band is widened to 20 % THEN 8.99 m passes
   in.tolerance = 0.2;  // a wider band accepts it
   EXPECT_EQ(judge(in).outcome, Outcome::kPass);
 }
@@ -70,24 +76,29 @@ TEST(MonitorVerdict, DefaultBandIsFivePercentOfR) {
 }
 
 TEST(MonitorVerdict, EachFailureIsNamed) {
+  // GIVEN a passing run
   VerdictInput in = good();
+  // WHEN d_NB is outside the band THEN it fails, naming d_NB and r, and exits 1
   in.summary.mean_neighbor_distance_m = 12.0;
   Verdict v = judge(in);
   EXPECT_EQ(v.outcome, Outcome::kFail);
   EXPECT_TRUE(mentions(v, "final d_NB 12 m outside r = 10 m"));
   EXPECT_EQ(exitCode(v.outcome), 1);
 
+  // WHEN there are collisions THEN it fails, naming them
   in = good();
   in.summary.collisions = 2;
   v = judge(in);
   EXPECT_EQ(v.outcome, Outcome::kFail);
   EXPECT_TRUE(mentions(v, "2 collision(s)"));
 
+  // WHEN the swarm ends in 3 groups THEN that is named
   in = good();
   in.summary.groups = 3;
   v = judge(in);
   EXPECT_TRUE(mentions(v, "3 groups at the end"));
 
+  // WHEN nobody is present at the end (0 groups, d_NB undefined) THEN it fails, naming both
   in = good();
   in.summary.groups = 0;  // nobody present at the end
   in.summary.mean_neighbor_distance_m = monitor::kNaN;
@@ -98,19 +109,23 @@ TEST(MonitorVerdict, EachFailureIsNamed) {
 }
 
 TEST(MonitorVerdict, AllFailuresListedTogether) {
+  // GIVEN a run with d_NB far outside the band, a collision and 2 groups
   VerdictInput in = good();
   in.summary.mean_neighbor_distance_m = 3.0;
   in.summary.collisions = 1;
   in.summary.groups = 2;
+  // WHEN it is judged THEN all three reasons are listed, d_NB first
   const Verdict v = judge(in);
   EXPECT_EQ(v.reasons.size(), 3u);
   EXPECT_EQ(verdictText(v).rfind("FAIL: final d_NB", 0), 0u);
 }
 
 TEST(MonitorVerdict, NotCompletedIsIncompleteEvenIfTheNumbersAreGood) {
+  // GIVEN a run with good numbers that was interrupted
   VerdictInput in = good();
   in.completed = false;
   in.end_reason = "interrupted by SIGINT";
+  // WHEN it is judged THEN it is INCOMPLETE, saying why, and exits 3
   const Verdict v = judge(in);
   EXPECT_EQ(v.outcome, Outcome::kIncomplete);
   EXPECT_TRUE(mentions(v, "scenario not completed: interrupted by SIGINT"));
@@ -118,10 +133,12 @@ TEST(MonitorVerdict, NotCompletedIsIncompleteEvenIfTheNumbersAreGood) {
 }
 
 TEST(MonitorVerdict, IncompleteWinsOverFailAndKeepsTheFailures) {
+  // GIVEN a run that did not complete (discovery timeout) and had a collision
   VerdictInput in = good();
   in.completed = false;
   in.end_reason = "simulator ended the scenario: discovery timeout";
   in.summary.collisions = 1;
+  // WHEN it is judged THEN it is INCOMPLETE, naming both the end and the collision
   const Verdict v = judge(in);
   EXPECT_EQ(v.outcome, Outcome::kIncomplete);
   EXPECT_TRUE(mentions(v, "discovery timeout"));
@@ -129,11 +146,14 @@ TEST(MonitorVerdict, IncompleteWinsOverFailAndKeepsTheFailures) {
 }
 
 TEST(MonitorVerdict, NoTruthIsIncompleteEvenWhenTheSimulatorCompleted) {
+  // GIVEN a run that completed but whose monitor received no ground truth
   VerdictInput in = good();
   in.saw_truth = false;
+  // WHEN it is judged THEN it is INCOMPLETE, saying so
   Verdict v = judge(in);
   EXPECT_EQ(v.outcome, Outcome::kIncomplete);
   EXPECT_TRUE(mentions(v, "no ground truth received"));
+  // WHEN the monitor also timed out waiting for the end THEN the reason names --timeout-s
   in.completed = false;
   in.end_reason = "no EVENT_SCENARIO_END within 5 s (--timeout-s)";
   v = judge(in);
@@ -141,11 +161,14 @@ TEST(MonitorVerdict, NoTruthIsIncompleteEvenWhenTheSimulatorCompleted) {
 }
 
 TEST(MonitorVerdict, NamesRoundTripAndExitCodesMatchTheOptions) {
+  // WHEN each outcome's name is parsed back THEN it is that outcome
   for (const Outcome o : {Outcome::kPass, Outcome::kFail, Outcome::kIncomplete}) {
     ASSERT_TRUE(parseOutcome(toString(o)).has_value());
     EXPECT_EQ(*parseOutcome(toString(o)), o);
   }
+  // AND names are exact: "pass" is not an outcome
   EXPECT_FALSE(parseOutcome("pass").has_value());
+  // AND the exit statuses are those of swa_monitor's options, bad input being 2
   EXPECT_EQ(exitCode(Outcome::kPass), monitor_node::kExitPass);
   EXPECT_EQ(exitCode(Outcome::kFail), monitor_node::kExitFail);
   EXPECT_EQ(exitCode(Outcome::kIncomplete), monitor_node::kExitIncomplete);

@@ -7,16 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "markup_support.h"
 #include "swa/record/run_dir.h"
 
 namespace swa::record {
 namespace {
 
-int occurrences(const std::string& text, const std::string& part) {
-  int n = 0;
-  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
-  return n;
-}
+using monitor::testing::occurrences;
 
 TEST(RecordJson, SummaryHasEveryKeyOnceAndNullForMissingValues) {
   // GIVEN a summary with some values and the rest left NaN

@@ -12,33 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "markup_support.h"
 #include "swa/monitor/report_html.h"
 
 namespace swa::monitor {
 namespace {
 
-int occurrences(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (std::size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-  return n;
-}
-
-// The start tags of every `<name ...>` element with class="cls" in `text`.
-std::vector<std::string> elements(const std::string& text, const std::string& name, const std::string& cls) {
-  std::vector<std::string> out;
-  const std::string open = "<" + name + " ";
-  for (std::size_t pos = text.find(open); pos != std::string::npos; pos = text.find(open, pos + 1)) {
-    const std::string tag = text.substr(pos, text.find('>', pos) - pos + 1);
-    if (tag.find("class=\"" + cls + "\"") != std::string::npos) out.push_back(tag);
-  }
-  return out;
-}
-
-double num(const std::string& tag, const std::string& name) {
-  const std::string key = " " + name + "=\"";
-  const std::size_t begin = tag.find(key) + key.size();
-  return std::stod(tag.substr(begin, tag.find('"', begin) - begin));
-}
+using testing::elements;
+using testing::num;
+using testing::occurrences;
 
 // The <figure id="plot-<name>"> ... </figure> block of the report.
 std::string figure(const std::string& html, const std::string& name) {

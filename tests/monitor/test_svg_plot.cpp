@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "markup_support.h"
 #include "swa/monitor/svg_plot.h"
 
 namespace swa::monitor {
@@ -18,26 +19,9 @@ namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
-// The start tags of every element `<name ...>` carrying class="cls" (a class attribute of exactly that value).
-std::vector<std::string> elements(const std::string& svg, const std::string& name, const std::string& cls) {
-  std::vector<std::string> out;
-  const std::string open = "<" + name + " ";
-  for (std::size_t pos = svg.find(open); pos != std::string::npos; pos = svg.find(open, pos + 1)) {
-    const std::string tag = svg.substr(pos, svg.find('>', pos) - pos + 1);
-    if (tag.find("class=\"" + cls + "\"") != std::string::npos) out.push_back(tag);
-  }
-  return out;
-}
-
-std::string attr(const std::string& tag, const std::string& name) {
-  const std::string key = " " + name + "=\"";
-  const std::size_t pos = tag.find(key);
-  if (pos == std::string::npos) return "";
-  const std::size_t begin = pos + key.size();
-  return tag.substr(begin, tag.find('"', begin) - begin);
-}
-
-double num(const std::string& tag, const std::string& name) { return std::stod(attr(tag, name)); }
+using testing::attr;
+using testing::elements;
+using testing::num;
 
 // The text content of each <text class="cls"> element.
 std::vector<std::string> texts(const std::string& svg, const std::string& cls) {

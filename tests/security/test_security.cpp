@@ -31,7 +31,7 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "../integration/process_support.h"
+#include "../integration/process_test.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/topics.h"
@@ -154,10 +154,7 @@ std::string tryCreate(dds::Participant& p, Kind kind, const std::string& topic) 
 class SecurityTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_security_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = freshTestDir("swa_security_test", /*per_test=*/true);
     creds_ = dir_ / "creds";
     ASSERT_TRUE(makeCredentials(creds_));
   }
@@ -186,9 +183,8 @@ class SecurityTest : public ::testing::Test {
 
   // swa_agent --id `id` with this test's credentials.
   std::unique_ptr<Child> startAgent(int id, const std::string& log_name) {
-    return std::make_unique<Child>(
-        std::vector<std::string>{kAgent, "--id", std::to_string(id), "--domain", std::to_string(domain_)},
-        dir_ / log_name, std::vector<std::string>{securityEnv()});
+    return std::make_unique<Child>(agentCommand(kAgent, id, domain_), dir_ / log_name,
+                                   std::vector<std::string>{securityEnv()});
   }
 
   void expectNothingLeft() {
@@ -208,27 +204,33 @@ class SecurityTest : public ::testing::Test {
 // (a) swa_launch --secure: the 4-UAV dropout scenario for 30 s stays cohesive. An unauthenticated observer reading
 // the ground truth during the run proves that the run really was secured (it must get nothing).
 TEST_F(SecurityTest, SecureLaunchStaysCohesive) {
+  // GIVEN this test's credentials, and an observer without credentials reading the ground truth
   std::atomic<int> observed{0};
   auto observer = makeParticipant("swa_test_observer", domain_, std::nullopt);
   auto truth = observer->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader",
                                                            [&observed](msg::SwarmTruth&&) { ++observed; });
+  // WHEN swa_launch --secure runs the 4-UAV GNSS-loss scenario for 30 s
   const fs::path out = dir_ / "out";
   const auto t0 = SteadyClock::now();
   Child launch({kLaunch, "--secure", creds_.string(), "--scenario", kScenario, "--set", "duration_s=30", "--domain",
                 std::to_string(domain_), "--out", out.string(), "--timeout-s", "150"},
                dir_ / "launch.log");
+  // THEN it exits with PASS
   const auto status = launch.wait(170.0);
   std::cout << "secure swa_launch, dropout_4, 30 s simulated: " << secondsSince(t0) << " s wall\n";
   const std::string log = readFile(dir_ / "launch.log");
   ASSERT_TRUE(status.has_value()) << log;
   EXPECT_EQ(*status, 0) << log << allLogs(out / "logs");
 
+  // AND the swarm stayed cohesive: d_NB within 10 % of r, no collision
   const std::string summary = readFile(out / "summary.json");
   ASSERT_FALSE(summary.empty()) << log;
   EXPECT_NEAR(jsonNumber(summary, "mean_neighbor_distance_m"), 10.0, 1.0) << "d_NB within ±10 % of r = 10 m";
   EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0) << summary;
+  // AND the unauthenticated observer matched nothing and received nothing: the run really was secured
   EXPECT_EQ(truth.matched(), 0) << "an unauthenticated reader matched the secure simulator's truth writer";
   EXPECT_EQ(observed.load(), 0) << "an unauthenticated reader received ground truth";
+  // AND nothing of the run is left
   observer.reset();
   expectNothingLeft();
 }
@@ -236,23 +238,29 @@ TEST_F(SecurityTest, SecureLaunchStaysCohesive) {
 // (b) The permissions of UAV 2 do not reach UAV 1's topics: no reader of its detections, no writer of its
 // commands. Its own topics work with the same participant (positive control).
 TEST_F(SecurityTest, Uav2CredentialsCannotReadOrCommandUav1) {
+  // GIVEN a participant with UAV 2's credentials
   auto uav2 = makeParticipant("swa_agent_2", domain_, creds_);
+  // THEN it can read its own detections and write its own commands (positive control)
   EXPECT_EQ(tryCreate(*uav2, Kind::kReader, dds::topics::detections(2)), "") << "own detections must be readable";
   EXPECT_EQ(tryCreate(*uav2, Kind::kWriter, dds::topics::cmdVel(2)), "") << "own commands must be writable";
 
+  // WHEN it tries to read UAV 1's detections or write UAV 1's commands THEN the middleware refuses, naming the topic
   EXPECT_THROW(createEndpoint(*uav2, Kind::kReader, dds::topics::detections(1)), dds::DdsError);
   EXPECT_THROW(createEndpoint(*uav2, Kind::kWriter, dds::topics::cmdVel(1)), dds::DdsError);
   const std::string why = tryCreate(*uav2, Kind::kReader, dds::topics::detections(1));
   EXPECT_NE(why.find("swa/uav1/detections"), std::string::npos) << why;
 
-  // Still usable after the refusals.
+  // AND it is still usable after the refusals
   EXPECT_EQ(tryCreate(*uav2, Kind::kReader, dds::topics::imu(2)), "");
   uav2.reset();
+  // AND nothing is left
   expectNothingLeft();
 }
 
 // Every role against what it must and must not be able to create (make-credentials.sh --help, the table).
 TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
+  // GIVEN every role's credentials (agent, simulator, autopilot bridge, monitor) and what each must and must not
+  // create (make-credentials.sh --help, the table)
   using dds::topics::cmdVel;
   using dds::topics::detections;
   using dds::topics::gnss;
@@ -287,7 +295,9 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
         {R, clock}}},
   };
   for (const Role& role : roles) {
+    // WHEN a participant with the role's credentials creates each endpoint
     auto p = makeParticipant(role.name, domain_, creds_);
+    // THEN every allowed one is created and every denied one refused
     for (const Endpoint& e : role.allowed) {
       EXPECT_EQ(tryCreate(*p, e.kind, e.topic), "") << role.name << " must be able to create a " << kindName(e.kind)
                                                     << " on " << e.topic;
@@ -297,6 +307,7 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
                                                     << kindName(e.kind) << " on " << e.topic;
     }
   }
+  // AND nothing is left
   expectNothingLeft();
 }
 
@@ -305,6 +316,7 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
 // participant with UAV 1's credentials, created the same way in the same process, matches both and receives UAV 1's
 // IMU samples; and the unsecured reader does match an unsecured writer added afterwards.
 TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
+  // GIVEN a secure simulator (realtime clock) and its 4 agents, all discovered
   std::vector<std::unique_ptr<Child>> agents;
   for (int i = 0; i < kUavs; ++i) agents.push_back(startAgent(i, "agent" + std::to_string(i) + ".log"));
   Child sim({kSim, "--scenario", kScenario, "--set", "clock.mode=realtime", "--set", "duration_s=600", "--domain",
@@ -315,6 +327,7 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
       << readFile(dir_ / "sim.log") << runLogs(dir_, kUavs);
   std::cout << "secure sim + 4 agents discovered: " << secondsSince(t0) << " s\n";
 
+  // WHEN a participant without credentials and one with UAV 1's (the control) read UAV 1's IMU and write its commands
   std::atomic<int> intruder_samples{0}, control_samples{0};
   auto intruder = makeParticipant("swa_intruder", domain_, std::nullopt);
   auto intruder_imu = intruder->reader<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_reader",
@@ -325,7 +338,7 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
                                                          [&](msg::Imu&&) { ++control_samples; });
   auto control_cmd = control->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
 
-  // Positive control first: once it matched and received, the intruder has had the same time to do so.
+  // THEN the control matches both and receives samples; once it has, the intruder has had the same time to do so
   const auto t1 = SteadyClock::now();
   const bool control_ok = waitFor(
       [&] { return control_imu.matched() >= 1 && control_cmd.matched() >= 1 && control_samples.load() > 10; }, 20.0);
@@ -334,13 +347,14 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
   EXPECT_TRUE(control_ok) << "control: imu matched " << control_imu.matched() << ", cmd_vel matched "
                           << control_cmd.matched() << ", samples " << control_samples.load() << "\n"
                           << readFile(dir_ / "sim.log");
+  // AND the intruder matched nothing and received nothing
   EXPECT_EQ(intruder_imu.matched(), 0) << "an unauthenticated reader matched swa/uav1/imu";
   EXPECT_EQ(intruder_cmd.matched(), 0) << "an unauthenticated writer matched swa/uav1/cmd_vel";
   EXPECT_EQ(intruder_samples.load(), 0) << "an unauthenticated reader received IMU samples";
   std::cout << "intruder: matched " << intruder_imu.matched() << " / " << intruder_cmd.matched() << ", samples "
             << intruder_samples.load() << "; control: samples " << control_samples.load() << "\n";
 
-  // The intruder itself can match: an unsecured peer's writer on the same topic is found within seconds.
+  // AND the intruder itself can match: an unsecured peer's writer on the same topic is found within seconds
   auto peer = makeParticipant("swa_intruder_peer", domain_, std::nullopt);
   auto peer_imu = peer->writer<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_writer");
   EXPECT_TRUE(waitFor([&] { return intruder_imu.matched() == 1 && peer_imu.matched() == 1; }, 10.0))
@@ -348,6 +362,7 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
       << ", peer " << peer_imu.matched();
   peer.reset();
 
+  // WHEN everything is stopped THEN the simulator exits as interrupted, every agent cleanly, and nothing is left
   control.reset();
   intruder.reset();
   EXPECT_EQ(sim.stop(), 1) << "interrupted simulator: exit 1";  // SIGTERM before the end of the scenario
@@ -387,6 +402,7 @@ void expectStarts(Child& agent, const fs::path& log) {
 // attack a tampered file would attempt — and, separately, one byte of the signature: the agent is refused at start
 // with a message naming the file and its signature as the cause. The untampered file starts (positive control).
 TEST_F(SecurityTest, TamperedPermissionsAreRefusedAtStart) {
+  // GIVEN UAV 1's genuine permissions, a byte of the grant swa/uav1/cmd_vel and one well inside the signature
   const fs::path file = creds_ / "swa_agent_1" / "permissions.p7s";
   const std::string original = readFile(file);
   const std::size_t grant = original.find("swa/uav1/cmd_vel");
@@ -400,6 +416,8 @@ TEST_F(SecurityTest, TamperedPermissionsAreRefusedAtStart) {
   const std::size_t sig_byte = sig_body + 40;
   ASSERT_LT(sig_byte, original.size());
 
+  // WHEN the file is changed in either byte (the grant widened to swa/uav*/cmd_vel, or the signature) and swa_agent 1
+  // starts with it THEN it is refused within seconds, naming the file and its signature as the cause
   struct Case {
     std::string what;
     std::size_t at;
@@ -425,6 +443,7 @@ TEST_F(SecurityTest, TamperedPermissionsAreRefusedAtStart) {
     std::cout << "---- " << c.what << ", swa_agent output:\n" << text << "----\n";
   }
 
+  // WHEN the genuine file is back THEN the agent starts and stops cleanly (positive control), and nothing is left
   std::ofstream(file, std::ios::binary | std::ios::trunc) << original;
   auto agent = startAgent(1, "agent1_original.log");
   expectStarts(*agent, dir_ / "agent1_original.log");
@@ -434,11 +453,14 @@ TEST_F(SecurityTest, TamperedPermissionsAreRefusedAtStart) {
 // (d, continued) Validly signed permissions that are not UAV 1's: UAV 2's document (another subject), and UAV 1's
 // document from another CA (an attacker's own). Both refused at start; the right one starts.
 TEST_F(SecurityTest, ForeignPermissionsAreRefusedAtStart) {
+  // GIVEN UAV 1's genuine permissions, and credentials of another CA
   const fs::path file = creds_ / "swa_agent_1" / "permissions.p7s";
   const std::string original = readFile(file);
   const fs::path other = dir_ / "other_ca";
   ASSERT_TRUE(makeCredentials(other));
 
+  // WHEN UAV 1's permissions are replaced by UAV 2's (another subject) or by UAV 1's of the other CA, and
+  // swa_agent 1 starts with them THEN it is refused within seconds, naming the file and the cause
   struct Case {
     std::string what;
     fs::path source;
@@ -460,6 +482,7 @@ TEST_F(SecurityTest, ForeignPermissionsAreRefusedAtStart) {
     std::cout << "---- " << what << ", swa_agent output:\n" << text << "----\n";
   }
 
+  // WHEN the genuine file is back THEN the agent starts and stops cleanly (positive control), and nothing is left
   std::ofstream(file, std::ios::binary | std::ios::trunc) << original;
   auto agent = startAgent(1, "agent1_original.log");
   expectStarts(*agent, dir_ / "agent1_original.log");

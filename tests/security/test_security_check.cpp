@@ -86,7 +86,9 @@ class SecurityCheckTest : public ::testing::Test {
 };
 
 TEST_F(SecurityCheckTest, GenuineCredentialsOfEveryRolePass) {
+  // GIVEN the genuine credentials of every role
   for (const char* name : {"swa_sim", "swa_monitor", "swa_agent_0", "swa_agent_1", "swa_agent_2"}) {
+    // WHEN each is checked THEN no problem is found
     const auto problem = credentialProblem(files(name));
     EXPECT_FALSE(problem.has_value()) << name << ": " << show(problem);
   }
@@ -104,10 +106,12 @@ std::pair<std::size_t, std::size_t> signatureBlock(const std::string& smime) {
 // One base64 character of the signature changed: near its start (the PKCS#7 structure, the signer's certificate)
 // and near its end (the ECDSA signature value). Either way the document no longer verifies.
 TEST_F(SecurityCheckTest, ChangedSignatureByteIsASignatureProblem) {
+  // GIVEN UAV 1's genuine permissions and the base64 block of their signature
   const SecurityFiles genuine = files("swa_agent_1");
   const std::string original = readFile(genuine.permissions);
   const auto [begin, end] = signatureBlock(original);
   ASSERT_LT(begin + 100, end) << original;
+  // WHEN one character is changed near its start or near its end, and the credentials are checked
   for (const std::size_t at : {begin + 40, end - 12}) {
     std::string tampered = original;
     ASSERT_NE(tampered[at], '\n');
@@ -115,18 +119,21 @@ TEST_F(SecurityCheckTest, ChangedSignatureByteIsASignatureProblem) {
     SecurityFiles f = genuine;
     f.permissions = scratch("permissions_" + std::to_string(at) + ".p7s", tampered);
     const auto problem = credentialProblem(f);
+    // THEN the problem found is that the signature does not verify against the CA, the file named
     EXPECT_TRUE(contains(problem, signatureOf(f.permissions))) << "byte " << at << ": " << show(problem);
   }
 }
 
 // The attack a tampered file would attempt: UAV 1's command topic widened to every UAV's, signature left as it was.
 TEST_F(SecurityCheckTest, WidenedGrantIsASignatureProblem) {
+  // GIVEN UAV 1's permissions with the grant swa/uav1/cmd_vel widened to swa/uav*/cmd_vel, the signature as it was
   SecurityFiles f = files("swa_agent_1");
   std::string text = readFile(f.permissions);
   const std::size_t grant = text.find("swa/uav1/cmd_vel");
   ASSERT_NE(grant, std::string::npos) << text;
   text[grant + 7] = '*';
   f.permissions = scratch("permissions.p7s", text);
+  // WHEN they are checked THEN the problem found is that the signature no longer verifies
   const auto problem = credentialProblem(f);
   EXPECT_TRUE(contains(problem, signatureOf(f.permissions) + " (modified after signing, or signed by another CA"))
       << show(problem);
@@ -134,6 +141,7 @@ TEST_F(SecurityCheckTest, WidenedGrantIsASignatureProblem) {
 
 // The governance is checked the same way: its discovery protection lowered from ENCRYPT to NONE.
 TEST_F(SecurityCheckTest, ChangedGovernanceIsASignatureProblem) {
+  // GIVEN UAV 1's credentials with the governance's discovery protection lowered from ENCRYPT to NONE
   SecurityFiles f = files("swa_agent_1");
   std::string text = readFile(f.governance);
   const std::string from = "<discovery_protection_kind>ENCRYPT<";
@@ -141,23 +149,28 @@ TEST_F(SecurityCheckTest, ChangedGovernanceIsASignatureProblem) {
   ASSERT_NE(at, std::string::npos) << text;
   text.replace(at, from.size(), "<discovery_protection_kind>NONE<");
   f.governance = scratch("governance.p7s", text);
+  // WHEN they are checked THEN the problem found is that the governance's signature does not verify
   const auto problem = credentialProblem(f);
   EXPECT_TRUE(contains(problem, "signature of " + f.governance + " does not verify against " + f.ca)) << show(problem);
 }
 
 TEST_F(SecurityCheckTest, PermissionsOfAnotherCaAreASignatureProblem) {
+  // GIVEN UAV 1's credentials with the permissions of UAV 1 made by another CA
   const fs::path other = dir_ / "other_ca";
   ASSERT_TRUE(makeCredentials(other));
   SecurityFiles f = files("swa_agent_1");
   f.permissions = securityFiles(other.string(), "swa_agent_1").permissions;
+  // WHEN they are checked THEN the problem found is that the permissions' signature does not verify
   const auto problem = credentialProblem(f);
   EXPECT_TRUE(contains(problem, signatureOf(f.permissions))) << show(problem);
 }
 
 // Validly signed, but for another subject: UAV 2's document in UAV 1's place.
 TEST_F(SecurityCheckTest, AnotherUavsPermissionsNameBothSubjects) {
+  // GIVEN UAV 1's credentials with UAV 2's validly signed permissions
   SecurityFiles f = files("swa_agent_1");
   f.permissions = files("swa_agent_2").permissions;
+  // WHEN they are checked THEN the problem found names both subjects, the permissions' and the certificate's
   const auto problem = credentialProblem(f);
   EXPECT_TRUE(contains(problem, f.permissions + " grants subject 'CN=swa_agent_2,O=SWA' but " + f.certificate +
                                     " is 'CN=swa_agent_1,O=SWA'"))
@@ -165,20 +178,24 @@ TEST_F(SecurityCheckTest, AnotherUavsPermissionsNameBothSubjects) {
 }
 
 TEST_F(SecurityCheckTest, AnotherIdentitysKeyIsAKeyProblem) {
+  // GIVEN UAV 1's credentials with UAV 0's private key
   SecurityFiles f = files("swa_agent_1");
   f.private_key = files("swa_agent_0").private_key;
+  // WHEN they are checked THEN the problem found is that the key is not the certificate's
   const auto problem = credentialProblem(f);
   EXPECT_TRUE(contains(problem, f.private_key + " is not the private key of " + f.certificate)) << show(problem);
 }
 
 // An identity (certificate and its own key) issued by another CA.
 TEST_F(SecurityCheckTest, CertificateOfAnotherCaIsACertificateProblem) {
+  // GIVEN UAV 1's credentials with a certificate and key of another CA
   const fs::path other = dir_ / "other_ca";
   ASSERT_TRUE(makeCredentials(other));
   SecurityFiles f = files("swa_agent_1");
   const SecurityFiles foreign = securityFiles(other.string(), "swa_agent_1");
   f.certificate = foreign.certificate;
   f.private_key = foreign.private_key;
+  // WHEN they are checked THEN the problem found is that the certificate does not verify against the CA
   const auto problem = credentialProblem(f);
   EXPECT_TRUE(contains(problem, f.certificate + " does not verify against " + f.ca +
                                     ": unable to get local issuer certificate"))
@@ -187,29 +204,35 @@ TEST_F(SecurityCheckTest, CertificateOfAnotherCaIsACertificateProblem) {
 
 // Several things wrong: the first in check order is the one named (the certificate before the permissions).
 TEST_F(SecurityCheckTest, FirstProblemInCheckOrderIsNamed) {
+  // GIVEN UAV 1's credentials with a certificate of another CA and UAV 0's permissions
   const fs::path other = dir_ / "other_ca";
   ASSERT_TRUE(makeCredentials(other));
   SecurityFiles f = files("swa_agent_1");
   f.certificate = securityFiles(other.string(), "swa_agent_1").certificate;
   f.permissions = files("swa_agent_0").permissions;
+  // WHEN they are checked THEN the problem found is the certificate's, checked first
   const auto problem = credentialProblem(f);
   EXPECT_TRUE(contains(problem, f.certificate + " does not verify against ")) << show(problem);
 }
 
 // A key under a passphrase: reported, never prompted for (a drone's service has no one at its terminal).
 TEST_F(SecurityCheckTest, EncryptedKeyIsReportedWithoutPrompting) {
+  // GIVEN UAV 1's credentials with its private key encrypted under a passphrase
   SecurityFiles f = files("swa_agent_1");
   const std::string encrypted = (dir_ / "scratch" / "encrypted_key.pem").string();
   const std::string command = "openssl pkey -in '" + f.private_key + "' -aes256 -passout pass:secret -out '" +
                               encrypted + "' </dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   f.private_key = encrypted;
+  // WHEN they are checked THEN the problem found is that the key is no readable unencrypted key, without a prompt
   const auto problem = credentialProblem(f);
   EXPECT_TRUE(contains(problem, encrypted + " holds no readable unencrypted PEM private key")) << show(problem);
 }
 
 // Every file replaced in turn by something that is not a credential: a message naming that file, no crash.
 TEST_F(SecurityCheckTest, GarbageInAnyFileIsNamed) {
+  // GIVEN UAV 1's genuine credentials, and kinds of garbage: empty, random bytes, text, half a file, PEM armour
+  // around garbage, a missing file, a directory
   const SecurityFiles genuine = files("swa_agent_1");
   std::mt19937 random(20240521);
   std::string noise(3000, '\0');
@@ -251,11 +274,13 @@ TEST_F(SecurityCheckTest, GarbageInAnyFileIsNamed) {
                                 {"private_key", &SecurityFiles::private_key},
                                 {"governance", &SecurityFiles::governance},
                                 {"permissions", &SecurityFiles::permissions}};
+  // WHEN each of its files in turn is replaced by each kind of garbage and checked
   for (const Slot& slot : slots) {
     for (const Garbage& g : kinds) {
       SecurityFiles f = genuine;
       f.*slot.field = g.make(genuine.*slot.field, slot.name);
       const auto problem = credentialProblem(f);
+      // THEN the problem found names that file, and the cause where more than OpenSSL's parser can tell it
       EXPECT_TRUE(contains(problem, f.*slot.field + g.cause)) << slot.name << ", " << g.what << ": " << show(problem);
     }
   }

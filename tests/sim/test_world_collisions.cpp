@@ -1,11 +1,11 @@
 // Collisions: counted once per onset, the UAVs are left where they are.
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "swa/sim/world.h"
+#include "world_support.h"
 
 namespace swa::sim {
 namespace {
@@ -13,17 +13,7 @@ namespace {
 using agent::Vec2;
 
 // UAV 0 hovers at the origin, UAV 1 starts 10 m east; no wind, no jitter.
-Scenario twoUavs() {
-  Scenario s;
-  s.uav_count = 2;
-  s.seed = 13;
-  s.formation.position_jitter_m = 0.0;
-  s.dynamics.heading = HeadingMode::kZero;
-  s.wind.gust_std = 0.0;
-  s.wind.common_std = 0.0;
-  s.gnss.dropout_start_s = std::numeric_limits<double>::infinity();
-  return s;
-}
+Scenario twoUavs() { return testing::calmScenario(2, 13); }
 
 // Flies UAV 1 to x = target with a P loop for `seconds`; collects collision events.
 void flyUav1To(World& world, double target_x, double seconds, std::vector<Event>& collisions) {

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "swa/sim/world.h"
+#include "world_support.h"
 
 namespace swa::sim {
 namespace {
@@ -15,17 +16,7 @@ namespace {
 using agent::Vec2;
 
 // No wind, no sensor noise, zero headings, GNSS never lost: only what a test turns on happens.
-Scenario quietScenario(int n) {
-  Scenario s;
-  s.uav_count = n;
-  s.seed = 11;
-  s.formation.position_jitter_m = 0.0;
-  s.dynamics.heading = HeadingMode::kZero;
-  s.wind.gust_std = 0.0;
-  s.wind.common_std = 0.0;
-  s.gnss.dropout_start_s = std::numeric_limits<double>::infinity();
-  return s;
-}
+Scenario quietScenario(int n) { return testing::calmScenario(n, 11); }
 
 void commandAll(World& world, const Vec2& velocity) {
   for (int i = 0; i < world.uav_count(); ++i) {
@@ -182,9 +173,7 @@ TEST(WorldWind, PerUavGustHasTheConfiguredStdAndCorrelationTime) {
   Scenario s = quietScenario(8);
   s.wind.gust_std = 0.2;
   s.wind.gust_corr_s = 5.0;
-  s.imu.rate_hz = 0.0;
-  s.mps.rate_hz = 0.0;
-  s.gnss.rate_hz = 0.0;
+  testing::sensorsOff(s);
   World world(s);
   // WHEN run for 1000 s, sampling the gust every 0.1 s
   constexpr int kSamples = 10000;
@@ -224,9 +213,7 @@ TEST(WorldWind, CommonGustIsTheSameForEveryUavAndHasItsStd) {
   Scenario s = quietScenario(4);
   s.wind.common_std = 0.3;
   s.wind.common_corr_s = 2.0;
-  s.imu.rate_hz = 0.0;
-  s.mps.rate_hz = 0.0;
-  s.gnss.rate_hz = 0.0;
+  testing::sensorsOff(s);
   World world(s);
   double sum2 = 0.0;
   int n = 0;

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <set>
 #include <vector>
 
@@ -10,6 +9,7 @@
 
 #include "swa/sim/mps_model.h"
 #include "swa/sim/world.h"
+#include "world_support.h"
 
 namespace swa::sim {
 namespace {
@@ -18,16 +18,9 @@ using agent::Vec2;
 
 // Noise-free, miss-free sensor on UAVs that hover at their lattice slots, heading east.
 Scenario perfectSensing(int n) {
-  Scenario s;
-  s.uav_count = n;
-  s.seed = 21;
-  s.formation.position_jitter_m = 0.0;
-  s.dynamics.heading = HeadingMode::kZero;
-  s.wind.gust_std = 0.0;
-  s.wind.common_std = 0.0;
+  Scenario s = testing::calmScenario(n, 21);
   s.mps.noise_var_m2 = 0.0;
   s.mps.miss_probability = 0.0;
-  s.gnss.dropout_start_s = std::numeric_limits<double>::infinity();
   return s;
 }
 

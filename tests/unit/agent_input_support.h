@@ -1,8 +1,8 @@
 #pragma once
 // Shared support for the agent bad-input tests (test_agent_input_*.cpp, test_agent_behaviour_guards.cpp): bitwise
 // comparison helpers, reject-counter checks, agent state comparison, realistic sample streams, the `Twins` fixture
-// (a reference agent and a device under test warmed up on the same stream), detection builders, finiteness checks
-// and a fork-based deadline runner.
+// (a reference agent and a device under test warmed up on the same stream), builders (a heading for an agent,
+// detections, detection sets, GNSS fixes), finiteness checks and a fork-based deadline runner.
 //
 // Each rejection test runs two agents on the same realistic stream: `ref` never sees the bad input, `dut` does.
 // The test then asserts that exactly one counter moved, by the exact amount, and that the rest of the agent (track
@@ -250,6 +250,47 @@ inline AgentConfig configFor(Mode mode) {
   return c;
 }
 
+// A detection set that adds `bad` to `good` (interleaved, so position in the set does not matter).
+inline DetectionSet withBad(const DetectionSet& good, const std::vector<Detection>& bad) {
+  DetectionSet out;
+  out.stamp_ns = good.stamp_ns;
+  std::size_t g = 0, b = 0;
+  while (g < good.detections.size() || b < bad.size()) {
+    if (b < bad.size()) out.detections.push_back(bad[b++]);
+    if (g < good.detections.size()) out.detections.push_back(good.detections[g++]);
+  }
+  return out;
+}
+
+// A level IMU sample (roll, pitch and heading 0) at `stamp_ns` for `agent`: from then on it has a heading, so it takes
+// detection sets.
+inline void giveHeading(Agent& agent, StampNs stamp_ns = kT0) {
+  ImuSample imu;
+  imu.stamp_ns = stamp_ns;
+  agent.onImu(imu);
+}
+
+// A detection set stamped `stamp_ns`.
+inline DetectionSet detectionSet(StampNs stamp_ns, std::vector<Detection> detections = {}) {
+  DetectionSet set;
+  set.stamp_ns = stamp_ns;
+  set.detections = std::move(detections);
+  return set;
+}
+
+// `n` valid-flagged GNSS fixes stamped `stamp_ns` at the scenes' position with a plausible std (0.3 m), for a test to
+// spoil one field of each.
+inline std::vector<GnssSample> validFixes(std::size_t n, StampNs stamp_ns) {
+  std::vector<GnssSample> fixes(n);
+  for (GnssSample& g : fixes) {
+    g.stamp_ns = stamp_ns;
+    g.valid = true;
+    g.position_m = Scene{}.gnss_position_m;
+    g.std_m = 0.3;
+  }
+  return fixes;
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // Twin agents: both are warmed up on the same 3 s stream, so they are tracking with a non-zero command.
 
@@ -286,6 +327,18 @@ struct Twins {
     Event e = rest.front();
     rest.erase(rest.begin());
     return e;
+  }
+
+  // Feeds both agents up to the next event of `kind` and takes that event off the stream, fed to neither.
+  Event takeNext(Event::Kind kind) {
+    advanceTo(kind);
+    return pop();
+  }
+
+  // A detection set of the stream (see takeNext): `ref` gets it as it is, `dut` with the `bad` detections mixed in.
+  void feedDetections(const DetectionSet& good, const std::vector<Detection>& bad) {
+    dut.onDetections(withBad(good, bad));
+    ref.onDetections(good);
   }
 
   StampNs nextStamp(Event::Kind kind) const {
@@ -328,6 +381,13 @@ struct Twins {
     expectCounters(ref.diagnostics().rejected, RejectCounters{});
   }
 
+  // The THEN of a rejection test: `dut` counted exactly `n` rejections, all in `counter`, and the rest of the stream
+  // shows no lasting effect (expectNoLastingEffect, with `extra_commands` answered rejected IMU samples).
+  void expectOnlyRejected(std::uint64_t RejectCounters::*counter, std::uint64_t n, std::uint64_t extra_commands) {
+    expectCounters(dut.diagnostics().rejected, only(counter, n));
+    expectNoLastingEffect(extra_commands);
+  }
+
   void expectWarmedUp() const {
     ASSERT_EQ(ref.diagnostics().rejected.total(), 0u);
     ASSERT_EQ(dut.diagnostics().rejected.total(), 0u);
@@ -359,18 +419,6 @@ inline Mat2 mat(double a, double b, double c, double d) {
   Mat2 m;
   m << a, b, c, d;
   return m;
-}
-
-// A detection set that adds `bad` to `good` (interleaved, so position in the set does not matter).
-inline DetectionSet withBad(const DetectionSet& good, const std::vector<Detection>& bad) {
-  DetectionSet out;
-  out.stamp_ns = good.stamp_ns;
-  std::size_t g = 0, b = 0;
-  while (g < good.detections.size() || b < bad.size()) {
-    if (b < bad.size()) out.detections.push_back(bad[b++]);
-    if (g < good.detections.size()) out.detections.push_back(good.detections[g++]);
-  }
-  return out;
 }
 
 inline bool finiteDiagnostics(const Diagnostics& d) {

@@ -32,7 +32,8 @@ using testing::configFor;
 using testing::Twins;
 using testing::det;
 using testing::mat;
-using testing::withBad;
+using testing::giveHeading;
+using testing::detectionSet;
 using testing::finiteTracks;
 using testing::runWithDeadline;
 
@@ -42,9 +43,7 @@ using testing::runWithDeadline;
 TEST(AgentInputDetections, SetLargerThanBoundIsRejectedWholeOncePerSet) {
   // GIVEN an agent with a heading and no tracks, limits.max_detections = 64
   Agent agent(configFor(Mode::kSwa));
-  ImuSample imu;
-  imu.stamp_ns = kT0;
-  agent.onImu(imu);
+  giveHeading(agent);
   const std::size_t max = agent.config().limits.max_detections;
   ASSERT_EQ(max, 64u);
 
@@ -65,10 +64,7 @@ TEST(AgentInputDetections, SetLargerThanBoundIsRejectedWholeOncePerSet) {
   EXPECT_EQ(agent.diagnostics().confirmed_tracks, 0);
 
   // AND a valid set with the same stamp as a rejected one is still accepted (the stamp was not consumed)
-  DetectionSet small;
-  small.stamp_ns = kT0 + 2 * kMs;
-  small.detections.push_back(det(3, 4.0, 0.0));
-  agent.onDetections(small);
+  agent.onDetections(detectionSet(kT0 + 2 * kMs, {det(3, 4.0, 0.0)}));
   expectCounters(agent.diagnostics().rejected, only(&RejectCounters::oversize, 2));
   EXPECT_NE(agent.bank().find(3), nullptr);
 }
@@ -86,19 +82,15 @@ TEST(AgentInputDetections, OversizeSetChangesNothingInATrackingAgent) {
   big.detections.resize(tw.config.limits.max_detections + 1);
   tw.dut.onDetections(big);
   // THEN oversize == 1 and nothing else changed
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::oversize, 1));
-  tw.expectNoLastingEffect(0);
+  tw.expectOnlyRejected(&RejectCounters::oversize, 1, /*extra_commands=*/0);
 }
 
 TEST(AgentInputDetections, SetOfExactlyTheBoundIsAccepted) {
   // GIVEN an agent with a heading
   Agent agent(configFor(Mode::kSwa));
-  ImuSample imu;
-  imu.stamp_ns = kT0;
-  agent.onImu(imu);
+  giveHeading(agent);
   // WHEN a set of exactly 64 valid detections with distinct IDs arrives
-  DetectionSet set;
-  set.stamp_ns = kT0 + kMs;
+  DetectionSet set = detectionSet(kT0 + kMs);
   for (int i = 0; i < 64; ++i) set.detections.push_back(det(i, 5.0 + i, -2.0));
   agent.onDetections(set);
   // THEN nothing is rejected and all 64 are tracked (tentative)
@@ -112,14 +104,12 @@ TEST(AgentInputDetections, NonFinitePositionDropsOnlyThatDetection) {
   // GIVEN two anchored agents tracking on the same stream
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
-  const DetectionSet set = tw.advanceTo(Event::Kind::kDetections).detections;
-  tw.pop();
+  const DetectionSet set = tw.takeNext(Event::Kind::kDetections).detections;
   // WHEN one gets the next set with extra detections of new IDs 20..23 with NaN x, inf y, -inf x, NaN both, and
   // the other the set without them
   const std::vector<Detection> bad = {det(20, kNan, 1.0), det(21, 1.0, kInf), det(22, -kInf, 0.0),
                                       det(23, kNan, kNan)};
-  tw.dut.onDetections(withBad(set, bad));
-  tw.ref.onDetections(set);
+  tw.feedDetections(set, bad);
   // THEN nonfinite == 4, nothing else; the bad IDs are not tracked and the good detections of the same set were used
   expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::nonfinite, 4));
   for (int id = 20; id <= 23; ++id) EXPECT_EQ(tw.dut.bank().find(id), nullptr) << id;
@@ -135,8 +125,7 @@ TEST(AgentInputDetections, NonFiniteCovarianceIsNonfinite) {
   // GIVEN two anchored agents tracking on the same stream
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
-  const DetectionSet set = tw.advanceTo(Event::Kind::kDetections).detections;
-  tw.pop();
+  const DetectionSet set = tw.takeNext(Event::Kind::kDetections).detections;
   // WHEN one gets the next set with extra detections (valid positions, new IDs) whose covariance has a NaN
   // (diagonal, off-diagonal), an inf, or is all NaN
   const std::vector<Detection> bad = {
@@ -145,8 +134,7 @@ TEST(AgentInputDetections, NonFiniteCovarianceIsNonfinite) {
       // an existing neighbour's ID: the bad covariance must not touch its track either
       det(set.detections.front().target_id, set.detections.front().position_body_m.x(),
           set.detections.front().position_body_m.y(), mat(0.1, 0.0, 0.0, kNan))};
-  tw.dut.onDetections(withBad(set, bad));
-  tw.ref.onDetections(set);
+  tw.feedDetections(set, bad);
   // THEN nonfinite == 5, nothing else, and no effect
   expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::nonfinite, 5));
   for (int id = 20; id <= 23; ++id) EXPECT_EQ(tw.dut.bank().find(id), nullptr) << id;
@@ -157,8 +145,7 @@ TEST(AgentInputDetections, NonSpdCovarianceIsImplausible) {
   // GIVEN two anchored agents tracking on the same stream
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
-  const DetectionSet set = tw.advanceTo(Event::Kind::kDetections).detections;
-  tw.pop();
+  const DetectionSet set = tw.takeNext(Event::Kind::kDetections).detections;
   // WHEN one gets the next set with extra detections whose covariance is finite but not a covariance: negative
   // variance (first, second, both), asymmetric, symmetric indefinite, zero, and positive semi-definite (singular)
   const std::vector<Detection> bad = {
@@ -166,8 +153,7 @@ TEST(AgentInputDetections, NonSpdCovarianceIsImplausible) {
       det(22, 3.0, 1.0, mat(-0.1, 0.0, 0.0, -0.1)), det(23, 3.0, 1.0, mat(0.1, 0.05, -0.05, 0.1)),
       det(24, 3.0, 1.0, mat(0.1, 0.5, 0.5, 0.1)),   det(25, 3.0, 1.0, Mat2::Zero()),
       det(26, 3.0, 1.0, mat(0.1, 0.1, 0.1, 0.1))};
-  tw.dut.onDetections(withBad(set, bad));
-  tw.ref.onDetections(set);
+  tw.feedDetections(set, bad);
   // THEN implausible == 7, nothing else, and no effect
   expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::implausible, 7));
   for (int id = 20; id <= 26; ++id) EXPECT_EQ(tw.dut.bank().find(id), nullptr) << id;
@@ -179,32 +165,24 @@ TEST(AgentInputDetections, PositionBeyondLimitIsImplausible) {
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
   const double max_pos = tw.config.limits.max_abs_position_m;
-  const DetectionSet set = tw.advanceTo(Event::Kind::kDetections).detections;
-  tw.pop();
+  const DetectionSet set = tw.takeNext(Event::Kind::kDetections).detections;
   // WHEN one gets extra detections farther than the limit (just beyond on an axis, diagonally, 1e300, and DBL_MAX
   // whose norm overflows)
   const double big = std::numeric_limits<double>::max();
   const std::vector<Detection> bad = {det(20, std::nextafter(max_pos, 2e6), 0.0), det(21, 0.0, -2e6),
                                       det(22, 0.75e6, -0.75e6), det(23, 1e300, 1e300), det(24, big, -big),
                                       det(kAnonymousId, 1e300, 0.0)};
-  tw.dut.onDetections(withBad(set, bad));
-  tw.ref.onDetections(set);
+  tw.feedDetections(set, bad);
   // THEN implausible == 6, nothing else, and no effect
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::implausible, 6));
-  tw.expectNoLastingEffect(0);
+  tw.expectOnlyRejected(&RejectCounters::implausible, 6, /*extra_commands=*/0);
 }
 
 TEST(AgentInputDetections, PositionAtLimitIsAcceptedButNotANeighbour) {
   // GIVEN an agent with a heading
   Agent agent(configFor(Mode::kSwa));
-  ImuSample imu;
-  imu.stamp_ns = kT0;
-  agent.onImu(imu);
+  giveHeading(agent);
   // WHEN a detection lies exactly at max_abs_position_m
-  DetectionSet set;
-  set.stamp_ns = kT0 + kMs;
-  set.detections.push_back(det(9, agent.config().limits.max_abs_position_m, 0.0));
-  agent.onDetections(set);
+  agent.onDetections(detectionSet(kT0 + kMs, {det(9, agent.config().limits.max_abs_position_m, 0.0)}));
   // THEN it is accepted and tracked
   expectCounters(agent.diagnostics().rejected, RejectCounters{});
   EXPECT_NE(agent.bank().find(9), nullptr);
@@ -216,32 +194,24 @@ TEST(AgentInputDetections, IdOutsideRangeIsBadId) {
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
   const int max_id = tw.config.limits.max_target_id;
-  const DetectionSet set = tw.advanceTo(Event::Kind::kDetections).detections;
-  tw.pop();
+  const DetectionSet set = tw.takeNext(Event::Kind::kDetections).detections;
   // WHEN one gets extra, otherwise valid detections with IDs -2, -1000, INT_MIN, max+1, INT_MAX and the first
   // anonymous track id
   const std::vector<Detection> bad = {det(-2, 3.0, 1.0),          det(-1000, 3.0, 1.0),
                                       det(INT_MIN, 3.0, 1.0),     det(max_id + 1, 3.0, 1.0),
                                       det(INT_MAX, 3.0, 1.0),     det(kFirstAnonymousTrackId, 3.0, 1.0)};
-  tw.dut.onDetections(withBad(set, bad));
-  tw.ref.onDetections(set);
+  tw.feedDetections(set, bad);
   // THEN bad_id == 6, nothing else, and no effect
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::bad_id, 6));
-  tw.expectNoLastingEffect(0);
+  tw.expectOnlyRejected(&RejectCounters::bad_id, 6, /*extra_commands=*/0);
 }
 
 TEST(AgentInputDetections, IdsAtTheEdgesOfTheRangeAreAccepted) {
   // GIVEN an agent with a heading
   Agent agent(configFor(Mode::kSwa));
-  ImuSample imu;
-  imu.stamp_ns = kT0;
-  agent.onImu(imu);
+  giveHeading(agent);
   // WHEN detections with IDs 0, max_target_id and anonymous (-1) arrive
-  DetectionSet set;
-  set.stamp_ns = kT0 + kMs;
-  set.detections = {det(0, 5.0, 0.0), det(agent.config().limits.max_target_id, 0.0, 5.0),
-                    det(kAnonymousId, -5.0, 0.0)};
-  agent.onDetections(set);
+  agent.onDetections(detectionSet(kT0 + kMs, {det(0, 5.0, 0.0), det(agent.config().limits.max_target_id, 0.0, 5.0),
+                                               det(kAnonymousId, -5.0, 0.0)}));
   // THEN nothing is rejected and three tracks exist
   expectCounters(agent.diagnostics().rejected, RejectCounters{});
   EXPECT_NE(agent.bank().find(0), nullptr);
@@ -252,9 +222,7 @@ TEST(AgentInputDetections, IdsAtTheEdgesOfTheRangeAreAccepted) {
 TEST(AgentInputDetections, DetectionsBeforeAnyAcceptedImuHaveNoHeading) {
   // GIVEN a fresh agent (no IMU sample yet)
   Agent agent(configFor(Mode::kSwa));
-  DetectionSet set;
-  set.stamp_ns = kT0;
-  set.detections = {det(1, 5.0, 0.0), det(2, 0.0, 5.0)};
+  const DetectionSet set = detectionSet(kT0, {det(1, 5.0, 0.0), det(2, 0.0, 5.0)});
 
   // WHEN a valid set of two detections arrives
   agent.onDetections(set);
@@ -289,8 +257,7 @@ TEST(AgentInputDetections, SetStampNotIncreasingIsOutOfOrder) {
   // GIVEN two anchored agents tracking on the same stream, the last accepted detection set stamped T
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
-  const Event next = tw.advanceTo(Event::Kind::kDetections);
-  tw.pop();
+  const Event next = tw.takeNext(Event::Kind::kDetections);
   tw.ref.onDetections(next.detections);
   tw.dut.onDetections(next.detections);
   const StampNs last = next.detections.stamp_ns;
@@ -304,21 +271,15 @@ TEST(AgentInputDetections, SetStampNotIncreasingIsOutOfOrder) {
     tw.dut.onDetections(s);
   }
   // THEN out_of_order == 3 (once per set), nothing else, and no effect
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::out_of_order, 3));
-  tw.expectNoLastingEffect(0);
+  tw.expectOnlyRejected(&RejectCounters::out_of_order, 3, /*extra_commands=*/0);
 }
 
 TEST(AgentInputDetections, SetOlderThanLatestImuIsNotOutOfOrder) {
   // GIVEN an agent whose IMU is at T
   Agent agent(configFor(Mode::kSwa));
-  ImuSample imu;
-  imu.stamp_ns = kT0 + 100 * kMs;
-  agent.onImu(imu);
+  giveHeading(agent, kT0 + 100 * kMs);
   // WHEN a detection set stamped 50 ms before T arrives (sensor latency; stamps are ordered per stream)
-  DetectionSet set;
-  set.stamp_ns = kT0 + 50 * kMs;
-  set.detections = {det(1, 5.0, 0.0)};
-  agent.onDetections(set);
+  agent.onDetections(detectionSet(kT0 + 50 * kMs, {det(1, 5.0, 0.0)}));
   // THEN it is accepted
   expectCounters(agent.diagnostics().rejected, RejectCounters{});
   EXPECT_NE(agent.bank().find(1), nullptr);
@@ -334,12 +295,8 @@ TEST(AgentInputDetections, AnonymousDetectionWithAbsurdCovarianceDoesNotHangTheA
     SCOPED_TRACE(label.str());
     // GIVEN an agent with one tentative anonymous track 5 m ahead
     auto scenario = [variance](Agent& agent) {
-      ImuSample imu;
-      imu.stamp_ns = kT0;
-      agent.onImu(imu);
-      DetectionSet set;
-      set.stamp_ns = kT0 + kMs;
-      set.detections = {det(kAnonymousId, 5.0, 0.0)};
+      giveHeading(agent);
+      DetectionSet set = detectionSet(kT0 + kMs, {det(kAnonymousId, 5.0, 0.0)});
       agent.onDetections(set);
       // WHEN an anonymous detection at the same place arrives with covariance variance * I (finite, SPD)
       set.stamp_ns += 100 * kMs;

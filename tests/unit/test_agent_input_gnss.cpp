@@ -25,6 +25,7 @@ using testing::Event;
 using testing::feed;
 using testing::configFor;
 using testing::Twins;
+using testing::validFixes;
 
 // ===============================================================================================================
 // GNSS
@@ -36,21 +37,14 @@ TEST(AgentInputGnss, ValidFixWithNonFiniteValuesIsNonfinite) {
   const StampNs next = tw.nextStamp(Event::Kind::kGnss);
   ASSERT_TRUE(tw.dut.diagnostics().gnss_valid);
   // WHEN one gets valid-flagged fixes with NaN x, inf y, NaN std, inf std (stamped like the next good fix)
-  std::vector<GnssSample> bad(4);
-  for (GnssSample& g : bad) {
-    g.stamp_ns = next;
-    g.valid = true;
-    g.position_m = Vec2(12.0, -4.0);
-    g.std_m = 0.3;
-  }
+  std::vector<GnssSample> bad = validFixes(4, next);
   bad[0].position_m.x() = kNan;
   bad[1].position_m.y() = kInf;
   bad[2].std_m = kNan;
   bad[3].std_m = kInf;
   for (const GnssSample& g : bad) tw.dut.onGnss(g);
   // THEN nonfinite == 4, nothing else, and no effect
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::nonfinite, 4));
-  tw.expectNoLastingEffect(0);
+  tw.expectOnlyRejected(&RejectCounters::nonfinite, 4, /*extra_commands=*/0);
 }
 
 TEST(AgentInputGnss, NonPositiveStdOrFarPositionIsImplausible) {
@@ -60,13 +54,7 @@ TEST(AgentInputGnss, NonPositiveStdOrFarPositionIsImplausible) {
   const StampNs next = tw.nextStamp(Event::Kind::kGnss);
   // WHEN one gets valid-flagged fixes with std 0, -0, -1, and a position beyond max_abs_position_m (1e6 + 1 and
   // 1e300)
-  std::vector<GnssSample> bad(5);
-  for (GnssSample& g : bad) {
-    g.stamp_ns = next;
-    g.valid = true;
-    g.position_m = Vec2(12.0, -4.0);
-    g.std_m = 0.3;
-  }
+  std::vector<GnssSample> bad = validFixes(5, next);
   bad[0].std_m = 0.0;
   bad[1].std_m = -0.0;
   bad[2].std_m = -1.0;
@@ -74,16 +62,14 @@ TEST(AgentInputGnss, NonPositiveStdOrFarPositionIsImplausible) {
   bad[4].position_m = Vec2(1e300, 1e300);
   for (const GnssSample& g : bad) tw.dut.onGnss(g);
   // THEN implausible == 5, nothing else, and no effect
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::implausible, 5));
-  tw.expectNoLastingEffect(0);
+  tw.expectOnlyRejected(&RejectCounters::implausible, 5, /*extra_commands=*/0);
 }
 
 TEST(AgentInputGnss, StampNotAfterPreviousIsOutOfOrder) {
   // GIVEN two anchored agents tracking on the same stream, last fix at T
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
-  const Event next = tw.advanceTo(Event::Kind::kGnss);
-  tw.pop();
+  const Event next = tw.takeNext(Event::Kind::kGnss);
   tw.ref.onGnss(next.gnss);
   tw.dut.onGnss(next.gnss);
   // WHEN one gets valid fixes stamped T, T - 1 ns and T - 3 s that would pull the estimate 5 m if used, and one
@@ -108,8 +94,7 @@ TEST(AgentInputGnss, InvalidFixWithGarbageFieldsIsNotAnError) {
   // GIVEN two anchored agents tracking on the same stream
   Twins tw(Mode::kAnchored);
   ASSERT_NO_FATAL_FAILURE(tw.expectWarmedUp());
-  const Event next = tw.advanceTo(Event::Kind::kGnss);
-  tw.pop();
+  const Event next = tw.takeNext(Event::Kind::kGnss);
   // WHEN the receiver loses its fix: `dut` gets valid=false with NaN / inf / negative garbage in every field, `ref`
   // gets valid=false with clean zeros, both at the same stamp
   GnssSample garbage;
@@ -125,8 +110,7 @@ TEST(AgentInputGnss, InvalidFixWithGarbageFieldsIsNotAnError) {
   // THEN nothing is rejected, both report no valid GNSS (diagnostics are refreshed by the next IMU sample), the
   // estimate is finite, and the garbage had no effect beyond "no fix": the agents stay bit-identical from here on
   expectCounters(tw.dut.diagnostics().rejected, RejectCounters{});
-  const Event imu = tw.advanceTo(Event::Kind::kImu);
-  tw.pop();
+  const Event imu = tw.takeNext(Event::Kind::kImu);
   feed(tw.ref, imu);
   feed(tw.dut, imu);
   EXPECT_FALSE(tw.dut.diagnostics().gnss_valid);

@@ -21,12 +21,12 @@ using testing::kSec;
 using testing::kT0;
 using testing::sameBits;
 using testing::allFinite;
-using testing::only;
 using testing::expectCounters;
 using testing::Event;
 using testing::configFor;
 using testing::Twins;
 using testing::det;
+using testing::detectionSet;
 
 // ===============================================================================================================
 // IMU
@@ -54,8 +54,7 @@ TEST(AgentInputImu, NonFiniteAttitudeIsCountedAsNonfiniteAndChangesNothing) {
   }
 
   // THEN exactly nonfinite went up, by 4, and nothing else changed
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::nonfinite, 4));
-  tw.expectNoLastingEffect(4);
+  tw.expectOnlyRejected(&RejectCounters::nonfinite, 4, /*extra_commands=*/4);
 }
 
 TEST(AgentInputImu, TiltBeyondLimitIsCountedAsImplausibleAndChangesNothing) {
@@ -82,8 +81,7 @@ TEST(AgentInputImu, TiltBeyondLimitIsCountedAsImplausibleAndChangesNothing) {
   }
 
   // THEN exactly implausible went up, by 5, and nothing else changed
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::implausible, 5));
-  tw.expectNoLastingEffect(5);
+  tw.expectOnlyRejected(&RejectCounters::implausible, 5, /*extra_commands=*/5);
 }
 
 TEST(AgentInputImu, TiltExactlyAtLimitIsAccepted) {
@@ -97,10 +95,7 @@ TEST(AgentInputImu, TiltExactlyAtLimitIsAccepted) {
   s.pitch_rad = -max_tilt;
   agent.onImu(s);
   // THEN nothing is rejected, and the sample gave a heading (a detection set is accepted afterwards)
-  DetectionSet d;
-  d.stamp_ns = kT0 + kMs;
-  d.detections.push_back(det(1, 5.0, 0.0));
-  agent.onDetections(d);
+  agent.onDetections(detectionSet(kT0 + kMs, {det(1, 5.0, 0.0)}));
   expectCounters(agent.diagnostics().rejected, RejectCounters{});
   EXPECT_NE(agent.bank().find(1), nullptr);
 }
@@ -132,8 +127,7 @@ TEST(AgentInputImu, StampNotAfterPreviousIsOutOfOrderAndAnsweredWithPreviousComm
   EXPECT_EQ(tw.dut.diagnostics().commands, seq + 3);
 
   // THEN exactly out_of_order went up, by 3, and nothing else changed
-  expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::out_of_order, 3));
-  tw.expectNoLastingEffect(3);
+  tw.expectOnlyRejected(&RejectCounters::out_of_order, 3, /*extra_commands=*/3);
 }
 
 TEST(AgentInputImu, RejectedImuBeforeAnyGoodOneAnswersWithZeroCommand) {
