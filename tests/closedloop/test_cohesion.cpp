@@ -8,11 +8,7 @@
 namespace swa::batch {
 namespace {
 
-using testing::kNearest;
-using testing::kR;
-using testing::runSeeds;
-using testing::shipped;
-using testing::Stats;
+using namespace testing;  // closed_loop_support.h
 
 void expectCohesive(const Stats& s, double tolerance_fraction, const char* what) {
   SCOPED_TRACE(what);

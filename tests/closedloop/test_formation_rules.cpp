@@ -14,11 +14,7 @@
 namespace swa::batch {
 namespace {
 
-using testing::kNearest;
-using testing::kR;
-using testing::runSeeds;
-using testing::shipped;
-using testing::Stats;
+using namespace testing;  // closed_loop_support.h
 
 std::vector<std::string> sized(int n, double duration_s, std::vector<std::string> more = {}) {
   more.insert(more.begin(), {"uav_count=" + std::to_string(n), "duration_s=" + std::to_string(duration_s)});

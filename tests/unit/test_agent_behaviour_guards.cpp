@@ -15,21 +15,7 @@
 namespace swa::agent {
 namespace {
 
-using testing::kMs;
-using testing::kSec;
-using testing::kT0;
-using testing::sameBits;
-using testing::allFinite;
-using testing::sameCommand;
-using testing::expectCounters;
-using testing::expectSameState;
-using testing::Event;
-using testing::feed;
-using testing::feedAll;
-using testing::Scene;
-using testing::ringScene;
-using testing::makeStream;
-using testing::configFor;
+using namespace testing;  // agent_input_support.h
 
 // ===============================================================================================================
 // Determinism

@@ -20,22 +20,7 @@
 namespace swa::agent {
 namespace {
 
-using testing::kNan;
-using testing::kInf;
-using testing::kMs;
-using testing::kSec;
-using testing::kT0;
-using testing::only;
-using testing::expectCounters;
-using testing::Event;
-using testing::configFor;
-using testing::Twins;
-using testing::det;
-using testing::mat;
-using testing::giveHeading;
-using testing::detectionSet;
-using testing::finiteTracks;
-using testing::runWithDeadline;
+using namespace testing;  // agent_input_support.h
 
 // ===============================================================================================================
 // Detections

@@ -21,17 +21,7 @@
 namespace swa::agent {
 namespace {
 
-using testing::kNan;
-using testing::kInf;
-using testing::kT0;
-using testing::allFinite;
-using testing::expectCounters;
-using testing::configFor;
-using testing::det;
-using testing::mat;
-using testing::finiteDiagnostics;
-using testing::finiteTracks;
-using testing::runWithDeadline;
+using namespace testing;  // agent_input_support.h
 
 // ===============================================================================================================
 // Fuzz: every kind of sample with every kind of garbage, in every mode.

@@ -13,19 +13,7 @@
 namespace swa::agent {
 namespace {
 
-using testing::kNan;
-using testing::kInf;
-using testing::kMs;
-using testing::kSec;
-using testing::kT0;
-using testing::allFinite;
-using testing::only;
-using testing::expectCounters;
-using testing::Event;
-using testing::feed;
-using testing::configFor;
-using testing::Twins;
-using testing::validFixes;
+using namespace testing;  // agent_input_support.h
 
 // ===============================================================================================================
 // GNSS

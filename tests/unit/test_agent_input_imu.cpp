@@ -14,19 +14,7 @@
 namespace swa::agent {
 namespace {
 
-using testing::kNan;
-using testing::kInf;
-using testing::kMs;
-using testing::kSec;
-using testing::kT0;
-using testing::sameBits;
-using testing::allFinite;
-using testing::expectCounters;
-using testing::Event;
-using testing::configFor;
-using testing::Twins;
-using testing::det;
-using testing::detectionSet;
+using namespace testing;  // agent_input_support.h
 
 // ===============================================================================================================
 // IMU
