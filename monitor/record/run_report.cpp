@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "swa/monitor/svg_plot.h"
 
@@ -29,6 +33,31 @@ std::string restartsText(const RunRecord& run) {
   return out;
 }
 
+// A table of the items_of(run) of every run, one row_of(item) each, behind a "run" column when there are several
+// runs; at most kMaxTableRows rows. Also returns how many items there were.
+template <class ItemsOf, class RowOf>
+std::pair<monitor::ReportTable, std::size_t> itemTable(const char* id, const char* title,
+                                                       const std::vector<RunRecord>& runs,
+                                                       std::initializer_list<const char*> columns, ItemsOf items_of,
+                                                       RowOf row_of) {
+  monitor::ReportTable t;
+  t.id = id;
+  t.title = title;
+  const bool many = runs.size() > 1;
+  if (many) t.columns.push_back("run");
+  for (const char* c : columns) t.columns.push_back(c);
+  std::size_t total = 0;
+  for (const RunRecord& run : runs) {
+    for (const auto& item : items_of(run)) {
+      if (++total > kMaxTableRows) continue;
+      std::vector<std::string> row = row_of(item);
+      if (many) row.insert(row.begin(), run.label);
+      t.rows.push_back(std::move(row));
+    }
+  }
+  return {std::move(t), total};
+}
+
 }  // namespace
 
 std::vector<monitor::RunReport> reportRuns(const std::vector<RunRecord>& runs) {
@@ -38,27 +67,14 @@ std::vector<monitor::RunReport> reportRuns(const std::vector<RunRecord>& runs) {
 }
 
 monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs) {
-  monitor::ReportTable t;
-  t.id = "events";
-  t.title = "Scenario events";
-  const bool many = runs.size() > 1;
-  if (many) t.columns.push_back("run");
-  for (const char* c : {"sim time [s]", "event", "UAV", "other UAV", "value", "detail"}) t.columns.push_back(c);
-  std::size_t total = 0;
-  for (const RunRecord& run : runs) {
-    for (const EventRecord& e : run.events) {
-      if (++total > kMaxTableRows) continue;
-      std::vector<std::string> row;
-      if (many) row.push_back(run.label);
-      row.push_back(monitor::formatFixed(e.t_s, 2));
-      row.push_back(e.kind);
-      row.push_back(uavText(e.uav));
-      row.push_back(e.other_uav < 0 ? "" : std::to_string(e.other_uav));
-      row.push_back(e.value == 0.0 ? "" : monitor::formatReportValue(e.value));
-      row.push_back(e.text);
-      t.rows.push_back(std::move(row));
-    }
-  }
+  auto [t, total] = itemTable(
+      "events", "Scenario events", runs, {"sim time [s]", "event", "UAV", "other UAV", "value", "detail"},
+      [](const RunRecord& run) -> const auto& { return run.events; },
+      [](const EventRecord& e) -> std::vector<std::string> {
+        return {monitor::formatFixed(e.t_s, 2), e.kind, uavText(e.uav),
+                e.other_uav < 0 ? "" : std::to_string(e.other_uav),
+                e.value == 0.0 ? "" : monitor::formatReportValue(e.value), e.text};
+      });
   t.note =
       "As published by the simulator on swa/events, at the sim time they took effect. value: separation [m] of a "
       "collision, setpoint age [s] of a failsafe, agent timeout [s] of a dead agent.";
@@ -71,28 +87,16 @@ monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs) {
 }
 
 monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs) {
-  monitor::ReportTable t;
-  t.id = "restarts";
-  t.title = "Agent and monitor restarts";
-  const bool many = runs.size() > 1;
-  if (many) t.columns.push_back("run");
-  for (const char* c : {"wall time [s]", "UAV", "exit status", "restart count", "backoff [s]"}) t.columns.push_back(c);
-  std::size_t total = 0;
+  auto [t, total] = itemTable(
+      "restarts", "Agent and monitor restarts", runs, {"wall time [s]", "UAV", "exit status", "restart count", "backoff [s]"},
+      [](const RunRecord& run) -> const auto& { return run.restarts.restarts; },
+      [](const AgentRestart& r) -> std::vector<std::string> {
+        return {monitor::formatFixed(r.wall_s, 2),
+                r.uav == AgentRestart::kMonitor ? std::string("monitor") : std::to_string(r.uav), r.exit_status,
+                std::to_string(r.restart_count), monitor::formatFixed(r.backoff_s, 2)};
+      });
   int malformed = 0;
-  for (const RunRecord& run : runs) {
-    malformed += run.restarts.malformed_rows;
-    for (const AgentRestart& r : run.restarts.restarts) {
-      if (++total > kMaxTableRows) continue;
-      std::vector<std::string> row;
-      if (many) row.push_back(run.label);
-      row.push_back(monitor::formatFixed(r.wall_s, 2));
-      row.push_back(r.uav == AgentRestart::kMonitor ? std::string("monitor") : std::to_string(r.uav));
-      row.push_back(r.exit_status);
-      row.push_back(std::to_string(r.restart_count));
-      row.push_back(monitor::formatFixed(r.backoff_s, 2));
-      t.rows.push_back(std::move(row));
-    }
-  }
+  for (const RunRecord& run : runs) malformed += run.restarts.malformed_rows;
   t.note = "From the launcher's restart log; wall time is seconds since the launcher started.";
   if (malformed > 0) t.note += " " + std::to_string(malformed) + " malformed row(s) skipped (see summary.json).";
   if (total > kMaxTableRows) t.note += " Only the first " + std::to_string(kMaxTableRows) + " are listed.";

@@ -463,6 +463,21 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdInAnotherSwarmIsNotATwin) {
   EXPECT_EQ(readFile(dir_ / "second.log").find("REFUSING"), std::string::npos) << readFile(dir_ / "second.log");
 }
 
+TEST_F(SwarmRun, AgentWithoutASimulatorSaysWhatItIsWaitingFor) {
+  // GIVEN agent 1 alone in its swarm: no simulator
+  const fs::path log = dir_ / "agent1.log";
+  Child agent(agentCommand(SWA_AGENT_BINARY, 1, domain_), log);
+  // WHEN no sample comes for 5 s
+  // THEN it says so once, and that nothing matched its endpoints (instead of staying silent like a healthy agent)
+  const std::string expected =
+      "swa_agent 1: no IMU sample 5 s after connecting; matched: 0 reader(s) of swa/uav1/cmd_vel, 0 writer(s) of "
+      "swa/uav1/imu, 0 of swa/uav1/detections, 0 of swa/uav1/gnss";
+  EXPECT_TRUE(waitFor([&] { return readFile(log).find(expected) != std::string::npos; }, 15.0)) << readFile(log);
+  // AND it keeps waiting, and stops cleanly
+  EXPECT_FALSE(agent.wait(0.0)) << readFile(log);
+  EXPECT_EQ(agent.stop(), 0) << readFile(log);
+}
+
 // Issue #11: stopping the simulator for 2 s declared every healthy agent dead (realtime). Stopped for 5 s here: that
 // also lost the agents' shared-memory channel to it for good before the SHM port health check was lengthened
 // (deploy/dds/profiles.xml, swa_shm). In lockstep the agents' answers reach the stopped simulator's queue and

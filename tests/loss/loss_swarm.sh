@@ -46,27 +46,11 @@ OUT_DIR=${4:-$PWD/loss-out}
 DURATION_S=${SWA_LOSS_DURATION_S:-45}
 UAVS=${SWA_LOSS_UAVS:-6}
 SCENARIO=$SRC_DIR/deploy/scenarios/dropout_8.yaml
-FAILED=()
 declare -A VALUE=()
 
-log() { printf 'loss: %s\n' "$*"; }
-die() {
-  printf 'loss: ERROR: %s\n' "$*" >&2
-  exit 1
-}
-check() {
-  local name=$1 detail=$2
-  shift 2
-  if "$@"; then
-    printf 'loss:   PASS  %-62s %s\n' "$name" "$detail"
-  else
-    printf 'loss:   FAIL  %-62s %s\n' "$name" "$detail"
-    FAILED+=("$name ($detail)")
-  fi
-}
-within() { awk -v lo="$1" -v hi="$2" -v x="$3" 'BEGIN { exit !(x != "" && x != "null" && x >= lo && x <= hi) }'; }
-at_most() { awk -v max="$1" -v x="$2" 'BEGIN { exit !(x != "" && x != "null" && x <= max) }'; }
-at_least() { awk -v min="$1" -v x="$2" 'BEGIN { exit !(x != "" && x != "null" && x >= min) }'; }
+CHECK_TAG=loss
+# shellcheck source-path=SCRIPTDIR source=../checks.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../checks.sh"
 
 [[ $(id -u) -eq 0 ]] || die "needs root (network namespaces, iptables)"
 [[ -x $NETEM ]] || die "$NETEM not found (build tests/loss first)"
@@ -201,9 +185,5 @@ for name in loss10 loss30; do
     at_least "$(awk -v c="${VALUE[clean.min_sep]}" -v r=$MIN_SEP_RATIO 'BEGIN{print c*r}')" "${VALUE[$name.min_sep]}"
 done
 
-if [[ ${#FAILED[@]} -gt 0 ]]; then
-  printf 'loss: %d check(s) failed:\n' "${#FAILED[@]}"
-  printf 'loss:   %s\n' "${FAILED[@]}"
-  exit 1
-fi
+report_checks || exit 1
 log "all checks passed; run directories in $OUT_DIR"

@@ -60,7 +60,6 @@ MULTICAST_DISCOVERY_S=""
 CASE_DISCOVERY_S=""
 MY_NAMESPACES=()                          # created by this run, deleted by cleanup
 declare -A PROC_LABEL=()                  # pid -> label of every process this run started and has not reaped
-FAILED=()
 RESULTS=()
 CASE_ENV=()
 LAST_PID=0
@@ -68,31 +67,11 @@ T_START=$SECONDS
 
 # ---------------------------------------------------------------------------------------------------------- output
 
-log() { printf 'netns: %s\n' "$*"; }
+CHECK_TAG=netns
+# shellcheck source-path=SCRIPTDIR source=../checks.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../checks.sh"
 section() { printf '\nnetns: ===== %s =====\n' "$*"; }
-die() {
-  printf 'netns: ERROR: %s\n' "$*" >&2
-  exit 1
-}
-
-# check NAME DETAIL CMD...: runs CMD; its status is the check's outcome. Failures are collected, not fatal, so one
-# run reports every problem at once.
-check() {
-  local name=$1 detail=$2
-  shift 2
-  if "$@"; then
-    printf 'netns:   PASS  %-58s %s\n' "$name" "$detail"
-  else
-    printf 'netns:   FAIL  %-58s %s\n' "$name" "$detail"
-    FAILED+=("$name ($detail)")
-  fi
-}
-
-# Float comparison for check: within LO HI X.
-within() { awk -v lo="$1" -v hi="$2" -v x="$3" 'BEGIN { exit !(x != "" && x >= lo && x <= hi) }'; }
-at_most() { awk -v max="$1" -v x="$2" 'BEGIN { exit !(x != "" && x <= max) }'; }
 equals() { [[ $1 == "$2" ]]; }
-greater() { awk -v min="$1" -v x="$2" 'BEGIN { exit !(x != "" && x > min) }'; }
 
 # ------------------------------------------------------------------------------------------------- prerequisites
 
@@ -540,11 +519,7 @@ main() {
     collisions wall
   local line
   for line in "${RESULTS[@]}"; do printf 'netns: %s\n' "$line"; done
-  if [[ ${#FAILED[@]} -gt 0 ]]; then
-    printf 'netns: FAILED %d check(s):\n' "${#FAILED[@]}"
-    printf 'netns:   %s\n' "${FAILED[@]}"
-    exit 1
-  fi
+  report_checks || exit 1
   log "all checks passed"
 }
 
