@@ -1,5 +1,6 @@
 #include "swa/agent/config_io.h"
 
+#include <iterator>
 #include <limits>
 
 namespace swa::agent {
@@ -10,119 +11,106 @@ using params::closed;
 using params::open;
 using params::openClosed;
 
-template <class Enum>
-std::vector<std::pair<Enum, std::string>> named(std::initializer_list<Enum> values) {
-  std::vector<std::pair<Enum, std::string>> out;
-  for (const Enum v : values) out.emplace_back(v, toString(v));
-  return out;
+template <class Enum, std::size_t N>
+std::vector<std::pair<Enum, std::string>> named(const std::pair<Enum, const char*> (&names)[N]) {
+  return {std::begin(names), std::end(names)};
 }
-
-const std::initializer_list<Mode> kModes{Mode::kSwa, Mode::kStandalone, Mode::kAnchored};
-const std::initializer_list<CircleFit> kCircleFits{CircleFit::kFixedRadius, CircleFit::kAlgebraic};
-const std::initializer_list<NeighbourhoodRule> kNeighbourhoodRules{NeighbourhoodRule::kGabriel,
-                                                                   NeighbourhoodRule::kKNearest};
 
 // Every tunable of AgentConfig, declared here exactly once.
 params::Table<AgentConfig> makeTable() {
   params::Table<AgentConfig> t("SWA agent configuration", "configuration", "formation:", "formation.k=2");
-#define FIELD(f) [](auto& c) -> auto& { return c.f; }  // an accessor for const and mutable configs
-  t.choice("mode", FIELD(mode), named(kModes),
-           "swa = relative formation; standalone = dead-reckoning baseline; anchored = swa + GNSS hold");
+  SWA_PARAM(t, choice, mode, named(kModeNames),
+            "swa = relative formation; standalone = dead-reckoning baseline; anchored = swa + GNSS hold");
 
-  t.number("surroundings.q_pos_m2", FIELD(surroundings.q_pos_m2), "m^2", openClosed(0, 100),
-           "Q_o position block, per q_ref_dt_s of track prediction");
-  t.number("surroundings.q_vel_m2ps2", FIELD(surroundings.q_vel_m2ps2), "m^2/s^2", openClosed(0, 100),
-           "Q_o velocity block, per q_ref_dt_s of track prediction");
-  t.number("surroundings.q_acc_m2ps4", FIELD(surroundings.q_acc_m2ps4), "m^2/s^4", openClosed(0, 1000),
-           "Q_o acceleration block, per q_ref_dt_s of track prediction");
-  t.number("surroundings.q_ref_dt_s", FIELD(surroundings.q_ref_dt_s), "s", openClosed(0, 1),
-           "prediction step the Q_o blocks refer to (scaled linearly with the actual step)");
-  t.number("surroundings.r_det_m2", FIELD(surroundings.r_det_m2), "m^2", openClosed(0, 100),
-           "R_o: detection noise used when a detection carries no covariance of its own");
-  t.number("surroundings.init_vel_var_m2ps2", FIELD(surroundings.init_vel_var_m2ps2), "m^2/s^2", openClosed(0, 100),
-           "velocity variance of a new track");
-  t.number("surroundings.init_acc_var_m2ps4", FIELD(surroundings.init_acc_var_m2ps4), "m^2/s^4", openClosed(0, 1000),
-           "acceleration variance of a new track");
-  t.number("surroundings.confirm_hits", FIELD(surroundings.confirm_hits), "", closed(1, 20),
-           "detections (M) before a track may be used as a neighbour");
-  t.number("surroundings.track_timeout_s", FIELD(surroundings.track_timeout_s), "s", openClosed(0, 60),
-           "a confirmed track is removed after this long without a detection");
-  t.number("surroundings.tentative_timeout_s", FIELD(surroundings.tentative_timeout_s), "s", openClosed(0, 60),
-           "a tentative track is removed after this long without a detection");
-  t.number("surroundings.gate_probability", FIELD(surroundings.gate_probability), "", open(0, 1),
-           "chi-square gate probability (2 dof) for anonymous association");
+  SWA_PARAM(t, number, surroundings.q_pos_m2, "m^2", openClosed(0, 100),
+            "Q_o position block, per q_ref_dt_s of track prediction");
+  SWA_PARAM(t, number, surroundings.q_vel_m2ps2, "m^2/s^2", openClosed(0, 100),
+            "Q_o velocity block, per q_ref_dt_s of track prediction");
+  SWA_PARAM(t, number, surroundings.q_acc_m2ps4, "m^2/s^4", openClosed(0, 1000),
+            "Q_o acceleration block, per q_ref_dt_s of track prediction");
+  SWA_PARAM(t, number, surroundings.q_ref_dt_s, "s", openClosed(0, 1),
+            "prediction step the Q_o blocks refer to (scaled linearly with the actual step)");
+  SWA_PARAM(t, number, surroundings.r_det_m2, "m^2", openClosed(0, 100),
+            "R_o: detection noise used when a detection carries no covariance of its own");
+  SWA_PARAM(t, number, surroundings.init_vel_var_m2ps2, "m^2/s^2", openClosed(0, 100),
+            "velocity variance of a new track");
+  SWA_PARAM(t, number, surroundings.init_acc_var_m2ps4, "m^2/s^4", openClosed(0, 1000),
+            "acceleration variance of a new track");
+  SWA_PARAM(t, number, surroundings.confirm_hits, "", closed(1, 20),
+            "detections (M) before a track may be used as a neighbour");
+  SWA_PARAM(t, number, surroundings.track_timeout_s, "s", openClosed(0, 60),
+            "a confirmed track is removed after this long without a detection");
+  SWA_PARAM(t, number, surroundings.tentative_timeout_s, "s", openClosed(0, 60),
+            "a tentative track is removed after this long without a detection");
+  SWA_PARAM(t, number, surroundings.gate_probability, "", open(0, 1),
+            "chi-square gate probability (2 dof) for anonymous association");
 
-  t.number("formation.radius_m", FIELD(formation.radius_m), "m", openClosed(0, 1000),
-           "r: desired distance to the neighbours (radius of the fitted circle)");
-  t.choice("formation.neighbourhood", FIELD(formation.neighbourhood), named(kNeighbourhoodRules),
-           "gabriel = tracks with no other track inside the circle on the segment to them as diameter; "
-           "k_nearest = the k nearest tracks");
-  t.number("formation.k", FIELD(formation.k), "", closed(1, 16),
-           "k_nearest only: number of nearest neighbours used for the floating frame");
-  t.number("formation.sensing_range_m", FIELD(formation.sensing_range_m), "m", openClosed(0, 10000),
-           "tracks farther than this are not neighbours");
-  t.number("formation.max_edge_factor", FIELD(formation.max_edge_factor), "", closed(1, 100),
-           "gabriel only: neighbours other than the nearest must be closer than this times r");
-  t.choice("formation.circle_fit", FIELD(formation.circle_fit), named(kCircleFits),
-           "fit for n >= 3 neighbours; algebraic = the paper's Kasa fit (collapses, k = 3)");
-  t.number("formation.far_neighbour_weight", FIELD(formation.far_neighbour_weight), "", openClosed(0, 1),
-           "fixed_radius fit: weight of the neighbours beyond the two nearest (which weigh 1)");
+  SWA_PARAM(t, number, formation.radius_m, "m", openClosed(0, 1000),
+            "r: desired distance to the neighbours (radius of the fitted circle)");
+  SWA_PARAM(t, choice, formation.neighbourhood, named(kNeighbourhoodRuleNames),
+            "gabriel = tracks with no other track inside the circle on the segment to them as diameter; "
+            "k_nearest = the k nearest tracks");
+  SWA_PARAM(t, number, formation.k, "", closed(1, 16),
+            "k_nearest only: number of nearest neighbours used for the floating frame");
+  SWA_PARAM(t, number, formation.sensing_range_m, "m", openClosed(0, 10000),
+            "tracks farther than this are not neighbours");
+  SWA_PARAM(t, number, formation.max_edge_factor, "", closed(1, 100),
+            "gabriel only: neighbours other than the nearest must be closer than this times r");
+  SWA_PARAM(t, choice, formation.circle_fit, named(kCircleFitNames),
+            "fit for n >= 3 neighbours; algebraic = the paper's Kasa fit (collapses, k = 3)");
+  SWA_PARAM(t, number, formation.far_neighbour_weight, "", openClosed(0, 1),
+            "fixed_radius fit: weight of the neighbours beyond the two nearest (which weigh 1)");
 
-  t.number("focal.tau_s", FIELD(focal.tau_s), "s", openClosed(0, 60),
-           "tau: time constant of the velocity damping exp(-dt/tau) of the focal UAV model");
-  t.number("focal.q_pos_m2", FIELD(focal.q_pos_m2), "m^2", openClosed(0, 100),
-           "Q_f position block, per q_ref_dt_s, before q_scale");
-  t.number("focal.q_vel_m2ps2", FIELD(focal.q_vel_m2ps2), "m^2/s^2", openClosed(0, 100),
-           "Q_f velocity block, per q_ref_dt_s, before q_scale");
-  t.number("focal.q_acc_m2ps4", FIELD(focal.q_acc_m2ps4), "m^2/s^4", openClosed(0, 1000),
-           "Q_f acceleration block, per q_ref_dt_s, before q_scale");
-  t.number("focal.q_scale", FIELD(focal.q_scale), "", openClosed(0, 100), "factor applied to all of Q_f (1 = Table I)");
-  t.number("focal.q_ref_dt_s", FIELD(focal.q_ref_dt_s), "s", openClosed(0, 1),
-           "prediction step the Q_f blocks refer to (scaled linearly with the actual step)");
-  t.number("focal.r_pos_m2", FIELD(focal.r_pos_m2), "m^2", openClosed(0, 100),
-           "R_c: noise of the floating-frame position measurement");
-  t.number("focal.r_acc_m2ps4", FIELD(focal.r_acc_m2ps4), "m^2/s^4", openClosed(0, 1000),
-           "R_a: noise of the tilt-derived acceleration measurement");
-  t.number("focal.q_c_mps2", FIELD(focal.q_c_mps2), "m/s^2/rad", openClosed(0, 50),
-           "q_c: lateral acceleration per radian of tilt");
-  t.number("focal.frame_timeout_s", FIELD(focal.frame_timeout_s), "s", openClosed(0, 600),
-           "without a floating frame for this long, dead reckoning is no longer trusted");
-  t.number("focal.bias_window_s", FIELD(focal.bias_window_s), "s", closed(0, 3600),
-           "IMU-bias removal: window of the running mean subtracted from the tilt acceleration (0 = off); "
-           "assumes a hovering UAV's acceleration averages to zero");
-  t.number("focal.bias_freeze_speed_mps", FIELD(focal.bias_freeze_speed_mps), "m/s", openClosed(0, 50),
-           "the IMU-bias mean is frozen while the commanded speed exceeds this");
-  t.number("focal.bias_freeze_hold_s", FIELD(focal.bias_freeze_hold_s), "s", closed(0, 600),
-           "the IMU-bias mean stays frozen this long after the commanded speed last exceeded "
-           "bias_freeze_speed_mps");
+  SWA_PARAM(t, number, focal.tau_s, "s", openClosed(0, 60),
+            "tau: time constant of the velocity damping exp(-dt/tau) of the focal UAV model");
+  SWA_PARAM(t, number, focal.q_pos_m2, "m^2", openClosed(0, 100), "Q_f position block, per q_ref_dt_s, before q_scale");
+  SWA_PARAM(t, number, focal.q_vel_m2ps2, "m^2/s^2", openClosed(0, 100),
+            "Q_f velocity block, per q_ref_dt_s, before q_scale");
+  SWA_PARAM(t, number, focal.q_acc_m2ps4, "m^2/s^4", openClosed(0, 1000),
+            "Q_f acceleration block, per q_ref_dt_s, before q_scale");
+  SWA_PARAM(t, number, focal.q_scale, "", openClosed(0, 100), "factor applied to all of Q_f (1 = Table I)");
+  SWA_PARAM(t, number, focal.q_ref_dt_s, "s", openClosed(0, 1),
+            "prediction step the Q_f blocks refer to (scaled linearly with the actual step)");
+  SWA_PARAM(t, number, focal.r_pos_m2, "m^2", openClosed(0, 100),
+            "R_c: noise of the floating-frame position measurement");
+  SWA_PARAM(t, number, focal.r_acc_m2ps4, "m^2/s^4", openClosed(0, 1000),
+            "R_a: noise of the tilt-derived acceleration measurement");
+  SWA_PARAM(t, number, focal.q_c_mps2, "m/s^2/rad", openClosed(0, 50), "q_c: lateral acceleration per radian of tilt");
+  SWA_PARAM(t, number, focal.frame_timeout_s, "s", openClosed(0, 600),
+            "without a floating frame for this long, dead reckoning is no longer trusted");
+  SWA_PARAM(t, number, focal.bias_window_s, "s", closed(0, 3600),
+            "IMU-bias removal: window of the running mean subtracted from the tilt acceleration (0 = off); "
+            "assumes a hovering UAV's acceleration averages to zero");
+  SWA_PARAM(t, number, focal.bias_freeze_speed_mps, "m/s", openClosed(0, 50),
+            "the IMU-bias mean is frozen while the commanded speed exceeds this");
+  SWA_PARAM(t, number, focal.bias_freeze_hold_s, "s", closed(0, 600),
+            "the IMU-bias mean stays frozen this long after the commanded speed last exceeded "
+            "bias_freeze_speed_mps");
 
-  t.number("control.k_p", FIELD(control.k_p), "1/s", closed(0, 20), "position feedback gain");
-  t.number("control.k_v", FIELD(control.k_v), "", closed(0, 10), "velocity feedback gain");
-  t.number("control.v_max_mps", FIELD(control.v_max_mps), "m/s", openClosed(0, 50),
-           "saturation of the desired velocity |v_d|");
+  SWA_PARAM(t, number, control.k_p, "1/s", closed(0, 20), "position feedback gain");
+  SWA_PARAM(t, number, control.k_v, "", closed(0, 10), "velocity feedback gain");
+  SWA_PARAM(t, number, control.v_max_mps, "m/s", openClosed(0, 50), "saturation of the desired velocity |v_d|");
 
-  t.number("anchor.gain", FIELD(anchor.gain), "", closed(0, 10),
-           "weight of the absolute (GNSS) hold added to the relative command in anchored mode");
-  t.number("anchor.gnss_min_std_m", FIELD(anchor.gnss_min_std_m), "m", openClosed(0, 100),
-           "floor for the standard deviation a GNSS fix claims");
+  SWA_PARAM(t, number, anchor.gain, "", closed(0, 10),
+            "weight of the absolute (GNSS) hold added to the relative command in anchored mode");
+  SWA_PARAM(t, number, anchor.gnss_min_std_m, "m", openClosed(0, 100),
+            "floor for the standard deviation a GNSS fix claims");
 
-  t.number("limits.max_detections", FIELD(limits.max_detections), "", closed(1, 1024),
-           "a detection set larger than this is rejected whole");
-  t.number("limits.max_target_id", FIELD(limits.max_target_id), "",
-           closed(1, static_cast<double>(std::numeric_limits<int>::max())),
-           "detections with a target ID above this are treated as corrupt");
-  t.number("limits.max_tilt_rad", FIELD(limits.max_tilt_rad), "rad", openClosed(0, 1.5),
-           "|roll|, |pitch| beyond this are not treated as lateral flight");
-  t.number("limits.max_abs_position_m", FIELD(limits.max_abs_position_m), "m", openClosed(0, 1e9),
-           "detections and GNSS fixes farther than this are corrupt");
-  t.number("limits.max_abs_heading_rad", FIELD(limits.max_abs_heading_rad), "rad", openClosed(0, 1e3),
-           "IMU headings beyond +- this are corrupt");
-  t.number("limits.max_stamp_jump_s", FIELD(limits.max_stamp_jump_s), "s", openClosed(0, 3600),
-           "a sample stamped more than this after the previous one of its stream (or this far from the IMU's "
-           "clock) is not trusted");
-    t.number("limits.resync_samples", FIELD(limits.resync_samples), "", closed(2, 100),
-           "consecutive samples of a consistent new timeline after which a stream re-synchronises to it");
-#undef FIELD
+  SWA_PARAM(t, number, limits.max_detections, "", closed(1, 1024),
+            "a detection set larger than this is rejected whole");
+  SWA_PARAM(t, number, limits.max_target_id, "", closed(1, static_cast<double>(std::numeric_limits<int>::max())),
+            "detections with a target ID above this are treated as corrupt");
+  SWA_PARAM(t, number, limits.max_tilt_rad, "rad", openClosed(0, 1.5),
+            "|roll|, |pitch| beyond this are not treated as lateral flight");
+  SWA_PARAM(t, number, limits.max_abs_position_m, "m", openClosed(0, 1e9),
+            "detections and GNSS fixes farther than this are corrupt");
+  SWA_PARAM(t, number, limits.max_abs_heading_rad, "rad", openClosed(0, 1e3),
+            "IMU headings beyond +- this are corrupt");
+  SWA_PARAM(t, number, limits.max_stamp_jump_s, "s", openClosed(0, 3600),
+            "a sample stamped more than this after the previous one of its stream (or this far from the IMU's "
+            "clock) is not trusted");
+  SWA_PARAM(t, number, limits.resync_samples, "", closed(2, 100),
+            "consecutive samples of a consistent new timeline after which a stream re-synchronises to it");
   t.schema().relations = {
       {"surroundings.tentative_timeout_s", false, "surroundings.track_timeout_s",
        "a tentative track must not outlive a confirmed one"},

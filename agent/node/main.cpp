@@ -10,14 +10,14 @@
 #include "swa/dds/options.h"
 #include "swa/sim/scenario_io.h"
 
-// Fast DDS declares a global `namespace dds = eprosima::fastdds::dds;`: stay inside namespace swa so `dds::` is ours.
 namespace swa::agent_node {
 namespace {
 
 app::Plan prepare(const std::vector<std::string>& args) {
   const AgentOptions options = parseAgentOptions(args);
-  if (auto done = app::printIf(options.help, agentUsage)) return *done;
-  if (auto done = app::printIf(options.list_parameters, agent::describeParameters)) return *done;
+  if (auto done = app::printIf(options.help, agentUsage, options.list_parameters, agent::describeParameters)) {
+    return *done;
+  }
   agent::AgentConfig config;
   if (!options.config_path.empty()) config = agent::loadAgentConfig(options.config_path);
   if (!options.scenario_path.empty()) config = sim::loadScenario(options.scenario_path).agent;

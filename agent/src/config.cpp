@@ -1,37 +1,20 @@
 #include "swa/agent/config.h"
 
 namespace swa::agent {
+namespace {
 
-std::string toString(Mode mode) {
-  switch (mode) {
-    case Mode::kSwa:
-      return "swa";
-    case Mode::kStandalone:
-      return "standalone";
-    case Mode::kAnchored:
-      return "anchored";
+template <class Enum, std::size_t N>
+std::string nameIn(const std::pair<Enum, const char*> (&names)[N], Enum value) {
+  for (const auto& [v, name] : names) {
+    if (v == value) return name;
   }
   return "unknown";
 }
 
-std::string toString(CircleFit fit) {
-  switch (fit) {
-    case CircleFit::kFixedRadius:
-      return "fixed_radius";
-    case CircleFit::kAlgebraic:
-      return "algebraic";
-  }
-  return "unknown";
-}
+}  // namespace
 
-std::string toString(NeighbourhoodRule rule) {
-  switch (rule) {
-    case NeighbourhoodRule::kGabriel:
-      return "gabriel";
-    case NeighbourhoodRule::kKNearest:
-      return "k_nearest";
-  }
-  return "unknown";
-}
+std::string toString(Mode mode) { return nameIn(kModeNames, mode); }
+std::string toString(CircleFit fit) { return nameIn(kCircleFitNames, fit); }
+std::string toString(NeighbourhoodRule rule) { return nameIn(kNeighbourhoodRuleNames, rule); }
 
 }  // namespace swa::agent

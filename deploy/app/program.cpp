@@ -17,6 +17,12 @@ std::optional<Plan> printIf(bool asked, const std::function<std::string()>& text
   return exitWith(0);
 }
 
+std::optional<Plan> printIf(bool help, const std::function<std::string()>& usage, bool list_parameters,
+                            const std::function<std::string()>& parameters) {
+  if (auto done = printIf(help, usage)) return done;
+  return printIf(list_parameters, parameters);
+}
+
 int runProgram(const std::string& name, const std::string& input, int argc, char** argv,
                const std::function<Plan(const std::vector<std::string>& args)>& prepare) {
   Plan plan;

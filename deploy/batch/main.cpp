@@ -169,8 +169,9 @@ int Batch::run() {
 
 app::Plan prepare(const std::vector<std::string>& args) {
   const batch::BatchOptions opt = batch::parseBatchOptions(args);
-  if (auto done = app::printIf(opt.help, batch::batchUsage)) return *done;
-  if (auto done = app::printIf(opt.list_parameters, sim::describeScenarioParameters)) return *done;
+  if (auto done = app::printIf(opt.help, batch::batchUsage, opt.list_parameters, sim::describeScenarioParameters)) {
+    return *done;
+  }
   const sim::Scenario scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
   monitor::prepareOutputDir(opt.out_dir);  // before hours of seeds, not after
   return app::startWith([opt, scenario]() -> std::unique_ptr<app::Role> { return std::make_unique<Batch>(opt, scenario); });

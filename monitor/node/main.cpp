@@ -15,7 +15,6 @@
 #include "swa/monitor/output_dir.h"
 #include "swa/sim/scenario_io.h"
 
-// Fast DDS declares a global `namespace dds = eprosima::fastdds::dds;`: stay inside namespace swa so `dds::` is ours.
 namespace swa::monitor_node {
 namespace {
 

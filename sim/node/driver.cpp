@@ -18,15 +18,14 @@ constexpr auto kReconnectGrace = std::chrono::seconds(4);
 
 }  // namespace
 
-Driver::Driver(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimPorts& ports,
-               SimSummary& summary, const std::atomic<bool>& stop)
-    : scenario_(scenario),
-      options_(options),
-      world_(world),
-      ports_(ports),
-      summary_(summary),
-      stop_(stop),
-      n_(world.uav_count()),
+Driver::Driver(const DriverContext& context)
+    : scenario_(context.scenario),
+      options_(context.options),
+      world_(context.world),
+      ports_(context.ports),
+      summary_(context.summary),
+      stop_(context.stop),
+      n_(context.world.uav_count()),
       stall_(kPollPeriod + kStallSlack) {}
 
 void Driver::noteStall(Clock::duration lost, Clock::time_point now) {

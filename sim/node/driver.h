@@ -16,12 +16,21 @@
 
 namespace swa::sim_node {
 
+// What a driver works on, all owned by the SimNode that owns the driver.
+struct DriverContext {
+  const sim::Scenario& scenario;
+  const SimOptions& options;
+  sim::World& world;
+  SimPorts& ports;
+  SimSummary& summary;
+  const std::atomic<bool>& stop;
+};
+
 class Driver {
  public:
   using Clock = SimPorts::Clock;
 
-  Driver(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimPorts& ports,
-         SimSummary& summary, const std::atomic<bool>& stop);
+  explicit Driver(const DriverContext& context);
   virtual ~Driver() = default;
   Driver(const Driver&) = delete;
   Driver& operator=(const Driver&) = delete;

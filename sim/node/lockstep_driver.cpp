@@ -8,9 +8,7 @@
 
 namespace swa::sim_node {
 
-LockstepDriver::LockstepDriver(const sim::Scenario& scenario, const SimOptions& options, sim::World& world,
-                               SimPorts& ports, SimSummary& summary, const std::atomic<bool>& stop)
-    : Driver(scenario, options, world, ports, summary, stop), lockstep_(n_) {}
+LockstepDriver::LockstepDriver(const DriverContext& context) : Driver(context), lockstep_(n_) {}
 
 void LockstepDriver::run() {
   const double startup_s = std::max(options_.agent_timeout_s, options_.startup_timeout_s);

@@ -12,8 +12,7 @@ namespace swa::sim_node {
 
 class LockstepDriver : public Driver {
  public:
-  LockstepDriver(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimPorts& ports,
-                 SimSummary& summary, const std::atomic<bool>& stop);
+  explicit LockstepDriver(const DriverContext& context);
 
   void run() override;
   bool alive(int uav) const override { return lockstep_.alive(uav); }

@@ -12,14 +12,14 @@
 #include "swa/dds/options.h"
 #include "swa/sim/scenario_io.h"
 
-// Fast DDS declares a global `namespace dds = eprosima::fastdds::dds;`: stay inside namespace swa so `dds::` is ours.
 namespace swa::sim_node {
 namespace {
 
 app::Plan prepare(const std::vector<std::string>& args) {
   const SimOptions options = parseSimOptions(args);
-  if (auto done = app::printIf(options.help, simUsage)) return *done;
-  if (auto done = app::printIf(options.list_parameters, sim::describeScenarioParameters)) return *done;
+  if (auto done = app::printIf(options.help, simUsage, options.list_parameters, sim::describeScenarioParameters)) {
+    return *done;
+  }
   const sim::Scenario scenario = sim::loadScenario(options.scenario_path, options.overrides);
   if (!options.export_agent_config.empty()) {
     std::ofstream out(options.export_agent_config);

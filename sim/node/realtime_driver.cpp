@@ -8,9 +8,8 @@
 
 namespace swa::sim_node {
 
-RealtimeDriver::RealtimeDriver(const sim::Scenario& scenario, const SimOptions& options, sim::World& world,
-                               SimPorts& ports, SimSummary& summary, const std::atomic<bool>& stop)
-    : Driver(scenario, options, world, ports, summary, stop),
+RealtimeDriver::RealtimeDriver(const DriverContext& context)
+    : Driver(context),
       alive_(static_cast<std::size_t>(n_), true),
       last_answer_(static_cast<std::size_t>(n_)),
       last_applied_(static_cast<std::size_t>(n_)) {}

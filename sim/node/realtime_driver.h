@@ -13,8 +13,7 @@ namespace swa::sim_node {
 
 class RealtimeDriver : public Driver {
  public:
-  RealtimeDriver(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimPorts& ports,
-                 SimSummary& summary, const std::atomic<bool>& stop);
+  explicit RealtimeDriver(const DriverContext& context);
 
   void run() override;
   bool alive(int uav) const override { return alive_[static_cast<std::size_t>(uav)]; }

@@ -16,10 +16,11 @@ SimNode::SimNode(const sim::Scenario& scenario, const SimOptions& options, int d
       options_(options),
       world_(scenario_),
       ports_(scenario_, options_, world_, summary_, stop_, domain_id, profiles_file) {
+  const DriverContext context{scenario_, options_, world_, ports_, summary_, stop_};
   if (scenario_.clock.mode == sim::ClockMode::kLockstep) {
-    driver_ = std::make_unique<LockstepDriver>(scenario_, options_, world_, ports_, summary_, stop_);
+    driver_ = std::make_unique<LockstepDriver>(context);
   } else {
-    driver_ = std::make_unique<RealtimeDriver>(scenario_, options_, world_, ports_, summary_, stop_);
+    driver_ = std::make_unique<RealtimeDriver>(context);
   }
 }
 

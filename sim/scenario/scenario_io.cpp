@@ -36,8 +36,9 @@ params::Spec windowsSpec() {
   s.order_why = "the outage would be empty (leave end_s out for one that never ends)";
   s.example = "{uav: 3, start_s: 20, end_s: 40}";
   s.expected = "a list of outage windows such as [" + s.example + "] or [] (end_s optional: .inf = never restored)";
-  s.range_text = "list of {uav, start_s, end_s}: uav in [0, uav_count), 0 <= start_s < end_s <= " +
-                 formatYamlNumber(kMaxTime_s) + " or .inf";
+  s.range_text =
+      "list of {uav, start_s, end_s}: uav in [0, uav_count), 0 <= start_s < end_s <= " + formatYamlNumber(kMaxTime_s) +
+      " or .inf";
   s.comment = "per-UAV outages {uav, start_s, end_s} (end_s .inf = never restored)";
   s.type_name = "window list";
   return s;
@@ -92,8 +93,8 @@ std::vector<params::Check> scenarioChecks() {
                       const auto& windows = params::records(v, "gnss.windows");
                       for (std::size_t i = 0; i < windows.size(); ++i) {
                         if (windows[i][0] < params::number(v, "uav_count")) continue;
-                        problems.push_back("gnss.windows[" + std::to_string(i) + "].uav = " +
-                                           std::to_string(static_cast<long long>(windows[i][0])) +
+                        problems.push_back("gnss.windows[" + std::to_string(i) +
+                                           "].uav = " + std::to_string(static_cast<long long>(windows[i][0])) +
                                            " is not a UAV of the swarm: " + uavIndices(v));
                       }
                     }});
@@ -123,78 +124,69 @@ const char* const kNotes =
 
 params::Table<Scenario> makeTable() {
   params::Table<Scenario> t("SWA scenario", "scenario", "uav_count: 8", "uav_count=16", kNotes);
-#define FIELD(f) [](auto& s) -> auto& { return s.f; }  // an accessor for const and mutable scenarios
-  t.number("uav_count", FIELD(uav_count), "", closed(1, kMaxUavs),
-           "number of UAVs in the swarm (indices 0 .. uav_count-1)");
-  t.seed("seed", FIELD(seed), "random seed of the world (initial positions, headings, wind, sensor noise)");
-  t.number("duration_s", FIELD(duration_s), "s", openClosed(0, 86400), "simulated time the run lasts");
+  SWA_PARAM(t, number, uav_count, "", closed(1, kMaxUavs), "number of UAVs in the swarm (indices 0 .. uav_count-1)");
+  SWA_PARAM(t, seed, seed, "random seed of the world (initial positions, headings, wind, sensor noise)");
+  SWA_PARAM(t, number, duration_s, "s", openClosed(0, 86400), "simulated time the run lasts");
 
-  t.number("formation.spacing_m", FIELD(formation.spacing_m), "m", openClosed(0, 1000),
-           "initial neighbour spacing; also agent.formation.radius_m unless that is given");
-  t.number("formation.position_jitter_m", FIELD(formation.position_jitter_m), "m", closed(0, 1000),
-           "initial position error around the lattice slots");
+  SWA_PARAM(t, number, formation.spacing_m, "m", openClosed(0, 1000),
+            "initial neighbour spacing; also agent.formation.radius_m unless that is given");
+  SWA_PARAM(t, number, formation.position_jitter_m, "m", closed(0, 1000),
+            "initial position error around the lattice slots");
 
-  t.number("dynamics.rate_hz", FIELD(dynamics.rate_hz), "Hz", openClosed(0, 10000),
-           "simulation step rate; every sensor rate must divide it");
-  t.number("dynamics.velocity_lag_s", FIELD(dynamics.velocity_lag_s), "s", openClosed(0, 60),
-           "first-order time constant of the velocity response to the command");
-  t.number("dynamics.speed_limit_mps", FIELD(dynamics.speed_limit_mps), "m/s", openClosed(0, 100),
-           "horizontal speed limit of a UAV");
-  t.number("dynamics.failsafe_timeout_s", FIELD(dynamics.failsafe_timeout_s), "s", openClosed(0, 60),
-           "a UAV whose commands are older than this brakes to hover");
-  t.choice("dynamics.heading", FIELD(dynamics.heading),
-           std::vector<std::pair<HeadingMode, std::string>>{{HeadingMode::kRandom, "random"},
-                                                            {HeadingMode::kZero, "zero"}},
-           "initial heading of each UAV: random per UAV, or zero (body = world axes)");
-  t.number("dynamics.heading_rate_std_radps", FIELD(dynamics.heading_rate_std_radps), "rad/s", closed(0, 10),
-           "std of a per-UAV constant turn rate (0 = constant heading)");
+  SWA_PARAM(t, number, dynamics.rate_hz, "Hz", openClosed(0, 10000),
+            "simulation step rate; every sensor rate must divide it");
+  SWA_PARAM(t, number, dynamics.velocity_lag_s, "s", openClosed(0, 60),
+            "first-order time constant of the velocity response to the command");
+  SWA_PARAM(t, number, dynamics.speed_limit_mps, "m/s", openClosed(0, 100), "horizontal speed limit of a UAV");
+  SWA_PARAM(t, number, dynamics.failsafe_timeout_s, "s", openClosed(0, 60),
+            "a UAV whose commands are older than this brakes to hover");
+  SWA_PARAM(
+      t, choice, dynamics.heading,
+      std::vector<std::pair<HeadingMode, std::string>>{{HeadingMode::kRandom, "random"}, {HeadingMode::kZero, "zero"}},
+      "initial heading of each UAV: random per UAV, or zero (body = world axes)");
+  SWA_PARAM(t, number, dynamics.heading_rate_std_radps, "rad/s", closed(0, 10),
+            "std of a per-UAV constant turn rate (0 = constant heading)");
 
-  t.number("wind.gust_std", FIELD(wind.gust_std), "m/s^2", closed(0, 100),
-           "std of the per-UAV Ornstein-Uhlenbeck gust acceleration");
-  t.number("wind.gust_corr_s", FIELD(wind.gust_corr_s), "s", openClosed(0, 3600), "correlation time of the per-UAV gust");
-  t.number("wind.common_std", FIELD(wind.common_std), "m/s^2", closed(0, 100),
-           "std of the gust common to every UAV (moves the swarm as a block)");
-  t.number("wind.common_corr_s", FIELD(wind.common_corr_s), "s", openClosed(0, 3600),
-           "correlation time of the common gust");
+  SWA_PARAM(t, number, wind.gust_std, "m/s^2", closed(0, 100),
+            "std of the per-UAV Ornstein-Uhlenbeck gust acceleration");
+  SWA_PARAM(t, number, wind.gust_corr_s, "s", openClosed(0, 3600), "correlation time of the per-UAV gust");
+  SWA_PARAM(t, number, wind.common_std, "m/s^2", closed(0, 100),
+            "std of the gust common to every UAV (moves the swarm as a block)");
+  SWA_PARAM(t, number, wind.common_corr_s, "s", openClosed(0, 3600), "correlation time of the common gust");
 
-  t.number("imu.rate_hz", FIELD(imu.rate_hz), "Hz", openClosed(0, 10000), "IMU sample rate; must divide dynamics.rate_hz");
-  t.number("imu.bias_std", FIELD(imu.bias_std), "m/s^2", closed(0, 100),
-           "std of the constant per-UAV bias of the tilt-derived acceleration");
-  t.number("imu.noise_std", FIELD(imu.noise_std), "m/s^2", closed(0, 100),
-           "std of the white noise of the tilt-derived acceleration");
-  t.number("imu.heading_noise_std_rad", FIELD(imu.heading_noise_std_rad), "rad", closed(0, 1),
-           "std of the heading (magnetometer) noise");
+  SWA_PARAM(t, number, imu.rate_hz, "Hz", openClosed(0, 10000), "IMU sample rate; must divide dynamics.rate_hz");
+  SWA_PARAM(t, number, imu.bias_std, "m/s^2", closed(0, 100),
+            "std of the constant per-UAV bias of the tilt-derived acceleration");
+  SWA_PARAM(t, number, imu.noise_std, "m/s^2", closed(0, 100),
+            "std of the white noise of the tilt-derived acceleration");
+  SWA_PARAM(t, number, imu.heading_noise_std_rad, "rad", closed(0, 1), "std of the heading (magnetometer) noise");
 
-  t.number("mps.rate_hz", FIELD(mps.rate_hz), "Hz", openClosed(0, 10000),
-           "mutual-perception sensor scan rate; must divide dynamics.rate_hz");
-  t.number("mps.range_m", FIELD(mps.range_m), "m", openClosed(0, 10000), "neighbours farther than this are not detected");
-  t.number("mps.fov_deg", FIELD(mps.fov_deg), "deg", openClosed(0, 360),
-           "horizontal field of view, centred on the body x axis");
-  t.choice("mps.noise_model", FIELD(mps.noise_model),
-           std::vector<std::pair<MpsNoiseModel, std::string>>{{MpsNoiseModel::kIsotropic, "isotropic"},
-                                                              {MpsNoiseModel::kRangeBearing, "range_bearing"}},
-           "isotropic (noise_var_m2, UVDAR-like) or range_bearing (range_std_m/bearing_std_rad, LiDAR-like)");
-  t.number("mps.noise_var_m2", FIELD(mps.noise_var_m2), "m^2", closed(0, 100),
-           "isotropic model: variance of each position coordinate (R_o)");
-  t.number("mps.range_std_m", FIELD(mps.range_std_m), "m", closed(0, 100), "range_bearing model: range noise std");
-  t.number("mps.bearing_std_rad", FIELD(mps.bearing_std_rad), "rad", closed(0, 1),
-           "range_bearing model: bearing noise std");
-  t.number("mps.miss_probability", FIELD(mps.miss_probability), "", closedOpen(0, 1),
-           "probability that a neighbour in range is not detected in a scan");
-  t.number("mps.clutter_rate", FIELD(mps.clutter_rate), "1/scan", closed(0, 1000),
-           "mean number of false detections per scan, uniform in the sensing disc");
-  t.flag("mps.ids", FIELD(mps.ids),
-         "true: detections carry the target's ID (UVDAR-like); false: anonymous (LiDAR-like)");
-  t.number("mps.latency_s", FIELD(mps.latency_s), "s", closed(0, 10),
-           "delay between a scan and the delivery of its detections");
+  SWA_PARAM(t, number, mps.rate_hz, "Hz", openClosed(0, 10000),
+            "mutual-perception sensor scan rate; must divide dynamics.rate_hz");
+  SWA_PARAM(t, number, mps.range_m, "m", openClosed(0, 10000), "neighbours farther than this are not detected");
+  SWA_PARAM(t, number, mps.fov_deg, "deg", openClosed(0, 360), "horizontal field of view, centred on the body x axis");
+  SWA_PARAM(t, choice, mps.noise_model,
+            std::vector<std::pair<MpsNoiseModel, std::string>>{{MpsNoiseModel::kIsotropic, "isotropic"},
+                                                               {MpsNoiseModel::kRangeBearing, "range_bearing"}},
+            "isotropic (noise_var_m2, UVDAR-like) or range_bearing (range_std_m/bearing_std_rad, LiDAR-like)");
+  SWA_PARAM(t, number, mps.noise_var_m2, "m^2", closed(0, 100),
+            "isotropic model: variance of each position coordinate (R_o)");
+  SWA_PARAM(t, number, mps.range_std_m, "m", closed(0, 100), "range_bearing model: range noise std");
+  SWA_PARAM(t, number, mps.bearing_std_rad, "rad", closed(0, 1), "range_bearing model: bearing noise std");
+  SWA_PARAM(t, number, mps.miss_probability, "", closedOpen(0, 1),
+            "probability that a neighbour in range is not detected in a scan");
+  SWA_PARAM(t, number, mps.clutter_rate, "1/scan", closed(0, 1000),
+            "mean number of false detections per scan, uniform in the sensing disc");
+  SWA_PARAM(t, flag, mps.ids, "true: detections carry the target's ID (UVDAR-like); false: anonymous (LiDAR-like)");
+  SWA_PARAM(t, number, mps.latency_s, "s", closed(0, 10), "delay between a scan and the delivery of its detections");
 
-  t.number("gnss.rate_hz", FIELD(gnss.rate_hz), "Hz", openClosed(0, 10000), "GNSS fix rate; must divide dynamics.rate_hz");
-  t.number("gnss.std_m", FIELD(gnss.std_m), "m", closed(0, 100), "std of each horizontal coordinate of a fix");
-  t.number("gnss.dropout_start_s", FIELD(gnss.dropout_start_s), "s", closed(0, kMaxTime_s),
-           "every UAV (except keep_uavs) loses GNSS at this time");
-  t.number("gnss.dropout_end_s", FIELD(gnss.dropout_end_s), "s", openClosed(0, kMaxTime_s),
-           "GNSS comes back at this time; .inf (default) = never", /*allow_infinity=*/true);
-  t.intList("gnss.keep_uavs", FIELD(gnss.keep_uavs), closed(0, kMaxUavs - 1),
+  SWA_PARAM(t, number, gnss.rate_hz, "Hz", openClosed(0, 10000), "GNSS fix rate; must divide dynamics.rate_hz");
+  SWA_PARAM(t, number, gnss.std_m, "m", closed(0, 100), "std of each horizontal coordinate of a fix");
+  SWA_PARAM(t, number, gnss.dropout_start_s, "s", closed(0, kMaxTime_s),
+            "every UAV (except keep_uavs) loses GNSS at this time");
+  SWA_PARAM(t, number, gnss.dropout_end_s, "s", openClosed(0, kMaxTime_s),
+            "GNSS comes back at this time; .inf (default) = never", /*allow_infinity=*/true);
+  SWA_PARAM(t, intList, gnss.keep_uavs, closed(0, kMaxUavs - 1),
             "UAVs that never lose GNSS, e.g. [0] for one anchored member; indices in [0, uav_count)",
             "a list of UAV indices such as [0] or [] (indices in [0, uav_count))", "UAV indices in [0, uav_count)");
   t.add(
@@ -211,16 +203,15 @@ params::Table<Scenario> makeTable() {
         }
       });
 
-  t.choice("clock.mode", FIELD(clock.mode),
-           std::vector<std::pair<ClockMode, std::string>>{{ClockMode::kLockstep, "lockstep"},
-                                                          {ClockMode::kRealtime, "realtime"}},
-           "lockstep: deterministic, as fast as the agents answer; realtime: wall-clock pacing");
-  t.number("clock.speed", FIELD(clock.speed), "", openClosed(0, 1000),
-           "realtime mode: simulated seconds per wall-clock second");
-#undef FIELD
+  SWA_PARAM(t, choice, clock.mode,
+            std::vector<std::pair<ClockMode, std::string>>{{ClockMode::kLockstep, "lockstep"},
+                                                           {ClockMode::kRealtime, "realtime"}},
+            "lockstep: deterministic, as fast as the agents answer; realtime: wall-clock pacing");
+  SWA_PARAM(t, number, clock.speed, "", openClosed(0, 1000), "realtime mode: simulated seconds per wall-clock second");
 
-  t.mount("agent", agent::configTable(), [](auto& s) -> auto& { return s.agent; },
-          "the agents' configuration (swa_agent --parameters); formation.radius_m as used");
+  t.mount(
+      "agent", agent::configTable(), [](auto& s) -> auto& { return s.agent; },
+      "the agents' configuration (swa_agent --parameters); formation.radius_m as used");
   params::Schema& schema = t.schema();
   schema.checks = scenarioChecks();
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};

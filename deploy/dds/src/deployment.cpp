@@ -1,15 +1,18 @@
 #include "swa/dds/deployment.h"
 
 #include <algorithm>
-
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
+#include <utility>
 
 #include "swa/app/number.h"
 
 namespace swa::dds {
 namespace {
+
+constexpr std::pair<Transport, const char*> kTransportNames[] = {
+    {Transport::kLocal, "local"}, {Transport::kNetwork, "network"}, {Transport::kDiscoveryServer, "discovery-server"}};
 
 bool isDottedIpv4(const std::string& s) {
   int parts = 0;
@@ -28,20 +31,15 @@ bool isDottedIpv4(const std::string& s) {
 }  // namespace
 
 const char* transportName(Transport t) {
-  switch (t) {
-    case Transport::kLocal:
-      return "local";
-    case Transport::kNetwork:
-      return "network";
-    case Transport::kDiscoveryServer:
-      return "discovery-server";
+  for (const auto& [value, name] : kTransportNames) {
+    if (value == t) return name;
   }
   return "?";
 }
 
 std::optional<Transport> parseTransport(const std::string& name) {
-  for (const Transport t : {Transport::kLocal, Transport::kNetwork, Transport::kDiscoveryServer}) {
-    if (name == transportName(t)) return t;
+  for (const auto& [value, known] : kTransportNames) {
+    if (name == known) return value;
   }
   return std::nullopt;
 }

@@ -4,12 +4,21 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 
 namespace swa::agent {
 
 enum class Mode { kSwa, kStandalone, kAnchored };
 enum class CircleFit { kFixedRadius, kAlgebraic };
 enum class NeighbourhoodRule { kGabriel, kKNearest };
+
+// The name of each value in files and messages, listed once: toString and the configuration's choices read these.
+inline constexpr std::pair<Mode, const char*> kModeNames[] = {
+    {Mode::kSwa, "swa"}, {Mode::kStandalone, "standalone"}, {Mode::kAnchored, "anchored"}};
+inline constexpr std::pair<CircleFit, const char*> kCircleFitNames[] = {{CircleFit::kFixedRadius, "fixed_radius"},
+                                                                        {CircleFit::kAlgebraic, "algebraic"}};
+inline constexpr std::pair<NeighbourhoodRule, const char*> kNeighbourhoodRuleNames[] = {
+    {NeighbourhoodRule::kGabriel, "gabriel"}, {NeighbourhoodRule::kKNearest, "k_nearest"}};
 
 struct SurroundingsConfig {
   // Q_o diagonal blocks, per `q_ref_dt_s` of prediction (scaled linearly with the actual step).

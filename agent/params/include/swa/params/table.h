@@ -3,10 +3,10 @@
 // engine's reading, validation, dump and description then work on that struct directly.
 //
 //   Table<AgentConfig> t("SWA agent configuration", "configuration", "formation:", "formation.k=2");
-//   t.number("formation.radius_m", [](auto& c) -> auto& { return c.formation.radius_m; }, "m",
-//            openClosed(0, 1000), "r: desired distance to the neighbours");
+//   SWA_PARAM(t, number, formation.radius_m, "m", openClosed(0, 1000), "r: desired distance to the neighbours");
 //
-// An accessor is a generic lambda returning a reference to the field, so it serves const and mutable structs.
+// SWA_PARAM spells the key as the field's path, so a key cannot drift from its field; an accessor is a generic
+// lambda returning a reference to the field, so it serves const and mutable structs.
 
 #include <string>
 #include <type_traits>
@@ -15,6 +15,10 @@
 
 #include "swa/params/engine.h"
 #include "swa/params/schema.h"
+
+// Declares the parameter `path` (a member path of the table's struct, e.g. formation.radius_m) with Table::`kind`;
+// the remaining arguments are those of `kind` after the key and the accessor.
+#define SWA_PARAM(table, kind, path, ...) (table).kind(#path, [](auto& x) -> auto& { return x.path; }, __VA_ARGS__)
 
 namespace swa::params {
 

@@ -4,6 +4,8 @@
 // is found before any DDS entity exists (exit 2, nothing started); then the role runs until it is done or SIGINT /
 // SIGTERM asks it to stop (the handler only sets a flag; a watcher thread calls Role::stop), and a failure to start
 // (a DDS error, refused credentials) has the role's start status.
+// A program's prepare() lives inside namespace swa: Fast DDS declares a global `namespace dds =
+// eprosima::fastdds::dds;`, and only there does `dds::` name ours.
 
 #include <functional>
 #include <memory>
@@ -39,6 +41,9 @@ inline Plan startWith(std::function<std::unique_ptr<Role>()> start, int failure_
 
 // --help, --parameters: when `asked`, prints what `text` makes to stdout and the program exits 0.
 std::optional<Plan> printIf(bool asked, const std::function<std::string()>& text);
+// The same for a program with both: --help first, then the listing of its parameters.
+std::optional<Plan> printIf(bool help, const std::function<std::string()>& usage, bool list_parameters,
+                            const std::function<std::string()>& parameters);
 
 // `name` prefixes every message ("swa_sim: ..."); `input` names what a params::ConfigError is about ("scenario",
 // "configuration"). `prepare` reads the arguments and the files they name, and throws on any problem: exit 2 with
