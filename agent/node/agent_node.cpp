@@ -13,8 +13,10 @@
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
+#include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/wire/agent_state.h"
+#include "swa/wire/ros_types.h"
 #include "swa/wire/samples.h"
 #include "swa/app/signals.h"
 #include "swa/dds/topics.h"
@@ -73,6 +75,10 @@ void AgentNode::connect() {
   // Writers first: a command must have somewhere to go as soon as the first IMU sample is processed.
   cmd_writer_ = participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), "swa_command_writer");
   state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), "swa_state_writer");
+  if (participant_->wireNames().naming == dds::Naming::kRos2) {
+    twist_writer_ = participant_->writer<geometry_msgs::msg::TwistStampedPubSubType>(dds::topics::cmdVelStamped(id_),
+                                                                                     "swa_command_writer");
+  }
   imu_reader_ = participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), "swa_sensor_reader",
                                                          [this](msg::Imu&& m) { onInput(Input(std::move(m))); });
   det_reader_ = participant_->reader<msg::DetectionsPubSubType>(
@@ -252,7 +258,7 @@ void AgentNode::onInput(Input&& in) {
   }
   last_input_ = std::chrono::steady_clock::now();
   const auto* det = std::get_if<msg::Detections>(&in);
-  if (det != nullptr && det->detections().size() > agent_.config().limits.max_detections) {
+  if (det != nullptr && det->items().size() > agent_.config().limits.max_detections) {
     handle(in);  // rejected whole by the core (and counted) before it is stored anywhere
     return;
   }
@@ -303,6 +309,10 @@ void AgentNode::handle(Input& in) {
       ++stats_.commands;
     } else {
       ++stats_.write_failures;
+    }
+    if (twist_writer_) {
+      geometry_msgs::msg::TwistStamped twist = wire::toTwistStamped(out);
+      if (!twist_writer_.write(twist)) ++stats_.write_failures;
     }
     last_cmd_ = out;
     if (!state_due_set_ || stamp >= next_state_ns_) {

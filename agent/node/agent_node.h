@@ -5,7 +5,8 @@
 // thread wake-up per sample, which with 8 agents on 2 vCPUs added ~35 % to the sensor-to-command latency
 // (BENCHMARKS.md). Fast DDS delivers one transport port's samples on one receive thread; a mutex serialises the
 // processing should samples come in through two (e.g. shared memory and UDP). Per sample the agent:
-//   - one VelocitySetpoint per IMU sample, echoing the IMU's stamp and seq (the lockstep simulator waits for it);
+//   - one VelocitySetpoint per IMU sample, echoing the IMU's stamp and seq (the lockstep simulator waits for it), and
+//     in the ros2 naming the same command as a geometry_msgs/TwistStamped on swa/uav<id>/cmd_vel_stamped;
 //   - an AgentState whenever the sample time crosses a 100 ms boundary (10 Hz of sim time, deterministic);
 //   - and, once the agent has run, an AgentState at least every second of wall time whatever the inputs do: the
 //     state never goes silent while the process lives, and says STAGE_NO_INPUT after a second without a valid IMU
@@ -26,6 +27,7 @@
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
 #include <swa/msg/VelocitySetpoint.h>
+#include <swa/ros/TwistStamped.h>
 
 #include "replay_filter.h"
 #include "sample_order.h"
@@ -114,6 +116,7 @@ class AgentNode : public app::Role {
 
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::VelocitySetpoint> cmd_writer_;
+  dds::Writer<geometry_msgs::msg::TwistStamped> twist_writer_;  // the ros2 naming only: cmd_vel as a standard type
   dds::Writer<msg::AgentState> state_writer_;
   dds::Reader<msg::Imu> imu_reader_;
   dds::Reader<msg::Detections> det_reader_;

@@ -2,6 +2,7 @@
 
 #include "swa/app/cli.h"
 #include "swa/dds/deployment.h"
+#include "swa/dds/naming.h"
 #include "swa/dds/options.h"
 
 namespace swa::launch {
@@ -71,6 +72,16 @@ app::Cli makeCli(LaunchOptions& o) {
            "set, else a new name per launch (printed), except with --secure (the credentials keep swarms apart). "
            "'none': the default partition (for a process started by hand, a bridge or a DDS tool to join the run)",
            "a swarm name, or none");
+  std::vector<std::string> namings;
+  for (const auto n : {dds::Naming::kSwa, dds::Naming::kRos2}) namings.emplace_back(dds::namingName(n));
+  cli.choice("--naming", "N", namings, [&o, namings](std::size_t k) { o.naming = namings[k]; },
+             "swa: topics swa/uav1/imu, types swa::msg::Imu; ros2: ROS 2's mapping (rt/swa/uav1/imu, "
+             "swa_msgs::msg::dds_::Imu_) so ros2 topic list / echo / bag see the run (with --swarm none: ROS tools "
+             "use the default partition). Sets SWA_NAMING for every child (default: $SWA_NAMING, else swa)");
+  cli.text("--ros-namespace", "NS", o.ros_namespace,
+           "with --naming ros2: a ROS namespace in front of every SWA topic (/NS/swa/uav1/imu), so two swarms can "
+           "share a domain; sets SWA_ROS_NAMESPACE",
+           "a ROS namespace");
   cli.footer(R"(Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 5 % of r, no collision, one
 group), 1 FAIL, 3 INCOMPLETE (interrupted, timed out, or a process failed); 2 bad arguments or scenario, or a
 missing executable (nothing started).)");
@@ -86,6 +97,10 @@ void finish(LaunchOptions& o, const app::Cli& cli, app::Problems& problems) {
   }
   if (o.restart_backoff_max_s < o.restart_backoff_s) {
     problems.push_back("--restart-backoff-max-s must not be below --restart-backoff-s");
+  }
+  if (cli.given("--ros-namespace")) {
+    if (const auto problem = dds::rosNamespaceProblem(o.ros_namespace)) problems.push_back("--ros-namespace " + *problem);
+    if (o.naming == "swa") problems.push_back("--ros-namespace needs the ros2 naming");
   }
   if (!o.discovery_server.empty() && o.transport != "discovery-server") {
     problems.push_back("--discovery-server needs --transport discovery-server");

@@ -51,6 +51,8 @@ Binaries findBinaries(const std::string& bin_dir, std::vector<std::string>& prob
 std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_count) {
   if (!o.transport.empty()) ::setenv("SWA_TRANSPORT", o.transport.c_str(), 1);
   if (!o.discovery_server.empty()) ::setenv("SWA_DISCOVERY_SERVER", o.discovery_server.c_str(), 1);
+  if (!o.naming.empty()) ::setenv("SWA_NAMING", o.naming.c_str(), 1);
+  if (!o.ros_namespace.empty()) ::setenv("SWA_ROS_NAMESPACE", o.ros_namespace.c_str(), 1);
   std::vector<std::string> server;
   const char* transport = std::getenv("SWA_TRANSPORT");
   const char* servers = std::getenv("SWA_DISCOVERY_SERVER");

@@ -2,8 +2,8 @@
 
 namespace swa::wire {
 
-msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq) {
-  msg::Header h;
+msg::MessageHeader header(agent::StampNs stamp_ns, std::uint32_t seq) {
+  msg::MessageHeader h;
   h.stamp_ns(stamp_ns);
   h.seq(seq);
   return h;
@@ -21,8 +21,8 @@ agent::ImuSample fromMsg(const msg::Imu& m) {
 agent::DetectionSet fromMsg(const msg::Detections& m) {
   agent::DetectionSet s;
   s.stamp_ns = m.header().stamp_ns();
-  s.detections.reserve(m.detections().size());
-  for (const msg::Detection& d : m.detections()) {
+  s.detections.reserve(m.items().size());
+  for (const msg::Detection& d : m.items()) {
     agent::Detection out;
     out.target_id = d.target_id();
     out.position_body_m = agent::Vec2(d.x_m(), d.y_m());
@@ -68,7 +68,7 @@ msg::Detections toMsg(const agent::DetectionSet& s, std::uint32_t observer_id, s
   msg::Detections m;
   m.header(header(s.stamp_ns, seq));
   m.observer_id(observer_id);
-  m.detections().reserve(s.detections.size());
+  m.items().reserve(s.detections.size());
   for (const agent::Detection& d : s.detections) {
     msg::Detection out;
     out.target_id(d.target_id);
@@ -80,7 +80,7 @@ msg::Detections toMsg(const agent::DetectionSet& s, std::uint32_t observer_id, s
       out.cov_xy_m2((*d.covariance_m2)(0, 1));
       out.cov_yy_m2((*d.covariance_m2)(1, 1));
     }
-    m.detections().push_back(out);
+    m.items().push_back(out);
   }
   return m;
 }

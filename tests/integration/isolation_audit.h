@@ -101,7 +101,8 @@ inline std::vector<std::string> auditIsolation(const std::vector<Endpoint>& endp
 
 // Completeness, so that the isolation audit cannot pass on too little: each agent 0..agent_count-1 is exactly one
 // participant, and it has exactly one reader on each of swa/uav<I>/{imu,detections,gnss} (one on swa/clock
-// allowed), exactly one writer on each of swa/uav<I>/{cmd_vel,state}, and nothing else. Agents with an index
+// allowed), exactly one writer on each of swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped allowed), and nothing
+// else. Agents with an index
 // outside 0..agent_count-1 are reported too.
 inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>& endpoints, int agent_count) {
   using Key = std::pair<EndpointKind, std::string>;
@@ -135,6 +136,7 @@ inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>&
         {{EndpointKind::kReader, dds::topics::gnss(id)}, true},
         {{EndpointKind::kReader, dds::topics::kClock}, false},
         {{EndpointKind::kWriter, dds::topics::cmdVel(id)}, true},
+        {{EndpointKind::kWriter, dds::topics::cmdVelStamped(id)}, false},  // the ros2 naming
         {{EndpointKind::kWriter, dds::topics::state(id)}, true}};
     for (const auto& [key, required] : expected) {
       const auto h = have.find(key);

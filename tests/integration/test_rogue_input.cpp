@@ -102,7 +102,7 @@ class RogueInput : public ::testing::Test {
         x.target_id(10 + j);
         x.x_m(10.0 * std::cos(2.1 * j) + 1.0);
         x.y_m(10.0 * std::sin(2.1 * j));
-        d.detections().push_back(x);
+        d.items().push_back(x);
       }
       det_.write(d);
     }
@@ -158,7 +158,7 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
       msg::Detections d;
       d.header().stamp_ns(i % 2 == 0 ? t + 3600 * kSec : std::numeric_limits<agent::StampNs>::max());
       d.observer_id(kUav);
-      d.detections().resize(1000);
+      d.items().resize(1000);
       det_.write(d);
     }
     det_.waitForAcknowledgments(10.0);
@@ -175,8 +175,8 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
     msg::Detections d;
     d.header().stamp_ns(t - 5 * kMs + i * 10'000);  // after the last genuine set, each 10 us later
     d.observer_id(kUav);
-    d.detections().resize(30);
-    for (auto& x : d.detections()) {
+    d.items().resize(30);
+    for (auto& x : d.items()) {
       x.target_id(i % 2 == 0 ? 1'000'000 : 3);
       x.x_m(i % 3 == 0 ? kNan : 1e300);
     }

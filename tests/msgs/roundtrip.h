@@ -8,13 +8,13 @@
 #include <cstdint>
 #include <optional>
 
-#include <swa/msg/Header.h>
+#include <swa/msg/MessageHeader.h>
 
 namespace swa::msg::test {
 
-inline Header make_header(int64_t stamp_ns, uint32_t seq)
+inline MessageHeader make_header(int64_t stamp_ns, uint32_t seq)
 {
-    Header h;
+    MessageHeader h;
     h.stamp_ns(stamp_ns);
     h.seq(seq);
     return h;

@@ -41,8 +41,8 @@ TEST(WireMessages, SensorAndCommandMessagesSurviveSerialisation) {
   msg::Detections det;
   det.header(make_header(2'500'000'000, 250));
   det.observer_id(4);
-  det.detections().push_back(detection(9, 10.5, -3.25, true));
-  det.detections().push_back(detection(msg::ANONYMOUS_ID, -7.75, 1.125, false));
+  det.items().push_back(detection(9, 10.5, -3.25, true));
+  det.items().push_back(detection(msg::ANONYMOUS_ID, -7.75, 1.125, false));
   msg::GnssFix fix;
   fix.header(make_header(5'000'000'001, 9));
   fix.uav_id(3);
@@ -59,7 +59,7 @@ TEST(WireMessages, SensorAndCommandMessagesSurviveSerialisation) {
   sp.answered_seq(100);
   // WHEN each goes through serialize/deserialize THEN each copy equals its original, under its qualified type name
   EXPECT_DOUBLE_EQ(through_the_wire<msg::ImuPubSubType>(imu, "swa::msg::Imu").heading_rad(), 2.5);
-  EXPECT_EQ(through_the_wire<msg::DetectionsPubSubType>(det, "swa::msg::Detections").detections()[1].target_id(), -1);
+  EXPECT_EQ(through_the_wire<msg::DetectionsPubSubType>(det, "swa::msg::Detections").items()[1].target_id(), -1);
   EXPECT_STREQ(msg::DetectionPubSubType().getName(), "swa::msg::Detection");
   EXPECT_TRUE(through_the_wire<msg::GnssFixPubSubType>(fix, "swa::msg::GnssFix").valid());
   EXPECT_EQ(through_the_wire<msg::VelocitySetpointPubSubType>(sp, "swa::msg::VelocitySetpoint").answered_seq(), 100u);
@@ -70,11 +70,11 @@ TEST(WireMessages, OversizeDetectionListStillReachesTheConsumer) {
   // sequences when computing the type's max size
   msg::Detections in;
   in.observer_id(1);
-  for (std::int32_t i = 0; i < 150; ++i) in.detections().push_back(detection(i, i * 0.5, -i * 0.25, (i % 2) == 0));
+  for (std::int32_t i = 0; i < 150; ++i) in.items().push_back(detection(i, i * 0.5, -i * 0.25, (i % 2) == 0));
   // WHEN it goes through serialize/deserialize
   const msg::Detections out = through_the_wire<msg::DetectionsPubSubType>(in, "swa::msg::Detections");
   // THEN nothing is truncated: rejecting oversize input is the consumer's job, not the transport's
-  EXPECT_EQ(out.detections().size(), 150u);
+  EXPECT_EQ(out.items().size(), 150u);
 }
 
 TEST(WireSamples, SamplesSurviveTheBridgeAndTheWireBitForBit) {

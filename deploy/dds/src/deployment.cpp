@@ -101,7 +101,24 @@ Deployment parseDeployment(const EnvLookup& env) {
         "SWA_SWARM cannot be combined with SWA_SECURITY_DIR: the permissions grant the default partition only; with "
         "DDS Security, credentials (or a domain) keep swarms apart");
   }
+  if (const auto n = env("SWA_NAMING"); n && !n->empty()) {
+    const auto parsed = parseNaming(*n);
+    if (!parsed) throw std::invalid_argument("SWA_NAMING '" + *n + "' is not one of swa, ros2");
+    d.names.naming = *parsed;
+  }
+  if (const auto ns = env("SWA_ROS_NAMESPACE"); ns && !ns->empty()) {
+    if (d.names.naming != Naming::kRos2) {
+      throw std::invalid_argument("SWA_ROS_NAMESPACE is set but SWA_NAMING is not ros2: set SWA_NAMING=ros2 or unset it");
+    }
+    if (const auto problem = rosNamespaceProblem(*ns)) throw std::invalid_argument("SWA_ROS_NAMESPACE: " + *problem);
+    d.names.ros_namespace = normalRosNamespace(*ns);
+  }
   return d;
+}
+
+std::string swarmIdentity(const Deployment& d) {
+  if (d.names.naming != Naming::kRos2 || d.names.ros_namespace.empty()) return d.swarm;
+  return d.swarm + "@/" + d.names.ros_namespace;
 }
 
 std::string swarmPartition(const std::string& swarm) { return "swa." + swarm; }
@@ -136,6 +153,11 @@ std::string environmentHelp() {
   SWA_SWARM             the swarm (run) of this process: DDS partition swa.<name>, so swarms sharing a domain
                         never mix; every process of a run needs the same (swa_launch sets one per run; not with
                         SWA_SECURITY_DIR); unset = the default partition
+  SWA_NAMING            swa (default: topics swa/uav1/imu, types swa::msg::Imu) | ros2 (ROS 2's mapping: topics
+                        rt/swa/uav1/imu, types swa_msgs::msg::dds_::Imu_, seen by ros2 topic list/echo/bag);
+                        every process of a swarm needs the same
+  SWA_ROS_NAMESPACE     with ros2: a ROS namespace in front of every SWA topic (rt/<ns>/swa/...), so two swarms
+                        can share a domain
 )";
 }
 

@@ -241,6 +241,7 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
   } catch (const std::invalid_argument& e) {
     throw DdsError(e.what());
   }
+  names_ = deployment.names;
   const char* profile = participantProfile(deployment.transport);
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   fdds::DomainParticipantQos qos;
@@ -256,7 +257,7 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     useSecurity(qos, *security, deployment.security_dir, name);
   }
   const char* trace = std::getenv("SWA_DDS_TRACE");
-  const PeerCard card = selfCard(deployment.swarm);
+  const PeerCard card = selfCard(swarmIdentity(deployment));
   const std::string card_text = encodePeerCard(card);
   qos.user_data().data_vec(std::vector<eprosima::fastrtps::rtps::octet>(card_text.begin(), card_text.end()));
   peer_listener_ = std::make_unique<PeerListener>(name, card, trace != nullptr && std::string(trace) == "1");
@@ -305,8 +306,10 @@ Participant::~Participant() {
 
 fdds::Topic* Participant::topic(const std::string& topic_name, fdds::TopicDataType* type) {
   fdds::TypeSupport support(type);  // owns `type` from here on
-  const std::string type_name = support.get_type_name();
-  if (participant_->find_type(type_name).empty() && support.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+  // The wire names of this naming (naming.h); the code and the logs keep SWA's.
+  const std::string type_name = ddsType(names_, support.get_type_name());
+  if (participant_->find_type(type_name).empty() &&
+      support.register_type(participant_, type_name) != ReturnCode_t::RETCODE_OK) {
     throw DdsError("cannot register type " + type_name);
   }
   auto it = topics_.find(topic_name);
@@ -316,8 +319,9 @@ fdds::Topic* Participant::topic(const std::string& topic_name, fdds::TopicDataTy
     }
     return it->second;
   }
-  fdds::Topic* t = participant_->create_topic(topic_name, type_name, fdds::TOPIC_QOS_DEFAULT);
-  if (t == nullptr) throw DdsError("cannot create topic " + topic_name);
+  const std::string dds_name = ddsTopic(names_, topic_name);
+  fdds::Topic* t = participant_->create_topic(dds_name, type_name, fdds::TOPIC_QOS_DEFAULT);
+  if (t == nullptr) throw DdsError("cannot create topic " + dds_name + " of type " + type_name);
   topics_.emplace(topic_name, t);
   return t;
 }

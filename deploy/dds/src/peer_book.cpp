@@ -32,7 +32,7 @@ bool parseInt(const std::string& s, T& out) {
 
 std::string encodePeerCard(const PeerCard& card) {
   std::string text = std::string(kMagic) + ";started_ns=" + std::to_string(card.started_ns) +
-                     ";pid=" + std::to_string(card.pid) + ";swarm=" + clean(card.swarm, 64) + ";host=";
+                     ";pid=" + std::to_string(card.pid) + ";swarm=" + clean(card.swarm, 160) + ";host=";
   text += clean(card.host, text.size() < kMaxCardBytes ? kMaxCardBytes - text.size() : 0);
   return text;
 }

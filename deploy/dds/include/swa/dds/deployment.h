@@ -12,11 +12,15 @@
 //   SWA_SWARM             the swarm (run) this process belongs to: its readers and writers are in the DDS partition
 //                         "swa.<name>", so two swarms on one domain never exchange a sample. Unset = the default
 //                         partition (what plain DDS and ROS 2 tools use). swa_launch sets one per run.
+//   SWA_NAMING            swa (default) | ros2: the names of topics and types on the wire (naming.h)
+//   SWA_ROS_NAMESPACE     with ros2: a ROS namespace in front of every SWA topic
 
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "swa/dds/naming.h"
 
 namespace swa::dds {
 
@@ -27,7 +31,12 @@ struct Deployment {
   std::string discovery_servers;  // SWA_DISCOVERY_SERVER, verbatim
   std::string security_dir;       // empty: DDS Security off
   std::string swarm;              // SWA_SWARM; empty: the default partition
+  WireNames names;                // SWA_NAMING, SWA_ROS_NAMESPACE
 };
+
+// The swarm a process belongs to as its peers compare it (twins, peer_book.h): SWA_SWARM and, in the ros2 naming, the
+// ROS namespace (two swarms in two namespaces share no topic), as "<swarm>@/<namespace>".
+std::string swarmIdentity(const Deployment& d);
 
 // The DDS partition of a swarm: "swa.<name>".
 std::string swarmPartition(const std::string& swarm);

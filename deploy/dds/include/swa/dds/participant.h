@@ -40,6 +40,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TopicDataType.hpp>
 
+#include "swa/dds/naming.h"
 #include "swa/dds/peer_book.h"
 
 namespace swa::dds {
@@ -128,6 +129,7 @@ class Participant {
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
 
+  // Topics are named as SWA names them (swa/dds/topics.h); on the wire they carry the names of SWA_NAMING (naming.h).
   // A writer on `topic_name` (created on first use, type registered on first use) with the QoS of the XML
   // data_writer profile `profile`. Throws DdsError.
   template <class PubSubType>
@@ -160,6 +162,8 @@ class Participant {
 
   const std::string& name() const { return name_; }
   int domainId() const { return domain_id_; }
+  // How this participant names topics and types on the wire (SWA_NAMING, naming.h).
+  const WireNames& wireNames() const { return names_; }
 
   // Discovery (peer_book.h). The oldest live participant with our name in our swarm, if any; whether one of them is
   // older than us (we must give way); how many peers came back after their lease had expired, and the last one's name.
@@ -181,6 +185,7 @@ class Participant {
   std::vector<std::unique_ptr<eprosima::fastdds::dds::DataReaderListener>> listeners_;
   std::string name_;
   int domain_id_ = 0;
+  WireNames names_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

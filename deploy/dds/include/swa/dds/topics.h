@@ -13,6 +13,8 @@ inline std::string detections(int uav) { return uavPrefix(uav) + "detections"; }
 inline std::string imu(int uav) { return uavPrefix(uav) + "imu"; }
 inline std::string gnss(int uav) { return uavPrefix(uav) + "gnss"; }
 inline std::string cmdVel(int uav) { return uavPrefix(uav) + "cmd_vel"; }
+// The same setpoint as geometry_msgs/TwistStamped, written only in the ros2 naming (swa/dds/naming.h).
+inline std::string cmdVelStamped(int uav) { return uavPrefix(uav) + "cmd_vel_stamped"; }
 inline std::string state(int uav) { return uavPrefix(uav) + "state"; }
 
 inline const char* const kTruth = "swa/truth";

@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include <swa/msg/Detections.h>
-#include <swa/msg/Header.h>
+#include <swa/msg/MessageHeader.h>
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
 #include <swa/msg/VelocitySetpoint.h>
@@ -16,7 +16,7 @@
 
 namespace swa::wire {
 
-msg::Header header(agent::StampNs stamp_ns, std::uint32_t seq);
+msg::MessageHeader header(agent::StampNs stamp_ns, std::uint32_t seq);
 
 agent::ImuSample fromMsg(const msg::Imu& m);
 agent::DetectionSet fromMsg(const msg::Detections& m);
