@@ -232,8 +232,8 @@ bool SimPorts::gnssAcknowledged(int uav, double wait_s) {
 }
 
 bool SimPorts::fromCommander(const Answer& a) {
-  const Admission admission = gate_.admit(a.uav, a.writer, a.received);
-  if (admission == Admission::kRefused) {
+  const dds::Admission admission = gate_.admit(a.uav, a.writer, a.received);
+  if (admission == dds::Admission::kRefused) {
     ++summary_.refused_commands;
     if (gate_.firstRefusal(a.uav, a.writer)) {
       summary_.refused_writers = gate_.refusedWriters();
@@ -244,7 +244,7 @@ bool SimPorts::fromCommander(const Answer& a) {
     }
     return false;
   }
-  if (admission == Admission::kHandover && gate_.handovers() != summary_.command_handovers) {
+  if (admission == dds::Admission::kHandover && gate_.handovers() != summary_.command_handovers) {
     summary_.command_handovers = gate_.handovers();
     std::fprintf(stderr, "swa_sim: t = %.2f s: %s now written by writer %s (the previous one fell silent)\n",
                  sim::stampSeconds(world_.time_ns()), dds::topics::cmdVel(a.uav).c_str(), guidText(a.writer).c_str());

@@ -1,7 +1,7 @@
 #pragma once
 // The simulator's DDS side, shared by its lockstep and realtime drivers: publishes each UAV's sensor samples on its
 // own topics and the world's truth, events and clock, and collects the agents' setpoints (one commander per UAV,
-// command_gate.h; their loop latency, latency_stats.h). Owns the participant and every endpoint. Message contents
+// swa/dds/command_gate.h; their loop latency, latency_stats.h). Owns the participant and every endpoint. Message contents
 // come from the wire bridge (idl/wire); which step to publish and when is the driver's.
 
 #include <atomic>
@@ -22,7 +22,7 @@
 #include <swa/msg/SwarmTruth.h>
 #include <swa/msg/VelocitySetpoint.h>
 
-#include "command_gate.h"
+#include "swa/dds/command_gate.h"
 #include "latency_stats.h"
 #include "sim_options.h"
 #include "sim_summary.h"
@@ -93,7 +93,7 @@ class SimPorts {
   SimSummary& summary_;
   const std::atomic<bool>& stop_;
   const int n_;
-  CommandGate gate_;
+  dds::CommandGate gate_;
   CommandLatencyTracker latency_;
   bool time_latency_ = true;
   dds::PeerKey reported_twin_{};

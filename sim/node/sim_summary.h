@@ -21,8 +21,8 @@ struct SimSummary {
   int collisions = 0;
   std::uint64_t applied_commands = 0;
   std::uint64_t ignored_commands = 0;  // stale, duplicate, or naming the wrong UAV
-  // Commands from a second writer on a UAV's cmd_vel while its current one is active (command_gate.h), and how many
-  // such writers were seen; changes of a UAV's writer after its first (a restarted agent).
+  // Commands from a second writer on a UAV's cmd_vel while its current one is active (swa/dds/command_gate.h), and how
+  // many such writers were seen; changes of a UAV's writer after its first (a restarted agent).
   std::uint64_t refused_commands = 0;
   std::size_t refused_writers = 0;
   std::uint64_t command_handovers = 0;

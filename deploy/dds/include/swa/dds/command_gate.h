@@ -1,5 +1,5 @@
 #pragma once
-// One commander per UAV. DDS lets any participant in the swarm write swa/uav<i>/cmd_vel: a second agent started with
+// One commander per UAV (the simulator, an autopilot bridge). DDS lets any participant in the swarm write swa/uav<i>/cmd_vel: a second agent started with
 // the same id, a test tool, a rogue. The simulator applies the commands of one writer per UAV, the owner: the first
 // writer heard from, until it has been silent for `handover` (its agent crashed and a restarted one took over);
 // commands of any other writer meanwhile are refused and counted, and each new refused writer is reported once.
@@ -12,7 +12,7 @@
 #include <set>
 #include <vector>
 
-namespace swa::sim_node {
+namespace swa::dds {
 
 using WriterId = std::array<std::uint8_t, 16>;
 
@@ -51,4 +51,4 @@ class CommandGate {
   std::uint64_t handovers_ = 0;
 };
 
-}  // namespace swa::sim_node
+}  // namespace swa::dds

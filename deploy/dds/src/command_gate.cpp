@@ -1,9 +1,9 @@
-#include "command_gate.h"
+#include "swa/dds/command_gate.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-namespace swa::sim_node {
+namespace swa::dds {
 namespace {
 // Refused writers remembered for reporting once: beyond this many, further ones are still refused and counted, only
 // not named (a flood of new writers must not grow memory).
@@ -42,4 +42,4 @@ void CommandGate::shift(Clock::duration lost, Clock::time_point now) {
   }
 }
 
-}  // namespace swa::sim_node
+}  // namespace swa::dds

@@ -1,11 +1,11 @@
-// One commander per UAV (sim/node/command_gate.h): the first writer heard owns a UAV's cmd_vel, another writer is
+// One commander per UAV (swa/dds/command_gate.h): the first writer heard owns a UAV's cmd_vel, another writer is
 // refused while the owner is active and takes over once the owner has been silent for the handover time.
 
 #include <gtest/gtest.h>
 
-#include "command_gate.h"
+#include "swa/dds/command_gate.h"
 
-namespace swa::sim_node {
+namespace swa::dds {
 namespace {
 
 using Clock = CommandGate::Clock;
@@ -101,4 +101,4 @@ TEST_F(CommandGateTest, UnknownUavIsAnError) {
 }
 
 }  // namespace
-}  // namespace swa::sim_node
+}  // namespace swa::dds

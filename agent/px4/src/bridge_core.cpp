@@ -1,0 +1,163 @@
+#include "swa/px4/bridge_core.h"
+
+#include <cmath>
+#include <utility>
+
+#include "swa/px4/vehicle.h"
+
+namespace swa::px4 {
+namespace {
+
+constexpr std::uint64_t kClockRestartUs = 1'000'000;  // a timestamp this far behind the newest: PX4 restarted
+
+// Durations compared in whole microseconds, on the vehicle's clock: exact at the thresholds.
+std::uint64_t microseconds(double seconds) { return static_cast<std::uint64_t>(std::llround(seconds * 1e6)); }
+// to - from, 0 if `to` is not later.
+std::uint64_t elapsedUs(std::uint64_t from_us, std::uint64_t to_us) { return to_us > from_us ? to_us - from_us : 0; }
+
+}  // namespace
+
+const char* linkName(Link link) {
+  switch (link) {
+    case Link::kNoAttitude: return "no attitude from PX4 yet";
+    case Link::kNoAgent: return "waiting for the agent's first command";
+    case Link::kFresh: return "streaming the agent's commands";
+    case Link::kStale: return "command stale: streaming zero velocity";
+    case Link::kAgentLost: return "agent lost: offboard stream stopped (PX4's offboard-loss failsafe takes over)";
+    case Link::kAttitudeLost: return "PX4 silent: offboard stream stopped";
+  }
+  return "?";
+}
+
+BridgeCore::BridgeCore(const BridgeConfig& config) : config_(config) {}
+
+std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_us, const Quaternion& q,
+                                                       double now_s) {
+  ++counters_.attitude_in;
+  const std::optional<agent::StampNs> stamp = stampNsOf(timestamp_us);
+  if (!isAttitude(q) || !stamp) {
+    ++counters_.attitude_rejected;
+    return std::nullopt;
+  }
+  if (newest_us_ && timestamp_us <= *newest_us_) {
+    if (*newest_us_ - timestamp_us < kClockRestartUs) {
+      ++counters_.attitude_out_of_order;
+      return std::nullopt;
+    }
+    ++counters_.clock_restarts;
+    note("PX4's clock restarted (attitude stamp " + std::to_string(timestamp_us) + " us after " +
+         std::to_string(*newest_us_) + " us): the old timeline's commands are forgotten");
+    first_us_.reset();
+    applied_us_.reset();
+    streaming_since_us_.reset();
+    last_request_us_.reset();
+  }
+  if (!first_us_) first_us_ = timestamp_us;
+  newest_us_ = timestamp_us;
+  newest_at_s_ = now_s;
+  const SwaAttitude a = swaAttitude(eulerOf(q));
+  return agent::ImuSample{*stamp, a.roll_rad, a.pitch_rad, a.heading_rad};
+}
+
+Outbox BridgeCore::onCommand(const agent::VelocityCommand& command, double now_s) {
+  ++counters_.commands_in;
+  Outbox out;
+  if (!agent::isFinite(command.velocity_mps)) {
+    ++counters_.commands_nonfinite;
+    return out;
+  }
+  const std::optional<std::uint64_t> answered = timestampUsOf(command.answered_stamp_ns);
+  if (!answered || !first_us_ || *answered < *first_us_) {
+    ++counters_.commands_replayed;  // answers a sample from before this bridge (or PX4's clock) started
+    return out;
+  }
+  if (*answered > *newest_us_) {
+    ++counters_.commands_unknown_sample;  // answers a sample this bridge never forwarded
+    return out;
+  }
+  if (applied_us_ && *answered <= *applied_us_) {
+    ++counters_.commands_not_newer;
+    return out;
+  }
+  agent::Vec2 v = command.velocity_mps;
+  if (v.norm() > config_.max_speed_mps) {
+    ++counters_.commands_clamped;
+    v *= config_.max_speed_mps / v.norm();
+  }
+  ++counters_.commands_applied;
+  applied_us_ = *answered;
+  out.setpoint = Setpoint{*answered, nedOf(v)};
+  out.heartbeat_us = *answered;
+  sent(out, now_s);
+  return out;
+}
+
+void BridgeCore::onStatus(std::uint8_t arming_state, std::uint8_t nav_state) {
+  if (arming_state_ != arming_state) {
+    note(arming_state == kArmingStateArmed ? "PX4: armed" : "PX4: not armed (arming_state " +
+                                                                std::to_string(arming_state) + ")");
+  }
+  if (nav_state_ != nav_state) {
+    note(std::string("PX4: nav_state ") + (nav_state_ ? navStateName(*nav_state_) : "unknown") + " -> " +
+         navStateName(nav_state) + " (" + std::to_string(nav_state) + ")");
+  }
+  arming_state_ = arming_state;
+  nav_state_ = nav_state;
+}
+
+Link BridgeCore::evaluate(double now_s) const {
+  if (!newest_us_) return Link::kNoAttitude;
+  if (now_s - newest_at_s_ > config_.attitude_lost_after_s) return Link::kAttitudeLost;
+  if (!applied_us_) return link_ == Link::kAgentLost ? Link::kAgentLost : Link::kNoAgent;
+  const std::uint64_t age_us = elapsedUs(*applied_us_, *newest_us_);
+  if (age_us <= microseconds(config_.stale_after_s)) return Link::kFresh;
+  if (age_us <= microseconds(config_.agent_lost_after_s)) return Link::kStale;
+  return Link::kAgentLost;
+}
+
+Outbox BridgeCore::tick(double now_s) {
+  Outbox out;
+  const Link now = evaluate(now_s);
+  const bool streaming = now == Link::kFresh || now == Link::kStale;
+  if (now != link_) {
+    note(std::string("link: ") + linkName(now));
+    if (now == Link::kStale) out.setpoint = Setpoint{0, NedVelocity{}};  // stop and hover
+    link_ = now;
+  }
+  if (!streaming) {
+    streaming_since_us_.reset();
+    return out;
+  }
+  if (!streaming_since_us_) streaming_since_us_ = *newest_us_;
+  if (out.setpoint || now_s - last_heartbeat_s_ >= config_.heartbeat_period_s) {
+    out.heartbeat_us = 0;
+    sent(out, now_s);
+  }
+  // Engage only on the agent's own commands, with the stream established in vehicle time and the state known.
+  if (!config_.engage || now != Link::kFresh || !arming_state_ || !nav_state_) return out;
+  if (elapsedUs(*streaming_since_us_, *newest_us_) < microseconds(config_.engage_after_s)) return out;
+  if (last_request_us_ && elapsedUs(*last_request_us_, *newest_us_) < microseconds(config_.engage_retry_s)) return out;
+  if (*arming_state_ != kArmingStateArmed) {
+    out.request = VehicleRequest::kArm;
+  } else if (*nav_state_ != kNavStateOffboard) {
+    out.request = VehicleRequest::kOffboard;
+  } else {
+    return out;
+  }
+  last_request_us_ = *newest_us_;
+  ++counters_.requests_out;
+  note(out.request == VehicleRequest::kArm ? "engage: requesting arm" : "engage: requesting offboard mode");
+  return out;
+}
+
+void BridgeCore::sent(Outbox& out, double now_s) {
+  if (out.setpoint) ++counters_.setpoints_out;
+  if (out.heartbeat_us) {
+    ++counters_.heartbeats_out;
+    last_heartbeat_s_ = now_s;
+  }
+}
+
+std::vector<std::string> BridgeCore::takeEvents() { return std::exchange(events_, {}); }
+
+}  // namespace swa::px4
