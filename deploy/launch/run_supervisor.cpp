@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -33,11 +32,21 @@ constexpr double kSimAfterMonitorS = 15.0;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-struct AgentSlot {
+// A process of one UAV, supervised and restarted alike: its agent, or (vehicle.interface = px4) its autopilot bridge.
+struct UavProcess {
+  bool bridge = false;
+  int uav = 0;
   std::unique_ptr<ChildProcess> process;
   int restarts = 0;
   std::optional<Clock::time_point> restart_due;
   bool given_up = false;
+  int last_exit = 0;          // of the process being restarted (restarts.csv)
+  double last_backoff = 0.0;
+
+  std::string name() const { return (bridge ? "bridge " : "agent ") + std::to_string(uav); }
+  std::string logName() const { return (bridge ? "bridge_" : "agent_") + std::to_string(uav) + ".log"; }
+  // The uav column of restarts.csv (swa/record/restarts.h).
+  std::string subject() const { return (bridge ? "bridge_" : "") + std::to_string(uav); }
 };
 
 class Supervisor {
@@ -50,19 +59,29 @@ class Supervisor {
         domain_(std::to_string(domain)),
         spec_(spec),
         logs_(spec.dir / "logs"),
-        policy_(options.max_restarts, options.restart_backoff_s, options.restart_backoff_max_s),
-        agents_(static_cast<std::size_t>(spec.scenario.uav_count)) {}
+        policy_(options.max_restarts, options.restart_backoff_s, options.restart_backoff_max_s) {
+    const bool px4 = spec.scenario.vehicle.interface == sim::VehicleInterface::kPx4;
+    for (const bool bridge : {false, true}) {
+      if (bridge && !px4) break;
+      for (int i = 0; i < spec.scenario.uav_count; ++i) {
+        UavProcess& p = uav_processes_.emplace_back();
+        p.bridge = bridge;
+        p.uav = i;
+      }
+    }
+  }
 
   RunOutcome run() {
     prepareDirectory();
     t0_ = Clock::now();
     const char* swarm = std::getenv("SWA_SWARM");
-    std::printf("swa_launch [%s]: sim + %d agents + monitor on DDS domain %s, swarm %s, logs in %s\n",
-                spec_.label.c_str(), spec_.scenario.uav_count, domain_.c_str(),
+    const bool px4 = spec_.scenario.vehicle.interface == sim::VehicleInterface::kPx4;
+    std::printf("swa_launch [%s]: sim + %d agents%s + monitor on DDS domain %s, swarm %s, logs in %s\n",
+                spec_.label.c_str(), spec_.scenario.uav_count, px4 ? " + their PX4 bridges" : "", domain_.c_str(),
                 swarm != nullptr && *swarm ? swarm : "(default partition)", logs_.c_str());
     std::fflush(stdout);
     startMonitor();
-    for (int i = 0; i < spec_.scenario.uav_count; ++i) startAgent(i);
+    for (UavProcess& p : uav_processes_) start(p);
     startSim();
     supervise();
     stopAll();
@@ -115,17 +134,19 @@ class Supervisor {
     sim_ = std::make_unique<ChildProcess>(argv, (logs_ / "sim.log").string());
   }
 
-  void startAgent(int i) {
-    const fs::path log = logs_ / ("agent_" + std::to_string(i) + ".log");
-    AgentSlot& slot = agents_[static_cast<std::size_t>(i)];
-    if (slot.restarts > 0) {
-      std::ofstream(log, std::ios::app) << "\n==== swa_launch: restart " << slot.restarts << " at " << secondsSince(t0_)
+  void start(UavProcess& p) {
+    const fs::path log = logs_ / p.logName();
+    if (p.restarts > 0) {
+      std::ofstream(log, std::ios::app) << "\n==== swa_launch: restart " << p.restarts << " at " << secondsSince(t0_)
                                         << " s ====\n";
     }
-    slot.process = std::make_unique<ChildProcess>(
-        std::vector<std::string>{bin_.agent, "--id", std::to_string(i), "--domain", domain_, "--scenario",
-                                 scenarioFile()},
-        log.string());
+    // A bridge engages offboard itself: the simulator's PX4 stand-ins start in Hold, as a real vehicle would be
+    // handed over by its pilot.
+    const std::vector<std::string> argv =
+        p.bridge ? std::vector<std::string>{bin_.bridge, "--id", std::to_string(p.uav), "--domain", domain_, "--engage"}
+                 : std::vector<std::string>{bin_.agent, "--id", std::to_string(p.uav), "--domain", domain_,
+                                            "--scenario", scenarioFile()};
+    p.process = std::make_unique<ChildProcess>(argv, log.string());
   }
 
   void requestStop(const char* why) {
@@ -138,36 +159,36 @@ class Supervisor {
     if (sim_) sim_->signal(SIGTERM);
   }
 
-  void superviseAgents() {
-    for (int i = 0; i < spec_.scenario.uav_count; ++i) {
-      AgentSlot& slot = agents_[static_cast<std::size_t>(i)];
-      if (!slot.process || slot.given_up) continue;
-      const std::optional<int> status = slot.process->poll();
+  void superviseUavProcesses() {
+    for (UavProcess& p : uav_processes_) {
+      if (!p.process || p.given_up) continue;
+      const std::optional<int> status = p.process->poll();
       if (!status) continue;
-      if (!slot.restart_due) {
-        if (!policy_.allowed(slot.restarts)) {
-          slot.given_up = true;
-          std::printf("swa_launch [%s]: agent %d ended (%s); %d restarts used, leaving it down\n", spec_.label.c_str(),
-                      i, describeStatus(*status).c_str(), slot.restarts);
+      if (!p.restart_due) {
+        if (!policy_.allowed(p.restarts)) {
+          p.given_up = true;
+          std::printf("swa_launch [%s]: %s ended (%s); %d restarts used, leaving it down\n", spec_.label.c_str(),
+                      p.name().c_str(), describeStatus(*status).c_str(), p.restarts);
           std::fflush(stdout);
           continue;
         }
-        const double delay = policy_.delay(slot.restarts);
-        slot.restart_due = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(delay));
-        std::printf("swa_launch [%s]: agent %d ended (%s) at %.1f s; restarting in %.1f s\n", spec_.label.c_str(), i,
-                    describeStatus(*status).c_str(), secondsSince(t0_), delay);
+        const double delay = policy_.delay(p.restarts);
+        p.restart_due = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(delay));
+        std::printf("swa_launch [%s]: %s ended (%s) at %.1f s; restarting in %.1f s\n", spec_.label.c_str(),
+                    p.name().c_str(), describeStatus(*status).c_str(), secondsSince(t0_), delay);
         std::fflush(stdout);
-        last_exit_[i] = {*status, delay};
+        p.last_exit = *status;
+        p.last_backoff = delay;
         continue;
       }
-      if (Clock::now() < *slot.restart_due) continue;
-      slot.restart_due.reset();
-      ++slot.restarts;
+      if (Clock::now() < *p.restart_due) continue;
+      p.restart_due.reset();
+      ++p.restarts;
       ++outcome_.restarts;
-      const auto [exit_status, delay] = last_exit_[i];
-      std::ofstream(logs_ / "restarts.csv", std::ios::app)
-          << secondsSince(t0_) << ',' << i << ',' << exit_status << ',' << slot.restarts << ',' << delay << '\n';
-      startAgent(i);
+      std::ofstream(logs_ / "restarts.csv", std::ios::app) << secondsSince(t0_) << ',' << p.subject() << ','
+                                                           << p.last_exit << ',' << p.restarts << ','
+                                                           << p.last_backoff << '\n';
+      start(p);
     }
   }
 
@@ -230,7 +251,7 @@ class Supervisor {
         break;
       }
       // Restarting makes sense only while the world runs.
-      if (!sim_done_at && !stopping_) superviseAgents();
+      if (!sim_done_at && !stopping_) superviseUavProcesses();
       std::fflush(stdout);
       std::this_thread::sleep_for(kPollPeriod);
     }
@@ -239,7 +260,7 @@ class Supervisor {
   // SIGTERM to every child still running, then SIGKILL after the grace period; all reaped.
   void stopAll() {
     std::vector<ChildProcess*> all{sim_.get(), monitor_.get()};
-    for (AgentSlot& a : agents_) all.push_back(a.process.get());
+    for (UavProcess& p : uav_processes_) all.push_back(p.process.get());
     // The monitor may still be writing its report: it gets the signal last among equals, after the sim.
     for (ChildProcess* c : all) {
       if (c != nullptr && c != monitor_.get()) c->signal(SIGTERM);
@@ -280,8 +301,7 @@ class Supervisor {
   int monitor_exit_ = 0;  // of the monitor process that is being restarted (restarts.csv)
   double monitor_backoff_s_ = 0.0;
   std::optional<Clock::time_point> monitor_restart_due_;
-  std::vector<AgentSlot> agents_;
-  std::map<int, std::pair<int, double>> last_exit_;  // uav -> (exit status, back-off) of the pending restart
+  std::vector<UavProcess> uav_processes_;  // the agents, then (px4) the bridges
   bool stopping_ = false;
   RunOutcome outcome_;
 };

@@ -1,6 +1,6 @@
 #pragma once
-// One run of a scenario as processes: the monitor, one agent per UAV, the simulator; the agents supervised and
-// restarted when they crash; everything stopped and reaped at the end. The launcher's main() calls this once, or
+// One run of a scenario as processes: the monitor, one agent per UAV (and with vehicle.interface = px4 one
+// swa_px4_bridge per UAV), the simulator; the agents and bridges supervised and restarted when they crash; everything stopped and reaped at the end. The launcher's main() calls this once, or
 // twice for --compare.
 
 #include <atomic>
@@ -14,7 +14,7 @@
 namespace swa::launch {
 
 struct Binaries {
-  std::string sim, agent, monitor;
+  std::string sim, agent, monitor, bridge;  // bridge: swa_px4_bridge, for vehicle.interface = px4
 };
 
 struct RunSpec {

@@ -31,13 +31,15 @@ std::optional<AgentRestart> parseRow(std::string_view line, std::string& why) {
   for (const std::string& x : *fields) f.push_back(trim(x));
   AgentRestart r;
   const auto wall = app::parseReal(f[0], 0.0, 1e12);
+  const std::string prefix = kBridgePrefix;
+  r.bridge = f[1].rfind(prefix, 0) == 0;
   const auto uav = f[1] == "monitor" ? std::optional<long long>(AgentRestart::kMonitor)
-                                     : app::parseInteger(f[1], 0, 1'000'000);
+                                     : app::parseInteger(r.bridge ? f[1].substr(prefix.size()) : f[1], 0, 1'000'000);
   const auto count = app::parseInteger(f[3], 0, std::numeric_limits<long long>::max());
   const auto backoff = app::parseReal(f[4], 0.0, 1e12);
   // The first problem of the row is the one reported.
   why = !wall          ? "wall_s '" + f[0] + "' is not a time >= 0"
-        : !uav         ? "uav '" + f[1] + "' is not a UAV index"
+        : !uav         ? "uav '" + f[1] + "' is not a UAV index, bridge_<index> or monitor"
         : f[2].empty() ? std::string("exit_status is empty")
         : !count       ? "restart_count '" + f[3] + "' is not a count >= 0"
         : !backoff     ? "backoff_s '" + f[4] + "' is not a time >= 0"
@@ -52,6 +54,11 @@ std::optional<AgentRestart> parseRow(std::string_view line, std::string& why) {
 }
 
 }  // namespace
+
+std::string restartSubject(const AgentRestart& r) {
+  if (r.uav == AgentRestart::kMonitor) return "monitor";
+  return (r.bridge ? std::string(kBridgePrefix) : std::string()) + std::to_string(r.uav);
+}
 
 RestartLog parseRestartLog(std::istream& in) {
   RestartLog log;

@@ -10,7 +10,9 @@ namespace swa::record {
 namespace {
 
 Json restartJson(const AgentRestart& r) {
-  return Json{{"wall_s", r.wall_s}, {"uav", r.uav}, {"exit_status", r.exit_status},
+  const char* process = r.bridge ? "bridge" : r.uav == AgentRestart::kMonitor ? "monitor" : "agent";
+  return Json{{"wall_s", r.wall_s},           {"uav", r.uav},
+              {"process", process},           {"exit_status", r.exit_status},
               {"restart_count", r.restart_count}, {"backoff_s", r.backoff_s}};
 }
 
@@ -37,10 +39,13 @@ Json summaryJson(const RunRecord& run) {
   j["window_from_s"] = run.window_start_s;
   // The same keys and values as swa_batch's per-seed entries.
   j.update(metricsJson(run.summary));
-  const auto monitor_restarts = static_cast<std::size_t>(
-      std::count_if(run.restarts.restarts.begin(), run.restarts.restarts.end(),
-                    [](const AgentRestart& r) { return r.uav == AgentRestart::kMonitor; }));
-  j["agent_restarts"] = run.restarts.restarts.size() - monitor_restarts;
+  const auto countIf = [&run](auto pred) {
+    return static_cast<std::size_t>(std::count_if(run.restarts.restarts.begin(), run.restarts.restarts.end(), pred));
+  };
+  const std::size_t monitor_restarts = countIf([](const AgentRestart& r) { return r.uav == AgentRestart::kMonitor; });
+  const std::size_t bridge_restarts = countIf([](const AgentRestart& r) { return r.bridge; });
+  j["agent_restarts"] = run.restarts.restarts.size() - monitor_restarts - bridge_restarts;
+  j["bridge_restarts"] = bridge_restarts;
   j["monitor_restarts"] = monitor_restarts;
   j["restarts_malformed_rows"] = run.restarts.malformed_rows;
   j["restarts_problems"] = run.restarts.problems;

@@ -88,11 +88,12 @@ monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs) {
 
 monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs) {
   auto [t, total] = itemTable(
-      "restarts", "Agent and monitor restarts", runs, {"wall time [s]", "UAV", "exit status", "restart count", "backoff [s]"},
+      "restarts", "Agent, bridge and monitor restarts", runs,
+      {"wall time [s]", "UAV", "exit status", "restart count", "backoff [s]"},
       [](const RunRecord& run) -> const auto& { return run.restarts.restarts; },
       [](const AgentRestart& r) -> std::vector<std::string> {
         return {monitor::formatFixed(r.wall_s, 2),
-                r.uav == AgentRestart::kMonitor ? std::string("monitor") : std::to_string(r.uav), r.exit_status,
+                restartSubject(r), r.exit_status,
                 std::to_string(r.restart_count), monitor::formatFixed(r.backoff_s, 2)};
       });
   int malformed = 0;

@@ -47,6 +47,7 @@ void LockstepDriver::run() {
     awaitSensorAcks(deadline);
     if (stop_) break;
     if (world_.finished()) break;
+    ports_.vehiclesStep();
     world_.step();
   }
 }

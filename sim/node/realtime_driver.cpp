@@ -87,6 +87,7 @@ void RealtimeDriver::run() {
       }
     }
     if (stop_) break;
+    ports_.vehiclesStep();
     world_.step();
     step_lag_.add(wallNs(Clock::now()) - wallNs(target));
     ports_.publishStepOutputs(aliveFn());

@@ -61,20 +61,26 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
   events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
   truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
   clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
+  const bool px4 = scenario.vehicle.interface == sim::VehicleInterface::kPx4;
   for (int i = 0; i < n_; ++i) {
-    imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
     det_.push_back(
         participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), "swa_detections_gnss_writer"));
     gnss_.push_back(
         participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), "swa_detections_gnss_writer"));
+    if (px4) continue;
+    imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
     cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
         dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
-          queue_.push(Answer{i, std::move(m), Clock::now(), w});
+          queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
         }));
   }
+  if (px4) px4_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle.com_of_loss_t_s);
 }
 
-SimPorts::~SimPorts() { participant_.reset(); }
+SimPorts::~SimPorts() {
+  participant_.reset();  // first: no listener runs any more
+  px4_.reset();
+}
 
 bool SimPorts::awaitDiscovery() {
   const auto t0 = Clock::now();
@@ -87,9 +93,13 @@ bool SimPorts::awaitDiscovery() {
     missing.clear();
     for (int i = 0; i < n_; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      if (imu_[k].matched() < 1) missing.push_back(dds::topics::imu(i) + " (no reader)");
       if (det_[k].matched() < 1) missing.push_back(dds::topics::detections(i) + " (no reader)");
       if (gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
+      if (px4_) {
+        px4_->unmatched(i, missing);
+        continue;
+      }
+      if (imu_[k].matched() < 1) missing.push_back(dds::topics::imu(i) + " (no reader)");
       if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
     }
     if (truth_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kTruth) + " (monitor)");
@@ -134,7 +144,7 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
     if (s.imu) {
       msg::Imu m = wire::toMsg(*s.imu, id, ++imu_seq_[k]);
       const WallNs published_ns = wallNs(Clock::now());
-      if (imu_[k].write(m)) {
+      if (px4_ ? px4_->publishAttitude(i, *s.imu, imu_seq_[k]) : imu_[k].write(m)) {
         if (time_latency_) latency_.published(i, imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
         imu_stamps[k] = s.imu->stamp_ns;
       } else {
@@ -196,7 +206,11 @@ void SimPorts::publishEnd(const AliveFn& alive, bool completed) {
 const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
   batch_.clear();
   admitted_.clear();
-  queue_.drain(batch_, wait);
+  if (px4_) {
+    px4_->drain(batch_, wait, world_.time_ns(), [this](const Answer& a) { return fromCommander(a); });
+  } else {
+    queue_.drain(batch_, wait);
+  }
   for (Answer& a : batch_) {
     if (!fromCommander(a)) continue;
     if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav)) {
@@ -212,8 +226,20 @@ const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
 }
 
 void SimPorts::apply(const Answer& a) {
-  world_.command(a.uav, wire::fromMsg(a.setpoint));
+  if (px4_) {
+    px4_->apply(a);
+  } else {
+    world_.command(a.uav, wire::fromMsg(a.setpoint));
+  }
   ++summary_.applied_commands;
+}
+
+void SimPorts::vehiclesStep() {
+  if (!px4_) return;
+  px4_->step(world_, [this](int uav, double value, const std::string& text) {
+    std::fprintf(stderr, "swa_sim: t = %.2f s: UAV %d: %s\n", sim::stampSeconds(world_.time_ns()), uav, text.c_str());
+    publishEvent(record::event_kind::kFailsafe, uav, value, text);
+  });
 }
 
 void SimPorts::finishLatency(bool realtime, const LogHistogram& step_lag) {
@@ -231,6 +257,10 @@ bool SimPorts::gnssAcknowledged(int uav, double wait_s) {
   return gnss_[static_cast<std::size_t>(uav)].waitForAcknowledgments(wait_s);
 }
 
+std::string SimPorts::commandTopic(int uav) const {
+  return px4_ ? dds::topics::px4In(dds::topics::px4Namespace(uav), "trajectory_setpoint") : dds::topics::cmdVel(uav);
+}
+
 bool SimPorts::fromCommander(const Answer& a) {
   const dds::Admission admission = gate_.admit(a.uav, a.writer, a.received);
   if (admission == dds::Admission::kRefused) {
@@ -240,14 +270,14 @@ bool SimPorts::fromCommander(const Answer& a) {
       std::fprintf(stderr,
                    "swa_sim: t = %.2f s: a second writer on %s (writer %s) while the current one is active: its "
                    "commands are refused (a second agent with this id, or another program writing it)\n",
-                   sim::stampSeconds(world_.time_ns()), dds::topics::cmdVel(a.uav).c_str(), guidText(a.writer).c_str());
+                   sim::stampSeconds(world_.time_ns()), commandTopic(a.uav).c_str(), guidText(a.writer).c_str());
     }
     return false;
   }
   if (admission == dds::Admission::kHandover && gate_.handovers() != summary_.command_handovers) {
     summary_.command_handovers = gate_.handovers();
     std::fprintf(stderr, "swa_sim: t = %.2f s: %s now written by writer %s (the previous one fell silent)\n",
-                 sim::stampSeconds(world_.time_ns()), dds::topics::cmdVel(a.uav).c_str(), guidText(a.writer).c_str());
+                 sim::stampSeconds(world_.time_ns()), commandTopic(a.uav).c_str(), guidText(a.writer).c_str());
   }
   return true;
 }

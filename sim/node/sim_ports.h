@@ -1,6 +1,7 @@
 #pragma once
 // The simulator's DDS side, shared by its lockstep and realtime drivers: publishes each UAV's sensor samples on its
-// own topics and the world's truth, events and clock, and collects the agents' setpoints (one commander per UAV,
+// own topics (with vehicle.interface = px4 the attitude as PX4's, px4_vehicles.h) and the world's truth, events and
+// clock, and collects the agents' setpoints (one commander per UAV,
 // swa/dds/command_gate.h; their loop latency, latency_stats.h). Owns the participant and every endpoint. Message contents
 // come from the wire bridge (idl/wire); which step to publish and when is the driver's.
 
@@ -23,7 +24,9 @@
 #include <swa/msg/VelocitySetpoint.h>
 
 #include "swa/dds/command_gate.h"
+#include "answer.h"
 #include "latency_stats.h"
+#include "px4_vehicles.h"
 #include "sim_options.h"
 #include "sim_summary.h"
 #include "swa/dds/participant.h"
@@ -38,13 +41,7 @@ class SimPorts {
   using Clock = std::chrono::steady_clock;
   using AliveFn = std::function<bool(int uav)>;
 
-  // One setpoint as a UAV's cmd_vel reader received it.
-  struct Answer {
-    int uav = 0;
-    msg::VelocitySetpoint setpoint;
-    Clock::time_point received;  // when the listener got it (not when the driver drained it)
-    dds::WriterGuid writer{};
-  };
+  using Answer = sim_node::Answer;
 
   // Creates every DDS entity (throws swa::dds::DdsError) and opens --truth-out (throws std::runtime_error).
   SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimSummary& summary,
@@ -69,7 +66,9 @@ class SimPorts {
   // Setpoints received within `wait` that come from their UAV's commander and name their UAV; the others are counted
   // (refused, ignored) and dropped. Their loop latency is recorded while timing is on.
   const std::vector<Answer>& drain(Clock::duration wait);
-  void apply(const Answer& a);  // to the world
+  void apply(const Answer& a);  // to the world (px4: to the UAV's autopilot)
+  // Before the world steps: with vehicle.interface = px4, what each autopilot flies (px4_vehicles.h); else nothing.
+  void vehiclesStep();
   void timeLatency(bool on) { time_latency_ = on; }
   void finishLatency(bool realtime, const LogHistogram& step_lag);
   // The simulator did not run for `lost`: no commander could be heard meanwhile.
@@ -82,6 +81,7 @@ class SimPorts {
 
  private:
   bool fromCommander(const Answer& a);  // the UAV's current commander; refusals counted and reported
+  std::string commandTopic(int uav) const;  // where a UAV's setpoints come from (for the log)
   bool olderTwinRuns();                 // another swa_sim older than us in this swarm: refuse (logged)
   void noteYoungerTwin();
   void publishTruth(const AliveFn& alive);
@@ -108,6 +108,7 @@ class SimPorts {
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Answer> queue_;
   std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<Px4Vehicles> px4_;  // vehicle.interface = px4: instead of imu_ and cmd_
   std::vector<dds::Writer<msg::Imu>> imu_;
   std::vector<dds::Writer<msg::Detections>> det_;
   std::vector<dds::Writer<msg::GnssFix>> gnss_;

@@ -75,6 +75,24 @@ TEST(RestartLog, AMonitorRestartIsARowOfItsOwn) {
   EXPECT_EQ(log.malformed_rows, 1);  // the spelling is exact
 }
 
+TEST(RestartLog, ABridgeRestartNamesItsUav) {
+  // WHEN a log with a bridge's restart, and rows naming a bridge without an index or with a bad one, is parsed
+  const RestartLog log = parse(
+      "wall_s,uav,exit_status,restart_count,backoff_s\n"
+      "12.5,bridge_2,137,1,0.5\n"
+      "13.0,bridge_,137,1,0.5\n"
+      "14.0,bridge_x,137,1,0.5\n"
+      "15.0,2,137,1,0.5\n");
+  // THEN the bridge's restart is told from its agent's by the flag, and the others are malformed
+  ASSERT_EQ(log.restarts.size(), 2u);
+  EXPECT_EQ(log.restarts[0].uav, 2);
+  EXPECT_TRUE(log.restarts[0].bridge);
+  EXPECT_EQ(restartSubject(log.restarts[0]), "bridge_2");
+  EXPECT_FALSE(log.restarts[1].bridge);
+  EXPECT_EQ(restartSubject(log.restarts[1]), "2");
+  EXPECT_EQ(log.malformed_rows, 2);
+}
+
 TEST(RestartLog, HeaderOptionalRepeatedCrLfSpacesAndQuotes) {
   // WHEN a log is parsed with a row before the header, CRLF line ends, spaces around fields, a quoted comma and a
   // blank line

@@ -58,18 +58,21 @@ TEST(RunReportTables, SeveralRunsGetARunColumnAndTheTableStopsAtItsLimit) {
 }
 
 TEST(RunReportTables, RestartsNameTheMonitorAndCountMalformedRows) {
-  // GIVEN a run with an agent's restart, the monitor's, and two malformed rows in the restart log
-  const std::vector<RunRecord> runs{runWith(
-      "swa", {}, {AgentRestart{15.25, 1, "137", 1, 0.5}, AgentRestart{52.8, AgentRestart::kMonitor, "137", 1, 0.5}},
-      2)};
+  // GIVEN a run with an agent's restart, the monitor's, a bridge's, and two malformed rows in the restart log
+  const std::vector<RunRecord> runs{runWith("swa", {},
+                                            {AgentRestart{15.25, 1, "137", 1, 0.5},
+                                             AgentRestart{52.8, AgentRestart::kMonitor, "137", 1, 0.5},
+                                             AgentRestart{60.0, 3, "137", 1, 0.5, /*bridge=*/true}},
+                                            2)};
   // WHEN the restarts table is made
   const monitor::ReportTable t = restartsTable(runs);
   // THEN one row each, the monitor by name, and the malformed rows in the note
   EXPECT_EQ(t.columns,
             (std::vector<std::string>{"wall time [s]", "UAV", "exit status", "restart count", "backoff [s]"}));
-  ASSERT_EQ(t.rows.size(), 2u);
+  ASSERT_EQ(t.rows.size(), 3u);
   EXPECT_EQ(t.rows[0], (std::vector<std::string>{"15.25", "1", "137", "1", "0.5"}));
   EXPECT_EQ(t.rows[1][1], "monitor");
+  EXPECT_EQ(t.rows[2][1], "bridge_3");
   EXPECT_NE(t.note.find("2 malformed row(s) skipped"), std::string::npos) << t.note;
   // AND a run without any has an empty table with its own text
   EXPECT_TRUE(restartsTable({runWith("swa", {})}).rows.empty());

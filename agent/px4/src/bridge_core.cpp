@@ -121,7 +121,9 @@ Outbox BridgeCore::tick(double now_s) {
   const bool streaming = now == Link::kFresh || now == Link::kStale;
   if (now != link_) {
     note(std::string("link: ") + linkName(now));
-    if (now == Link::kStale) out.setpoint = Setpoint{0, NedVelocity{}};  // stop and hover
+    // Stop and hover. Stamped with the sample the last command answered: PX4 takes it as a setpoint of that moment,
+    // and it answers no new sample (a receiver that waits for answers, the simulator, does not mistake it for one).
+    if (now == Link::kStale) out.setpoint = Setpoint{*applied_us_, NedVelocity{}};
     link_ = now;
   }
   if (!streaming) {

@@ -14,6 +14,9 @@ namespace swa::sim {
 enum class ClockMode { kLockstep, kRealtime };
 enum class HeadingMode { kRandom, kZero };
 enum class MpsNoiseModel { kIsotropic, kRangeBearing };
+// How the agents reach their vehicles in swa_sim: directly (the simulator reads cmd_vel and publishes imu), or through
+// PX4 v1.15's uXRCE-DDS topics, with the simulator playing each UAV's PX4 and one swa_px4_bridge per agent.
+enum class VehicleInterface { kDirect, kPx4 };
 
 struct FormationSetup {
   double spacing_m = 10.0;         // initial neighbour spacing; also the agents' formation.radius_m unless overridden
@@ -75,6 +78,11 @@ struct GnssSetup {
   std::vector<GnssWindow> windows;
 };
 
+struct VehicleSetup {
+  VehicleInterface interface = VehicleInterface::kDirect;
+  double com_of_loss_t_s = 1.0;    // PX4's COM_OF_LOSS_T (v1.15 default): offboard signal lost after this -> Hold
+};
+
 struct ClockSetup {
   ClockMode mode = ClockMode::kLockstep;
   double speed = 1.0;              // realtime factor
@@ -91,6 +99,7 @@ struct Scenario {
   MpsSetup mps;
   GnssSetup gnss;
   ClockSetup clock;
+  VehicleSetup vehicle;
   agent::AgentConfig agent;
 };
 

@@ -7,7 +7,8 @@
 // The offboard stream (offboard_control_mode "velocity" + trajectory_setpoint, deploy/README.md):
 //   - every accepted command is sent at once, stamped with the PX4 timestamp of the attitude sample it answers;
 //   - a command older than stale_after_s (vehicle time: newest attitude - the sample it answers) becomes zero
-//     velocity: the vehicle stops and hovers while the agent may still recover;
+//     velocity, stamped like that command (it answers no new sample): the vehicle stops and hovers while the agent may
+//     still recover;
 //   - no command for agent_lost_after_s, or no attitude from PX4 for attitude_lost_after_s, stops the stream: PX4's own
 //     offboard-loss failsafe (COM_OF_LOSS_T, COM_OBL_RC_ACT) takes over. The bridge never decides a failsafe itself;
 //   - otherwise the heartbeat is repeated every heartbeat_period_s, stamped 0 (PX4 stamps it on receipt).
@@ -50,7 +51,7 @@ const char* linkName(Link link);
 enum class VehicleRequest { kArm, kOffboard };
 
 struct Setpoint {
-  std::uint64_t timestamp_us = 0;  // 0: PX4 stamps it on receipt
+  std::uint64_t timestamp_us = 0;  // the PX4 timestamp of the attitude sample it answers
   NedVelocity velocity;
 };
 
@@ -88,6 +89,8 @@ class BridgeCore {
   const BridgeCounters& counters() const { return counters_; }
   bool armed() const { return arming_state_ == kArmed; }
   std::optional<std::uint8_t> navState() const { return nav_state_; }
+  // PX4's timestamp of the newest attitude sample forwarded.
+  std::optional<std::uint64_t> newestTimestampUs() const { return newest_us_; }
   // State changes since the last call, one line each, for the log and the diagnostics topic.
   std::vector<std::string> takeEvents();
 

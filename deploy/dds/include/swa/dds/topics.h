@@ -17,8 +17,22 @@ inline std::string cmdVel(int uav) { return uavPrefix(uav) + "cmd_vel"; }
 inline std::string cmdVelStamped(int uav) { return uavPrefix(uav) + "cmd_vel_stamped"; }
 inline std::string state(int uav) { return uavPrefix(uav) + "state"; }
 
+// Diagnostics of UAV <i>'s autopilot bridge (swa_px4_bridge).
+inline std::string bridgeState(int uav) { return uavPrefix(uav) + "bridge_state"; }
+
 inline const char* const kTruth = "swa/truth";
 inline const char* const kEvents = "swa/events";
 inline const char* const kClock = "swa/clock";
+
+// PX4's uXRCE-DDS topics of the vehicle with ROS namespace `ns` (empty: none): rt/<ns>/fmu/<in|out>/<name>. DDS names
+// already (the naming of SWA_NAMING does not apply to them); PX4 v1.15 appends no message version.
+inline std::string px4In(const std::string& ns, const std::string& name) {
+  return "rt/" + (ns.empty() ? std::string() : ns + "/") + "fmu/in/" + name;
+}
+inline std::string px4Out(const std::string& ns, const std::string& name) {
+  return "rt/" + (ns.empty() ? std::string() : ns + "/") + "fmu/out/" + name;
+}
+// The namespace swa_sim's PX4 stand-in gives UAV <i>, and swa_px4_bridge --id <i> assumes unless told: px4_<i>.
+inline std::string px4Namespace(int uav) { return "px4_" + std::to_string(uav); }
 
 }  // namespace swa::dds::topics

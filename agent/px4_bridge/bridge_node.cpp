@@ -1,0 +1,218 @@
+#include "bridge_node.h"
+
+#include <cstdio>
+#include <thread>
+
+#include <swa/msg/BridgeStatePubSubTypes.h>
+#include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/VelocitySetpointPubSubTypes.h>
+#include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
+
+#include "swa/app/signals.h"
+#include "swa/dds/topics.h"
+#include "swa/px4/vehicle.h"
+#include "swa/wire/px4.h"
+#include "swa/wire/samples.h"
+
+namespace swa::px4_bridge {
+namespace {
+
+constexpr auto kTickPeriod = std::chrono::milliseconds(10);
+constexpr auto kStatePeriod = std::chrono::seconds(1);
+// cmd_vel's writer may change after this much silence (a restarted agent), as in the simulator (command_gate.h).
+constexpr auto kCommandHandover = std::chrono::milliseconds(500);
+
+namespace topics = dds::topics;
+
+}  // namespace
+
+BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::string& profiles_file)
+    : id_(options.id),
+      ns_(px4Namespace(options)),
+      options_(options),
+      started_(std::chrono::steady_clock::now()),
+      core_(options.core),
+      gate_(1, kCommandHandover) {
+  participant_ = std::make_unique<dds::Participant>("swa_bridge_" + std::to_string(id_), domain_id, profiles_file);
+  dds::Participant& p = *participant_;
+  imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), "swa_sensor_writer");
+  state_ = p.writer<msg::BridgeStatePubSubType>(topics::bridgeState(id_), "swa_state_writer");
+  setpoint_ = p.writer<px4_msgs::msg::TrajectorySetpointPubSubType>(topics::px4In(ns_, "trajectory_setpoint"),
+                                                                      "px4_in_writer");
+  offboard_ = p.writer<px4_msgs::msg::OffboardControlModePubSubType>(topics::px4In(ns_, "offboard_control_mode"),
+                                                                       "px4_in_writer");
+  if (options_.core.engage) {
+    vehicle_command_ =
+        p.writer<px4_msgs::msg::VehicleCommandPubSubType>(topics::px4In(ns_, "vehicle_command"), "px4_in_writer");
+  }
+  status_reader_ = p.reader<px4_msgs::msg::VehicleStatusPubSubType>(
+      topics::px4Out(ns_, "vehicle_status"), "px4_out_reader",
+      [this](px4_msgs::msg::VehicleStatus&& m) { onStatus(std::move(m)); });
+  ack_reader_ = p.reader<px4_msgs::msg::VehicleCommandAckPubSubType>(
+      topics::px4Out(ns_, "vehicle_command_ack"), "px4_out_reader",
+      [this](px4_msgs::msg::VehicleCommandAck&& m) { onAck(std::move(m)); });
+  cmd_reader_ = p.readerWithOrigin<msg::VelocitySetpointPubSubType>(
+      topics::cmdVel(id_), "swa_command_reader",
+      [this](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) { onCommand(std::move(m), w); });
+  attitude_reader_ = p.reader<px4_msgs::msg::VehicleAttitudePubSubType>(
+      topics::px4Out(ns_, "vehicle_attitude"), "px4_out_reader",
+      [this](px4_msgs::msg::VehicleAttitude&& m) { onAttitude(std::move(m)); });
+}
+
+BridgeNode::~BridgeNode() { participant_.reset(); }
+
+double BridgeNode::nowS() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+}
+
+void BridgeNode::onAttitude(px4_msgs::msg::VehicleAttitude&& m) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!px4_reads_) {
+    pending_ = std::move(m);
+    return;
+  }
+  forward(m);
+}
+
+void BridgeNode::forward(const px4_msgs::msg::VehicleAttitude& m) {
+  const double now = nowS();
+  if (const std::optional<agent::ImuSample> imu = core_.onAttitude(m.timestamp(), wire::quaternionOf(m), now)) {
+    if (imu_seq_ == 0) {
+      std::fprintf(stderr, "swa_px4_bridge %d: first attitude from PX4 (timestamp %llu us), forwarding to %s\n", id_,
+                   static_cast<unsigned long long>(m.timestamp()), topics::imu(id_).c_str());
+    }
+    msg::Imu out = wire::toMsg(*imu, static_cast<std::uint32_t>(id_), ++imu_seq_);
+    imu_.write(out);
+  }
+  send(core_.tick(now));
+  report();
+}
+
+void BridgeNode::onStatus(px4_msgs::msg::VehicleStatus&& m) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  core_.onStatus(m.arming_state(), m.nav_state());
+  report();
+}
+
+void BridgeNode::onAck(px4_msgs::msg::VehicleCommandAck&& m) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const char* what = m.command() == px4::kCmdComponentArmDisarm ? "arm" : m.command() == px4::kCmdDoSetMode ? "offboard"
+                                                                                                              : "?";
+  std::fprintf(stderr, "swa_px4_bridge %d: PX4 answered the %s request: result %u (0 accepted)\n", id_, what,
+               static_cast<unsigned>(m.result()));
+}
+
+void BridgeNode::onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& writer) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (gate_.admit(0, writer, std::chrono::steady_clock::now()) == dds::Admission::kRefused) {
+    if (gate_.firstRefusal(0, writer)) {
+      std::fprintf(stderr, "swa_px4_bridge %d: a second writer on %s while the current one is active: refused\n", id_,
+                   topics::cmdVel(id_).c_str());
+    }
+    return;
+  }
+  if (m.uav_id() != static_cast<std::uint32_t>(id_)) {
+    if (commands_foreign_++ == 0) {
+      std::fprintf(stderr, "swa_px4_bridge %d: dropping a command addressed to UAV %u\n", id_, m.uav_id());
+    }
+    return;
+  }
+  send(core_.onCommand(wire::fromMsg(m), nowS()));
+  report();
+}
+
+void BridgeNode::send(const px4::Outbox& out) {
+  if (out.setpoint) {
+    px4_msgs::msg::TrajectorySetpoint m = wire::trajectorySetpoint(*out.setpoint);
+    setpoint_.write(m);
+  }
+  if (out.heartbeat_us) {
+    px4_msgs::msg::OffboardControlMode m = wire::velocityControlMode(*out.heartbeat_us);
+    offboard_.write(m);
+  }
+  if (out.request && vehicle_command_) {
+    px4_msgs::msg::VehicleCommand m =
+        wire::vehicleCommand(*out.request, static_cast<std::uint8_t>(options_.target_system));
+    vehicle_command_.write(m);
+  }
+}
+
+void BridgeNode::report() {
+  bool changed = false;
+  for (std::string& e : core_.takeEvents()) {
+    std::fprintf(stderr, "swa_px4_bridge %d: %s\n", id_, e.c_str());
+    last_event_ = std::move(e);
+    changed = true;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (!changed && now - last_state_ < kStatePeriod) return;
+  last_state_ = now;
+  msg::BridgeState m = wire::bridgeState(core_, static_cast<std::uint32_t>(id_), ++state_seq_,
+                                         gate_.refused() + commands_foreign_, last_event_);
+  state_.write(m);
+}
+
+int BridgeNode::run() {
+  std::fprintf(stderr, "swa_px4_bridge %d: PX4 %s namespace '%s' (%s), agent topics %s*\n", id_, px4::kRelease,
+               ns_.c_str(), topics::px4Out(ns_, "vehicle_attitude").c_str(), topics::uavPrefix(id_).c_str());
+  bool waiting_reported = false;
+  while (!stop_requested_) {
+    std::this_thread::sleep_for(kTickPeriod);
+    // Matched-status queries outside mutex_ (a listener may hold its reader's lock while it waits for mutex_).
+    const bool reads = setpoint_.matched() > 0 && offboard_.matched() > 0;
+    if (participant_->mustGiveWay()) {
+      const std::optional<dds::Peer> twin = participant_->twin();
+      std::fprintf(stderr,
+                   "swa_px4_bridge %d: REFUSING to run: another swa_px4_bridge %d (pid %ld on host %s) already runs "
+                   "in this swarm; two bridges would both command the vehicle\n",
+                   id_, id_, twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?");
+      participant_.reset();
+      return kExitTwin;
+    }
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (reads && !px4_reads_) {
+      px4_reads_ = true;
+      std::fprintf(stderr, "swa_px4_bridge %d: PX4 reads %s: streaming\n", id_,
+                   topics::px4In(ns_, "trajectory_setpoint").c_str());
+      if (pending_) forward(*std::exchange(pending_, std::nullopt));
+    } else if (!px4_reads_ && !waiting_reported &&
+               std::chrono::steady_clock::now() - started_ > std::chrono::seconds(5)) {
+      waiting_reported = true;
+      std::fprintf(stderr, "swa_px4_bridge %d: no reader of %s after 5 s: is PX4's uXRCE-DDS agent on this domain, "
+                           "with namespace '%s'?\n",
+                   id_, topics::px4In(ns_, "trajectory_setpoint").c_str(), ns_.c_str());
+    }
+    send(core_.tick(nowS()));
+    report();
+  }
+  participant_.reset();
+  logFinalCounts();
+  return 0;
+}
+
+void BridgeNode::logFinalCounts() const {
+  const px4::BridgeCounters& c = core_.counters();
+  std::fprintf(stderr,
+               "swa_px4_bridge %d: stopping on signal %d after %llu attitude samples (%llu rejected, %llu out of "
+               "order), %llu commands (%llu applied, %llu replayed, %llu not newer, %llu for unknown samples, %llu "
+               "non-finite, %llu clamped, %llu from another writer); sent %llu setpoints, %llu heartbeats, %llu "
+               "requests\n",
+               id_, app::shutdownSignal(), static_cast<unsigned long long>(c.attitude_in),
+               static_cast<unsigned long long>(c.attitude_rejected),
+               static_cast<unsigned long long>(c.attitude_out_of_order), static_cast<unsigned long long>(c.commands_in),
+               static_cast<unsigned long long>(c.commands_applied),
+               static_cast<unsigned long long>(c.commands_replayed),
+               static_cast<unsigned long long>(c.commands_not_newer),
+               static_cast<unsigned long long>(c.commands_unknown_sample),
+               static_cast<unsigned long long>(c.commands_nonfinite),
+               static_cast<unsigned long long>(c.commands_clamped), static_cast<unsigned long long>(gate_.refused()),
+               static_cast<unsigned long long>(c.setpoints_out), static_cast<unsigned long long>(c.heartbeats_out),
+               static_cast<unsigned long long>(c.requests_out));
+}
+
+}  // namespace swa::px4_bridge

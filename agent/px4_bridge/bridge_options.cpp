@@ -1,0 +1,90 @@
+#include "bridge_options.h"
+
+#include "swa/app/cli.h"
+#include "swa/dds/deployment.h"
+#include "swa/dds/naming.h"
+#include "swa/dds/options.h"
+#include "swa/dds/topics.h"
+#include "swa/px4/vehicle.h"
+
+namespace swa::px4_bridge {
+namespace {
+
+constexpr int kMaxUavId = 9999;
+
+const char* const kDetails = R"(Runs on the drone beside swa_agent --id I (same domain, same SWA_SWARM / SWA_NAMING); PX4 v1.15's
+uXRCE-DDS agent puts PX4's topics on the same DDS domain under the namespace NS (uxrce_dds_client start -n NS).
+Reads   rt/NS/fmu/out/vehicle_attitude   -> swa/uav<I>/imu (roll, pitch, heading in SWA's convention, stamped with
+                                            PX4's timestamp: stamp the detections on the same clock)
+        rt/NS/fmu/out/vehicle_status     armed, nav_state (logged, and for --engage)
+        rt/NS/fmu/out/vehicle_command_ack  the answers to --engage's requests (logged)
+        swa/uav<I>/cmd_vel               the agent's velocity setpoints (one writer at a time)
+Writes  rt/NS/fmu/in/trajectory_setpoint   velocity in NED (position, acceleration, yaw NaN; vertical speed 0)
+        rt/NS/fmu/in/offboard_control_mode velocity control, with every setpoint and at least every 50 ms
+        rt/NS/fmu/in/vehicle_command       only with --engage: arm, then offboard mode
+        swa/uav<I>/bridge_state          diagnostics: link state, PX4's arming and mode, counters, last event
+The offboard stream: every command the agent sends is sent on at once. A command older than --stale-after-s (on
+PX4's clock) is replaced by zero velocity; after --agent-lost-after-s without one, or --attitude-lost-after-s
+without attitude from PX4, the stream stops and PX4's own offboard-loss failsafe (COM_OF_LOSS_T, COM_OBL_RC_ACT)
+takes over. Commands answering samples from before this bridge started are ignored. It never arms or changes the
+flight mode unless given --engage (bench tests, the simulator). Every state change is logged and published.
+GNSS is not forwarded: publish swa/uav<I>/gnss from your GNSS source, or let the agent run without it.)";
+
+app::Cli makeCli(BridgeOptions& o) {
+  app::Cli cli("swa_px4_bridge",
+               std::string("the autopilot bridge of one UAV: PX4 ") + px4::kRelease +
+                   " (uXRCE-DDS topics) <-> its swa_agent.");
+  cli.usage("swa_px4_bridge --id I [--px4-namespace NS] [--engage] [--domain D] [options]");
+  cli.details(kDetails);
+  cli.integer("--id", "I", o.id, 0, kMaxUavId, "a UAV id", "UAV index (its agent's --id); participant swa_bridge_<I>");
+  cli.required("--id");
+  cli.value(
+      "--px4-namespace", "NS",
+      [&o](const std::string& v, app::Problems& problems) {
+        if (!v.empty()) {
+          if (const auto problem = dds::rosNamespaceProblem(v)) problems.push_back("--px4-namespace " + *problem);
+        }
+        o.px4_namespace = dds::normalRosNamespace(v);
+      },
+      "PX4's ROS namespace (default px4_<I>, what swa_sim's PX4 stand-in uses; '' for none)");
+  cli.integer("--target-system", "N", o.target_system, 0, 255, "a MAVLink system id",
+              "VehicleCommand.target_system of --engage's requests (0: whichever vehicle reads NS)");
+  cli.real("--stale-after-s", "T", o.core.stale_after_s, 0.01, 10.0, "a time in seconds",
+           "a command older than this (PX4's clock) becomes zero velocity");
+  cli.real("--agent-lost-after-s", "T", o.core.agent_lost_after_s, 0.02, 60.0, "a time in seconds",
+           "no command this long: the offboard stream stops");
+  cli.real("--attitude-lost-after-s", "T", o.core.attitude_lost_after_s, 0.02, 60.0, "a time in seconds",
+           "no attitude from PX4 this long (local clock): the offboard stream stops");
+  cli.real("--heartbeat-period-s", "T", o.core.heartbeat_period_s, 0.005, 0.1, "a period in seconds",
+           "offboard_control_mode at least this often while streaming (at most 0.1: at least 10 Hz)");
+  cli.real("--max-speed-mps", "V", o.core.max_speed_mps, 0.1, 50.0, "a speed in m/s",
+           "commands faster than this are clamped (and counted)");
+  cli.flag("--engage", o.core.engage,
+           "arm and switch PX4 to offboard once the agent's stream has run for 1 s (bench tests, simulation; "
+           "never on a flight without a pilot who can take over)");
+  cli.domain(o.domain, dds::kMaxDomainId);
+  cli.footer(R"(Runs until SIGINT or SIGTERM, then deletes its DDS entities (the offboard stream stops) and exits 0.
+Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials refused); 2 bad arguments (nothing
+             started); 3 refused: an older swa_px4_bridge with this --id runs in this swarm.
+
+)" + dds::environmentHelp());
+  return cli;
+}
+
+void finish(BridgeOptions& o, const app::Cli&, app::Problems& problems) {
+  if (o.core.stale_after_s >= o.core.agent_lost_after_s) {
+    problems.push_back("--stale-after-s must be below --agent-lost-after-s");
+  }
+}
+
+}  // namespace
+
+BridgeOptions parseBridgeOptions(const std::vector<std::string>& args) {
+  return app::parseOptions<BridgeOptions>(args, makeCli, finish);
+}
+
+std::string bridgeUsage() { return app::helpText(makeCli); }
+
+std::string px4Namespace(const BridgeOptions& o) { return o.px4_namespace.value_or(dds::topics::px4Namespace(o.id)); }
+
+}  // namespace swa::px4_bridge

@@ -1,0 +1,28 @@
+#pragma once
+// Command line of swa_px4_bridge. Parsing is separate from main() so it can be tested; every problem is reported at
+// once.
+
+#include <optional>
+#include <string>
+
+#include "swa/px4/bridge_core.h"
+
+namespace swa::px4_bridge {
+
+struct BridgeOptions {
+  int id = -1;                          // --id I (required)
+  std::optional<std::string> px4_namespace;  // --px4-namespace NS (default px4_<I>; "" = none)
+  int target_system = 0;                // --target-system N: VehicleCommand.target_system (0: any)
+  px4::BridgeConfig core;               // --stale-after-s, --agent-lost-after-s, ... and --engage
+  std::optional<std::string> domain;    // --domain D (else SWA_DOMAIN, else 0)
+  bool help = false;
+};
+
+// Accepts "--opt value" and "--opt=value". Throws std::invalid_argument listing every problem, one per line.
+BridgeOptions parseBridgeOptions(const std::vector<std::string>& args);
+std::string bridgeUsage();
+
+// The PX4 namespace the bridge uses: --px4-namespace, or px4_<I>.
+std::string px4Namespace(const BridgeOptions& o);
+
+}  // namespace swa::px4_bridge

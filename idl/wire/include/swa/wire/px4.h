@@ -1,0 +1,42 @@
+#pragma once
+// PX4 v1.15's messages <-> the PX4 library's types (swa/px4/): the bridge's and the simulator's PX4 stand-in's one
+// place for message fields. Frames are converted in swa/px4/frames.h, not here: these only move values (float32 on
+// PX4's side).
+
+#include <cstdint>
+
+#include <swa/msg/BridgeState.h>
+#include <swa/px4/OffboardControlMode_v1_15.h>
+#include <swa/px4/TrajectorySetpoint_v1_15.h>
+#include <swa/px4/VehicleAttitude_v1_15.h>
+#include <swa/px4/VehicleCommandAck_v1_15.h>
+#include <swa/px4/VehicleCommand_v1_15.h>
+#include <swa/px4/VehicleStatus_v1_15.h>
+
+#include "swa/px4/bridge_core.h"
+#include "swa/px4/frames.h"
+
+namespace swa::wire {
+
+px4::Quaternion quaternionOf(const px4_msgs::msg::VehicleAttitude& m);
+px4_msgs::msg::VehicleAttitude vehicleAttitude(std::uint64_t timestamp_us, const px4::Quaternion& q);
+
+// A velocity-only setpoint: position, acceleration, jerk, yaw and yawspeed NaN (not controlled), as PX4's offboard
+// velocity control wants them.
+px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const px4::Setpoint& s);
+// The setpoint's NED velocity, and whether it is velocity-only (position NaN, velocity finite).
+px4::NedVelocity velocityOf(const px4_msgs::msg::TrajectorySetpoint& m);
+bool isVelocityOnly(const px4_msgs::msg::TrajectorySetpoint& m);
+
+// The offboard heartbeat for velocity control: velocity true, every other level false.
+px4_msgs::msg::OffboardControlMode velocityControlMode(std::uint64_t timestamp_us);
+bool isVelocityControl(const px4_msgs::msg::OffboardControlMode& m);
+
+// Arm, or switch to offboard (DO_SET_MODE, custom main mode OFFBOARD), for the vehicle `target_system` (0: whichever
+// vehicle reads this namespace), from an external component. Stamped 0: PX4 stamps it on receipt.
+px4_msgs::msg::VehicleCommand vehicleCommand(px4::VehicleRequest request, std::uint8_t target_system);
+
+msg::BridgeState bridgeState(const px4::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
+                             std::uint64_t commands_refused, const std::string& last_event);
+
+}  // namespace swa::wire

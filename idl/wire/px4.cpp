@@ -1,0 +1,117 @@
+#include "swa/wire/px4.h"
+
+#include <cmath>
+#include <limits>
+
+#include "swa/px4/vehicle.h"
+
+namespace swa::wire {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+msg::BridgeLink linkOf(px4::Link link) {
+  switch (link) {
+    case px4::Link::kNoAttitude: return msg::LINK_NO_ATTITUDE;
+    case px4::Link::kNoAgent: return msg::LINK_NO_AGENT;
+    case px4::Link::kFresh: return msg::LINK_FRESH;
+    case px4::Link::kStale: return msg::LINK_STALE;
+    case px4::Link::kAgentLost: return msg::LINK_AGENT_LOST;
+    case px4::Link::kAttitudeLost: return msg::LINK_ATTITUDE_LOST;
+  }
+  return msg::LINK_NO_ATTITUDE;
+}
+
+}  // namespace
+
+px4::Quaternion quaternionOf(const px4_msgs::msg::VehicleAttitude& m) {
+  return {m.q()[0], m.q()[1], m.q()[2], m.q()[3]};
+}
+
+px4_msgs::msg::VehicleAttitude vehicleAttitude(std::uint64_t timestamp_us, const px4::Quaternion& q) {
+  px4_msgs::msg::VehicleAttitude m;
+  m.timestamp(timestamp_us);
+  m.timestamp_sample(timestamp_us);
+  m.q({static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)});
+  m.delta_q_reset({0.0f, 0.0f, 0.0f, 0.0f});
+  return m;
+}
+
+px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const px4::Setpoint& s) {
+  px4_msgs::msg::TrajectorySetpoint m;
+  m.timestamp(s.timestamp_us);
+  m.position({kNaN, kNaN, kNaN});
+  m.velocity({static_cast<float>(s.velocity.north), static_cast<float>(s.velocity.east),
+              static_cast<float>(s.velocity.down)});
+  m.acceleration({kNaN, kNaN, kNaN});
+  m.jerk({kNaN, kNaN, kNaN});
+  m.yaw(kNaN);
+  m.yawspeed(kNaN);
+  return m;
+}
+
+px4::NedVelocity velocityOf(const px4_msgs::msg::TrajectorySetpoint& m) {
+  return {m.velocity()[0], m.velocity()[1], m.velocity()[2]};
+}
+
+bool isVelocityOnly(const px4_msgs::msg::TrajectorySetpoint& m) {
+  for (const float p : m.position()) {
+    if (!std::isnan(p)) return false;
+  }
+  return std::isfinite(m.velocity()[0]) && std::isfinite(m.velocity()[1]);
+}
+
+px4_msgs::msg::OffboardControlMode velocityControlMode(std::uint64_t timestamp_us) {
+  px4_msgs::msg::OffboardControlMode m;
+  m.timestamp(timestamp_us);
+  m.velocity(true);
+  return m;
+}
+
+bool isVelocityControl(const px4_msgs::msg::OffboardControlMode& m) {
+  // The first true level from the top is the one PX4 controls.
+  return !m.position() && m.velocity();
+}
+
+px4_msgs::msg::VehicleCommand vehicleCommand(px4::VehicleRequest request, std::uint8_t target_system) {
+  px4_msgs::msg::VehicleCommand m;
+  m.timestamp(0);
+  if (request == px4::VehicleRequest::kArm) {
+    m.command(px4::kCmdComponentArmDisarm);
+    m.param1(1.0f);
+  } else {
+    m.command(px4::kCmdDoSetMode);
+    m.param1(px4::kModeFlagCustomModeEnabled);
+    m.param2(px4::kCustomMainModeOffboard);
+  }
+  m.target_system(target_system);
+  m.target_component(1);
+  m.source_system(1);
+  m.source_component(1);
+  m.from_external(true);
+  return m;
+}
+
+msg::BridgeState bridgeState(const px4::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
+                             std::uint64_t commands_refused, const std::string& last_event) {
+  const px4::BridgeCounters& c = core.counters();
+  msg::BridgeState m;
+  m.header().seq(seq);
+  if (const auto t = core.newestTimestampUs()) m.header().stamp_ns(px4::stampNsOf(*t).value_or(0));
+  m.uav_id(uav_id);
+  m.link(linkOf(core.link()));
+  m.armed(core.armed());
+  m.nav_state(core.navState().value_or(255));
+  m.attitude_in(c.attitude_in);
+  m.attitude_rejected(c.attitude_rejected + c.attitude_out_of_order);
+  m.commands_applied(c.commands_applied);
+  m.commands_ignored(c.commands_replayed + c.commands_not_newer + c.commands_unknown_sample + c.commands_nonfinite +
+                     commands_refused);
+  m.setpoints_out(c.setpoints_out);
+  m.heartbeats_out(c.heartbeats_out);
+  m.requests_out(c.requests_out);
+  m.last_event(last_event);
+  return m;
+}
+
+}  // namespace swa::wire

@@ -1,0 +1,71 @@
+#pragma once
+// One PX4 v1.15 autopilot as its offboard interface behaves, for swa_sim with vehicle.interface = px4 (the node
+// publishes its vehicle_attitude and vehicle_status, and feeds it what arrives on /fmu/in). Pure: no DDS, time is the
+// simulation time a message arrived at.
+//
+// What is modelled (PX4's offboard rules, ROS2-PX4-NOTES.md):
+//   - it starts armed, hovering in Hold (nav_state AUTO_LOITER): the scenario starts airborne, before the swarm's
+//     offboard control is switched on;
+//   - the offboard signal is fresh while an offboard_control_mode arrived within COM_OF_LOSS_T;
+//   - VEHICLE_CMD_DO_SET_MODE to the custom main mode OFFBOARD is accepted only while the signal is fresh (else
+//     temporarily rejected); arming is accepted; other commands are unsupported;
+//   - in OFFBOARD it flies the newest trajectory_setpoint's horizontal velocity while the signal is fresh, the control
+//     mode is velocity and the setpoint is velocity-only (position NaN); a setpoint with a position, or a control mode
+//     other than velocity, is not simulated: the vehicle holds and says so once;
+//   - the signal lost in OFFBOARD is PX4's offboard-loss failsafe: Hold (nav_state AUTO_LOITER, failsafe set), until
+//     offboard is requested again (the vehicle does not return to OFFBOARD by itself).
+// "Hold" here is zero velocity command, the simulator's own hover (PX4's COM_OBL_RC_ACT default, Position mode, also
+// holds position when the sticks are centred).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swa/agent/samples.h"
+#include "swa/px4/frames.h"
+
+namespace swa::sim {
+
+class Px4Standin {
+ public:
+  // `offboard_loss_timeout_s`: PX4's COM_OF_LOSS_T.
+  explicit Px4Standin(double offboard_loss_timeout_s);
+
+  void offboardControlMode(agent::StampNs now, bool velocity_control);
+  void trajectorySetpoint(const px4::NedVelocity& velocity, bool velocity_only);
+  // A VehicleCommand: its VehicleCommandAck result (0 accepted, 1 temporarily rejected, 3 unsupported).
+  std::uint8_t vehicleCommand(agent::StampNs now, std::uint32_t command, float param1, float param2);
+
+  struct Decision {
+    agent::Vec2 velocity_mps = agent::Vec2::Zero();  // stable frame (x east, y north)
+    bool following = false;                          // flying the offboard setpoint (false: holding)
+  };
+  // What the vehicle flies at `now`, and what changed (offboard lost, engaged, an unsimulated setpoint) since the
+  // last call, for the scenario's events.
+  Decision step(agent::StampNs now);
+  std::vector<std::string> takeEvents();
+
+  std::uint8_t armingState() const { return arming_state_; }
+  std::uint8_t navState() const { return nav_state_; }
+  bool failsafe() const { return failsafe_; }
+  // How long the offboard signal had been silent when it was last lost [s] (the value of the failsafe event).
+  double lostAfterS() const { return lost_after_s_; }
+
+ private:
+  bool signalFresh(agent::StampNs now) const;
+
+  agent::StampNs loss_timeout_ns_;
+  std::uint8_t arming_state_;
+  std::uint8_t nav_state_;
+  bool failsafe_ = false;
+  std::optional<agent::StampNs> last_heartbeat_ns_;
+  bool velocity_control_ = false;
+  std::optional<px4::NedVelocity> setpoint_;
+  bool setpoint_velocity_only_ = true;
+  bool unsimulated_reported_ = false;
+  double lost_after_s_ = 0.0;
+  std::vector<std::string> events_;
+};
+
+}  // namespace swa::sim

@@ -1,0 +1,159 @@
+#include "px4_vehicles.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
+
+#include "swa/dds/topics.h"
+#include "swa/px4/frames.h"
+#include "swa/wire/px4.h"
+
+namespace swa::sim_node {
+namespace {
+
+namespace topics = dds::topics;
+constexpr std::size_t kRecentSamples = 256;            // attitude samples whose seq an answer can still find
+constexpr agent::StampNs kStatusPeriodNs = 200'000'000;  // vehicle_status at 5 Hz, as PX4 sends it
+
+}  // namespace
+
+Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, double com_of_loss_t_s) {
+  vehicles_.reserve(static_cast<std::size_t>(uav_count));
+  for (int i = 0; i < uav_count; ++i) {
+    Vehicle& v = vehicles_.emplace_back(com_of_loss_t_s);
+    v.ns = topics::px4Namespace(i);
+    v.attitude = participant.writer<px4_msgs::msg::VehicleAttitudePubSubType>(
+        topics::px4Out(v.ns, "vehicle_attitude"), "px4_out_writer");
+    v.status = participant.writer<px4_msgs::msg::VehicleStatusPubSubType>(topics::px4Out(v.ns, "vehicle_status"),
+                                                                           "px4_out_writer");
+    v.ack = participant.writer<px4_msgs::msg::VehicleCommandAckPubSubType>(
+        topics::px4Out(v.ns, "vehicle_command_ack"), "px4_out_writer");
+    const auto arrive = [this, i](auto&& m, const dds::WriterGuid& w) {
+      queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
+    };
+    v.setpoint = participant.readerWithOrigin<px4_msgs::msg::TrajectorySetpointPubSubType>(
+        topics::px4In(v.ns, "trajectory_setpoint"), "px4_in_reader", arrive);
+    v.mode = participant.readerWithOrigin<px4_msgs::msg::OffboardControlModePubSubType>(
+        topics::px4In(v.ns, "offboard_control_mode"), "px4_in_reader", arrive);
+    v.command = participant.readerWithOrigin<px4_msgs::msg::VehicleCommandPubSubType>(
+        topics::px4In(v.ns, "vehicle_command"), "px4_in_reader", arrive);
+    publishStatus(i, v, 0);  // TRANSIENT_LOCAL: a bridge that starts later learns the state at once
+  }
+}
+
+void Px4Vehicles::unmatched(int uav, std::vector<std::string>& missing) const {
+  const Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  if (v.attitude.matched() < 1) missing.push_back(topics::px4Out(v.ns, "vehicle_attitude") + " (no bridge reading)");
+  if (v.setpoint.matched() < 1) missing.push_back(topics::px4In(v.ns, "trajectory_setpoint") + " (no bridge writing)");
+  if (v.mode.matched() < 1) missing.push_back(topics::px4In(v.ns, "offboard_control_mode") + " (no bridge writing)");
+}
+
+bool Px4Vehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) {
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(s.stamp_ns);
+  if (!timestamp) return false;
+  const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({s.roll_rad, s.pitch_rad, s.heading_rad}));
+  px4_msgs::msg::VehicleAttitude m = wire::vehicleAttitude(*timestamp, q);
+  v.published.push_back({s.stamp_ns, seq, false});
+  if (v.published.size() > kRecentSamples) v.published.pop_front();
+  return v.attitude.write(m);
+}
+
+void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now, const AdmitFn& admit) {
+  arrived_.clear();
+  queue_.drain(arrived_, wait);
+  for (Arrival& a : arrived_) {
+    Vehicle& v = vehicles_[static_cast<std::size_t>(a.uav)];
+    if (const auto* sp = std::get_if<px4_msgs::msg::TrajectorySetpoint>(&a.message)) {
+      const px4::NedVelocity ned = wire::velocityOf(*sp);
+      const agent::Vec2 stable = px4::stableOf(ned);
+      Answer answer;
+      answer.uav = a.uav;
+      answer.received = a.received;
+      answer.writer = a.writer;
+      answer.velocity_only = wire::isVelocityOnly(*sp);
+      answer.setpoint.uav_id(static_cast<std::uint32_t>(a.uav));
+      answer.setpoint.vx_mps(stable.x());
+      answer.setpoint.vy_mps(stable.y());
+      const std::optional<agent::StampNs> answered = px4::stampNsOf(sp->timestamp());
+      const auto sample = std::find_if(v.published.begin(), v.published.end(), [&](const Vehicle::Sample& p) {
+        return answered && p.stamp_ns == *answered && !p.answered;
+      });
+      if (sample == v.published.end()) {
+        // The bridge's own setpoint (or a repeat): it answers no sample the vehicle is waiting for.
+        if (admit(answer)) v.standin.trajectorySetpoint(ned, answer.velocity_only);
+        continue;
+      }
+      sample->answered = true;
+      answer.setpoint.answered_stamp_ns(*answered);
+      answer.setpoint.header().stamp_ns(*answered);
+      answer.setpoint.answered_seq(sample->seq);
+      answers.push_back(std::move(answer));
+    } else if (const auto* mode = std::get_if<px4_msgs::msg::OffboardControlMode>(&a.message)) {
+      v.standin.offboardControlMode(now, wire::isVelocityControl(*mode));
+    } else if (const auto* cmd = std::get_if<px4_msgs::msg::VehicleCommand>(&a.message)) {
+      px4_msgs::msg::VehicleCommandAck ack;
+      ack.timestamp(px4::timestampUsOf(now).value_or(0));
+      ack.command(cmd->command());
+      ack.result(v.standin.vehicleCommand(now, cmd->command(), cmd->param1(), cmd->param2()));
+      ack.target_system(cmd->source_system());
+      ack.target_component(cmd->source_component());
+      ack.from_external(false);
+      v.ack.write(ack);
+      ++acks_;
+    }
+  }
+}
+
+void Px4Vehicles::apply(const Answer& a) {
+  vehicles_.at(static_cast<std::size_t>(a.uav))
+      .standin.trajectorySetpoint(px4::nedOf(agent::Vec2(a.setpoint.vx_mps(), a.setpoint.vy_mps())),
+                                  a.velocity_only);
+}
+
+void Px4Vehicles::step(sim::World& world, const EventFn& event) {
+  const agent::StampNs now = world.time_ns();
+  for (std::size_t k = 0; k < vehicles_.size(); ++k) {
+    Vehicle& v = vehicles_[k];
+    const int uav = static_cast<int>(k);
+    const sim::Px4Standin::Decision d = v.standin.step(now);
+    agent::VelocityCommand command;
+    command.stamp_ns = now;
+    command.velocity_mps = d.velocity_mps;
+    command.fresh = true;
+    world.command(uav, command);
+    for (const std::string& text : v.standin.takeEvents()) {
+      event(uav, v.standin.failsafe() ? v.standin.lostAfterS() : 0.0, "PX4 stand-in " + v.ns + ": " + text);
+    }
+    publishStatus(uav, v, now);
+  }
+}
+
+void Px4Vehicles::publishStatus(int uav, Vehicle& v, agent::StampNs now) {
+  const sim::Px4Standin& s = v.standin;
+  const bool changed = s.navState() != v.status_sent_nav || s.armingState() != v.status_sent_arming;
+  if (!changed && now - v.status_sent_at < kStatusPeriodNs) return;
+  px4_msgs::msg::VehicleStatus m;
+  m.timestamp(px4::timestampUsOf(now).value_or(0));
+  m.arming_state(s.armingState());
+  m.nav_state(s.navState());
+  m.nav_state_user_intention(s.navState());
+  m.nav_state_timestamp(m.timestamp());
+  m.failsafe(s.failsafe());
+  m.vehicle_type(1);  // rotary wing
+  m.system_id(static_cast<std::uint8_t>(uav + 1));
+  m.component_id(1);
+  m.pre_flight_checks_pass(true);
+  v.status.write(m);
+  v.status_sent_nav = s.navState();
+  v.status_sent_arming = s.armingState();
+  v.status_sent_at = now;
+}
+
+}  // namespace swa::sim_node

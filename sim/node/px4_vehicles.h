@@ -1,0 +1,100 @@
+#pragma once
+// swa_sim's UAVs as PX4 v1.15 autopilots (vehicle.interface = px4): for each UAV, under PX4's topics of the namespace
+// px4_<i>, the simulator publishes vehicle_attitude (its IMU sample as PX4's quaternion, stamped on the vehicle's clock
+// = simulation time) and vehicle_status, reads trajectory_setpoint, offboard_control_mode and vehicle_command with
+// PX4's QoS, and lets a stand-in (swa/sim/px4_standin.h) decide what the vehicle flies. The agents are reached through
+// one swa_px4_bridge each; detections and GNSS still go to the agents on SWA's topics.
+// The first trajectory_setpoint stamped with a recent attitude sample's timestamp is that sample's answer: it goes to
+// the drivers' lockstep / realtime rules like an agent's cmd_vel (answer.h). The bridge's own setpoints (zero velocity
+// for a stale agent, stamped like the last answer), heartbeats and commands go to the stand-in at once.
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <swa/px4/OffboardControlMode_v1_15.h>
+#include <swa/px4/TrajectorySetpoint_v1_15.h>
+#include <swa/px4/VehicleAttitude_v1_15.h>
+#include <swa/px4/VehicleCommandAck_v1_15.h>
+#include <swa/px4/VehicleCommand_v1_15.h>
+#include <swa/px4/VehicleStatus_v1_15.h>
+
+#include "answer.h"
+#include "swa/dds/participant.h"
+#include "swa/dds/sample_queue.h"
+#include "swa/sim/px4_standin.h"
+#include "swa/sim/world.h"
+
+namespace swa::sim_node {
+
+class Px4Vehicles {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // Whether a setpoint comes from its UAV's one commander (command_gate.h), counted by the caller.
+  using AdmitFn = std::function<bool(const Answer&)>;
+  // A stand-in's event (offboard lost, engaged, ...): UAV, value, text.
+  using EventFn = std::function<void(int uav, double value, const std::string& text)>;
+
+  // Creates every UAV's PX4 endpoints on `participant` (which must outlive this). Throws swa::dds::DdsError.
+  Px4Vehicles(dds::Participant& participant, int uav_count, double com_of_loss_t_s);
+
+  // UAV `uav`'s PX4 endpoints the bridge has not matched yet, appended to `missing`.
+  void unmatched(int uav, std::vector<std::string>& missing) const;
+
+  // UAV `uav`'s IMU sample as PX4's vehicle_attitude. False if the middleware refused it.
+  bool publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq);
+
+  // Waits up to `wait` for what the bridges sent, at simulation time `now`: answers are appended to `answers`; the
+  // rest goes to the stand-ins (the bridges' own setpoints only if `admit`).
+  void drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now, const AdmitFn& admit);
+  // An answer the driver applies: the vehicle's newest setpoint.
+  void apply(const Answer& a);
+  // Before the world steps from `now`: each vehicle's decision commanded to the world, vehicle_status when it changed
+  // (and at 5 Hz), the stand-ins' events.
+  void step(sim::World& world, const EventFn& event);
+
+  std::uint64_t commandsAcknowledged() const { return acks_; }
+
+ private:
+  using Input = std::variant<px4_msgs::msg::TrajectorySetpoint, px4_msgs::msg::OffboardControlMode,
+                             px4_msgs::msg::VehicleCommand>;
+  struct Arrival {
+    int uav = 0;
+    Input message;
+    Clock::time_point received;
+    dds::WriterGuid writer{};
+  };
+  struct Vehicle {
+    explicit Vehicle(double com_of_loss_t_s) : standin(com_of_loss_t_s) {}
+    sim::Px4Standin standin;
+    dds::Writer<px4_msgs::msg::VehicleAttitude> attitude;
+    dds::Writer<px4_msgs::msg::VehicleStatus> status;
+    dds::Writer<px4_msgs::msg::VehicleCommandAck> ack;
+    dds::Reader<px4_msgs::msg::TrajectorySetpoint> setpoint;
+    dds::Reader<px4_msgs::msg::OffboardControlMode> mode;
+    dds::Reader<px4_msgs::msg::VehicleCommand> command;
+    struct Sample {
+      agent::StampNs stamp_ns = 0;
+      std::uint32_t seq = 0;
+      bool answered = false;
+    };
+    std::deque<Sample> published;  // recent attitude samples
+    std::string ns;
+    std::uint8_t status_sent_nav = 255, status_sent_arming = 255;
+    agent::StampNs status_sent_at = 0;
+  };
+
+  void publishStatus(int uav, Vehicle& v, agent::StampNs now);
+
+  dds::SampleQueue<Arrival> queue_;  // declared before the vehicles' readers are made, outlives their listeners' use
+  std::vector<Vehicle> vehicles_;
+  std::vector<Arrival> arrived_;
+  std::uint64_t acks_ = 0;
+};
+
+}  // namespace swa::sim_node
