@@ -38,9 +38,12 @@ int Launch::run() {
       if (stop_) break;
       outcomes.push_back(superviseRun(o_, bin_, domain_, spec, stop_));
       const RunOutcome& r = outcomes.back();
-      std::printf("swa_launch [%s]: %s%s; %d agent restart(s); %s\n", spec.label.c_str(),
+      const std::string bridges = spec.scenario.vehicle.interface == sim::VehicleInterface::kPx4
+                                      ? ", " + std::to_string(r.bridge_restarts) + " bridge restart(s)"
+                                      : "";
+      std::printf("swa_launch [%s]: %s%s; %d agent restart(s)%s; %s\n", spec.label.c_str(),
                   r.verdict.empty() ? "no verdict" : r.verdict.c_str(), r.interrupted ? " (interrupted)" : "",
-                  r.restarts, (spec.dir / "report.html").c_str());
+                  r.restarts, bridges.c_str(), (spec.dir / "report.html").c_str());
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "swa_launch: %s\n", e.what());

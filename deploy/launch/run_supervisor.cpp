@@ -184,7 +184,7 @@ class Supervisor {
       if (Clock::now() < *p.restart_due) continue;
       p.restart_due.reset();
       ++p.restarts;
-      ++outcome_.restarts;
+      ++(p.bridge ? outcome_.bridge_restarts : outcome_.restarts);
       std::ofstream(logs_ / "restarts.csv", std::ios::app) << secondsSince(t0_) << ',' << p.subject() << ','
                                                            << p.last_exit << ',' << p.restarts << ','
                                                            << p.last_backoff << '\n';

@@ -8,6 +8,7 @@
 // prefix, not by name, so two processes claiming the same name are still audited against each other.
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -31,16 +32,20 @@ struct Endpoint {
 };
 
 constexpr const char* kAgentNamePrefix = "swa_agent_";
+constexpr const char* kBridgeNamePrefix = "swa_bridge_";
 
-// The UAV index of a participant named swa_agent_<I> (I in decimal as std::to_string writes it); nullopt otherwise.
-inline std::optional<int> agentIndex(const std::string& participant_name) {
-  const std::string prefix = kAgentNamePrefix;
+// The UAV index of a participant named <prefix><I> (I in decimal as std::to_string writes it); nullopt otherwise.
+inline std::optional<int> indexAfter(const std::string& participant_name, const std::string& prefix) {
   if (participant_name.rfind(prefix, 0) != 0) return std::nullopt;
   const std::string digits = participant_name.substr(prefix.size());
   if (digits.empty() || digits.size() > 6 || (digits.size() > 1 && digits[0] == '0')) return std::nullopt;
   if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
   return std::stoi(digits);
 }
+
+// The UAV index of a participant named swa_agent_<I>, or of a bridge named swa_bridge_<I>.
+inline std::optional<int> agentIndex(const std::string& name) { return indexAfter(name, kAgentNamePrefix); }
+inline std::optional<int> bridgeIndex(const std::string& name) { return indexAfter(name, kBridgeNamePrefix); }
 
 namespace detail {
 
@@ -151,6 +156,63 @@ inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>&
         problems.push_back(name + " has an unexpected " + kindName(key.first) + " on " + key.second);
       }
     }
+  }
+  return problems;
+}
+
+// The autopilot bridges (swa_px4_bridge, participants swa_bridge_<I>) of a run through PX4: bridge I reads only PX4's
+// rt/<ns_I>/fmu/out/... and swa/uav<I>/cmd_vel, writes only rt/<ns_I>/fmu/in/... and swa/uav<I>/{imu,bridge_state},
+// where ns_I = px4Namespace(I); exactly one participant per bridge 0..bridge_count-1; and no agent reads or writes any
+// PX4 topic. Every breach and every gap, one line each.
+inline std::vector<std::string> auditBridges(const std::vector<Endpoint>& endpoints, int bridge_count,
+                                             const std::function<std::string(int)>& px4Namespace) {
+  std::vector<std::string> problems;
+  std::map<int, std::set<std::string>> guids;
+  std::map<int, std::set<std::pair<EndpointKind, std::string>>> seen;
+  for (const Endpoint& e : endpoints) {
+    if (agentIndex(e.participant) && detail::startsWith(e.topic, "rt/") && e.topic.find("/fmu/") != std::string::npos) {
+      problems.push_back(detail::who(e) + " touches PX4's " + e.topic + ": only its bridge may");
+    }
+    if (detail::startsWith(e.participant, kBridgeNamePrefix) && !bridgeIndex(e.participant)) {
+      problems.push_back(detail::who(e) + " is named like a bridge but not swa_bridge_<I>");
+    }
+    const std::optional<int> id = bridgeIndex(e.participant);
+    if (!id) continue;
+    guids[*id].insert(e.participant_guid);
+    seen[*id].insert({e.kind, e.topic});
+    const std::string out = dds::topics::px4Out(px4Namespace(*id), "");
+    const std::string in = dds::topics::px4In(px4Namespace(*id), "");
+    const bool allowed =
+        e.kind == EndpointKind::kReader
+            ? detail::startsWith(e.topic, out) || e.topic == dds::topics::cmdVel(*id)
+            : detail::startsWith(e.topic, in) || e.topic == dds::topics::imu(*id) ||
+                  e.topic == dds::topics::bridgeState(*id);
+    if (!allowed) {
+      problems.push_back(detail::who(e) + (e.kind == EndpointKind::kReader ? " reads " : " writes ") + e.topic +
+                         ", which is not its vehicle's (" + px4Namespace(*id) + ") nor UAV " + std::to_string(*id) +
+                         "'s");
+    }
+  }
+  for (int id = 0; id < bridge_count; ++id) {
+    const std::string name = kBridgeNamePrefix + std::to_string(id);
+    if (guids[id].size() != 1) {
+      problems.push_back(std::to_string(guids[id].size()) + " participants are named " + name);
+      continue;
+    }
+    const std::string ns = px4Namespace(id);
+    for (const auto& [kind, topic] : std::vector<std::pair<EndpointKind, std::string>>{
+             {EndpointKind::kReader, dds::topics::px4Out(ns, "vehicle_attitude")},
+             {EndpointKind::kReader, dds::topics::cmdVel(id)},
+             {EndpointKind::kWriter, dds::topics::px4In(ns, "trajectory_setpoint")},
+             {EndpointKind::kWriter, dds::topics::px4In(ns, "offboard_control_mode")},
+             {EndpointKind::kWriter, dds::topics::imu(id)}}) {
+      if (seen[id].count({kind, topic}) == 0) {
+        problems.push_back(name + " has no " + (kind == EndpointKind::kReader ? "reader" : "writer") + " on " + topic);
+      }
+    }
+  }
+  for (const auto& [id, g] : guids) {
+    if (id >= bridge_count) problems.push_back(kBridgeNamePrefix + std::to_string(id) + " is not a bridge of this run");
   }
   return problems;
 }

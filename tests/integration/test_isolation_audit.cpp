@@ -177,6 +177,55 @@ TEST(IsolationAudit, NothingDiscoveredIsIncomplete) {
   EXPECT_EQ(auditAgentEndpoints({}, 4).size(), 4u);
 }
 
+// The same swarm through PX4 (swa_launch --vehicle px4): the simulator plays the autopilots, one bridge per UAV.
+std::vector<Endpoint> px4Swarm(int n) {
+  std::vector<Endpoint> e = cleanSwarm(n);
+  for (int i = 0; i < n; ++i) {
+    const std::string bridge = "swa_bridge_" + std::to_string(i);
+    const std::string ns = topics::px4Namespace(i);
+    for (const char* t : {"vehicle_attitude", "vehicle_status", "vehicle_command_ack"}) {
+      e.push_back(ep(kW, "swa_sim", topics::px4Out(ns, t)));
+      e.push_back(ep(kR, bridge, topics::px4Out(ns, t)));
+    }
+    for (const char* t : {"trajectory_setpoint", "offboard_control_mode", "vehicle_command"}) {
+      e.push_back(ep(kR, "swa_sim", topics::px4In(ns, t)));
+      e.push_back(ep(kW, bridge, topics::px4In(ns, t)));
+    }
+    e.push_back(ep(kW, bridge, topics::imu(i)));
+    e.push_back(ep(kR, bridge, topics::cmdVel(i)));
+    e.push_back(ep(kW, bridge, topics::bridgeState(i)));
+  }
+  return e;
+}
+
+TEST(IsolationAudit, BridgesTouchOnlyTheirOwnVehicleAndUav) {
+  // GIVEN what a run through PX4 creates THEN the bridges pass, and the agents' rules still hold
+  const std::vector<Endpoint> clean = px4Swarm(3);
+  EXPECT_TRUE(auditBridges(clean, 3, topics::px4Namespace).empty()) << joined(auditBridges(clean, 3, topics::px4Namespace));
+  EXPECT_TRUE(auditIsolation(clean).empty()) << joined(auditIsolation(clean));
+  // WHEN bridge 1 reads vehicle 2's attitude and writes UAV 2's IMU, agent 0 reads its vehicle's attitude itself,
+  // bridge 2 is missing its setpoint writer, and a second participant calls itself swa_bridge_0
+  std::vector<Endpoint> e = clean;
+  e.push_back(ep(kR, "swa_bridge_1", topics::px4Out(topics::px4Namespace(2), "vehicle_attitude")));
+  e.push_back(ep(kW, "swa_bridge_1", topics::imu(2)));
+  e.push_back(ep(kR, "swa_agent_0", topics::px4Out(topics::px4Namespace(0), "vehicle_attitude")));
+  e.erase(std::remove_if(e.begin(), e.end(),
+                         [](const Endpoint& x) {
+                           return x.participant == "swa_bridge_2" &&
+                                  x.topic == topics::px4In(topics::px4Namespace(2), "trajectory_setpoint");
+                         }),
+          e.end());
+  e.push_back(Endpoint{kR, "swa_bridge_0", "guid-twin", topics::cmdVel(0), "T"});
+  const std::vector<std::string> v = auditBridges(e, 3, topics::px4Namespace);
+  // THEN each is named
+  EXPECT_TRUE(mentions(v, {"swa_bridge_1", "reads rt/px4_2/fmu/out/vehicle_attitude"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_bridge_1", "writes swa/uav2/imu"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_0", "touches PX4's rt/px4_0/fmu/out/vehicle_attitude"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_bridge_2 has no writer on rt/px4_2/fmu/in/trajectory_setpoint"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"2 participants are named swa_bridge_0"})) << joined(v);
+  EXPECT_EQ(v.size(), 5u) << joined(v);
+}
+
 TEST(IsolationAudit, TableListsEveryEndpointSorted) {
   const std::string t = endpointTable({ep(kW, "swa_sim", topics::kTruth), ep(kR, "swa_agent_0", topics::imu(0))});
   EXPECT_LT(t.find("swa_agent_0 [guid-swa_agent_0]  reads   swa/uav0/imu  (T)"), t.find("swa_sim")) << t;

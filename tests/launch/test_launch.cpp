@@ -20,6 +20,7 @@
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 
+#include "../integration/launch_support.h"
 #include "../integration/process_test.h"
 #include "closed_loop.h"
 #include "swa/sim/scenario_io.h"
@@ -32,70 +33,6 @@ namespace {
 
 const std::string kScenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml";
 const std::string kLaunch = SWA_LAUNCH_BINARY;
-
-// The pid of the swa_agent process for `uav` on `domain`, or -1.
-int agentPid(int domain, int uav) {
-  const std::string id = std::string("--id") + '\0' + std::to_string(uav) + '\0';
-  for (int pid : processesOnDomain(domain)) {
-    const std::string cmdline = readFile(fs::path("/proc") / std::to_string(pid) / "cmdline");
-    if (cmdline.find("swa_agent") != std::string::npos && cmdline.find(id) != std::string::npos) return pid;
-  }
-  return -1;
-}
-
-int monitorPid(int domain) {
-  for (int pid : processesOnDomain(domain)) {
-    const std::string cmdline = readFile(fs::path("/proc") / std::to_string(pid) / "cmdline");
-    if (cmdline.find("swa_monitor") != std::string::npos) return pid;
-  }
-  return -1;
-}
-
-// Only to time what a test does to a run: a participant of the test that keeps the newest stamp agent `uav` has
-// published its state for.
-class StateStampWatch {
- public:
-  StateStampWatch(int domain, int uav)
-      : participant_(std::make_unique<dds::Participant>("swa_test_observer", domain, dds::resolveProfilesFile())) {
-    participant_->reader<msg::AgentStatePubSubType>(
-        dds::topics::state(uav), "swa_state_reader",
-        [this](msg::AgentState&& s) {
-          newest_ns_.store(s.header().stamp_ns());
-          // A new agent process numbers its states from 1 again.
-          if (s.header().seq() <= last_seq_) ++new_processes_;
-          last_seq_ = s.header().seq();
-        });
-  }
-
-  // How often the states started again from a new agent process.
-  int newProcessesHeard() const { return new_processes_.load(); }
-
-  // Waits until that stamp reaches `at_ns`, polling every 5 ms, for 60 s at most and only while `launch` runs.
-  // Whether it did.
-  bool waitUntil(long long at_ns, Child& launch) const {
-    const auto deadline = SteadyClock::now() + std::chrono::seconds(60);
-    while (newest_ns_.load() < at_ns && SteadyClock::now() < deadline && !launch.wait(0.0)) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return newest_ns_.load() >= at_ns;
-  }
-
-  // Once that stamp reaches `at_ns` (see waitUntil), SIGKILLs the process `victim` names. The pid killed; -1 when the
-  // stamp never got there, and what `victim` gave (<= 0) when it found no process.
-  int killWhenReached(long long at_ns, Child& launch, const std::function<int()>& victim) const {
-    if (!waitUntil(at_ns, launch)) return -1;
-    const int pid = victim();
-    if (pid > 0) ::kill(pid, SIGKILL);
-    return pid;
-  }
-
- private:
-  // Declared first: they outlive the participant whose listener writes them.
-  std::atomic<long long> newest_ns_{0};
-  std::uint32_t last_seq_ = 0;  // the listener's only
-  std::atomic<int> new_processes_{0};
-  std::unique_ptr<dds::Participant> participant_;
-};
 
 class LaunchTest : public ::testing::Test {
  protected:
