@@ -161,8 +161,10 @@ int AgentNode::run() {
     noteYoungerTwin();
     reportWaiting(matched);
     std::string why;
-    if (handshake_.stalled(stats_.imu > 0, matched[0] > 0, std::chrono::steady_clock::now())) {
-      why = "no reader of " + dds::topics::cmdVel(id_) +
+    // What it needs before it can start: a reader of its commands and a writer of its detections (the simulator, or
+    // the detection source on a drone); through PX4 these are two peers, and either handshake can stall.
+    if (handshake_.stalled(stats_.imu > 0, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now())) {
+      why = "no reader of " + dds::topics::cmdVel(id_) + " or no writer of " + dds::topics::detections(id_) +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {
       why = *lost;

@@ -1,6 +1,7 @@
 #include "bridge_node.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <thread>
 
 #include <swa/msg/BridgeStatePubSubTypes.h>
@@ -29,16 +30,30 @@ constexpr auto kCommandHandover = std::chrono::milliseconds(500);
 
 namespace topics = dds::topics;
 
+// The Participant validates the deployment environment; here only whether security is on matters.
+bool isSecure() {
+  const char* dir = std::getenv("SWA_SECURITY_DIR");
+  return dir != nullptr && *dir != '\0';
+}
+
 }  // namespace
 
 BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::string& profiles_file)
     : id_(options.id),
       ns_(px4Namespace(options)),
       options_(options),
+      domain_id_(domain_id),
+      profiles_file_(profiles_file),
       started_(std::chrono::steady_clock::now()),
       core_(options.core),
-      gate_(1, kCommandHandover) {
-  participant_ = std::make_unique<dds::Participant>("swa_bridge_" + std::to_string(id_), domain_id, profiles_file);
+      gate_(1, kCommandHandover),
+      handshake_(isSecure()) {
+  connect();
+}
+
+void BridgeNode::connect() {
+  participant_ = std::make_unique<dds::Participant>("swa_bridge_" + std::to_string(id_), domain_id_, profiles_file_);
+  handshake_.connected(std::chrono::steady_clock::now());
   dds::Participant& p = *participant_;
   imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), "swa_sensor_writer");
   state_ = p.writer<msg::BridgeStatePubSubType>(topics::bridgeState(id_), "swa_state_writer");
@@ -165,6 +180,7 @@ int BridgeNode::run() {
     std::this_thread::sleep_for(kTickPeriod);
     // Matched-status queries outside mutex_ (a listener may hold its reader's lock while it waits for mutex_).
     const bool reads = setpoint_.matched() > 0 && offboard_.matched() > 0;
+    const bool agent_matched = imu_.matched() > 0 && cmd_reader_.matched() > 0;
     if (participant_->mustGiveWay()) {
       const std::optional<dds::Peer> twin = participant_->twin();
       std::fprintf(stderr,
@@ -173,6 +189,20 @@ int BridgeNode::run() {
                    id_, id_, twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?");
       participant_.reset();
       return kExitTwin;
+    }
+    // A stalled DDS Security handshake with PX4 (or the simulator) or with the agent, before anything flowed
+    // (handshake_watch.h): a new participant.
+    if (handshake_.stalled(core_.counters().attitude_in > 0, reads && agent_matched && attitude_reader_.matched() > 0,
+                           std::chrono::steady_clock::now())) {
+      std::fprintf(stderr,
+                   "swa_px4_bridge %d: PX4's or the agent's endpoints not matched with DDS Security on (a stalled "
+                   "authentication handshake, see deploy/README.md): re-creating the participant (reconnection %d)\n",
+                   id_, handshake_.reconnects());
+      participant_.reset();  // waits for the listeners, which take mutex_: not held here
+      connect();
+      const std::lock_guard<std::mutex> lock(mutex_);
+      px4_reads_ = false;  // the new writers must match PX4 again before anything is forwarded
+      continue;
     }
     const std::lock_guard<std::mutex> lock(mutex_);
     if (reads && !px4_reads_) {

@@ -28,6 +28,7 @@
 #include "bridge_options.h"
 #include "swa/app/program.h"
 #include "swa/dds/command_gate.h"
+#include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/px4/bridge_core.h"
 
@@ -45,6 +46,7 @@ class BridgeNode : public app::Role {
   void stop() override { stop_requested_ = true; }
 
  private:
+  void connect();  // creates the participant and the endpoints
   double nowS() const;
   void onAttitude(px4_msgs::msg::VehicleAttitude&& m);
   void onStatus(px4_msgs::msg::VehicleStatus&& m);
@@ -59,6 +61,8 @@ class BridgeNode : public app::Role {
   const int id_;
   const std::string ns_;
   const BridgeOptions options_;
+  const int domain_id_;
+  const std::string profiles_file_;
   const std::chrono::steady_clock::time_point started_;
 
   std::mutex mutex_;  // guards everything below but the DDS handles
@@ -71,6 +75,7 @@ class BridgeNode : public app::Role {
   std::string last_event_;
   std::chrono::steady_clock::time_point last_state_{};
   std::atomic<bool> stop_requested_{false};
+  dds::HandshakeWatch handshake_;
 
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::Imu> imu_;

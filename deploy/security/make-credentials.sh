@@ -28,12 +28,19 @@ domain may join; every topic's data and submessages are encrypted, and so is end
 reading or writing a topic needs a permissions grant.
 Permissions (default DENY, nothing else is allowed):
   swa_agent_<I>  reads swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/clock;
-                 writes swa/uav<I>/cmd_vel, swa/uav<I>/state
+                 writes swa/uav<I>/cmd_vel, swa/uav<I>/state (and swa/uav<I>/cmd_vel_stamped with --naming ros2)
   swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/truth, swa/events, swa/clock;
-                 reads swa/uav*/cmd_vel
+                 reads swa/uav*/cmd_vel; as every UAV's PX4 stand-in (vehicle.interface=px4) writes
+                 rt/<P>*/fmu/out/vehicle_attitude, vehicle_status, vehicle_command_ack and reads
+                 rt/<P>*/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command
   swa_monitor    reads swa/truth, swa/events, swa/uav*/state
-  swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I on a real drone, in place of the simulator:
-                 writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss; reads swa/uav<I>/cmd_vel
+  swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I (swa_px4_bridge, or a bridge of your own):
+                 writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and
+                 rt/<P><I>/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command;
+                 reads swa/uav<I>/cmd_vel and rt/<P><I>/fmu/out/vehicle_attitude, vehicle_status,
+                 vehicle_command_ack
+<P> is the PX4 namespace prefix (--px4-prefix, default px4_: UAV I's PX4 runs uxrce_dds_client with -n px4_<I>).
+With --naming ros2 every swa/... topic above is rt/[<NS>/]swa/... (SWA_NAMING=ros2, SWA_ROS_NAMESPACE=<NS>).
 
 Options:
   --days D        validity of identities and permissions in days (default 365)
@@ -41,6 +48,9 @@ Options:
   --domains A-B   DDS domain ids covered by governance and permissions, A-B or one id (default 0-$MAX_DOMAIN)
   --org NAME      organisation in every subject, O=NAME (default SWA; letters, digits, space, . _ -)
   --bridges       also swa_bridge_0 .. swa_bridge_<N-1>, one identity per UAV's autopilot bridge
+  --px4-prefix P  PX4 namespaces are P<I> (default px4_, as swa_px4_bridge and swa_sim assume)
+  --naming N      swa (default) or ros2: the topic names of SWA_NAMING the swarm runs with
+  --ros-namespace NS  with --naming ros2: the SWA_ROS_NAMESPACE the swarm runs with
   --reuse-ca      DIR already holds credentials: keep its CA (ca.pem, ca/key.pem) and issue everything else
                   anew (rotation: drones keep their ca.pem, get new cert/key/permissions and governance)
   --force         DIR already holds credentials: replace all of them, CA included (every participant then
@@ -82,6 +92,9 @@ in_range() { [[ $1 =~ ^[0-9]{1,9}$ ]] && ((10#$1 >= $2 && 10#$1 <= $3)); }
 
 # Globals set by parse_args.
 DIR='' N='' DAYS=365 CA_DAYS=3650 DOMAIN_MIN=0 DOMAIN_MAX=$MAX_DOMAIN ORG=SWA MODE=new BRIDGES=false
+PX4_PREFIX=px4_ NAMING=swa ROS_NS=''
+# The DDS names of SWA's topics (deploy/dds/include/swa/dds/naming.h): "swa/" or, in the ros2 naming, "rt/[NS/]swa/".
+SWA_ROOT=swa/
 
 parse_args() {
   local positional=()
@@ -91,13 +104,16 @@ parse_args() {
         usage
         exit 0
         ;;
-      --days | --ca-days | --domains | --org)
+      --days | --ca-days | --domains | --org | --px4-prefix | --naming | --ros-namespace)
         (($# >= 2)) || usage_error "$1 needs a value"
         case $1 in
           --days) DAYS=$2 ;;
           --ca-days) CA_DAYS=$2 ;;
           --domains) parse_domains "$2" ;;
           --org) ORG=$2 ;;
+          --px4-prefix) PX4_PREFIX=$2 ;;
+          --naming) NAMING=$2 ;;
+          --ros-namespace) ROS_NS=${2#/} ;;
         esac
         shift 2
         ;;
@@ -133,6 +149,22 @@ parse_args() {
   DAYS=$((10#$DAYS)) CA_DAYS=$((10#$CA_DAYS))
   # Subjects go into -subj and into XML unescaped: only characters that need no escaping in either.
   [[ $ORG =~ ^[A-Za-z0-9][A-Za-z0-9\ ._-]*$ ]] || usage_error "--org '$ORG': use letters, digits, space, . _ -"
+  # ROS name tokens (what swa_px4_bridge --px4-namespace and SWA_ROS_NAMESPACE accept).
+  [[ $PX4_PREFIX =~ ^[A-Za-z_][A-Za-z0-9_]*$ && $PX4_PREFIX != *__* ]] ||
+    usage_error "--px4-prefix '$PX4_PREFIX': letters, digits and '_', not starting with a digit, no '__'"
+  case $NAMING in
+    swa) [[ -z $ROS_NS ]] || usage_error "--ros-namespace needs --naming ros2" ;;
+    ros2)
+      if [[ -n $ROS_NS ]]; then
+        [[ $ROS_NS =~ ^[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*$ && $ROS_NS != *__* ]] ||
+          usage_error "--ros-namespace '$ROS_NS' is not a ROS namespace (tokens of letters, digits, '_' and '/')"
+        SWA_ROOT=rt/$ROS_NS/swa/
+      else
+        SWA_ROOT=rt/swa/
+      fi
+      ;;
+    *) usage_error "--naming '$NAMING' is not swa or ros2" ;;
+  esac
 }
 
 parse_domains() {
@@ -301,28 +333,39 @@ topics_xml() {
 }
 
 # The topics of each role, from deploy/dds/include/swa/dds/topics.h and the nodes (sim/node, agent/node,
-# monitor/node). fnmatch patterns: uav* stands for every UAV index.
+# agent/px4_bridge, monitor/node). fnmatch patterns: uav* stands for every UAV index, $PX4_PREFIX* for every vehicle.
+px4_out() { echo "rt/$1/fmu/out/vehicle_attitude rt/$1/fmu/out/vehicle_status rt/$1/fmu/out/vehicle_command_ack"; }
+px4_in() { echo "rt/$1/fmu/in/trajectory_setpoint rt/$1/fmu/in/offboard_control_mode rt/$1/fmu/in/vehicle_command"; }
+
 publishes() {
+  local r=$SWA_ROOT
   case $1 in
-    swa_sim) echo 'swa/uav*/imu swa/uav*/detections swa/uav*/gnss swa/truth swa/events swa/clock' ;;
+    swa_sim) echo "${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss ${r}truth ${r}events ${r}clock $(px4_out "$PX4_PREFIX*")" ;;
     swa_monitor) echo '' ;;
-    swa_agent_*) echo "swa/uav${1#swa_agent_}/cmd_vel swa/uav${1#swa_agent_}/state" ;;
+    swa_agent_*)
+      local i=${1#swa_agent_}
+      echo "${r}uav$i/cmd_vel ${r}uav$i/state$([[ $NAMING == ros2 ]] && echo " ${r}uav$i/cmd_vel_stamped")"
+      ;;
     swa_bridge_*)
       local i=${1#swa_bridge_}
-      echo "swa/uav$i/imu swa/uav$i/detections swa/uav$i/gnss"
+      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}uav$i/bridge_state $(px4_in "$PX4_PREFIX$i")"
       ;;
   esac
 }
 
 subscribes() {
+  local r=$SWA_ROOT
   case $1 in
-    swa_sim) echo 'swa/uav*/cmd_vel' ;;
-    swa_monitor) echo 'swa/truth swa/events swa/uav*/state' ;;
+    swa_sim) echo "${r}uav*/cmd_vel $(px4_in "$PX4_PREFIX*")" ;;
+    swa_monitor) echo "${r}truth ${r}events ${r}uav*/state" ;;
     swa_agent_*)
       local i=${1#swa_agent_}
-      echo "swa/uav$i/imu swa/uav$i/detections swa/uav$i/gnss swa/clock"
+      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}clock"
       ;;
-    swa_bridge_*) echo "swa/uav${1#swa_bridge_}/cmd_vel" ;;
+    swa_bridge_*)
+      local i=${1#swa_bridge_}
+      echo "${r}uav$i/cmd_vel $(px4_out "$PX4_PREFIX$i")"
+      ;;
   esac
 }
 
@@ -434,7 +477,7 @@ main() {
   local what="new CA"
   [[ $MODE == reuse-ca ]] && what="CA kept"
   echo "$PROG: $DIR: $what, governance for domains $DOMAIN_MIN-$DOMAIN_MAX, swa_sim, swa_monitor," \
-    "swa_agent_0..$((N - 1))$($BRIDGES && echo ", swa_bridge_0..$((N - 1))");" \
+    "swa_agent_0..$((N - 1))$($BRIDGES && echo ", swa_bridge_0..$((N - 1))"), $NAMING naming;" \
     "identities and permissions valid until $not_after UTC"
 }
 

@@ -125,10 +125,13 @@ test_layout_and_documents() {
   check "agent 1 subscribes only its sensors and the clock" \
     test "$(granted "$d/swa_agent_1/permissions.xml" subscribe)" = \
     "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/clock)"
-  check "sim publishes sensors, truth, events, clock" test "$(granted "$d/swa_sim/permissions.xml" publish)" = \
-    "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' swa/truth swa/events swa/clock)"
-  check "sim subscribes commands only" test "$(granted "$d/swa_sim/permissions.xml" subscribe)" = \
-    "$(sorted 'swa/uav*/cmd_vel')"
+  check "sim publishes sensors, truth, events, clock, and PX4's outputs as every UAV's PX4" \
+    test "$(granted "$d/swa_sim/permissions.xml" publish)" = \
+    "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' swa/truth swa/events swa/clock \
+      'rt/px4_*/fmu/out/vehicle_attitude' 'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_command_ack')"
+  check "sim subscribes commands and PX4's inputs only" test "$(granted "$d/swa_sim/permissions.xml" subscribe)" = \
+    "$(sorted 'swa/uav*/cmd_vel' 'rt/px4_*/fmu/in/trajectory_setpoint' 'rt/px4_*/fmu/in/offboard_control_mode' \
+      'rt/px4_*/fmu/in/vehicle_command')"
   check "monitor publishes nothing" test -z "$(granted "$d/swa_monitor/permissions.xml" publish)"
   check "monitor subscribes truth, events, states" test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = \
     "$(sorted swa/truth swa/events 'swa/uav*/state')"
@@ -175,6 +178,34 @@ test_overwrite_rules() {
   check "... is left alone" test "$(ls -A "$WORK/foreign")" = file
 }
 
+test_bridges_and_naming() {
+  local d=$WORK/bridges
+  expect_status 0 "--bridges --px4-prefix drone_" bash "$SCRIPT" --bridges --px4-prefix drone_ "$d" 2
+  check "bridge 1 publishes UAV 1's sensors, its diagnostics and its own vehicle's PX4 inputs" \
+    test "$(granted "$d/swa_bridge_1/permissions.xml" publish)" = \
+    "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/uav1/bridge_state \
+      rt/drone_1/fmu/in/trajectory_setpoint rt/drone_1/fmu/in/offboard_control_mode rt/drone_1/fmu/in/vehicle_command)"
+  check "bridge 1 subscribes UAV 1's commands and its own vehicle's PX4 outputs" \
+    test "$(granted "$d/swa_bridge_1/permissions.xml" subscribe)" = \
+    "$(sorted swa/uav1/cmd_vel rt/drone_1/fmu/out/vehicle_attitude rt/drone_1/fmu/out/vehicle_status \
+      rt/drone_1/fmu/out/vehicle_command_ack)"
+  check "the simulator plays every drone_<I>" grep -q "<topic>rt/drone_\*/fmu/out/vehicle_attitude</topic>" \
+    "$d/swa_sim/permissions.xml"
+
+  d=$WORK/ros2
+  expect_status 0 "--naming ros2 --ros-namespace /lab/a" bash "$SCRIPT" --naming ros2 --ros-namespace /lab/a "$d" 1
+  check "agent 0 publishes under the ROS mapping, cmd_vel_stamped too" \
+    test "$(granted "$d/swa_agent_0/permissions.xml" publish)" = \
+    "$(sorted rt/lab/a/swa/uav0/cmd_vel rt/lab/a/swa/uav0/state rt/lab/a/swa/uav0/cmd_vel_stamped)"
+  check "monitor subscribes under the ROS mapping" test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = \
+    "$(sorted rt/lab/a/swa/truth rt/lab/a/swa/events 'rt/lab/a/swa/uav*/state')"
+  expect_status 2 "--ros-namespace without --naming ros2" bash "$SCRIPT" --ros-namespace a "$WORK/b" 1
+  expect_status 2 "--naming other" bash "$SCRIPT" --naming ros "$WORK/b" 1
+  expect_status 2 "--ros-namespace with a '-'" bash "$SCRIPT" --naming ros2 --ros-namespace team-a "$WORK/b" 1
+  expect_status 2 "--px4-prefix with a '/'" bash "$SCRIPT" --px4-prefix a/b "$WORK/b" 1
+  check "refused options create nothing" test ! -e "$WORK/b"
+}
+
 test_options() {
   local d=$WORK/opts
   expect_status 0 "--domains 7 --days 2 --org Test" bash "$SCRIPT" --domains 7 --days 2 --org "Test Lab" "$d" 1
@@ -206,6 +237,7 @@ main() {
   test_arguments
   test_layout_and_documents
   test_overwrite_rules
+  test_bridges_and_naming
   test_options
 
   echo "$PROG: $((CHECKS - FAILURES)) of $CHECKS checks passed"

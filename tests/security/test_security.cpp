@@ -23,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/BridgeStatePubSubTypes.h>
 #include <swa/msg/ClockPubSubTypes.h>
 #include <swa/msg/DetectionsPubSubTypes.h>
 #include <swa/msg/GnssFixPubSubTypes.h>
@@ -30,6 +31,10 @@
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
+#include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 
 #include "../integration/process_test.h"
 #include "swa/dds/options.h"
@@ -138,6 +143,25 @@ void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
   if (topic == dds::topics::kClock) {
     return createWith<msg::ClockPubSubType>(p, kind, topic, "swa_clock_writer", "swa_clock_reader");
   }
+  if (endsWith(topic, "/bridge_state")) {
+    return createWith<msg::BridgeStatePubSubType>(p, kind, topic, "swa_state_writer", "swa_state_reader");
+  }
+  // PX4's topics (the bridge's and the simulator's PX4 stand-in's), with PX4's QoS.
+  const bool out = topic.find("/fmu/out/") != std::string::npos;
+  const char* writer = out ? "px4_out_writer" : "px4_in_writer";
+  const char* reader = out ? "px4_out_reader" : "px4_in_reader";
+  if (endsWith(topic, "/vehicle_attitude")) {
+    return createWith<px4_msgs::msg::VehicleAttitudePubSubType>(p, kind, topic, writer, reader);
+  }
+  if (endsWith(topic, "/vehicle_status")) {
+    return createWith<px4_msgs::msg::VehicleStatusPubSubType>(p, kind, topic, writer, reader);
+  }
+  if (endsWith(topic, "/trajectory_setpoint")) {
+    return createWith<px4_msgs::msg::TrajectorySetpointPubSubType>(p, kind, topic, writer, reader);
+  }
+  if (endsWith(topic, "/offboard_control_mode")) {
+    return createWith<px4_msgs::msg::OffboardControlModePubSubType>(p, kind, topic, writer, reader);
+  }
   throw std::logic_error("test bug: no type for topic " + topic);
 }
 
@@ -235,6 +259,30 @@ TEST_F(SecurityTest, SecureLaunchStaysCohesive) {
   expectNothingLeft();
 }
 
+// (a') The same through PX4: swa_launch --secure --vehicle px4, the simulator as every UAV's PX4 and one bridge per
+// agent with its own credentials (make-credentials.sh --bridges): the bridges' permissions cover their topics.
+TEST_F(SecurityTest, SecureLaunchThroughPx4StaysCohesive) {
+  const fs::path out = dir_ / "out";
+  const auto t0 = SteadyClock::now();
+  Child launch({kLaunch, "--secure", creds_.string(), "--vehicle", "px4", "--scenario", kScenario, "--set",
+                "duration_s=30", "--domain", std::to_string(domain_), "--out", out.string(), "--timeout-s", "150"},
+               dir_ / "launch.log");
+  const auto status = launch.wait(170.0);
+  std::cout << "secure swa_launch through PX4, dropout_4, 30 s simulated: " << secondsSince(t0) << " s wall\n";
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 0) << log << allLogs(out / "logs");
+  const std::string summary = readFile(out / "summary.json");
+  EXPECT_NEAR(jsonNumber(summary, "mean_neighbor_distance_m"), 10.0, 1.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0) << summary;
+  // Every vehicle engaged offboard: each bridge reached its PX4 and its agent through the secured topics.
+  const std::string events = readFile(out / "events.csv");
+  for (int i = 0; i < kUavs; ++i) {
+    EXPECT_NE(events.find("PX4 stand-in " + dds::topics::px4Namespace(i) + ": OFFBOARD"), std::string::npos) << events;
+  }
+  expectNothingLeft();
+}
+
 // (b) The permissions of UAV 2 do not reach UAV 1's topics: no reader of its detections, no writer of its
 // commands. Its own topics work with the same participant (positive control).
 TEST_F(SecurityTest, Uav2CredentialsCannotReadOrCommandUav1) {
@@ -266,6 +314,10 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
   using dds::topics::gnss;
   using dds::topics::imu;
   using dds::topics::state;
+  using dds::topics::bridgeState;
+  using dds::topics::px4In;
+  using dds::topics::px4Namespace;
+  using dds::topics::px4Out;
   struct Endpoint {
     Kind kind;
     std::string topic;
@@ -282,13 +334,21 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
        {{R, imu(1)}, {R, detections(1)}, {R, gnss(3)}, {R, state(1)}, {R, cmdVel(2)}, {R, truth}, {R, events},
         {W, cmdVel(1)}, {W, state(1)}, {W, imu(2)}, {W, detections(2)}, {W, clock}, {W, truth}}},
       {"swa_sim",
-       {{W, imu(0)}, {W, detections(3)}, {W, gnss(12)}, {W, truth}, {W, events}, {W, clock}, {R, cmdVel(1)}},
-       {{R, imu(0)}, {R, detections(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth}, {R, clock}}},
-      // The autopilot bridge of UAV 1 on a real drone: its sensors out, its commands in, nothing of another UAV.
+       {{W, imu(0)}, {W, detections(3)}, {W, gnss(12)}, {W, truth}, {W, events}, {W, clock}, {R, cmdVel(1)},
+        {W, px4Out(px4Namespace(3), "vehicle_attitude")}, {W, px4Out(px4Namespace(0), "vehicle_status")},
+        {R, px4In(px4Namespace(2), "trajectory_setpoint")}, {R, px4In(px4Namespace(1), "offboard_control_mode")}},
+       {{R, imu(0)}, {R, detections(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth}, {R, clock},
+        {R, px4Out(px4Namespace(0), "vehicle_attitude")}, {W, px4In(px4Namespace(0), "trajectory_setpoint")}}},
+      // The autopilot bridge of UAV 1: its sensors out, its commands in, its own PX4's topics, nothing of another UAV
+      // or vehicle.
       {"swa_bridge_1",
-       {{W, imu(1)}, {W, detections(1)}, {W, gnss(1)}, {R, cmdVel(1)}},
+       {{W, imu(1)}, {W, detections(1)}, {W, gnss(1)}, {R, cmdVel(1)}, {W, bridgeState(1)},
+        {R, px4Out(px4Namespace(1), "vehicle_attitude")}, {R, px4Out(px4Namespace(1), "vehicle_status")},
+        {W, px4In(px4Namespace(1), "trajectory_setpoint")}, {W, px4In(px4Namespace(1), "offboard_control_mode")}},
        {{W, imu(2)}, {W, detections(0)}, {R, imu(1)}, {R, cmdVel(2)}, {W, cmdVel(1)}, {R, state(1)}, {W, state(1)},
-        {R, truth}, {W, truth}, {W, clock}}},
+        {R, truth}, {W, truth}, {W, clock}, {W, bridgeState(2)}, {R, px4Out(px4Namespace(2), "vehicle_attitude")},
+        {W, px4In(px4Namespace(0), "trajectory_setpoint")}, {W, px4Out(px4Namespace(1), "vehicle_attitude")},
+        {R, px4In(px4Namespace(1), "trajectory_setpoint")}}},
       {"swa_monitor",
        {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}},
        {{W, truth}, {W, events}, {W, state(0)}, {R, imu(0)}, {R, detections(0)}, {R, cmdVel(0)}, {W, cmdVel(0)},
