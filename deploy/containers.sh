@@ -19,6 +19,7 @@ run_dir=$root/out/containers
 project=swa
 timeout_s=600
 rebuild_base=0
+vehicle=direct
 
 usage() {
   cat <<'EOF'
@@ -32,8 +33,9 @@ Commands:
   install   apt-get install what is missing: podman, runc, netavark, aardvark-dns, iptables, debootstrap,
             podman-compose (root; apt is not contacted when nothing is missing)
   build     install, then the Debian base image (debootstrap + import, once; --rebuild-base to redo it), then the
-            images localhost/swa-{agent,sim,monitor}:latest with the binaries of --bin-dir
-  compose N print the compose file for N UAVs (deploy/containers/compose.yaml is N = 4)
+            images localhost/swa-{agent,sim,monitor,bridge}:latest with the binaries of --bin-dir
+  compose N print the compose file for N UAVs (deploy/containers/compose.yaml is N = 4; with --vehicle px4 the
+            PX4 variant, deploy/containers/compose-px4.yaml for N = 4)
   up        start the swarm in the background (images must be built): writes RUN/agent.yaml for the scenario,
             then compose up
   wait      wait for the monitor's verdict (at most --timeout-s), stop the swarm, save every container's log
@@ -47,8 +49,11 @@ Commands:
             swa_batch in --bin-dir). Exit 0 = pass
 
 Options:
-  --bin-dir DIR     where swa_agent, swa_sim and swa_monitor are (build; default build/bin)
+  --bin-dir DIR     where swa_agent, swa_sim, swa_monitor and swa_px4_bridge are (build; default build/bin)
   --uavs N          number of agent containers (up, run, test; default 4); sets the scenario's uav_count to N
+  --vehicle V       direct (default) or px4: one swa_px4_bridge container per UAV too, the simulator playing each
+                    UAV's PX4 v1.15 (vehicle.interface=px4); test then compares d_NB with swa_batch's direct loop
+                    (within 0.05 m) instead of every summary key
   --scenario FILE   scenario YAML (default deploy/scenarios/dropout_4.yaml), copied into RUN
   --set key=value   scenario override for the simulator and the monitor alike (repeatable; no spaces)
   --run-dir DIR     run directory RUN (default out/containers): agent.yaml, scenario.yaml, compose.yaml,
@@ -66,6 +71,7 @@ Examples:
   bash deploy/containers.sh run --uavs 8 --scenario deploy/scenarios/dropout_8.yaml
   bash deploy/containers.sh up && bash deploy/containers.sh wait  # the same in two steps
   bash deploy/containers.sh test --bin-dir build/bin              # what ctest -L containers runs
+  bash deploy/containers.sh run --vehicle px4                     # the same swarm through PX4 bridges
 EOF
 }
 
@@ -117,7 +123,7 @@ build_images() {
   install_packages
   [ "$(id -u)" -eq 0 ] || die "build needs root (debootstrap, rootful podman)"
   local b
-  for b in swa_agent swa_sim swa_monitor; do
+  for b in swa_agent swa_sim swa_monitor swa_px4_bridge; do
     [ -x "$bin_dir/$b" ] || die "$bin_dir/$b not found: build first (bash deploy/build.sh) or pass --bin-dir"
   done
   # Inside a container only SWA_TRANSPORT=network keeps shared memory out; binaries from before it would try
@@ -134,12 +140,13 @@ build_images() {
   temp_dirs+=("$context")
   mkdir -p "$context/bin" "$context/scenarios"
   # install -m: the modes in the image must not depend on how the checkout or the build set them.
-  install -m 0755 "$bin_dir/swa_agent" "$bin_dir/swa_sim" "$bin_dir/swa_monitor" "$here/swa-entrypoint" "$context/bin/"
+  install -m 0755 "$bin_dir/swa_agent" "$bin_dir/swa_sim" "$bin_dir/swa_monitor" "$bin_dir/swa_px4_bridge" \
+    "$here/swa-entrypoint" "$context/bin/"
   install -m 0644 "$root/deploy/dds/profiles.xml" "$context/"
   install -m 0644 "$root"/deploy/scenarios/*.yaml "$context/scenarios/"
 
   local target start
-  for target in agent sim monitor; do
+  for target in agent sim monitor bridge; do
     start=$SECONDS
     # Host network for the build only: apt-get in the runtime stage must reach the Debian archive; the swarm
     # itself runs on its internal bridge.
@@ -193,17 +200,20 @@ swa_set() {
 
 compose_file() {
   if [ "$uavs" -eq 4 ]; then
-    echo "$here/compose.yaml"
+    if [ "$vehicle" = px4 ]; then echo "$here/compose-px4.yaml"; else echo "$here/compose.yaml"; fi
   else
-    bash "$here/gen-compose.sh" "$uavs" > "$run_dir/compose.yaml"
+    bash "$here/gen-compose.sh" "$uavs" --vehicle "$vehicle" > "$run_dir/compose.yaml"
     echo "$run_dir/compose.yaml"
   fi
 }
 
+# The images a run needs.
+needed_images() { if [ "$vehicle" = px4 ]; then echo agent sim monitor bridge; else echo agent sim monitor; fi; }
+
 up() {
   install_packages
   local t
-  for t in agent sim monitor; do
+  for t in $(needed_images); do
     podman image exists "$(image_name "$t")" || die "image $(image_name "$t") missing: run deploy/containers.sh build"
   done
   [ -z "$(project_containers)" ] || die "project $project is already up: deploy/containers.sh down --project $project"
@@ -228,7 +238,7 @@ up() {
 
   local file
   file=$(compose_file)
-  log "project $project: $uavs agent(s), $(basename "$scenario") with '$set_list', run directory $run_dir"
+  log "project $project: $uavs agent(s) ($vehicle), $(basename "$scenario") with '$set_list', run directory $run_dir"
   if ! SWA_RUN_DIR=$run_dir SWA_SCENARIO=/swa/run/scenario.yaml SWA_SET=$set_list \
     SWA_MONITOR_TIMEOUT_S=$timeout_s podman-compose -f "$file" -p "$project" up -d \
     > "$run_dir/logs/compose-up.log" 2>&1; then
@@ -238,6 +248,7 @@ up() {
   fi
   # Counted, not required to be running: a short scenario can be over before compose up returns.
   local expected=$((uavs + 2)) created
+  [ "$vehicle" = direct ] || expected=$((2 * uavs + 2))
   created=$(project_containers | wc -l)
   if [ "$created" -ne "$expected" ]; then
     cat "$run_dir/logs/compose-up.log" >&2
@@ -332,11 +343,12 @@ run_oracle() {
 # failed.
 check_run() {
   local monitor_code=$1 down_code=$2
-  python3 - "$run_dir" "$monitor_code" "$uavs" "$root" "$down_code" <<'EOF'
+  python3 - "$run_dir" "$monitor_code" "$uavs" "$root" "$down_code" "$vehicle" <<'EOF'
 import json, os, subprocess, sys
 
 run_dir, monitor_code, uavs, root = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
 down_code = int(sys.argv[5])
+vehicle = sys.argv[6]
 failures = 0
 
 def check(ok, what):
@@ -390,6 +402,12 @@ check(len(agents) == uavs, f"{uavs} agent containers ran, got {len(agents)}")
 check(codes.get("sim") == 0, f"simulator container exit code 0, got {codes.get('sim')}")
 bad = {k: codes[k] for k in agents if codes[k] != 0}
 check(not bad, f"every agent exited 0 on SIGTERM (clean DDS shutdown), not: {bad}")
+if vehicle == "px4":
+    bridges = sorted(k for k in codes if k.startswith("bridge"))
+    check(len(bridges) == uavs, f"{uavs} bridge containers ran, got {len(bridges)}")
+    bad = {k: codes[k] for k in bridges if codes[k] != 0}
+    check(not bad, f"every bridge exited 0 on SIGTERM, not: {bad}")
+    agents += bridges  # their /dev/shm is inspected too
 
 shm = {}
 for a in agents:
@@ -407,6 +425,13 @@ batch_path = os.path.join(run_dir, "batch", "summary.json")
 if s is not None and sim is not None and os.path.exists(batch_path):
     if sim.get("clock_mode") != "lockstep":
         print(f"skip   comparison with swa_batch: {sim.get('clock_mode')} runs are not deterministic")
+    elif vehicle == "px4":
+        # Through PX4 the float32 of PX4's messages and the Hold before offboard engages make it another run.
+        b = load(batch_path)
+        d_batch = b["runs"][0]["seeds"][0].get("mean_neighbor_distance_m") if b else None
+        d = s.get("mean_neighbor_distance_m")
+        ok = isinstance(d, (int, float)) and isinstance(d_batch, (int, float)) and abs(d - d_batch) <= 0.05
+        check(ok, f"through PX4 in containers, d_NB {d} m within 0.05 m of swa_batch's direct loop ({d_batch} m)")
     else:
         b = load(batch_path)
         entry = b["runs"][0]["seeds"][0] if b else {}
@@ -419,10 +444,11 @@ else:
     check(False, f"swa_batch's summary for comparison ({batch_path})")
 
 if uavs == 4:
-    gen = subprocess.run(["bash", os.path.join(root, "deploy/containers/gen-compose.sh"), "4"],
-                         capture_output=True, text=True, check=True).stdout
-    with open(os.path.join(root, "deploy/containers/compose.yaml")) as f:
-        check(f.read() == gen, "deploy/containers/compose.yaml is what gen-compose.sh 4 writes")
+    for name, extra in (("compose.yaml", []), ("compose-px4.yaml", ["--vehicle", "px4"])):
+        gen = subprocess.run(["bash", os.path.join(root, "deploy/containers/gen-compose.sh"), "4"] + extra,
+                             capture_output=True, text=True, check=True).stdout
+        with open(os.path.join(root, "deploy/containers", name)) as f:
+            check(f.read() == gen, f"deploy/containers/{name} is what gen-compose.sh 4 {' '.join(extra)} writes")
 
 check(down_code == 0, "every container and the network removed by down")
 
@@ -455,12 +481,13 @@ if [ "$command" = compose ]; then
 fi
 while [ $# -gt 0 ]; do
   case $1 in
-    --bin-dir | --uavs | --scenario | --set | --run-dir | --project | --timeout-s)
+    --bin-dir | --uavs | --scenario | --set | --run-dir | --project | --timeout-s | --vehicle)
       [ $# -ge 2 ] || die "$1 needs a value (see --help)" ;;
   esac
   case $1 in
     --bin-dir) bin_dir=$2; shift 2 ;;
     --uavs) uavs=$2; shift 2 ;;
+    --vehicle) vehicle=$2; shift 2 ;;
     --scenario) scenario=$2; shift 2 ;;
     --set) sets+=("$2"); shift 2 ;;
     --run-dir) run_dir=$2; shift 2 ;;
@@ -472,17 +499,19 @@ while [ $# -gt 0 ]; do
   esac
 done
 [[ $uavs =~ ^[1-9][0-9]*$ ]] || die "--uavs must be a positive integer, got '$uavs'"
+[[ $vehicle =~ ^(direct|px4)$ ]] || die "--vehicle must be direct or px4, got '$vehicle'"
 [[ $timeout_s =~ ^[1-9][0-9]*$ ]] || die "--timeout-s must be a positive integer, got '$timeout_s'"
 [[ $project =~ ^[a-z0-9][a-z0-9_-]*$ ]] || die "--project must match [a-z0-9][a-z0-9_-]*, got '$project'"
 for kv in ${sets[@]+"${sets[@]}"}; do
   [[ $kv =~ ^[A-Za-z0-9_.]+=[^[:space:]]+$ ]] || die "--set '$kv' is not key=value without spaces"
   [[ $kv != uav_count=* ]] || die "--set uav_count: use --uavs N (it sets uav_count and the number of agents)"
+  [[ $kv != vehicle.interface=* ]] || die "--set vehicle.interface: use --vehicle (it also starts the bridges)"
 done
 
 case $command in
   install) install_packages ;;
   build) build_images ;;
-  compose) bash "$here/gen-compose.sh" "$compose_n" ;;
+  compose) bash "$here/gen-compose.sh" "$compose_n" --vehicle "$vehicle" ;;
   up) up ;;
   wait)
     rc=0

@@ -7,6 +7,11 @@
 #include "swa/sim/timing.h"
 
 namespace swa::sim_node {
+namespace {
+// How long an unanswered step's samples wait before they are sent again, where that is needed (repeatWhileWaiting):
+// far longer than an answer takes (about a millisecond), far shorter than the agent timeout.
+constexpr auto kRepeatPeriod = std::chrono::milliseconds(50);
+}  // namespace
 
 LockstepDriver::LockstepDriver(const DriverContext& context) : Driver(context), lockstep_(n_) {}
 
@@ -15,6 +20,7 @@ void LockstepDriver::run() {
   while (!stop_) {
     ports_.publishStepOutputs(aliveFn());
     lockstep_.begin(ports_.publishSensors(std::nullopt));
+    auto published = Clock::now();
     drain(Clock::duration::zero());  // answers of dead agents are looked at even if nobody is waited for
     // An agent that never answered may still be matching our writers (discovery is not symmetric): it gets the
     // startup timeout, not the agent timeout, for its first answer.
@@ -35,7 +41,11 @@ void LockstepDriver::run() {
       }
       if (lockstep_.complete() || stop_) break;
       if (now >= deadline) break;
-      drain(std::min<Clock::duration>(deadline - now, kPollPeriod));
+      if (now - published >= kRepeatPeriod) {
+        ports_.repeatWhileWaiting(lockstep_.waitingFor());
+        published = now;
+      }
+      drain(std::min<Clock::duration>({deadline - now, kPollPeriod, kRepeatPeriod}));
     }
     if (stop_) break;
     for (const int i : lockstep_.expire()) {

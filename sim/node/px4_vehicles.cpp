@@ -62,7 +62,13 @@ bool Px4Vehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint3
   px4_msgs::msg::VehicleAttitude m = wire::vehicleAttitude(*timestamp, q);
   v.published.push_back({s.stamp_ns, seq, false});
   if (v.published.size() > kRecentSamples) v.published.pop_front();
+  v.last_attitude = m;
   return v.attitude.write(m);
+}
+
+void Px4Vehicles::repeatAttitude(int uav) {
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  if (v.last_attitude) v.attitude.write(*v.last_attitude);
 }
 
 void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now, const AdmitFn& admit) {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -48,6 +49,10 @@ class Px4Vehicles {
 
   // UAV `uav`'s IMU sample as PX4's vehicle_attitude. False if the middleware refused it.
   bool publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq);
+  // The newest vehicle_attitude of `uav` once more. PX4 streams its attitude whatever happens; in lockstep the
+  // simulated time stands still while the simulator waits for an answer, so the stand-in repeats the sample: a
+  // best-effort sample lost on the way (or sent before the bridge's reader matched) would otherwise stall the run.
+  void repeatAttitude(int uav);
 
   // Waits up to `wait` for what the bridges sent, at simulation time `now`: answers are appended to `answers`; the
   // rest goes to the stand-ins (the bridges' own setpoints only if `admit`).
@@ -73,6 +78,7 @@ class Px4Vehicles {
     explicit Vehicle(double com_of_loss_t_s) : standin(com_of_loss_t_s) {}
     sim::Px4Standin standin;
     dds::Writer<px4_msgs::msg::VehicleAttitude> attitude;
+    std::optional<px4_msgs::msg::VehicleAttitude> last_attitude;
     dds::Writer<px4_msgs::msg::VehicleStatus> status;
     dds::Writer<px4_msgs::msg::VehicleCommandAck> ack;
     dds::Reader<px4_msgs::msg::TrajectorySetpoint> setpoint;

@@ -234,6 +234,11 @@ void SimPorts::apply(const Answer& a) {
   ++summary_.applied_commands;
 }
 
+void SimPorts::repeatWhileWaiting(const std::vector<int>& uavs) {
+  if (!px4_) return;
+  for (const int uav : uavs) px4_->repeatAttitude(uav);
+}
+
 void SimPorts::vehiclesStep() {
   if (!px4_) return;
   px4_->step(world_, [this](int uav, double value, const std::string& text) {

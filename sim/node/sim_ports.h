@@ -69,6 +69,9 @@ class SimPorts {
   void apply(const Answer& a);  // to the world (px4: to the UAV's autopilot)
   // Before the world steps: with vehicle.interface = px4, what each autopilot flies (px4_vehicles.h); else nothing.
   void vehiclesStep();
+  // Lockstep, while waiting for `uavs`' answers: with vehicle.interface = px4 their attitude once more (PX4 streams
+  // it; best effort may have lost it); else nothing (the sensors are reliable).
+  void repeatWhileWaiting(const std::vector<int>& uavs);
   void timeLatency(bool on) { time_latency_ = on; }
   void finishLatency(bool realtime, const LogHistogram& step_lag);
   // The simulator did not run for `lost`: no commander could be heard meanwhile.

@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
-# ctest containers_swarm_4: builds the images from the binaries in BIN_DIR, runs dropout_4.yaml for 60 s of
-# simulated time (lockstep) as 4 agent containers + simulator + monitor, and checks cohesion in the monitor's
-# summary.json (deploy/containers.sh test). Leaves no container or network behind, also on failure or timeout.
+# ctest containers_swarm_4[_px4]: builds the images from the binaries in BIN_DIR, runs dropout_4.yaml for 60 s of
+# simulated time (lockstep) as 4 agent containers + simulator + monitor (with VEHICLE px4 also 4 bridge containers,
+# the simulator playing each UAV's PX4), and checks cohesion in the monitor's summary.json (deploy/containers.sh
+# test). Leaves no container or network behind, also on failure or timeout.
 #
-#   test_containers.sh BIN_DIR WORK_DIR
+#   test_containers.sh BIN_DIR WORK_DIR [VEHICLE]
 set -euo pipefail
 
-if [ $# -ne 2 ]; then
-  echo "usage: test_containers.sh BIN_DIR WORK_DIR" >&2
+if [ $# -ne 2 ] && [ $# -ne 3 ]; then
+  echo "usage: test_containers.sh BIN_DIR WORK_DIR [direct|px4]" >&2
   exit 2
 fi
 bin_dir=$1
 work=$2
+vehicle=${3:-direct}
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 # A project name of its own: teardown removes exactly this test's containers and network (by compose label),
 # including those of an earlier run of this test that was killed before its cleanup.
@@ -31,9 +33,9 @@ mkdir -p "$work"
 start=$SECONDS
 rc=0
 timeout "$budget_s" bash "$root/deploy/containers.sh" test --bin-dir "$bin_dir" --run-dir "$work/run" \
-  --project "$project" --uavs 4 --scenario "$root/deploy/scenarios/dropout_4.yaml" --set duration_s=60 \
-  --timeout-s 300 || rc=$?
-echo "containers_swarm_4: exit $rc after $((SECONDS - start)) s; run directory $work/run"
+  --project "$project" --uavs 4 --vehicle "$vehicle" --scenario "$root/deploy/scenarios/dropout_4.yaml" \
+  --set duration_s=60 --timeout-s 300 || rc=$?
+echo "containers_swarm_4 ($vehicle): exit $rc after $((SECONDS - start)) s; run directory $work/run"
 if [ "$rc" -eq 124 ]; then
   echo "containers_swarm_4: FAILED: not finished within $budget_s s" >&2
 fi
