@@ -1,7 +1,11 @@
 #include "bridge_node.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <string>
 #include <thread>
 
 #include <swa/msg/BridgeStatePubSubTypes.h>
@@ -27,6 +31,8 @@ constexpr auto kTickPeriod = std::chrono::milliseconds(10);
 constexpr auto kStatePeriod = std::chrono::seconds(1);
 // cmd_vel's writer may change after this much silence (a restarted agent), as in the simulator (command_gate.h).
 constexpr auto kCommandHandover = std::chrono::milliseconds(500);
+// Samples whose timing is kept for their answer: a second at 100 Hz, far more than an answer takes.
+constexpr std::size_t kTimedSamples = 128;
 
 namespace topics = dds::topics;
 
@@ -86,15 +92,17 @@ double BridgeNode::nowS() const {
 }
 
 void BridgeNode::onAttitude(px4_msgs::msg::VehicleAttitude&& m) {
+  const auto received = std::chrono::steady_clock::now();
   const std::lock_guard<std::mutex> lock(mutex_);
   if (!px4_reads_) {
     pending_ = std::move(m);
+    pending_at_ = received;
     return;
   }
-  forward(m);
+  forward(m, received);
 }
 
-void BridgeNode::forward(const px4_msgs::msg::VehicleAttitude& m) {
+void BridgeNode::forward(const px4_msgs::msg::VehicleAttitude& m, std::chrono::steady_clock::time_point received) {
   const double now = nowS();
   if (const std::optional<agent::ImuSample> imu = core_.onAttitude(m.timestamp(), wire::quaternionOf(m), now)) {
     if (imu_seq_ == 0) {
@@ -103,6 +111,8 @@ void BridgeNode::forward(const px4_msgs::msg::VehicleAttitude& m) {
     }
     msg::Imu out = wire::toMsg(*imu, static_cast<std::uint32_t>(id_), ++imu_seq_);
     imu_.write(out);
+    timings_.push_back({m.timestamp(), received, std::chrono::steady_clock::now()});
+    if (timings_.size() > kTimedSamples) timings_.pop_front();
   }
   send(core_.tick(now));
   report();
@@ -137,7 +147,20 @@ void BridgeNode::onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& wri
     }
     return;
   }
-  send(core_.onCommand(wire::fromMsg(m), nowS()));
+  const auto command_in = std::chrono::steady_clock::now();
+  const px4::Outbox out = core_.onCommand(wire::fromMsg(m), nowS());
+  send(out);
+  if (out.setpoint) {
+    const auto sent = std::chrono::steady_clock::now();
+    const auto t = std::find_if(timings_.begin(), timings_.end(),
+                                [&](const Timing& x) { return x.timestamp_us == out.setpoint->timestamp_us; });
+    if (t != timings_.end()) {
+      const auto ns = [](auto d) { return std::chrono::duration_cast<std::chrono::nanoseconds>(d).count(); };
+      hop_.add(ns(sent - t->in));
+      agent_loop_.add(ns(command_in - t->imu_out));
+      bridge_part_.add(ns(sent - t->in) - ns(command_in - t->imu_out));
+    }
+  }
   report();
 }
 
@@ -209,7 +232,7 @@ int BridgeNode::run() {
       px4_reads_ = true;
       std::fprintf(stderr, "swa_px4_bridge %d: PX4 reads %s: streaming\n", id_,
                    topics::px4In(ns_, "trajectory_setpoint").c_str());
-      if (pending_) forward(*std::exchange(pending_, std::nullopt));
+      if (pending_) forward(*std::exchange(pending_, std::nullopt), pending_at_);
     } else if (!px4_reads_ && !waiting_reported &&
                std::chrono::steady_clock::now() - started_ > std::chrono::seconds(5)) {
       waiting_reported = true;
@@ -222,6 +245,7 @@ int BridgeNode::run() {
   }
   participant_.reset();
   logFinalCounts();
+  writeSummary();
   return 0;
 }
 
@@ -243,6 +267,32 @@ void BridgeNode::logFinalCounts() const {
                static_cast<unsigned long long>(c.commands_clamped), static_cast<unsigned long long>(gate_.refused()),
                static_cast<unsigned long long>(c.setpoints_out), static_cast<unsigned long long>(c.heartbeats_out),
                static_cast<unsigned long long>(c.requests_out));
+  const auto us = [](const app::LogHistogram& h, double q) { return h.quantileNs(q) * 1e-3; };
+  std::fprintf(stderr,
+               "swa_px4_bridge %d: latency over %llu answered samples, p50 / p99: attitude in -> setpoint out %.0f / "
+               "%.0f us; of which the agent (imu out -> cmd_vel in) %.0f / %.0f us, the bridge %.0f / %.0f us\n",
+               id_, static_cast<unsigned long long>(hop_.count()), us(hop_, 0.5), us(hop_, 0.99), us(agent_loop_, 0.5),
+               us(agent_loop_, 0.99), us(bridge_part_, 0.5), us(bridge_part_, 0.99));
+}
+
+void BridgeNode::writeSummary() const {
+  if (options_.summary_out.empty()) return;
+  const px4::BridgeCounters& c = core_.counters();
+  const auto us = [](const app::LogHistogram& h, double q) {
+    const double v = h.quantileNs(q) * 1e-3;
+    return std::isfinite(v) ? std::to_string(v) : std::string("null");
+  };
+  std::ofstream out(options_.summary_out);
+  out << "{\n  \"uav\": " << id_ << ",\n  \"attitude_in\": " << c.attitude_in
+      << ",\n  \"commands_applied\": " << c.commands_applied << ",\n  \"setpoints_out\": " << c.setpoints_out
+      << ",\n  \"heartbeats_out\": " << c.heartbeats_out << ",\n  \"answered_samples\": " << hop_.count()
+      << ",\n  \"hop_p50_us\": " << us(hop_, 0.5) << ",\n  \"hop_p99_us\": " << us(hop_, 0.99)
+      << ",\n  \"agent_loop_p50_us\": " << us(agent_loop_, 0.5) << ",\n  \"agent_loop_p99_us\": "
+      << us(agent_loop_, 0.99) << ",\n  \"bridge_part_p50_us\": " << us(bridge_part_, 0.5)
+      << ",\n  \"bridge_part_p99_us\": " << us(bridge_part_, 0.99) << "\n}\n";
+  if (!out.flush()) {
+    std::fprintf(stderr, "swa_px4_bridge %d: cannot write --summary-out %s\n", id_, options_.summary_out.c_str());
+  }
 }
 
 }  // namespace swa::px4_bridge

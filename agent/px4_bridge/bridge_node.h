@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -26,6 +27,7 @@
 #include <swa/px4/VehicleStatus_v1_15.h>
 
 #include "bridge_options.h"
+#include "swa/app/log_histogram.h"
 #include "swa/app/program.h"
 #include "swa/dds/command_gate.h"
 #include "swa/dds/handshake_watch.h"
@@ -53,10 +55,17 @@ class BridgeNode : public app::Role {
   void onAck(px4_msgs::msg::VehicleCommandAck&& m);
   void onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& writer);
   // With mutex_ held.
-  void forward(const px4_msgs::msg::VehicleAttitude& m);
+  void forward(const px4_msgs::msg::VehicleAttitude& m, std::chrono::steady_clock::time_point received);
   void send(const px4::Outbox& out);
   void report();  // the core's events to the log, and a state message when there were any (or a second passed)
   void logFinalCounts() const;
+  void writeSummary() const;  // --summary-out
+
+  // When an attitude sample came in and its IMU sample went out, to time the answer's way back (the bridge's hop).
+  struct Timing {
+    std::uint64_t timestamp_us = 0;
+    std::chrono::steady_clock::time_point in, imu_out;
+  };
 
   const int id_;
   const std::string ns_;
@@ -69,10 +78,15 @@ class BridgeNode : public app::Role {
   px4::BridgeCore core_;
   dds::CommandGate gate_;
   std::optional<px4_msgs::msg::VehicleAttitude> pending_;  // before PX4 reads our stream
+  std::chrono::steady_clock::time_point pending_at_{};
   bool px4_reads_ = false;
   std::uint32_t imu_seq_ = 0, state_seq_ = 0;
   std::uint64_t commands_foreign_ = 0;  // naming another UAV
   std::string last_event_;
+  std::deque<Timing> timings_;  // the newest samples forwarded
+  // Per answered sample: attitude in -> setpoint out (the loop as PX4 sees it), IMU out -> command in (the agent's
+  // loop, as the direct interface has it), and the difference (what the bridge adds).
+  app::LogHistogram hop_, agent_loop_, bridge_part_;
   std::chrono::steady_clock::time_point last_state_{};
   std::atomic<bool> stop_requested_{false};
   dds::HandshakeWatch handshake_;

@@ -63,6 +63,9 @@ app::Cli makeCli(BridgeOptions& o) {
            "arm and switch PX4 to offboard once the agent's stream has run for 1 s (bench tests, simulation; "
            "never on a flight without a pilot who can take over)");
   cli.domain(o.domain, dds::kMaxDomainId);
+  cli.path("--summary-out", "FILE", o.summary_out,
+           "at exit, the counters and the latency (attitude in -> setpoint out, the agent's part, the bridge's part; "
+           "p50 / p99) as JSON");
   cli.footer(R"(Runs until SIGINT or SIGTERM, then deletes its DDS entities (the offboard stream stops) and exits 0.
 Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials refused); 2 bad arguments (nothing
              started); 3 refused: an older swa_px4_bridge with this --id runs in this swarm.

@@ -15,6 +15,7 @@ struct BridgeOptions {
   int target_system = 0;                // --target-system N: VehicleCommand.target_system (0: any)
   px4::BridgeConfig core;               // --stale-after-s, --agent-lost-after-s, ... and --engage
   std::optional<std::string> domain;    // --domain D (else SWA_DOMAIN, else 0)
+  std::string summary_out;              // --summary-out FILE: counters and latency as JSON at exit
   bool help = false;
 };
 

@@ -142,10 +142,11 @@ class Supervisor {
     }
     // A bridge engages offboard itself: the simulator's PX4 stand-ins start in Hold, as a real vehicle would be
     // handed over by its pilot.
+    const std::string uav = std::to_string(p.uav);
     const std::vector<std::string> argv =
-        p.bridge ? std::vector<std::string>{bin_.bridge, "--id", std::to_string(p.uav), "--domain", domain_, "--engage"}
-                 : std::vector<std::string>{bin_.agent, "--id", std::to_string(p.uav), "--domain", domain_,
-                                            "--scenario", scenarioFile()};
+        p.bridge ? std::vector<std::string>{bin_.bridge, "--id", uav, "--domain", domain_, "--engage", "--summary-out",
+                                            (logs_ / ("bridge_" + uav + "_summary.json")).string()}
+                 : std::vector<std::string>{bin_.agent, "--id", uav, "--domain", domain_, "--scenario", scenarioFile()};
     p.process = std::make_unique<ChildProcess>(argv, log.string());
   }
 
