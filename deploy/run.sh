@@ -8,7 +8,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${SWA_BUILD_DIR:-$root/build}
 
-# Only the four programs of a launch: the tests and benchmarks build with the test command.
-bash "$root/deploy/build.sh" swa_launch swa_sim swa_agent swa_monitor
+# Only the programs of a launch (the bridge for --vehicle px4): the tests and benchmarks build with the test command.
+bash "$root/deploy/build.sh" swa_launch swa_sim swa_agent swa_monitor swa_px4_bridge
 "$build/bin/swa_launch" --scenario "$root/deploy/scenarios/dropout_8.yaml" --compare standalone \
   --out "$root/out/run" "$@"
