@@ -12,8 +12,9 @@ namespace {
 
 constexpr int kMaxUavId = 9999;
 
-const char* const kDetails = R"(Runs on the drone beside swa_agent --id I (same domain, same SWA_SWARM / SWA_NAMING); PX4 v1.15's
-uXRCE-DDS agent puts PX4's topics on the same DDS domain under the namespace NS (uxrce_dds_client start -n NS).
+const char* const kDetails = R"(Runs on the drone beside swa_agent --id I (same domain, same SWA_SWARM / SWA_NAMING);
+PX4 v1.15's uXRCE-DDS agent puts PX4's topics on the same DDS domain under the namespace NS
+(uxrce_dds_client start -n NS).
 Reads   rt/NS/fmu/out/vehicle_attitude   -> swa/uav<I>/imu (roll, pitch, heading in SWA's convention, stamped with
                                             PX4's timestamp: stamp the detections on the same clock)
         rt/NS/fmu/out/vehicle_status     armed, nav_state (logged, and for --engage)

@@ -13,9 +13,9 @@ const char* const kDetails = R"(What it does, per run:
   2. writes the effective scenario to DIR/scenario.yaml, the one file every child reads (no --set is passed on),
      and starts swa_monitor, the agents (swa_agent --id I --scenario DIR/scenario.yaml), with vehicle.interface =
      px4 one swa_px4_bridge --id I --engage per agent, and swa_sim (which waits until all of them are discovered);
-  3. supervises: an agent (or bridge) that dies while the scenario runs is restarted after a back-off (0.5 s, doubling per
-     restart of that agent, at most 8 s; at most --max-restarts times), and every restart is appended to
-     DIR/logs/restarts.csv, which the monitor puts into the report;
+  3. supervises: an agent (or bridge) that dies while the scenario runs is restarted after a back-off (0.5 s,
+     doubling per restart of that process, at most 8 s; at most --max-restarts times), and every restart is
+     appended to DIR/logs/restarts.csv, which the monitor puts into the report;
   4. when the simulator finishes, waits for the monitor's verdict, stops the agents, removes the shared-memory
      files of killed processes, and exits with the verdict.
 Each child's output goes to DIR/logs/<name>.log (agent_<I>.log, sim.log, monitor.log). SIGINT / SIGTERM are
@@ -104,7 +104,9 @@ void finish(LaunchOptions& o, const app::Cli& cli, app::Problems& problems) {
     problems.push_back("--restart-backoff-max-s must not be below --restart-backoff-s");
   }
   if (cli.given("--ros-namespace")) {
-    if (const auto problem = dds::rosNamespaceProblem(o.ros_namespace)) problems.push_back("--ros-namespace " + *problem);
+    if (const auto problem = dds::rosNamespaceProblem(o.ros_namespace)) {
+      problems.push_back("--ros-namespace " + *problem);
+    }
     if (o.naming == "swa") problems.push_back("--ros-namespace needs the ros2 naming");
   }
   if (!o.discovery_server.empty() && o.transport != "discovery-server") {

@@ -174,7 +174,8 @@ class Supervisor {
           continue;
         }
         const double delay = policy_.delay(p.restarts);
-        p.restart_due = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(delay));
+        p.restart_due =
+            Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(delay));
         std::printf("swa_launch [%s]: %s ended (%s) at %.1f s; restarting in %.1f s\n", spec_.label.c_str(),
                     p.name().c_str(), describeStatus(*status).c_str(), secondsSince(t0_), delay);
         std::fflush(stdout);

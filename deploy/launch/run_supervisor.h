@@ -1,7 +1,7 @@
 #pragma once
 // One run of a scenario as processes: the monitor, one agent per UAV (and with vehicle.interface = px4 one
-// swa_px4_bridge per UAV), the simulator; the agents and bridges supervised and restarted when they crash; everything stopped and reaped at the end. The launcher's main() calls this once, or
-// twice for --compare.
+// swa_px4_bridge per UAV), the simulator; the agents and bridges supervised and restarted when they crash; everything
+// stopped and reaped at the end. The launcher's main() calls this once, or twice for --compare.
 
 #include <atomic>
 #include <filesystem>

@@ -340,7 +340,9 @@ px4_in() { echo "rt/$1/fmu/in/trajectory_setpoint rt/$1/fmu/in/offboard_control_
 publishes() {
   local r=$SWA_ROOT
   case $1 in
-    swa_sim) echo "${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss ${r}truth ${r}events ${r}clock $(px4_out "$PX4_PREFIX*")" ;;
+    swa_sim)
+      echo "${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss ${r}truth ${r}events ${r}clock $(px4_out "$PX4_PREFIX*")"
+      ;;
     swa_monitor) echo '' ;;
     swa_agent_*)
       local i=${1#swa_agent_}

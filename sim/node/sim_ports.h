@@ -1,9 +1,9 @@
 #pragma once
 // The simulator's DDS side, shared by its lockstep and realtime drivers: publishes each UAV's sensor samples on its
 // own topics (with vehicle.interface = px4 the attitude as PX4's, px4_vehicles.h) and the world's truth, events and
-// clock, and collects the agents' setpoints (one commander per UAV,
-// swa/dds/command_gate.h; their loop latency, latency_stats.h). Owns the participant and every endpoint. Message contents
-// come from the wire bridge (idl/wire); which step to publish and when is the driver's.
+// clock, and collects the agents' setpoints (one commander per UAV, swa/dds/command_gate.h; their loop latency,
+// latency_stats.h). Owns the participant and every endpoint. Message contents come from the wire bridge (idl/wire);
+// which step to publish and when is the driver's.
 
 #include <atomic>
 #include <chrono>

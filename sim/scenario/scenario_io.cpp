@@ -213,7 +213,8 @@ params::Table<Scenario> makeTable() {
             std::vector<std::pair<VehicleInterface, std::string>>{{VehicleInterface::kDirect, "direct"},
                                                                   {VehicleInterface::kPx4, "px4"}},
             "swa_sim: direct (agents' cmd_vel and imu) or px4 (each UAV a PX4 v1.15 autopilot on rt/px4_<i>/fmu/..., "
-            "reached through one swa_px4_bridge per agent; swa_launch starts them); swa_batch closes the loop directly");
+            "reached through one swa_px4_bridge per agent; swa_launch starts them); swa_batch closes the loop "
+            "directly");
   SWA_PARAM(t, number, vehicle.com_of_loss_t_s, "s", openClosed(0, 60),
             "px4: PX4's COM_OF_LOSS_T, offboard signal silent this long -> failsafe Hold");
 

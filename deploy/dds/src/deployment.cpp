@@ -108,7 +108,8 @@ Deployment parseDeployment(const EnvLookup& env) {
   }
   if (const auto ns = env("SWA_ROS_NAMESPACE"); ns && !ns->empty()) {
     if (d.names.naming != Naming::kRos2) {
-      throw std::invalid_argument("SWA_ROS_NAMESPACE is set but SWA_NAMING is not ros2: set SWA_NAMING=ros2 or unset it");
+      throw std::invalid_argument(
+          "SWA_ROS_NAMESPACE is set but SWA_NAMING is not ros2: set SWA_NAMING=ros2 or unset it");
     }
     if (const auto problem = rosNamespaceProblem(*ns)) throw std::invalid_argument("SWA_ROS_NAMESPACE: " + *problem);
     d.names.ros_namespace = normalRosNamespace(*ns);

@@ -1,8 +1,9 @@
 #pragma once
-// One commander per UAV (the simulator, an autopilot bridge). DDS lets any participant in the swarm write swa/uav<i>/cmd_vel: a second agent started with
-// the same id, a test tool, a rogue. The simulator applies the commands of one writer per UAV, the owner: the first
-// writer heard from, until it has been silent for `handover` (its agent crashed and a restarted one took over);
-// commands of any other writer meanwhile are refused and counted, and each new refused writer is reported once.
+// One commander per UAV. DDS lets any participant in the swarm write swa/uav<i>/cmd_vel: a second agent started with
+// the same id, a test tool, a rogue. The simulator and the autopilot bridges apply the commands of one writer per UAV,
+// the owner: the first writer heard from, until it has been silent for `handover` (its agent crashed and a restarted
+// one took over); commands of any other writer meanwhile are refused and counted, and each new refused writer is
+// reported once.
 // Pure (no DDS, no clock): the node passes the writer's identity (its GUID) and the time the sample arrived.
 
 #include <array>
