@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "name_table.h"
 #include "swa/app/number.h"
 
 namespace swa::dds {
@@ -30,19 +31,9 @@ bool isDottedIpv4(const std::string& s) {
 
 }  // namespace
 
-const char* transportName(Transport t) {
-  for (const auto& [value, name] : kTransportNames) {
-    if (value == t) return name;
-  }
-  return "?";
-}
+const char* transportName(Transport t) { return detail::nameIn(kTransportNames, t); }
 
-std::optional<Transport> parseTransport(const std::string& name) {
-  for (const auto& [value, known] : kTransportNames) {
-    if (name == known) return value;
-  }
-  return std::nullopt;
-}
+std::optional<Transport> parseTransport(const std::string& name) { return detail::valueIn(kTransportNames, name); }
 
 const char* participantProfile(Transport t) {
   // discovery-server uses the network profile: the CLIENT role and the servers are set from SWA_DISCOVERY_SERVER

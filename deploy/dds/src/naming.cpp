@@ -3,6 +3,8 @@
 #include <utility>
 #include <vector>
 
+#include "name_table.h"
+
 namespace swa::dds {
 namespace {
 
@@ -48,19 +50,9 @@ std::string rosPrefix(const WireNames& names) {
 
 }  // namespace
 
-const char* namingName(Naming n) {
-  for (const auto& [value, name] : kNamingNames) {
-    if (value == n) return name;
-  }
-  return "?";
-}
+const char* namingName(Naming n) { return detail::nameIn(kNamingNames, n); }
 
-std::optional<Naming> parseNaming(const std::string& name) {
-  for (const auto& [value, known] : kNamingNames) {
-    if (name == known) return value;
-  }
-  return std::nullopt;
-}
+std::optional<Naming> parseNaming(const std::string& name) { return detail::valueIn(kNamingNames, name); }
 
 std::optional<std::string> rosNamespaceProblem(const std::string& ns) {
   const std::string body = startsWith(ns, "/") ? ns.substr(1) : ns;
