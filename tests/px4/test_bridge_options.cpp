@@ -1,0 +1,63 @@
+// swa_px4_bridge's command line (bridge_options.h): every option read, every problem reported together.
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bridge_options.h"
+
+namespace swa::px4_bridge {
+namespace {
+
+std::string problemsOf(const std::vector<std::string>& args) {
+  try {
+    parseBridgeOptions(args);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(BridgeOptions, ParsesEveryOption) {
+  const BridgeOptions o = parseBridgeOptions(
+      {"--id", "3", "--px4-namespace", "/lab/vehicle_3", "--target-system", "4", "--stale-after-s", "0.2",
+       "--agent-lost-after-s", "2", "--attitude-lost-after-s", "0.4", "--heartbeat-period-s", "0.02",
+       "--max-speed-mps", "3", "--engage", "--domain", "7", "--summary-out", "/tmp/b.json"});
+  EXPECT_EQ(o.id, 3);
+  EXPECT_EQ(px4Namespace(o), "lab/vehicle_3");
+  EXPECT_EQ(o.target_system, 4);
+  EXPECT_DOUBLE_EQ(o.core.stale_after_s, 0.2);
+  EXPECT_DOUBLE_EQ(o.core.agent_lost_after_s, 2.0);
+  EXPECT_DOUBLE_EQ(o.core.attitude_lost_after_s, 0.4);
+  EXPECT_DOUBLE_EQ(o.core.heartbeat_period_s, 0.02);
+  EXPECT_DOUBLE_EQ(o.core.max_speed_mps, 3.0);
+  EXPECT_TRUE(o.core.engage);
+  EXPECT_EQ(o.domain, std::optional<std::string>("7"));
+  EXPECT_EQ(o.summary_out, "/tmp/b.json");
+}
+
+TEST(BridgeOptions, DefaultsAreSafeAndTheNamespaceIsTheSimulators) {
+  const BridgeOptions o = parseBridgeOptions({"--id", "2"});
+  // Never engages unless told; PX4's namespace px4_<I>, as swa_sim's stand-in; "" means none.
+  EXPECT_FALSE(o.core.engage);
+  EXPECT_EQ(px4Namespace(o), "px4_2");
+  EXPECT_EQ(px4Namespace(parseBridgeOptions({"--id", "2", "--px4-namespace", ""})), "");
+  EXPECT_LE(o.core.heartbeat_period_s, 0.1);  // at least 10 Hz
+  EXPECT_LT(o.core.stale_after_s, o.core.agent_lost_after_s);
+}
+
+TEST(BridgeOptions, EveryProblemIsReportedTogether) {
+  const std::string p = problemsOf({"--px4-namespace", "px4-1", "--heartbeat-period-s", "0.5", "--stale-after-s",
+                                    "2", "--agent-lost-after-s", "1", "--bogus"});
+  EXPECT_NE(p.find("--id"), std::string::npos) << p;
+  EXPECT_NE(p.find("--px4-namespace 'px4-1'"), std::string::npos) << p;
+  EXPECT_NE(p.find("--heartbeat-period-s"), std::string::npos) << p;
+  EXPECT_NE(p.find("--stale-after-s must be below --agent-lost-after-s"), std::string::npos) << p;
+  EXPECT_NE(p.find("--bogus"), std::string::npos) << p;
+  EXPECT_TRUE(parseBridgeOptions({"--help"}).help);
+}
+
+}  // namespace
+}  // namespace swa::px4_bridge
