@@ -128,8 +128,11 @@ build_images() {
   done
   # Inside a container only SWA_TRANSPORT=network keeps shared memory out; binaries from before it would try
   # shared memory between containers and silently test something else.
-  "$bin_dir/swa_sim" --help 2>&1 | grep -q SWA_TRANSPORT ||
-    die "$bin_dir/swa_sim does not know SWA_TRANSPORT: rebuild the project"
+  # The help captured first: `grep -q` stops reading at the match, and the rest of a help longer than one pipe write
+  # would end the program with SIGPIPE (a failed pipeline under pipefail).
+  local help
+  help=$("$bin_dir/swa_sim" --help 2>&1) || die "$bin_dir/swa_sim --help failed: rebuild the project"
+  grep -q SWA_TRANSPORT <<<"$help" || die "$bin_dir/swa_sim does not know SWA_TRANSPORT: rebuild the project"
 
   local base_args=(--engine podman --image "$base_image")
   [ "$rebuild_base" -eq 0 ] || base_args+=(--rebuild)

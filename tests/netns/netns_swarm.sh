@@ -116,14 +116,16 @@ install_missing() {
 }
 
 check_binaries() {
-  local b
+  local b help
   for b in swa_sim swa_agent swa_monitor; do
     [[ -x $BIN_DIR/$b ]] || die "$BIN_DIR/$b not found or not executable (build first)"
   done
   # Every node documents the variables it honours in --help; a binary from before SWA_TRANSPORT would silently run
   # the default transport (shared memory + UDP) and the test would not test what it claims.
   for b in swa_sim swa_agent swa_monitor; do
-    "$BIN_DIR/$b" --help 2>&1 | grep -q SWA_TRANSPORT ||
+    # Captured first: `grep -q` stops reading at the match, and a longer help would end the program with SIGPIPE.
+    help=$("$BIN_DIR/$b" --help 2>&1) || die "$BIN_DIR/$b --help failed"
+    grep -q SWA_TRANSPORT <<<"$help" ||
       die "$BIN_DIR/$b does not know SWA_TRANSPORT (built before the transport profiles of issue #5?)"
   done
 }
