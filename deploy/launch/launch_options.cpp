@@ -87,6 +87,10 @@ app::Cli makeCli(LaunchOptions& o) {
            "with --naming ros2: a ROS namespace in front of every SWA topic (/NS/swa/uav1/imu), so two swarms can "
            "share a domain; sets SWA_ROS_NAMESPACE",
            "a ROS namespace");
+  cli.flag("--record", o.record,
+           "record each run into its directory's run.mcap (swa_monitor --record: every topic's payloads unchanged, "
+           "with their swa_msgs schemas, and the monitor's metrics; opens in Foxglove, Lichtblick, PlotJuggler; "
+           "replays with swa_replay). A restarted monitor records into run_restart<K>.mcap");
   cli.footer(R"(Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 5 % of r, no collision, one
 group), 1 FAIL, 3 INCOMPLETE (interrupted, timed out, or a process failed); 2 bad arguments or scenario, or a
 missing executable (nothing started).)");

@@ -30,6 +30,7 @@ struct LaunchOptions {
   std::string vehicle;                    // --vehicle direct|px4: sets vehicle.interface (px4: one bridge per agent)
   std::string naming;                     // --naming swa|ros2 (else $SWA_NAMING, else swa)
   std::string ros_namespace;              // --ros-namespace NS (ros2 naming; else $SWA_ROS_NAMESPACE)
+  bool record = false;                    // --record: each run's monitor records it into <run dir>/run.mcap
   bool help = false;
 };
 

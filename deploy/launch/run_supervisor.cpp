@@ -120,6 +120,13 @@ class Supervisor {
                                  std::string("--restarts"), (logs_ / "restarts.csv").string()}) {
       argv.push_back(a);
     }
+    if (o_.record) {
+      // A restarted monitor must not overwrite what the previous one recorded.
+      const std::string file =
+          monitor_restarts_ == 0 ? "run.mcap" : "run_restart" + std::to_string(monitor_restarts_) + ".mcap";
+      argv.push_back("--record");
+      argv.push_back((spec_.dir / file).string());
+    }
     monitor_ = std::make_unique<ChildProcess>(argv, (logs_ / "monitor.log").string());
   }
 

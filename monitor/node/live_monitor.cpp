@@ -11,6 +11,7 @@
 #include "swa/record/restarts.h"
 #include "swa/record/run_dir.h"
 #include "swa/record/run_report.h"
+#include "swa/sim/scenario_io.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -40,6 +41,17 @@ LiveMonitor::LiveMonitor(const MonitorOptions& options, const std::optional<sim:
   node_options.formation = config_.formation;
   node_options.timeout_s = options_.timeout_s;
   node_options.quiet = options_.quiet;
+  if (!options_.record_path.empty()) {
+    recording_ = std::make_unique<record::Recording>(options_.record_path, record::Recording::Options{});
+    metrics_ = std::make_unique<MetricsRecorder>(*recording_);
+    node_options.recording = recording_.get();
+    node_options.metrics = metrics_.get();
+    if (scenario_) {
+      recording_->writeMetadata(record::kScenarioMetadata,
+                                {{record::kScenarioYamlKey, sim::scenarioToYaml(*scenario_)},
+                                 {"source", options_.scenario_path}});
+    }
+  }
   node_ = std::make_unique<MonitorNode>(run_, node_options, domain_id, dds::resolveProfilesFile());
 }
 
@@ -54,6 +66,7 @@ int LiveMonitor::run() {
   node_.reset();  // every DDS entity deleted here: no more input
 
   run_.finish();
+  finishRecording();
   RunContext context;
   context.label = options_.label;
   context.scenario = options_.scenario_path;
@@ -62,6 +75,22 @@ int LiveMonitor::run() {
   context.end = end;
   if (!options_.restarts_path.empty()) context.restarts = record::readRestartLog(options_.restarts_path);
   return writeOutputs(options_.out_dir, makeRunRecord(run_, config_, context));
+}
+
+void LiveMonitor::finishRecording() {
+  if (!recording_) return;
+  try {
+    metrics_->writeNew(run_.series());  // the steps finish() scored
+    recording_->close();
+    record::writeRecordingManifest(options_.out_dir + "/recording.json", *recording_);
+    std::uint64_t messages = 0;
+    const auto channels = recording_->channelCounts();
+    for (const auto& c : channels) messages += c.messages;
+    std::printf("swa_monitor: recorded %llu messages on %zu channels into %s\n",
+                static_cast<unsigned long long>(messages), channels.size(), recording_->path().c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "swa_monitor: the recording %s is incomplete: %s\n", options_.record_path.c_str(), e.what());
+  }
 }
 
 }  // namespace swa::monitor_node

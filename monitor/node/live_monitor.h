@@ -6,9 +6,11 @@
 #include <optional>
 
 #include "live_run.h"
+#include "metrics_json.h"
 #include "monitor_node.h"
 #include "monitor_options.h"
 #include "swa/app/program.h"
+#include "swa/record/recording.h"
 #include "swa/sim/scenario.h"
 
 namespace swa::monitor_node {
@@ -24,10 +26,15 @@ class LiveMonitor : public app::Role {
   void stop() override { node_->stop(); }
 
  private:
+  void finishRecording();
+
   const MonitorOptions options_;
   const std::optional<sim::Scenario> scenario_;
   const LiveRunConfig config_;
   LiveRun run_;
+  // --record: declared before the node, which writes into them from DDS threads until it is destroyed.
+  std::unique_ptr<record::Recording> recording_;
+  std::unique_ptr<MetricsRecorder> metrics_;
   std::unique_ptr<MonitorNode> node_;
 };
 

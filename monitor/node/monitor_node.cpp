@@ -15,6 +15,7 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 
 #include "msg_convert.h"
+#include "record_taps.h"
 #include "swa/app/signals.h"
 #include "swa/dds/topics.h"
 
@@ -55,13 +56,33 @@ MonitorNode::MonitorNode(LiveRun& run, const MonitorNodeOptions& options, int do
 
 MonitorNode::~MonitorNode() { participant_.reset(); }
 
+template <class PubSubType, class Push>
+dds::Reader<dds::Payload> MonitorNode::readAndRecord(const std::string& topic, const char* profile, Push push) {
+  std::optional<std::uint16_t> channel;
+  if (options_.recording != nullptr) {
+    channel = recordingChannel<PubSubType>(*options_.recording, *participant_, topic);
+  }
+  return participant_->rawReader<PubSubType>(
+      topic, profile, [this, channel, push](dds::RawSample&& s) {
+        if (channel) options_.recording->writeCdr(*channel, s.payload, s.source_time_ns);
+        typename PubSubType::type m;
+        if (dds::decodePayload<PubSubType>(s.payload, m)) {
+          push(std::move(m));
+        } else {
+          ++undecodable_;
+        }
+      });
+}
+
 void MonitorNode::connect() {
   participant_ = std::make_unique<dds::Participant>("swa_monitor", domain_id_, profiles_file_);
   connected_at_ = std::chrono::steady_clock::now();
   handshake_.connected(connected_at_);
   state_reader_handles_.clear();
+  command_taps_.clear();
   truth_reader_ = {};
   for (const int uav : state_readers_) createStateReader(uav);
+  if (options_.recording != nullptr) tapClock(*participant_, *options_.recording);
   // With a known swarm, the truth and event readers wait until every agent's state writer is matched (see
   // createRunReadersWhenReady); without one, the UAVs are only known from the first truth sample.
   run_readers_pending_ = options_.uav_count.has_value();
@@ -69,9 +90,9 @@ void MonitorNode::connect() {
 }
 
 void MonitorNode::createRunReaders() {
-  participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
-                                                     [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
-  truth_reader_ = participant_->reader<msg::SwarmTruthPubSubType>(
+  readAndRecord<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
+                                              [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
+  truth_reader_ = readAndRecord<msg::SwarmTruthPubSubType>(
       dds::topics::kTruth, "swa_truth_reader", [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
 }
 
@@ -84,14 +105,17 @@ void MonitorNode::createRunReadersWhenReady() {
   if (!run_readers_pending_) return;
   std::vector<int> unmatched;
   for (const auto& [uav, reader] : state_reader_handles_) {
-    if (reader.matched() < 1) unmatched.push_back(uav);
+    const auto tap = command_taps_.find(uav);
+    if (reader.matched() < 1 || (tap != command_taps_.end() && tap->second.matched() < 1)) unmatched.push_back(uav);
   }
   const bool waited_enough = std::chrono::steady_clock::now() - connected_at_ >= kStateMatchWait;
   if (!unmatched.empty() && !waited_enough) return;
   if (!unmatched.empty()) {
     std::string list;
     for (const int uav : unmatched) list += " " + std::to_string(uav);
-    std::fprintf(stderr, "swa_monitor: no state writer of agent(s)%s after %.0f s; reading the run without them\n",
+    std::fprintf(stderr,
+                 "swa_monitor: no state (or, recording, command) writer of agent(s)%s after %.0f s; reading the run "
+                 "without them\n",
                  list.c_str(), std::chrono::duration<double>(kStateMatchWait).count());
   }
   run_readers_pending_ = false;
@@ -103,9 +127,10 @@ void MonitorNode::subscribeState(int uav) {
 }
 
 void MonitorNode::createStateReader(int uav) {
-  state_reader_handles_[uav] = participant_->reader<msg::AgentStatePubSubType>(
+  state_reader_handles_[uav] = readAndRecord<msg::AgentStatePubSubType>(
       dds::topics::state(uav), "swa_state_reader",
       [this, uav](msg::AgentState&& m) { queue_.push(StateInput{uav, std::move(m)}); });
+  if (options_.recording != nullptr) command_taps_[uav] = tapUavTopics(*participant_, *options_.recording, uav);
 }
 
 void MonitorNode::reconnectIfHandshakeStalled() {
@@ -132,6 +157,7 @@ RunEnd MonitorNode::run() {
     queue_.drain(batch, kPollPeriod);
     run_.tick(elapsed());
     for (Input& input : batch) process(input);
+    recordNewMetrics();
     createRunReadersWhenReady();
     reconnectIfHandshakeStalled();
     const double now_s = elapsed();
@@ -180,6 +206,12 @@ void MonitorNode::process(Input& input) {
       run_.onUnknownEvent();
     }
   }
+}
+
+void MonitorNode::recordNewMetrics() {
+  if (options_.recording == nullptr) return;
+  options_.recording->tick(std::chrono::steady_clock::now());
+  if (options_.metrics != nullptr) options_.metrics->writeNew(run_.series());
 }
 
 void MonitorNode::showStatus(double wall_s, bool last) {

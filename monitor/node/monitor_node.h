@@ -17,12 +17,14 @@
 #include <swa/msg/SwarmTruth.h>
 
 #include "live_record.h"
+#include "metrics_json.h"
 #include "live_run.h"
 #include "status_line.h"
 #include "swa/agent/config.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
+#include "swa/record/recording.h"
 
 namespace swa::monitor_node {
 
@@ -31,6 +33,9 @@ struct MonitorNodeOptions {
   agent::FormationConfig formation;  // what the agents' states are scored with (LiveRunConfig::formation)
   double timeout_s = 0.0;            // wall seconds without EVENT_SCENARIO_END before giving up; 0 = never
   bool quiet = false;
+  // Where every payload read also goes (swa_monitor --record); nullptr: no recording. Must outlive the node.
+  record::Recording* recording = nullptr;
+  MetricsRecorder* metrics = nullptr;  // with `recording`: the monitor's metrics channel of it
   // After EVENT_SCENARIO_END, wall seconds to wait for the truth samples and states of the last steps (they travel
   // on other topics and may arrive after the event).
   double end_grace_s = 3.0;
@@ -47,6 +52,8 @@ class MonitorNode {
   // Feeds the LiveRun until the end event (plus the grace), stop(), or the timeout. Does not call finish().
   RunEnd run();
   void stop() { stop_requested_ = true; }
+  // Samples of the monitor's topics that did not decode (dropped).
+  std::uint64_t undecodable() const { return undecodable_; }
 
  private:
   struct StateInput {
@@ -63,6 +70,10 @@ class MonitorNode {
   void reconnectIfHandshakeStalled();
   void process(Input& input);
   void showStatus(double wall_s, bool last);
+  // A raw reader of `topic` whose payloads are recorded (if recording) and decoded into `push`.
+  template <class PubSubType, class Push>
+  dds::Reader<dds::Payload> readAndRecord(const std::string& topic, const char* profile, Push push);
+  void recordNewMetrics();
 
   LiveRun& run_;
   MonitorNodeOptions options_;
@@ -76,12 +87,14 @@ class MonitorNode {
   std::chrono::steady_clock::time_point connected_at_;
   dds::HandshakeWatch handshake_;
   std::atomic<bool> stop_requested_{false};
+  std::atomic<std::uint64_t> undecodable_{0};
 
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Input> queue_;
   std::unique_ptr<dds::Participant> participant_;
-  dds::Reader<msg::SwarmTruth> truth_reader_;
-  std::map<int, dds::Reader<msg::AgentState>> state_reader_handles_;
+  dds::Reader<dds::Payload> truth_reader_;
+  std::map<int, dds::Reader<dds::Payload>> state_reader_handles_;
+  std::map<int, dds::Reader<dds::Payload>> command_taps_;  // --record: each agent's cmd_vel (record_taps.h)
   bool run_readers_pending_ = false;
 };
 

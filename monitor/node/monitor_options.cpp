@@ -13,7 +13,7 @@ namespace {
 constexpr double kMaxTimeoutS = 1e6;
 
 // The options that only make sense while joining a running swarm.
-constexpr const char* kLiveOnly[] = {"--label", "--domain", "--restarts", "--timeout-s"};
+constexpr const char* kLiveOnly[] = {"--label", "--domain", "--restarts", "--timeout-s", "--record"};
 
 const char* const kDetails = R"(Live mode (the default) joins a running swarm as the Fast DDS participant "swa_monitor":
 Reads      swa/truth, swa/events, swa/uav<i>/state for every UAV (i < scenario uav_count with --scenario;
@@ -42,6 +42,14 @@ it writes into --out DIR:
   report.html        plots, summary, events and agent restarts (and the plots as .svg files)
 and prints the verdict and the report's path.
 
+--record FILE.mcap  also records the run into one MCAP file (ROS 2's bag format; Foxglove, Lichtblick, PlotJuggler
+  open it): every payload of swa/truth, swa/events, swa/clock and, per UAV, detections, imu, gnss, cmd_vel,
+  state and bridge_state, unchanged (CDR, schemas: the swa_msgs .msg definitions, topics as ROS names
+  /swa/uav0/imu), and the monitor's metrics per scored step on /swa/monitor/metrics (JSON). A message's log time
+  is its header stamp (simulated time in a simulated run). Chunked and indexed for seeking; a chunk is written at
+  least every second, so a crash loses at most the last second. Writes recording.json into --out: the file, and
+  every channel's schema and message count.
+
 Verdict (--tolerance F):
   PASS        EVENT_SCENARIO_END "completed", final d_NB (mean over the last 5 s) within r (1 +- F), no collision,
               one group at the end
@@ -58,7 +66,7 @@ app::Cli makeCli(MonitorOptions& o) {
   app::Cli cli("swa_monitor",
                "swarm metrics, verdict and report of a run, from ground truth and the agents' diagnostics.");
   cli.usage(R"(swa_monitor [--out DIR] [--scenario FILE [--set key=value]...] [--label NAME] [--domain D]
-                   [--restarts FILE] [--timeout-s S] [--tolerance F] [--quiet]
+                   [--restarts FILE] [--timeout-s S] [--tolerance F] [--record FILE.mcap] [--quiet]
        swa_monitor --combine LABEL=DIR [LABEL=DIR]... --out DIR [--scenario FILE [--set key=value]...])");
   cli.details(kDetails);
   cli.path("--out", "DIR", o.out_dir, "output directory (required with --combine); created if needed");
@@ -76,6 +84,7 @@ app::Cli makeCli(MonitorOptions& o) {
   cli.real("--tolerance", "F", o.tolerance, 0.0, 1.0, "a fraction of r",
            "PASS band for the final d_NB, as a fraction of r, not 0; with --combine only the band drawn in the "
            "report, by default the first run's");
+  cli.path("--record", "FILE.mcap", o.record_path, "also record the run into this MCAP file (see above)");
   cli.flag("--quiet", o.quiet,
            "no status line (default: refreshed in place on a terminal, else a line every 10 s of sim time, on "
            "stderr)");

@@ -34,6 +34,7 @@ struct MonitorOptions {
   double timeout_s = 0.0;              // --timeout-s S: wall seconds without EVENT_SCENARIO_END; 0 = none
   double tolerance = monitor::kDefaultRadiusTolerance;  // --tolerance F: PASS needs |d_NB - r| <= F r
   bool tolerance_given = false;
+  std::string record_path;            // --record FILE.mcap: empty, no recording
   bool quiet = false;                 // --quiet: no status line
   std::vector<CombineInput> combine;  // --combine LABEL=DIR [LABEL=DIR]...: offline mode
   bool help = false;

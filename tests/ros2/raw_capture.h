@@ -25,6 +25,7 @@
 #include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/raw_type.h"
 
 namespace swa::testing::ros2 {
 
@@ -34,36 +35,8 @@ using eprosima::fastrtps::types::ReturnCode_t;
 
 using Bytes = std::vector<std::uint8_t>;
 
-// The payload of a sample, registered under `type_name` (what a writer announces decides whether it matches).
-class RawType : public fdds::TopicDataType {
- public:
-  explicit RawType(const std::string& type_name) {
-    setName(type_name.c_str());
-    m_typeSize = kMaxPayload;
-    m_isGetKeyDefined = false;
-  }
-  bool serialize(void* data, SerializedPayload_t* payload) override {
-    const Bytes& b = *static_cast<Bytes*>(data);
-    if (b.size() > payload->max_size) return false;
-    std::memcpy(payload->data, b.data(), b.size());
-    payload->length = static_cast<std::uint32_t>(b.size());
-    return true;
-  }
-  bool deserialize(SerializedPayload_t* payload, void* data) override {
-    Bytes& b = *static_cast<Bytes*>(data);
-    b.assign(payload->data, payload->data + payload->length);
-    return true;
-  }
-  std::function<std::uint32_t()> getSerializedSizeProvider(void* data) override {
-    return [data] { return static_cast<std::uint32_t>(static_cast<Bytes*>(data)->size()); };
-  }
-  void* createData() override { return new Bytes(); }
-  void deleteData(void* data) override { delete static_cast<Bytes*>(data); }
-  bool getKey(void*, eprosima::fastrtps::rtps::InstanceHandle_t*, bool) override { return false; }
-
- private:
-  static constexpr std::uint32_t kMaxPayload = 1u << 16;
-};
+// Payloads of any size a test sends.
+constexpr std::uint32_t kMaxPayload = 1u << 16;
 
 // Up to the first `keep_first` and the last `keep_last` payloads of each topic.
 class RawCapture {
@@ -99,7 +72,7 @@ class RawCapture {
   // (`transient_local`), TRANSIENT_LOCAL, so it also receives what was written before it matched (a TRANSIENT_LOCAL
   // reader does not match a VOLATILE writer).
   void read(const std::string& topic, const std::string& type, bool transient_local) {
-    fdds::TypeSupport support(new RawType(type));
+    fdds::TypeSupport support(new dds::RawType(type, kMaxPayload));
     if (participant_->find_type(type).empty()) support.register_type(participant_);
     fdds::Topic* t = participant_->create_topic(topic, type, fdds::TOPIC_QOS_DEFAULT);
     if (t == nullptr) throw dds::DdsError("cannot create topic " + topic);
@@ -170,11 +143,7 @@ class RawCapture {
 // The message of `payload` decoded by the generated code of PubSubType; false if it does not decode.
 template <class PubSubType>
 bool decode(const Bytes& payload, typename PubSubType::type& out) {
-  PubSubType type;
-  SerializedPayload_t p(static_cast<std::uint32_t>(payload.size()));
-  std::memcpy(p.data, payload.data(), payload.size());
-  p.length = static_cast<std::uint32_t>(payload.size());
-  return type.deserialize(&p, &out);
+  return dds::decodePayload<PubSubType>(payload, out);
 }
 
 // The payload a DataWriter of PubSubType sends for `m`.

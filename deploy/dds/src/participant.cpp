@@ -304,6 +304,18 @@ Participant::~Participant() {
   fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
 }
 
+void detail::RawListener::on_data_available(fdds::DataReader* reader) {
+  fdds::SampleInfo info;
+  RawSample sample;
+  while (reader->take_next_sample(&sample.payload, &info) == ReturnCode_t::RETCODE_OK) {
+    if (info.valid_data) {
+      sample.source_time_ns = info.source_timestamp.to_ns();
+      on_sample_(std::move(sample));
+    }
+    sample = RawSample();
+  }
+}
+
 fdds::Topic* Participant::topic(const std::string& topic_name, fdds::TopicDataType* type) {
   fdds::TypeSupport support(type);  // owns `type` from here on
   // The wire names of this naming (naming.h); the code and the logs keep SWA's.

@@ -42,6 +42,7 @@
 
 #include "swa/dds/naming.h"
 #include "swa/dds/peer_book.h"
+#include "swa/dds/raw_type.h"
 
 namespace swa::dds {
 
@@ -87,7 +88,23 @@ class CallbackListener : public eprosima::fastdds::dds::DataReaderListener {
  private:
   std::function<void(Msg&&, const WriterGuid&)> on_sample_;
 };
+// One sample of a raw reader: its payload as it came off the wire, and when its writer sent it.
+struct RawSample {
+  Payload payload;
+  std::int64_t source_time_ns = 0;  // the writer's clock (wall time since the epoch), 0 if not known
+};
+
+class RawListener : public eprosima::fastdds::dds::DataReaderListener {
+ public:
+  explicit RawListener(std::function<void(RawSample&&)> on_sample) : on_sample_(std::move(on_sample)) {}
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
+
+ private:
+  std::function<void(RawSample&&)> on_sample_;
+};
 }  // namespace detail
+
+using detail::RawSample;
 
 template <class Msg>
 class Writer {
@@ -158,6 +175,27 @@ class Participant {
     eprosima::fastdds::dds::DataReader* r = createReader(topic(topic_name, new PubSubType()), profile, listener.get());
     listeners_.push_back(std::move(listener));
     return Reader<Msg>(r);
+  }
+
+  // A writer of ready-made payloads on `topic_name`, announced as PubSubType (a replay's: raw_type.h). Same rule.
+  template <class PubSubType>
+  Writer<Payload> rawWriter(const std::string& topic_name, const std::string& profile) {
+    eprosima::fastdds::dds::DataWriter* w = createWriter(topic(topic_name, rawTypeOf<PubSubType>()), profile);
+    writers_.push_back(w);
+    return Writer<Payload>(w);
+  }
+
+  // A reader of the payloads of `topic_name` as PubSubType's writers send them, undecoded (raw_type.h): for a
+  // recording, and for a node that also keeps the bytes of what it decodes. In one participant a type name stands for
+  // one TypeSupport, so a topic read raw here must not also be read or written typed by the same participant.
+  template <class PubSubType>
+  Reader<Payload> rawReader(const std::string& topic_name, const std::string& profile,
+                            std::function<void(RawSample&&)> on_sample) {
+    auto listener = std::make_unique<detail::RawListener>(std::move(on_sample));
+    eprosima::fastdds::dds::DataReader* r =
+        createReader(topic(topic_name, rawTypeOf<PubSubType>()), profile, listener.get());
+    listeners_.push_back(std::move(listener));
+    return Reader<Payload>(r);
   }
 
   const std::string& name() const { return name_; }

@@ -1,0 +1,138 @@
+#include "replay_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include <swa/msg/DetectionsPubSubTypes.h>
+#include <swa/msg/GnssFixPubSubTypes.h>
+#include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/VelocitySetpointPubSubTypes.h>
+
+#include "swa/agent/agent.h"
+#include "swa/dds/raw_type.h"
+#include "swa/wire/samples.h"
+
+namespace swa::replay {
+namespace {
+
+// The bytes a DataWriter sends for `m` (the recorded payloads are what swa_agent's writer sent).
+Payload encode(msg::VelocitySetpoint m) {
+  msg::VelocitySetpointPubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t p(type.getSerializedSizeProvider(&m)());
+  if (!type.serialize(&m, &p)) return {};
+  return Payload(p.data, p.data + p.length);
+}
+
+UavCheck checkUav(int uav, const UavRecording& recording, const agent::AgentConfig& config) {
+  UavCheck c;
+  c.uav = uav;
+  const auto self = static_cast<std::uint32_t>(uav);
+
+  // The recorded commands by stamp: swa_agent stamps a command with the IMU sample it answers.
+  std::map<std::int64_t, const Payload*> recorded;
+  for (const Payload& p : recording.commands) {
+    msg::VelocitySetpoint m;
+    if (!dds::decodePayload<msg::VelocitySetpointPubSubType>(p, m)) continue;
+    ++c.recorded;
+    recorded.emplace(m.header().stamp_ns(), &p);
+  }
+  std::map<std::int64_t, bool> answered;
+
+  agent::Agent core(config);
+  std::uint32_t cmd_seq = 0;
+  for (const InputSample& in : recording.inputs) {
+    ++c.inputs;
+    // What AgentNode::handle does with each ordered sample (agent/node/agent_node.cpp), minus DDS and logging.
+    if (in.input == Input::kImu) {
+      msg::Imu imu;
+      if (!dds::decodePayload<msg::ImuPubSubType>(in.payload, imu) || imu.uav_id() != self) {
+        ++c.undecodable;
+        continue;
+      }
+      const agent::VelocityCommand cmd = core.onImu(wire::fromMsg(imu));
+      if (!cmd.fresh) continue;  // a rejected sample is not answered
+      const msg::VelocitySetpoint out = wire::toMsg(cmd, self, ++cmd_seq, imu.header().seq());
+      ++c.replayed;
+      const auto it = recorded.find(out.header().stamp_ns());
+      if (it == recorded.end()) {
+        ++c.not_recorded;
+        if (!c.first_not_recorded_ns) c.first_not_recorded_ns = out.header().stamp_ns();
+        continue;
+      }
+      answered[it->first] = true;
+      if (encode(out) == *it->second) {
+        ++c.identical;
+        continue;
+      }
+      ++c.differing;
+      msg::VelocitySetpoint was;
+      dds::decodePayload<msg::VelocitySetpointPubSubType>(*it->second, was);
+      c.max_speed_difference_mps = std::max(
+          c.max_speed_difference_mps, std::hypot(out.vx_mps() - was.vx_mps(), out.vy_mps() - was.vy_mps()));
+      if (!c.first_difference) {
+        c.first_difference = CommandDifference{it->first, was.vx_mps(), was.vy_mps(), out.vx_mps(), out.vy_mps()};
+      }
+    } else if (in.input == Input::kDetections) {
+      msg::Detections det;
+      if (!dds::decodePayload<msg::DetectionsPubSubType>(in.payload, det) || det.observer_id() != self) {
+        ++c.undecodable;
+        continue;
+      }
+      core.onDetections(wire::fromMsg(det));
+    } else {
+      msg::GnssFix gnss;
+      if (!dds::decodePayload<msg::GnssFixPubSubType>(in.payload, gnss) || gnss.uav_id() != self) {
+        ++c.undecodable;
+        continue;
+      }
+      core.onGnss(wire::fromMsg(gnss));
+    }
+  }
+  c.not_replayed = c.recorded - std::min<std::uint64_t>(c.recorded, answered.size());
+  return c;
+}
+
+}  // namespace
+
+std::vector<UavCheck> checkRun(const RecordedRun& run, const agent::AgentConfig& config) {
+  std::vector<UavCheck> checks;
+  for (const auto& [uav, recording] : run.uavs) checks.push_back(checkUav(uav, recording, config));
+  return checks;
+}
+
+std::string formatChecks(const std::vector<UavCheck>& checks) {
+  std::string out;
+  char line[512];
+  bool all = !checks.empty();
+  for (const UavCheck& c : checks) {
+    std::snprintf(line, sizeof line,
+                  "uav %d: %llu inputs, %llu commands replayed, %llu recorded: %llu identical, %llu differ (largest "
+                  "%.3g m/s), %llu not recorded, %llu not replayed%s\n",
+                  c.uav, static_cast<unsigned long long>(c.inputs), static_cast<unsigned long long>(c.replayed),
+                  static_cast<unsigned long long>(c.recorded), static_cast<unsigned long long>(c.identical),
+                  static_cast<unsigned long long>(c.differing), c.max_speed_difference_mps,
+                  static_cast<unsigned long long>(c.not_recorded), static_cast<unsigned long long>(c.not_replayed),
+                  c.undecodable > 0 ? (", " + std::to_string(c.undecodable) + " inputs skipped").c_str() : "");
+    out += line;
+    if (c.first_difference) {
+      const CommandDifference& d = *c.first_difference;
+      std::snprintf(line, sizeof line,
+                    "  first difference at %.3f s: recorded (%.17g, %.17g) m/s, replayed (%.17g, %.17g) m/s\n",
+                    static_cast<double>(d.stamp_ns) * 1e-9, d.recorded_vx, d.recorded_vy, d.replayed_vx,
+                    d.replayed_vy);
+      out += line;
+    }
+    if (c.first_not_recorded_ns) {
+      std::snprintf(line, sizeof line, "  first command missing from the recording at %.3f s\n",
+                    static_cast<double>(*c.first_not_recorded_ns) * 1e-9);
+      out += line;
+    }
+    all = all && c.identicalRun();
+  }
+  out += all ? "IDENTICAL: every command replayed bit for bit\n" : "DIFFERENT: see the lines above\n";
+  return out;
+}
+
+}  // namespace swa::replay
