@@ -91,6 +91,10 @@ app::Cli makeCli(LaunchOptions& o) {
            "record each run into its directory's run.mcap (swa_monitor --record: every topic's payloads unchanged, "
            "with their swa_msgs schemas, and the monitor's metrics; opens in Foxglove, Lichtblick, PlotJuggler; "
            "replays with swa_replay). A restarted monitor records into run_restart<K>.mcap");
+  cli.text("--live", "[ADDR:]PORT", o.live,
+           "watch the run while it flies: the monitor serves a live page and the Foxglove WebSocket protocol on this "
+           "port (swa_monitor --live; 127.0.0.1 unless ADDR); the URL is printed",
+           "[ADDR:]PORT");
   cli.footer(R"(Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 5 % of r, no collision, one
 group), 1 FAIL, 3 INCOMPLETE (interrupted, timed out, or a process failed); 2 bad arguments or scenario, or a
 missing executable (nothing started).)");

@@ -31,6 +31,7 @@ struct LaunchOptions {
   std::string naming;                     // --naming swa|ros2 (else $SWA_NAMING, else swa)
   std::string ros_namespace;              // --ros-namespace NS (ros2 naming; else $SWA_ROS_NAMESPACE)
   bool record = false;                    // --record: each run's monitor records it into <run dir>/run.mcap
+  std::string live;                       // --live [ADDR:]PORT: passed to the monitor (empty: no live view)
   bool help = false;
 };
 

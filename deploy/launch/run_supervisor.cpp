@@ -79,6 +79,20 @@ class Supervisor {
     std::printf("swa_launch [%s]: sim + %d agents%s + monitor on DDS domain %s, swarm %s, logs in %s\n",
                 spec_.label.c_str(), spec_.scenario.uav_count, px4 ? " + their PX4 bridges" : "", domain_.c_str(),
                 swarm != nullptr && *swarm ? swarm : "(default partition)", logs_.c_str());
+    if (!o_.live.empty()) {
+      // The monitor listens on ADDR (127.0.0.1 unless given); 0.0.0.0 is reached through this host's loopback too.
+      const std::size_t colon = o_.live.rfind(':');
+      std::string host = colon == std::string::npos ? "127.0.0.1" : o_.live.substr(0, colon);
+      if (host == "0.0.0.0") host = "127.0.0.1";
+      const std::string port = colon == std::string::npos ? o_.live : o_.live.substr(colon + 1);
+      if (port == "0") {
+        std::printf("swa_launch [%s]: live view on a free port: its URL is in %s\n", spec_.label.c_str(),
+                    (logs_ / "monitor.log").c_str());
+      } else {
+        std::printf("swa_launch [%s]: live view at http://%s:%s/ (Foxglove, Lichtblick: ws://%s:%s)\n",
+                    spec_.label.c_str(), host.c_str(), port.c_str(), host.c_str(), port.c_str());
+      }
+    }
     std::fflush(stdout);
     startMonitor();
     for (UavProcess& p : uav_processes_) start(p);
@@ -126,6 +140,10 @@ class Supervisor {
           monitor_restarts_ == 0 ? "run.mcap" : "run_restart" + std::to_string(monitor_restarts_) + ".mcap";
       argv.push_back("--record");
       argv.push_back((spec_.dir / file).string());
+    }
+    if (!o_.live.empty()) {
+      argv.push_back("--live");
+      argv.push_back(o_.live);
     }
     monitor_ = std::make_unique<ChildProcess>(argv, (logs_ / "monitor.log").string());
   }

@@ -1,5 +1,7 @@
 #include "live_monitor.h"
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -52,6 +54,15 @@ LiveMonitor::LiveMonitor(const MonitorOptions& options, const std::optional<sim:
                                  {"source", options_.scenario_path}});
     }
   }
+  if (options_.live_address) {
+    live_ = std::make_unique<live::LiveView>(*options_.live_address, options_.live_port);
+    const std::string host = options_.live_address->find(':') != std::string::npos ? "[" + *options_.live_address + "]"
+                             : *options_.live_address == "0.0.0.0"                   ? std::string("127.0.0.1")
+                                                                                     : *options_.live_address;
+    std::fprintf(stderr, "swa_monitor: live view at http://%s:%d/ (Foxglove: ws://%s:%d)\n", host.c_str(),
+                 live_->port(), host.c_str(), live_->port());
+    node_options.live = live_.get();
+  }
   node_ = std::make_unique<MonitorNode>(run_, node_options, domain_id, dds::resolveProfilesFile());
 }
 
@@ -67,6 +78,7 @@ int LiveMonitor::run() {
 
   run_.finish();
   finishRecording();
+  finishLiveView();
   RunContext context;
   context.label = options_.label;
   context.scenario = options_.scenario_path;
@@ -74,7 +86,29 @@ int LiveMonitor::run() {
   context.tolerance = options_.tolerance;
   context.end = end;
   if (!options_.restarts_path.empty()) context.restarts = record::readRestartLog(options_.restarts_path);
-  return writeOutputs(options_.out_dir, makeRunRecord(run_, config_, context));
+  const int status = writeOutputs(options_.out_dir, makeRunRecord(run_, config_, context));
+  // The whole process's CPU time: what the recording and the live view cost is measured on it (BENCHMARKS.md).
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) {
+    const auto seconds = [](const timeval& t) {
+      return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+    };
+    std::fprintf(stderr, "swa_monitor: %.3f s of CPU time (user %.3f s, system %.3f s)\n",
+                 seconds(usage.ru_utime) + seconds(usage.ru_stime), seconds(usage.ru_utime), seconds(usage.ru_stime));
+  }
+  return status;
+}
+
+void LiveMonitor::finishLiveView() {
+  if (!live_) return;
+  live_->onMetrics(run_.series());  // the steps finish() scored
+  const live::LiveServer::Stats s = live_->stats();
+  std::fprintf(stderr,
+               "swa_monitor: live view: %llu page request(s), %llu client(s) (%llu refused), %llu message(s) sent, "
+               "%llu dropped for clients that could not keep up\n",
+               static_cast<unsigned long long>(s.pages), static_cast<unsigned long long>(s.connections),
+               static_cast<unsigned long long>(s.refused), static_cast<unsigned long long>(s.sent),
+               static_cast<unsigned long long>(s.dropped));
 }
 
 void LiveMonitor::finishRecording() {

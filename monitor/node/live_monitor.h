@@ -27,6 +27,7 @@ class LiveMonitor : public app::Role {
 
  private:
   void finishRecording();
+  void finishLiveView();
 
   const MonitorOptions options_;
   const std::optional<sim::Scenario> scenario_;
@@ -35,6 +36,7 @@ class LiveMonitor : public app::Role {
   // --record: declared before the node, which writes into them from DDS threads until it is destroyed.
   std::unique_ptr<record::Recording> recording_;
   std::unique_ptr<MetricsRecorder> metrics_;
+  std::unique_ptr<live::LiveView> live_;
   std::unique_ptr<MonitorNode> node_;
 };
 

@@ -157,7 +157,7 @@ RunEnd MonitorNode::run() {
     queue_.drain(batch, kPollPeriod);
     run_.tick(elapsed());
     for (Input& input : batch) process(input);
-    recordNewMetrics();
+    publishNewMetrics();
     createRunReadersWhenReady();
     reconnectIfHandshakeStalled();
     const double now_s = elapsed();
@@ -196,9 +196,13 @@ void MonitorNode::process(Input& input) {
         if (u.id() <= 100'000) subscribeState(static_cast<int>(u.id()));
       }
     }
-    run_.onTruth(fromTruthMsg(*truth));
+    TruthSample sample = fromTruthMsg(*truth);
+    if (options_.live != nullptr) options_.live->onTruth(sample);
+    run_.onTruth(std::move(sample));
   } else if (auto* state = std::get_if<StateInput>(&input)) {
-    run_.onState(state->topic_uav, fromStateMsg(state->state, options_.formation));
+    StateSample sample = fromStateMsg(state->state, options_.formation);
+    if (options_.live != nullptr && sample.uav == state->topic_uav) options_.live->onState(sample);
+    run_.onState(state->topic_uav, std::move(sample));
   } else if (auto* event = std::get_if<msg::ScenarioEvent>(&input)) {
     if (auto record = fromEventMsg(*event)) {
       run_.onEvent(std::move(*record));
@@ -208,7 +212,8 @@ void MonitorNode::process(Input& input) {
   }
 }
 
-void MonitorNode::recordNewMetrics() {
+void MonitorNode::publishNewMetrics() {
+  if (options_.live != nullptr) options_.live->onMetrics(run_.series());
   if (options_.recording == nullptr) return;
   options_.recording->tick(std::chrono::steady_clock::now());
   if (options_.metrics != nullptr) options_.metrics->writeNew(run_.series());

@@ -19,6 +19,7 @@
 #include "live_record.h"
 #include "metrics_json.h"
 #include "live_run.h"
+#include "live_view.h"
 #include "status_line.h"
 #include "swa/agent/config.h"
 #include "swa/dds/handshake_watch.h"
@@ -36,6 +37,7 @@ struct MonitorNodeOptions {
   // Where every payload read also goes (swa_monitor --record); nullptr: no recording. Must outlive the node.
   record::Recording* recording = nullptr;
   MetricsRecorder* metrics = nullptr;  // with `recording`: the monitor's metrics channel of it
+  live::LiveView* live = nullptr;      // swa_monitor --live; nullptr: none. Must outlive the node.
   // After EVENT_SCENARIO_END, wall seconds to wait for the truth samples and states of the last steps (they travel
   // on other topics and may arrive after the event).
   double end_grace_s = 3.0;
@@ -73,7 +75,7 @@ class MonitorNode {
   // A raw reader of `topic` whose payloads are recorded (if recording) and decoded into `push`.
   template <class PubSubType, class Push>
   dds::Reader<dds::Payload> readAndRecord(const std::string& topic, const char* profile, Push push);
-  void recordNewMetrics();
+  void publishNewMetrics();  // to the recording and the live view
 
   LiveRun& run_;
   MonitorNodeOptions options_;

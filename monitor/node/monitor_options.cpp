@@ -13,7 +13,7 @@ namespace {
 constexpr double kMaxTimeoutS = 1e6;
 
 // The options that only make sense while joining a running swarm.
-constexpr const char* kLiveOnly[] = {"--label", "--domain", "--restarts", "--timeout-s", "--record"};
+constexpr const char* kLiveOnly[] = {"--label", "--domain", "--restarts", "--timeout-s", "--record", "--live"};
 
 const char* const kDetails = R"(Live mode (the default) joins a running swarm as the Fast DDS participant "swa_monitor":
 Reads      swa/truth, swa/events, swa/uav<i>/state for every UAV (i < scenario uav_count with --scenario;
@@ -50,6 +50,14 @@ and prints the verdict and the report's path.
   least every second, so a crash loses at most the last second. Writes recording.json into --out: the file, and
   every channel's schema and message count.
 
+--live [ADDR:]PORT  serves a live view on one port while the run goes on (off by default): GET / is a page with the
+  swarm top-down and rolling d_NB, drift and minimum-separation plots (self-contained: no internet needed), and
+  the same port speaks the Foxglove WebSocket protocol (subprotocol foxglove.websocket.v1 or foxglove.sdk.v1) for
+  Foxglove and Lichtblick (open connection ws://ADDR:PORT): channels /swa/live/swarm (positions, neighbour links,
+  floating-frame centres), /swa/live/uav<i>/state and /swa/monitor/metrics, JSON. ADDR defaults to 127.0.0.1: only
+  this host can connect unless you give another address (0.0.0.0: every interface). PORT 0 picks a free port. The
+  URL is printed on stderr.
+
 Verdict (--tolerance F):
   PASS        EVENT_SCENARIO_END "completed", final d_NB (mean over the last 5 s) within r (1 +- F), no collision,
               one group at the end
@@ -66,7 +74,8 @@ app::Cli makeCli(MonitorOptions& o) {
   app::Cli cli("swa_monitor",
                "swarm metrics, verdict and report of a run, from ground truth and the agents' diagnostics.");
   cli.usage(R"(swa_monitor [--out DIR] [--scenario FILE [--set key=value]...] [--label NAME] [--domain D]
-                   [--restarts FILE] [--timeout-s S] [--tolerance F] [--record FILE.mcap] [--quiet]
+                   [--restarts FILE] [--timeout-s S] [--tolerance F] [--record FILE.mcap] [--live [ADDR:]PORT]
+                   [--quiet]
        swa_monitor --combine LABEL=DIR [LABEL=DIR]... --out DIR [--scenario FILE [--set key=value]...])");
   cli.details(kDetails);
   cli.path("--out", "DIR", o.out_dir, "output directory (required with --combine); created if needed");
@@ -85,6 +94,22 @@ app::Cli makeCli(MonitorOptions& o) {
            "PASS band for the final d_NB, as a fraction of r, not 0; with --combine only the band drawn in the "
            "report, by default the first run's");
   cli.path("--record", "FILE.mcap", o.record_path, "also record the run into this MCAP file (see above)");
+  cli.value("--live", "[ADDR:]PORT",
+            [&o](const std::string& v, app::Problems& p) {
+              const std::size_t colon = v.rfind(':');
+              const std::string address = colon == std::string::npos ? "127.0.0.1" : v.substr(0, colon);
+              const std::string port = colon == std::string::npos ? v : v.substr(colon + 1);
+              try {
+                std::size_t used = 0;
+                const int n = std::stoi(port, &used);
+                if (used != port.size() || n < 0 || n > 65535 || address.empty()) throw std::invalid_argument(v);
+                o.live_address = address;
+                o.live_port = n;
+              } catch (const std::exception&) {
+                p.push_back("--live '" + v + "' is not [ADDR:]PORT with PORT in [0, 65535]");
+              }
+            },
+            "serve the live view (page and Foxglove WebSocket) on this port, 127.0.0.1 unless ADDR (see above)");
   cli.flag("--quiet", o.quiet,
            "no status line (default: refreshed in place on a terminal, else a line every 10 s of sim time, on "
            "stderr)");

@@ -35,6 +35,8 @@ struct MonitorOptions {
   double tolerance = monitor::kDefaultRadiusTolerance;  // --tolerance F: PASS needs |d_NB - r| <= F r
   bool tolerance_given = false;
   std::string record_path;            // --record FILE.mcap: empty, no recording
+  std::optional<std::string> live_address;  // --live [ADDR:]PORT: the live view (nullopt: none); ADDR 127.0.0.1
+  int live_port = 0;
   bool quiet = false;                 // --quiet: no status line
   std::vector<CombineInput> combine;  // --combine LABEL=DIR [LABEL=DIR]...: offline mode
   bool help = false;
