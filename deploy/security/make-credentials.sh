@@ -33,7 +33,8 @@ Permissions (default DENY, nothing else is allowed):
                  reads swa/uav*/cmd_vel; as every UAV's PX4 stand-in (vehicle.interface=px4) writes
                  rt/<P>*/fmu/out/vehicle_attitude, vehicle_status, vehicle_command_ack and reads
                  rt/<P>*/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command
-  swa_monitor    reads swa/truth, swa/events, swa/uav*/state
+  swa_monitor    reads swa/truth, swa/events, swa/uav*/state, and to record them (swa_monitor --record) swa/clock,
+                 swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/cmd_vel, swa/uav*/bridge_state
   swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I (swa_px4_bridge, or a bridge of your own):
                  writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and
                  rt/<P><I>/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command;
@@ -359,7 +360,11 @@ subscribes() {
   local r=$SWA_ROOT
   case $1 in
     swa_sim) echo "${r}uav*/cmd_vel $(px4_in "$PX4_PREFIX*")" ;;
-    swa_monitor) echo "${r}truth ${r}events ${r}uav*/state" ;;
+    # The monitor reads every topic of the run: the UAVs' inputs and commands only to record them (--record).
+    swa_monitor)
+      echo "${r}truth ${r}events ${r}clock ${r}uav*/state ${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss" \
+        "${r}uav*/cmd_vel ${r}uav*/bridge_state"
+      ;;
     swa_agent_*)
       local i=${1#swa_agent_}
       echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}clock"

@@ -98,6 +98,7 @@ class MonitorNode {
   std::map<int, dds::Reader<dds::Payload>> state_reader_handles_;
   std::map<int, dds::Reader<dds::Payload>> command_taps_;  // --record: each agent's cmd_vel (record_taps.h)
   bool run_readers_pending_ = false;
+  std::optional<std::chrono::steady_clock::time_point> all_matched_at_;  // recording: every reader matched since
 };
 
 }  // namespace swa::monitor_node

@@ -133,8 +133,9 @@ test_layout_and_documents() {
     "$(sorted 'swa/uav*/cmd_vel' 'rt/px4_*/fmu/in/trajectory_setpoint' 'rt/px4_*/fmu/in/offboard_control_mode' \
       'rt/px4_*/fmu/in/vehicle_command')"
   check "monitor publishes nothing" test -z "$(granted "$d/swa_monitor/permissions.xml" publish)"
-  check "monitor subscribes truth, events, states" test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = \
-    "$(sorted swa/truth swa/events 'swa/uav*/state')"
+  check "monitor subscribes every topic (to record it)" \
+    test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = "$(sorted swa/truth swa/events swa/clock \
+    'swa/uav*/state' 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' 'swa/uav*/cmd_vel' 'swa/uav*/bridge_state')"
 }
 
 test_overwrite_rules() {
@@ -198,7 +199,9 @@ test_bridges_and_naming() {
     test "$(granted "$d/swa_agent_0/permissions.xml" publish)" = \
     "$(sorted rt/lab/a/swa/uav0/cmd_vel rt/lab/a/swa/uav0/state rt/lab/a/swa/uav0/cmd_vel_stamped)"
   check "monitor subscribes under the ROS mapping" test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = \
-    "$(sorted rt/lab/a/swa/truth rt/lab/a/swa/events 'rt/lab/a/swa/uav*/state')"
+    "$(sorted rt/lab/a/swa/truth rt/lab/a/swa/events rt/lab/a/swa/clock 'rt/lab/a/swa/uav*/state' \
+    'rt/lab/a/swa/uav*/imu' 'rt/lab/a/swa/uav*/detections' 'rt/lab/a/swa/uav*/gnss' 'rt/lab/a/swa/uav*/cmd_vel' \
+    'rt/lab/a/swa/uav*/bridge_state')"
   expect_status 2 "--ros-namespace without --naming ros2" bash "$SCRIPT" --ros-namespace a "$WORK/b" 1
   expect_status 2 "--naming other" bash "$SCRIPT" --naming ros "$WORK/b" 1
   expect_status 2 "--ros-namespace with a '-'" bash "$SCRIPT" --naming ros2 --ros-namespace team-a "$WORK/b" 1

@@ -350,9 +350,9 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
         {W, px4In(px4Namespace(0), "trajectory_setpoint")}, {W, px4Out(px4Namespace(1), "vehicle_attitude")},
         {R, px4In(px4Namespace(1), "trajectory_setpoint")}}},
       {"swa_monitor",
-       {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}},
-       {{W, truth}, {W, events}, {W, state(0)}, {R, imu(0)}, {R, detections(0)}, {R, cmdVel(0)}, {W, cmdVel(0)},
-        {R, clock}}},
+       {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}, {R, imu(0)}, {R, detections(2)}, {R, cmdVel(1)},
+        {R, clock}},
+       {{W, truth}, {W, events}, {W, state(0)}, {W, imu(0)}, {W, cmdVel(0)}, {W, clock}}},
   };
   for (const Role& role : roles) {
     // WHEN a participant with the role's credentials creates each endpoint

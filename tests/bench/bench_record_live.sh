@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# What recording and the live view cost the monitor (issue #14): realtime runs of 8 UAVs, in turn without and with
+# --record --live and one Foxglove client subscribed for the whole run (not a ctest; results in BENCHMARKS.md).
+#
+#   bench_record_live.sh [BIN_DIR] [DURATION_S] [ROUNDS]     (defaults: build/bin, 60, 3)
+#
+# Per run: the monitor's CPU time (user + system, its own getrusage at exit: monitor.log), the simulator's late
+# commands (sim_summary.json: answers after their step's deadline), and with the live view the messages sent and
+# dropped. The table shows each run, the medians, and the ratio of the medians (with / without).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+bin=${1:-$root/build/bin}
+duration=${2:-60}
+rounds=${3:-3}
+work=$(mktemp -d /tmp/swa_bench_record_live.XXXXXX)
+client_pid=""
+cleanup() {
+  if [ -n "$client_pid" ]; then kill "$client_pid" 2>/dev/null || true; fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+for b in swa_launch swa_sim swa_agent swa_monitor; do
+  [ -x "$bin/$b" ] || { echo "bench_record_live: no $bin/$b (bash deploy/build.sh)" >&2; exit 2; }
+done
+mkdir -p "$work/client"
+cp "$root/tests/live/live_client/package.json" "$root/tests/live/live_client/package-lock.json" \
+  "$root/tests/live/live_client/live_check.mjs" "$work/client/"
+(cd "$work/client" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+
+run() {  # run WITH(0|1) ROUND
+  local out=$work/run_$1_$2 extra=()
+  if [ "$1" = 1 ]; then extra=(--record --live 0); fi
+  "$bin/swa_launch" --scenario "$root/deploy/scenarios/dropout_8.yaml" --set "duration_s=$duration" \
+    --set clock.mode=realtime --domain "$((160 + $2))" --out "$out" "${extra[@]}" >"$out.log" 2>&1 &
+  local launch=$!
+  if [ "$1" = 1 ]; then
+    local port=""
+    for _ in $(seq 300); do
+      if [ -f "$out/logs/monitor.log" ]; then
+        port=$(sed -n 's|.*live view at http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$out/logs/monitor.log" | head -n1)
+      fi
+      if [ -n "$port" ]; then break; fi
+      sleep 0.1
+    done
+    # Subscribed to every channel it is offered until the run ends (it then reports the closed connection).
+    node "$work/client/live_check.mjs" "ws://127.0.0.1:$port/" "$work/client_$2.json" --messages 1000000 \
+      --timeout-s 30 >/dev/null 2>&1 &
+    client_pid=$!
+  fi
+  wait "$launch" || { echo "bench_record_live: run $1 $2 failed:" >&2; tail -5 "$out.log" >&2; exit 1; }
+  if [ -n "$client_pid" ]; then
+    wait "$client_pid" 2>/dev/null || true
+    client_pid=""
+  fi
+}
+
+for ((r = 1; r <= rounds; r++)); do
+  run 0 "$r"
+  run 1 "$r"
+done
+
+python3 - "$work" "$rounds" "$duration" <<'PY'
+import json, re, statistics, sys
+work, rounds, duration = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+def figures(with_, r):
+    d = f"{work}/run_{with_}_{r}"
+    log = open(f"{d}/logs/monitor.log").read()
+    cpu = float(re.search(r"([0-9.]+) s of CPU time", log).group(1))
+    late = json.load(open(f"{d}/sim_summary.json"))["late_commands"]
+    m = re.search(r"live view: .* (\d+) message\(s\) sent, (\d+) dropped", log)
+    return cpu, late, (int(m.group(1)), int(m.group(2))) if m else None
+rows = {w: [figures(w, r) for r in range(1, rounds + 1)] for w in (0, 1)}
+print(f"8 UAVs, realtime, {duration} s simulated, {rounds} rounds in turn")
+print(f"{'run':<28}{'monitor CPU [s]':>16}{'late commands':>15}{'live sent / dropped':>22}")
+for w, label in ((0, "plain"), (1, "--record --live + client")):
+    for r, (cpu, late, live) in enumerate(rows[w], 1):
+        live_text = f"{live[0]} / {live[1]}" if live else "-"
+        print(f"{label + ' #' + str(r):<28}{cpu:>16.3f}{late:>15}{live_text:>22}")
+plain = statistics.median(c for c, _, _ in rows[0])
+with_ = statistics.median(c for c, _, _ in rows[1])
+print(f"median monitor CPU: plain {plain:.3f} s, with {with_:.3f} s, ratio {with_ / plain:.3f}")
+print(f"late commands: plain {sum(l for _, l, _ in rows[0])}, with {sum(l for _, l, _ in rows[1])}")
+PY
