@@ -69,8 +69,10 @@ import json, sys
 recorded, replayed = (json.load(open(p)) for p in sys.argv[1:])
 problems = []
 # Truth is replayed as recorded and the agents answer bit for bit: the scores are the recorded run's, exactly.
+# (Not the count of states received: an agent also states itself once per wall second when its inputs pause, and
+# the wall clock of a replay is not the run's.)
 for key in ("verdict", "steps", "mean_neighbor_distance_m", "min_separation_m", "anees_position", "anees_velocity",
-            "state_samples", "collisions"):
+            "nees_samples", "collisions"):
     if recorded[key] != replayed[key]:
         problems.append(f"{key}: recorded run {recorded[key]}, replay {replayed[key]}")
 for p in problems:
