@@ -1,5 +1,7 @@
 #include "batch_options.h"
 
+#include <stdexcept>
+
 #include "swa/app/cli.h"
 
 namespace swa::batch {
@@ -8,11 +10,23 @@ namespace {
 app::Cli makeCli(BatchOptions& o) {
   app::Cli cli("swa_batch", "Monte Carlo runs of the simulator with N in-process agent cores.");
   cli.usage(R"(swa_batch --scenario FILE [--set key=value]... [--seeds N] [--jobs J] [--out DIR]
-                 [--compare standalone|swa|anchored])");
+                 [--compare standalone|swa|anchored]
+       swa_batch --scenario FILE [--set key=value]... --sweep KEY=V1,V2,... [--sweep ...] [--seeds N]
+                 [--jobs J] [--shard I/N] [--out DIR]
+       swa_batch merge DIR... --out DIR)");
   cli.details(R"(Runs the simulator and one SWA agent core per UAV in one process, deterministically per seed, seeds in parallel.
 Prints one line per finished seed and an aggregate table; writes DIR/summary.json (aggregate and per seed) and
 DIR/<mode>/seed_<S>.csv (time series, one row per 100 ms) and DIR/<mode>/seed_<S>_events.csv (GNSS loss,
-collisions, failsafe).)");
+collisions, failsafe).
+
+A study: --sweep KEY=V1,V2,... (any scenario key, as --set takes it; repeat for more keys) runs every combination
+of the values (the grid) for every seed, on every core unless --jobs says otherwise, with a progress line and ETA.
+It writes into DIR: runs.csv (tidy: one row per run, the swept keys, seed, and every summary metric; pandas and R
+read it as is), points/<k>/summary.json (per grid point: its values and the aggregate over its seeds), and
+study.json (the study id, version, plan, base scenario, every run). --shard I/N runs only the runs whose index
+(point * seeds + seed offset) is I - 1 modulo N and writes only study.json; `swa_batch merge SHARD_DIR... --out DIR`
+then writes exactly the files the whole study would have written, and refuses shards of another study or version,
+a shard given twice, or a missing one.)");
   cli.scenario(o.scenario_path, "scenario YAML (see deploy/scenarios/)");
   cli.required("--scenario");
   cli.overrides(o.overrides, "override any scenario key, e.g. --set uav_count=16 --set imu.bias_std=0.15");
@@ -21,6 +35,8 @@ collisions, failsafe).)");
   cli.path("--out", "DIR", o.out_dir, "output directory");
   cli.choice("--compare", "MODE", {agent::Mode::kStandalone, agent::Mode::kSwa, agent::Mode::kAnchored}, o.compare,
              "also run the same seeds with agent.mode = MODE and print both side by side");
+  cli.list("--sweep", "KEY=V1,V2,...", o.sweeps, "sweep a scenario key over these values (a study; see above)");
+  cli.text("--shard", "I/N", o.shard, "run only shard I of N of the study (1 <= I <= N)", "I/N");
   cli.answer("--parameters", o.list_parameters, "list every scenario key with unit, default and bounds, then exit");
   cli.footer("Exit status: 0 when every seed ran, 2 for a usage or scenario error, 1 when a run failed.");
   return cli;
@@ -28,7 +44,52 @@ collisions, failsafe).)");
 
 }  // namespace
 
-BatchOptions parseBatchOptions(const std::vector<std::string>& args) { return app::parseOptions(args, makeCli); }
+namespace {
+
+// swa_batch merge DIR... --out DIR
+BatchOptions parseMerge(const std::vector<std::string>& args) {
+  BatchOptions o;
+  o.merge = true;
+  o.out_dir.clear();
+  std::vector<std::string> problems;
+  for (std::size_t k = 1; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--out" || a.rfind("--out=", 0) == 0) {
+      if (a == "--out" && k + 1 < args.size()) {
+        o.out_dir = args[++k];
+      } else if (a != "--out") {
+        o.out_dir = a.substr(6);
+      } else {
+        problems.push_back("--out needs a directory");
+      }
+    } else if (a.rfind("-", 0) == 0) {
+      problems.push_back("merge takes shard directories and --out DIR, not " + a);
+    } else {
+      o.merge_dirs.push_back(a);
+    }
+  }
+  if (o.help) return o;
+  if (o.merge_dirs.empty()) problems.push_back("merge needs the shards' directories");
+  if (o.out_dir.empty()) problems.push_back("merge needs --out DIR");
+  if (!problems.empty()) {
+    std::string text;
+    for (const std::string& p : problems) text += (text.empty() ? "" : "\n") + p;
+    throw std::invalid_argument(text);
+  }
+  return o;
+}
+
+}  // namespace
+
+BatchOptions parseBatchOptions(const std::vector<std::string>& args) {
+  if (!args.empty() && args.front() == "merge") return parseMerge(args);
+  return app::parseOptions<BatchOptions>(args, makeCli, [](BatchOptions& o, const app::Cli& cli, app::Problems& p) {
+    o.jobs_given = cli.given("--jobs");
+    if (o.compare && o.study()) p.push_back("--compare is not for studies: sweep agent.mode instead");
+  });
+}
 
 std::string batchUsage() { return app::helpText(makeCli); }
 

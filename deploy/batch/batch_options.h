@@ -18,8 +18,17 @@ struct BatchOptions {
   int jobs = 1;                           // seeds run in parallel
   std::string out_dir = "out/batch";
   std::optional<agent::Mode> compare;     // --compare standalone: the same seeds again in that mode
+  std::vector<std::string> sweeps;        // --sweep KEY=V1,V2,...: a study over the grid of every sweep
+  std::string shard;                      // --shard I/N: only that slice of the study's runs
+  bool jobs_given = false;
+  // swa_batch merge DIR... --out DIR: the shards' study.json files into the study's files (no simulation)
+  bool merge = false;
+  std::vector<std::string> merge_dirs;
   bool help = false;
   bool list_parameters = false;
+
+  // A study (--sweep or --shard): the grid's results, not one scenario's.
+  bool study() const { return !sweeps.empty() || !shard.empty(); }
 };
 
 // Throws std::invalid_argument listing every problem found.

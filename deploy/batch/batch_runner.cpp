@@ -8,21 +8,18 @@
 
 namespace swa::batch {
 
-std::vector<RunResult> runSeeds(const sim::Scenario& scenario, int seeds, int jobs, const SeedDone& on_done,
-                                const std::atomic<bool>& stop) {
-  std::vector<RunResult> results(static_cast<std::size_t>(seeds));
+void runEach(const std::vector<sim::Scenario>& scenarios, int jobs, const RunDone& on_done,
+             const std::atomic<bool>& stop) {
+  const int count = static_cast<int>(scenarios.size());
   std::atomic<int> next{0};
   std::mutex done_mutex;
   std::exception_ptr failure;
   auto worker = [&] {
-    for (int k = next++; k < seeds && !stop; k = next++) {
+    for (int k = next++; k < count && !stop; k = next++) {
       try {
-        sim::Scenario s = scenario;
-        s.seed = scenario.seed + static_cast<std::uint64_t>(k);
-        RunResult r = runClosedLoop(s);
+        RunResult r = runClosedLoop(scenarios[static_cast<std::size_t>(k)]);
         const std::lock_guard<std::mutex> lock(done_mutex);
-        if (on_done) on_done(r);
-        results[static_cast<std::size_t>(k)] = std::move(r);
+        on_done(static_cast<std::size_t>(k), std::move(r));
       } catch (...) {
         const std::lock_guard<std::mutex> lock(done_mutex);
         if (!failure) failure = std::current_exception();
@@ -30,11 +27,22 @@ std::vector<RunResult> runSeeds(const sim::Scenario& scenario, int seeds, int jo
     }
   };
   std::vector<std::thread> pool;
-  const int threads = std::max(1, std::min(jobs, seeds));
+  const int threads = std::max(1, std::min(jobs, count));
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
+}
+
+std::vector<RunResult> runSeeds(const sim::Scenario& scenario, int seeds, int jobs, const SeedDone& on_done,
+                                const std::atomic<bool>& stop) {
+  std::vector<sim::Scenario> scenarios(static_cast<std::size_t>(seeds), scenario);
+  for (int k = 0; k < seeds; ++k) scenarios[static_cast<std::size_t>(k)].seed = scenario.seed + static_cast<std::uint64_t>(k);
+  std::vector<RunResult> results(scenarios.size());
+  runEach(scenarios, jobs, [&](std::size_t k, RunResult&& r) {
+    if (on_done) on_done(r);
+    results[k] = std::move(r);
+  }, stop);
   return results;
 }
 

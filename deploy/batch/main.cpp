@@ -1,5 +1,6 @@
 // swa_batch: Monte Carlo runs of the simulator with N in-process agent cores. See --help.
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -9,9 +10,11 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include "batch_options.h"
 #include "batch_runner.h"
+#include "study_runner.h"
 #include "swa/agent/config_io.h"
 #include "swa/app/program.h"
 #include "swa/monitor/output_dir.h"
@@ -167,10 +170,35 @@ int Batch::run() {
   return 0;
 }
 
+// swa_batch --sweep / --shard as a process role.
+class Study : public app::Role {
+ public:
+  Study(batch::BatchOptions options, std::shared_ptr<const batch::PreparedStudy> study, int jobs)
+      : opt_(std::move(options)), study_(std::move(study)), jobs_(jobs) {}
+  int run() override { return batch::runStudy(opt_, *study_, jobs_, stop_); }
+  void stop() override { stop_ = true; }
+
+ private:
+  const batch::BatchOptions opt_;
+  const std::shared_ptr<const batch::PreparedStudy> study_;
+  const int jobs_;
+  std::atomic<bool> stop_{false};
+};
+
 app::Plan prepare(const std::vector<std::string>& args) {
   const batch::BatchOptions opt = batch::parseBatchOptions(args);
   if (auto done = app::printIf(opt.help, batch::batchUsage, opt.list_parameters, sim::describeScenarioParameters)) {
     return *done;
+  }
+  if (opt.merge) return app::exitWith(batch::runMerge(opt));
+  if (opt.study()) {
+    auto study = std::make_shared<const batch::PreparedStudy>(batch::prepareStudy(opt));
+    // A study uses every core unless told otherwise.
+    const int jobs = opt.jobs_given ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    monitor::prepareOutputDir(opt.out_dir);
+    return app::startWith([opt, study, jobs]() -> std::unique_ptr<app::Role> {
+      return std::make_unique<Study>(opt, study, jobs);
+    });
   }
   const sim::Scenario scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
   monitor::prepareOutputDir(opt.out_dir);  // before hours of seeds, not after

@@ -1,5 +1,8 @@
 #include "replay_options.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "swa/app/cli.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/options.h"

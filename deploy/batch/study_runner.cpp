@@ -1,0 +1,162 @@
+#include "study_runner.h"
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+#include "batch_runner.h"
+#include "swa/params/error.h"
+#include "swa/sim/scenario_io.h"
+
+namespace swa::batch {
+namespace {
+
+std::string describe(const study::StudyPlan& plan, std::size_t point) {
+  std::string text;
+  const std::vector<std::string> v = study::pointValues(plan, point);
+  for (std::size_t k = 0; k < v.size(); ++k) text += (k ? " " : "") + plan.axes[k].key + "=" + v[k];
+  return text;
+}
+
+std::string duration(double s) {
+  const auto total = static_cast<long long>(s + 0.5);
+  char text[32];
+  if (total >= 3600) {
+    std::snprintf(text, sizeof text, "%lldh%02lldm", total / 3600, total % 3600 / 60);
+  } else {
+    std::snprintf(text, sizeof text, "%lldm%02llds", total / 60, total % 60);
+  }
+  return text;
+}
+
+double metric(const monitor::Summary& s, const char* key) {
+  for (const monitor::NamedValue& f : monitor::summaryFields(s)) {
+    if (f.key == key) return f.value;
+  }
+  return monitor::kNaN;
+}
+
+}  // namespace
+
+PreparedStudy prepareStudy(const BatchOptions& o) {
+  PreparedStudy p;
+  std::vector<std::string> problems;
+  study::StudyPlan& plan = p.record.plan;
+  plan.seeds = o.seeds;
+  for (const std::string& s : o.sweeps) {
+    try {
+      study::Axis axis = study::parseSweep(s);
+      if (axis.key == "seed") {
+        problems.push_back("--sweep seed: seeds are a study's repetitions, give --seeds N instead");
+      } else {
+        plan.axes.push_back(std::move(axis));
+      }
+    } catch (const std::invalid_argument& e) {
+      problems.push_back(e.what());
+    }
+  }
+  for (const std::string& problem : study::planProblems(plan)) problems.push_back(problem);
+  if (!o.shard.empty()) {
+    try {
+      p.record.shard = study::parseShard(o.shard);
+    } catch (const std::invalid_argument& e) {
+      problems.push_back(e.what());
+    }
+  }
+  if (!problems.empty()) {
+    std::string text;
+    for (const std::string& problem : problems) text += (text.empty() ? "" : "\n") + problem;
+    throw std::invalid_argument(text);
+  }
+
+  const sim::Scenario base = sim::loadScenario(o.scenario_path, o.overrides);
+  p.record.scenario = o.scenario_path;
+  p.record.scenario_yaml = sim::scenarioToYaml(base);
+  p.record.first_seed = base.seed;
+  p.record.version = study::programVersion();
+  p.record.study_id = study::studyId(p.record.version, p.record.scenario_yaml, plan, base.seed);
+  // Every grid point's scenario now: a bad value must stop the study before hours of runs, not in the middle.
+  std::vector<std::string> point_problems;
+  for (std::size_t point = 0; point < study::pointCount(plan); ++point) {
+    std::vector<std::string> overrides = o.overrides;
+    for (const std::string& s : study::pointOverrides(plan, point)) overrides.push_back(s);
+    try {
+      p.point_scenarios.push_back(sim::loadScenario(o.scenario_path, overrides));
+    } catch (const params::ConfigError& e) {
+      point_problems.push_back("grid point " + describe(plan, point) + ": " + e.what());
+      if (point_problems.size() >= 10) break;
+    }
+  }
+  if (!point_problems.empty()) {
+    std::string text;
+    for (const std::string& problem : point_problems) text += (text.empty() ? "" : "\n") + problem;
+    throw std::invalid_argument(text);
+  }
+  p.runs = study::shardRuns(plan, p.record.shard);
+  return p;
+}
+
+int runStudy(const BatchOptions& o, const PreparedStudy& prepared, int jobs, const std::atomic<bool>& stop) {
+  const study::StudyPlan& plan = prepared.record.plan;
+  std::vector<sim::Scenario> scenarios;
+  for (const study::RunRef& r : prepared.runs) {
+    sim::Scenario s = prepared.point_scenarios[r.point];
+    s.seed = prepared.record.first_seed + static_cast<std::uint64_t>(r.seed_offset);
+    scenarios.push_back(std::move(s));
+  }
+  std::printf("swa_batch: study %s: %zu grid point(s) x %d seed(s) = %zu runs; shard %d/%d: %zu runs on %d job(s)\n",
+              prepared.record.study_id.c_str(), study::pointCount(plan), plan.seeds, study::runCount(plan),
+              prepared.record.shard.index, prepared.record.shard.count, scenarios.size(), jobs);
+  std::fflush(stdout);
+
+  study::StudyRecord record = prepared.record;
+  record.runs.resize(prepared.runs.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  std::size_t done = 0;
+  runEach(scenarios, jobs, [&](std::size_t k, RunResult&& r) {
+    const study::RunRef& ref = prepared.runs[k];
+    record.runs[k] = {ref.index, ref.point, r.seed, monitor::summaryFields(r.summary)};
+    ++done;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double eta = elapsed / static_cast<double>(done) * static_cast<double>(scenarios.size() - done);
+    std::printf("[%*zu/%zu] %s seed %llu  d_NB %.2f m  drift %.3f m/s  collisions %.0f  ETA %s\n",
+                static_cast<int>(std::to_string(scenarios.size()).size()), done, scenarios.size(),
+                describe(plan, ref.point).c_str(), static_cast<unsigned long long>(r.seed),
+                metric(r.summary, "mean_neighbor_distance_m"), metric(r.summary, "drift_velocity_mps"),
+                metric(r.summary, "collisions"), duration(eta).c_str());
+    std::fflush(stdout);
+  }, stop);
+  if (stop) {
+    std::fprintf(stderr, "swa_batch: interrupted before every run of the study ran: nothing written\n");
+    return 3;
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (record.shard.whole()) {
+    study::writeStudy(o.out_dir, record);
+    std::printf("swa_batch: %zu runs in %s; wrote %s/runs.csv, %s/points/, %s/study.json\n", record.runs.size(),
+                duration(wall).c_str(), o.out_dir.c_str(), o.out_dir.c_str(), o.out_dir.c_str());
+  } else {
+    study::writeShard(o.out_dir, record);
+    std::printf("swa_batch: shard %d/%d: %zu runs in %s; wrote %s/study.json (swa_batch merge the shards)\n",
+                record.shard.index, record.shard.count, record.runs.size(), duration(wall).c_str(),
+                o.out_dir.c_str());
+  }
+  return 0;
+}
+
+int runMerge(const BatchOptions& o) {
+  try {
+    std::vector<study::StudyRecord> shards;
+    for (const std::string& dir : o.merge_dirs) shards.push_back(study::readStudy(dir));
+    const study::StudyRecord merged = study::mergeShards(shards);
+    study::writeStudy(o.out_dir, merged);
+    std::printf("swa_batch: merged %zu shard(s) of study %s: %zu runs into %s\n", shards.size(),
+                merged.study_id.c_str(), merged.runs.size(), o.out_dir.c_str());
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "swa_batch merge: %s\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace swa::batch

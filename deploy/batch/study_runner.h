@@ -1,0 +1,31 @@
+#pragma once
+// swa_batch's study mode (--sweep, --shard) and `swa_batch merge`: the grid's scenarios built and checked before
+// anything runs, every run of the shard on the thread pool with a progress line, the study's files (deploy/study).
+
+#include <atomic>
+#include <vector>
+
+#include "batch_options.h"
+#include "swa/sim/scenario.h"
+#include "study_record.h"
+
+namespace swa::batch {
+
+struct PreparedStudy {
+  study::StudyRecord record;                // id, version, plan, base scenario, shard; no runs yet
+  std::vector<study::RunRef> runs;          // of this shard
+  std::vector<sim::Scenario> point_scenarios;  // per grid point (seed: the first)
+};
+
+// Reads the base scenario and every grid point's; throws std::invalid_argument (bad sweeps or shard) or
+// params::ConfigError (a grid point's scenario, naming its --sweep values) listing every problem.
+PreparedStudy prepareStudy(const BatchOptions& options);
+
+// Runs the shard's runs on `jobs` threads and writes the study (whole) or the shard's study.json into
+// options.out_dir. Returns the exit status (0; 3 interrupted: nothing written).
+int runStudy(const BatchOptions& options, const PreparedStudy& study, int jobs, const std::atomic<bool>& stop);
+
+// swa_batch merge: returns 0, or 2 with the reason on stderr.
+int runMerge(const BatchOptions& options);
+
+}  // namespace swa::batch

@@ -1,0 +1,101 @@
+#include "study_plan.h"
+
+#include <set>
+#include <stdexcept>
+
+namespace swa::study {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char by) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = text.find(by, start);
+    parts.push_back(text.substr(start, end - start));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
+  }
+}
+
+int positive(const std::string& text, const std::string& what) {
+  std::size_t used = 0;
+  int n = 0;
+  try {
+    n = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || n < 1) throw std::invalid_argument(what);
+  return n;
+}
+
+}  // namespace
+
+Axis parseSweep(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  const std::string bad = "--sweep '" + text + "' ";
+  if (eq == std::string::npos) throw std::invalid_argument(bad + "is not KEY=V1,V2,...");
+  Axis axis{text.substr(0, eq), split(text.substr(eq + 1), ',')};
+  if (axis.key.empty()) throw std::invalid_argument(bad + "names no key");
+  std::set<std::string> seen;
+  for (const std::string& v : axis.values) {
+    if (v.empty()) throw std::invalid_argument(bad + "has an empty value");
+    if (!seen.insert(v).second) throw std::invalid_argument(bad + "gives " + v + " twice");
+  }
+  return axis;
+}
+
+Shard parseShard(const std::string& text) {
+  const std::string bad = "--shard '" + text + "' is not I/N with 1 <= I <= N";
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) throw std::invalid_argument(bad);
+  const Shard s{positive(text.substr(0, slash), bad), positive(text.substr(slash + 1), bad)};
+  if (s.index > s.count) throw std::invalid_argument(bad);
+  return s;
+}
+
+std::vector<std::string> planProblems(const StudyPlan& plan) {
+  std::vector<std::string> problems;
+  std::set<std::string> keys;
+  for (const Axis& a : plan.axes) {
+    if (!keys.insert(a.key).second) problems.push_back("--sweep " + a.key + " given twice: give its values once");
+  }
+  return problems;
+}
+
+std::size_t pointCount(const StudyPlan& plan) {
+  std::size_t n = 1;
+  for (const Axis& a : plan.axes) n *= a.values.size();
+  return n;
+}
+
+std::size_t runCount(const StudyPlan& plan) { return pointCount(plan) * static_cast<std::size_t>(plan.seeds); }
+
+std::vector<std::string> pointValues(const StudyPlan& plan, std::size_t point) {
+  std::vector<std::string> values(plan.axes.size());
+  for (std::size_t k = plan.axes.size(); k-- > 0;) {
+    const std::vector<std::string>& v = plan.axes[k].values;
+    values[k] = v[point % v.size()];
+    point /= v.size();
+  }
+  return values;
+}
+
+std::vector<std::string> pointOverrides(const StudyPlan& plan, std::size_t point) {
+  const std::vector<std::string> values = pointValues(plan, point);
+  std::vector<std::string> overrides;
+  for (std::size_t k = 0; k < values.size(); ++k) overrides.push_back(plan.axes[k].key + "=" + values[k]);
+  return overrides;
+}
+
+std::vector<RunRef> shardRuns(const StudyPlan& plan, const Shard& shard) {
+  std::vector<RunRef> runs;
+  const auto seeds = static_cast<std::size_t>(plan.seeds);
+  for (std::size_t i = static_cast<std::size_t>(shard.index - 1); i < runCount(plan);
+       i += static_cast<std::size_t>(shard.count)) {
+    runs.push_back({i, i / seeds, static_cast<int>(i % seeds)});
+  }
+  return runs;
+}
+
+}  // namespace swa::study

@@ -1,0 +1,53 @@
+#pragma once
+// A study: a scenario swept over a grid of parameter values, every grid point run for the same seeds
+// (swa_batch --sweep KEY=V1,V2 ... --seeds N). The grid and how it is cut into shards (--shard I/N), with no I/O:
+// a run is (grid point, seed), numbered point-major, and shard I of N takes every N-th run starting at I - 1, so
+// expensive grid points (large swarms) are spread over every shard.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace swa::study {
+
+struct Axis {
+  std::string key;                  // a scenario key, as --set takes it ("uav_count", "agent.formation.k")
+  std::vector<std::string> values;  // as given, in order
+};
+
+struct StudyPlan {
+  std::vector<Axis> axes;  // in the order given; the first varies slowest
+  int seeds = 1;           // seeds scenario.seed .. scenario.seed + seeds - 1 at every grid point
+};
+
+struct Shard {
+  int index = 1;  // 1 .. count (Slurm's array task ids count from 1 in deploy/slurm/)
+  int count = 1;
+  bool whole() const { return count == 1; }
+};
+
+// "KEY=V1,V2,..." -> an axis. Throws std::invalid_argument saying what is wrong (no '=', no key, an empty value, a
+// value given twice).
+Axis parseSweep(const std::string& text);
+// "I/N" with 1 <= I <= N. Throws std::invalid_argument.
+Shard parseShard(const std::string& text);
+// Problems of a plan as a whole (the same key swept twice), one per entry.
+std::vector<std::string> planProblems(const StudyPlan& plan);
+
+std::size_t pointCount(const StudyPlan& plan);
+std::size_t runCount(const StudyPlan& plan);
+// The values of grid point `point` (one per axis).
+std::vector<std::string> pointValues(const StudyPlan& plan, std::size_t point);
+// The same as --set overrides: "KEY=VALUE" per axis.
+std::vector<std::string> pointOverrides(const StudyPlan& plan, std::size_t point);
+
+struct RunRef {
+  std::size_t index = 0;  // point * seeds + seed_offset
+  std::size_t point = 0;
+  int seed_offset = 0;
+};
+// The runs of `shard`, in index order.
+std::vector<RunRef> shardRuns(const StudyPlan& plan, const Shard& shard);
+
+}  // namespace swa::study
