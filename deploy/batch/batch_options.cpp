@@ -26,11 +26,21 @@ read it as is), points/<k>/summary.json (per grid point: its values and the aggr
 study.json (the study id, version, plan, base scenario, every run). --shard I/N runs only the runs whose index
 (point * seeds + seed offset) is I - 1 modulo N and writes only study.json; `swa_batch merge SHARD_DIR... --out DIR`
 then writes exactly the files the whole study would have written, and refuses shards of another study or version,
-a shard given twice, or a missing one.)");
+a shard given twice, or a missing one.
+
+A scenario file may carry the study itself, so a study is one file under version control (the other programs
+ignore the section; see deploy/scenarios/study_drift_vs_n.yaml):
+  study:
+    seeds: 20
+    sweep:
+      uav_count: [4, 8, 16, 32]
+      agent.formation.neighbourhood: [gabriel, k_nearest]
+swa_batch --scenario FILE then runs the study; --sweep KEY=... replaces the file's values of KEY or adds an axis,
+and --seeds replaces study.seeds.)");
   cli.scenario(o.scenario_path, "scenario YAML (see deploy/scenarios/)");
   cli.required("--scenario");
   cli.overrides(o.overrides, "override any scenario key, e.g. --set uav_count=16 --set imu.bias_std=0.15");
-  cli.integer("--seeds", "N", o.seeds, 1, 100000, "a count", "number of seeds, starting at the scenario's `seed`");
+  cli.integer("--seeds", "N", o.seeds, 1, 100000, "a count", "number of seeds, starting at the scenario's `seed` (a study: at every grid point)");
   cli.integer("--jobs", "J", o.jobs, 1, 256, "a count", "seeds run in parallel; this machine has 2 cores");
   cli.path("--out", "DIR", o.out_dir, "output directory");
   cli.choice("--compare", "MODE", {agent::Mode::kStandalone, agent::Mode::kSwa, agent::Mode::kAnchored}, o.compare,
@@ -87,6 +97,7 @@ BatchOptions parseBatchOptions(const std::vector<std::string>& args) {
   if (!args.empty() && args.front() == "merge") return parseMerge(args);
   return app::parseOptions<BatchOptions>(args, makeCli, [](BatchOptions& o, const app::Cli& cli, app::Problems& p) {
     o.jobs_given = cli.given("--jobs");
+    o.seeds_given = cli.given("--seeds");
     if (o.compare && o.study()) p.push_back("--compare is not for studies: sweep agent.mode instead");
   });
 }

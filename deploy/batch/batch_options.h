@@ -21,13 +21,15 @@ struct BatchOptions {
   std::vector<std::string> sweeps;        // --sweep KEY=V1,V2,...: a study over the grid of every sweep
   std::string shard;                      // --shard I/N: only that slice of the study's runs
   bool jobs_given = false;
+  bool seeds_given = false;               // --seeds given: it replaces a study section's seeds
   // swa_batch merge DIR... --out DIR: the shards' study.json files into the study's files (no simulation)
   bool merge = false;
   std::vector<std::string> merge_dirs;
   bool help = false;
   bool list_parameters = false;
 
-  // A study (--sweep or --shard): the grid's results, not one scenario's.
+  // A study by the command line (--sweep or --shard): the grid's results, not one scenario's. A scenario file with a
+  // study section (study_section.h) is a study too.
   bool study() const { return !sweeps.empty() || !shard.empty(); }
 };
 

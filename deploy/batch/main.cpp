@@ -10,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 #include "batch_options.h"
@@ -191,8 +192,13 @@ app::Plan prepare(const std::vector<std::string>& args) {
     return *done;
   }
   if (opt.merge) return app::exitWith(batch::runMerge(opt));
-  if (opt.study()) {
-    auto study = std::make_shared<const batch::PreparedStudy>(batch::prepareStudy(opt));
+  const study::StudySection section = study::readStudySection(opt.scenario_path);
+  if (opt.study() || section.present) {
+    if (opt.compare) {
+      throw std::invalid_argument("--compare is not for studies (" + opt.scenario_path +
+                                  " has a study section): sweep agent.mode instead");
+    }
+    auto study = std::make_shared<const batch::PreparedStudy>(batch::prepareStudy(opt, section));
     // A study uses every core unless told otherwise.
     const int jobs = opt.jobs_given ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     monitor::prepareOutputDir(opt.out_dir);

@@ -38,24 +38,14 @@ double metric(const monitor::Summary& s, const char* key) {
 
 }  // namespace
 
-PreparedStudy prepareStudy(const BatchOptions& o) {
+PreparedStudy prepareStudy(const BatchOptions& o, const study::StudySection& section) {
   PreparedStudy p;
   std::vector<std::string> problems;
-  study::StudyPlan& plan = p.record.plan;
-  plan.seeds = o.seeds;
-  for (const std::string& s : o.sweeps) {
-    try {
-      study::Axis axis = study::parseSweep(s);
-      if (axis.key == "seed") {
-        problems.push_back("--sweep seed: seeds are a study's repetitions, give --seeds N instead");
-      } else {
-        plan.axes.push_back(std::move(axis));
-      }
-    } catch (const std::invalid_argument& e) {
-      problems.push_back(e.what());
-    }
+  try {
+    p.record.plan = study::combinePlan(section, o.sweeps, o.seeds_given ? o.seeds : 0, o.seeds);
+  } catch (const std::invalid_argument& e) {
+    problems.push_back(e.what());
   }
-  for (const std::string& problem : study::planProblems(plan)) problems.push_back(problem);
   if (!o.shard.empty()) {
     try {
       p.record.shard = study::parseShard(o.shard);
@@ -68,6 +58,7 @@ PreparedStudy prepareStudy(const BatchOptions& o) {
     for (const std::string& problem : problems) text += (text.empty() ? "" : "\n") + problem;
     throw std::invalid_argument(text);
   }
+  const study::StudyPlan& plan = p.record.plan;
 
   const sim::Scenario base = sim::loadScenario(o.scenario_path, o.overrides);
   p.record.scenario = o.scenario_path;

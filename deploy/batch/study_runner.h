@@ -8,6 +8,7 @@
 #include "batch_options.h"
 #include "swa/sim/scenario.h"
 #include "study_record.h"
+#include "study_section.h"
 
 namespace swa::batch {
 
@@ -17,9 +18,10 @@ struct PreparedStudy {
   std::vector<sim::Scenario> point_scenarios;  // per grid point (seed: the first)
 };
 
-// Reads the base scenario and every grid point's; throws std::invalid_argument (bad sweeps or shard) or
-// params::ConfigError (a grid point's scenario, naming its --sweep values) listing every problem.
-PreparedStudy prepareStudy(const BatchOptions& options);
+// The plan (the scenario file's study section with --sweep and --seeds on top), the base scenario and every grid
+// point's; throws std::invalid_argument (bad sweeps or shard, a grid point's scenario naming its values) or
+// params::ConfigError (the base scenario) listing every problem.
+PreparedStudy prepareStudy(const BatchOptions& options, const study::StudySection& section);
 
 // Runs the shard's runs on `jobs` threads and writes the study (whole) or the shard's study.json into
 // options.out_dir. Returns the exit status (0; 3 interrupted: nothing written).

@@ -31,18 +31,22 @@ int positive(const std::string& text, const std::string& what) {
 
 }  // namespace
 
+Axis makeAxis(std::string key, std::vector<std::string> values, const std::string& what) {
+  if (key.empty()) throw std::invalid_argument(what + " names no key");
+  if (values.empty()) throw std::invalid_argument(what + " gives no value");
+  std::set<std::string> seen;
+  for (const std::string& v : values) {
+    if (v.empty()) throw std::invalid_argument(what + " has an empty value");
+    if (!seen.insert(v).second) throw std::invalid_argument(what + " gives " + v + " twice");
+  }
+  return Axis{std::move(key), std::move(values)};
+}
+
 Axis parseSweep(const std::string& text) {
   const std::size_t eq = text.find('=');
-  const std::string bad = "--sweep '" + text + "' ";
-  if (eq == std::string::npos) throw std::invalid_argument(bad + "is not KEY=V1,V2,...");
-  Axis axis{text.substr(0, eq), split(text.substr(eq + 1), ',')};
-  if (axis.key.empty()) throw std::invalid_argument(bad + "names no key");
-  std::set<std::string> seen;
-  for (const std::string& v : axis.values) {
-    if (v.empty()) throw std::invalid_argument(bad + "has an empty value");
-    if (!seen.insert(v).second) throw std::invalid_argument(bad + "gives " + v + " twice");
-  }
-  return axis;
+  const std::string what = "--sweep '" + text + "'";
+  if (eq == std::string::npos) throw std::invalid_argument(what + " is not KEY=V1,V2,...");
+  return makeAxis(text.substr(0, eq), split(text.substr(eq + 1), ','), what);
 }
 
 Shard parseShard(const std::string& text) {

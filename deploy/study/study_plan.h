@@ -27,6 +27,9 @@ struct Shard {
   bool whole() const { return count == 1; }
 };
 
+// An axis with its values checked: a key, at least one value, none empty, none twice. `what` names the source in the
+// std::invalid_argument thrown ("--sweep 'uav_count=4,,8'", "study.sweep.uav_count (line 3, column 14)").
+Axis makeAxis(std::string key, std::vector<std::string> values, const std::string& what);
 // "KEY=V1,V2,..." -> an axis. Throws std::invalid_argument saying what is wrong (no '=', no key, an empty value, a
 // value given twice).
 Axis parseSweep(const std::string& text);

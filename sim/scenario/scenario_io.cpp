@@ -120,7 +120,9 @@ const char* const kNotes =
     "    is in keep_uavs) or inside any of its own windows; windows may overlap.\n"
     "  - formation.spacing_m < mps.range_m.\n"
     "  - agent.*: the agent configuration (swa_agent --parameters); agent.formation.radius_m defaults to\n"
-    "    formation.spacing_m unless given; agent.k and agent.circle_fit are aliases (a file gives one spelling).\n";
+    "    formation.spacing_m unless given; agent.k and agent.circle_fit are aliases (a file gives one spelling).\n"
+    "  - study: a section for swa_batch's studies (seeds and the sweep, see swa_batch --help); every other program\n"
+    "    ignores it.\n";
 
 params::Table<Scenario> makeTable() {
   params::Table<Scenario> t("SWA scenario", "scenario", "uav_count: 8", "uav_count=16", kNotes);
@@ -225,6 +227,7 @@ params::Table<Scenario> makeTable() {
   schema.checks = scenarioChecks();
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"}};
+  schema.foreign_sections = {"study"};
   return t;
 }
 

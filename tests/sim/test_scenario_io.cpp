@@ -193,7 +193,15 @@ TEST(ScenarioFiles, GivenEachShippedScenario_WhenLoaded_ThenItHasTheIntendedValu
   EXPECT_EQ(anc.agent.mode, agent::Mode::kAnchored);
   EXPECT_EQ(anc.gnss.keep_uavs, std::vector<int>{0});
 
-  // AND there are exactly these five, and each one round-trips through its dump
+  // study_drift_vs_n: the shipped example study's base scenario (its study: section is swa_batch's; the study
+  // itself is checked in tests/study/)
+  const Scenario dvn = loadScenario(dir + "/study_drift_vs_n.yaml");
+  EXPECT_EQ(dvn.uav_count, 8);
+  EXPECT_EQ(dvn.gnss.dropout_start_s, 0.0);
+  EXPECT_TRUE(std::isinf(dvn.gnss.dropout_end_s));
+  EXPECT_EQ(dvn.agent.formation.k, 2);
+
+  // AND there are exactly these six, and each one round-trips through its dump
   int count = 0;
   for (const auto& file : std::filesystem::directory_iterator(dir)) {
     if (file.path().extension() != ".yaml") continue;
@@ -201,7 +209,7 @@ TEST(ScenarioFiles, GivenEachShippedScenario_WhenLoaded_ThenItHasTheIntendedValu
     const Scenario loaded = loadScenario(file.path().string());
     EXPECT_EQ(yamlOf(parseScenario(yamlOf(loaded), "dump")), yamlOf(loaded)) << file.path();
   }
-  EXPECT_EQ(count, 5);
+  EXPECT_EQ(count, 6);
 }
 
 TEST(ScenarioOverride, GivenASetOfEachRequiredKey_WhenApplied_ThenExactlyThatFieldChanges) {

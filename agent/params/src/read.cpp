@@ -13,6 +13,7 @@
 #include <set>
 
 #include "spec_text.h"
+#include "yaml_node.h"
 #include "swa/params/engine.h"
 #include "swa/params/file.h"
 
@@ -24,21 +25,8 @@ using namespace detail;
 
 constexpr std::size_t kMaxKeys = 2000;  // a parameter file has about a hundred; each unknown key costs a suggestion
 
-const char* nodeKindName(const YAML::Node& node) {
-  if (node.IsMap()) return "a map";
-  if (node.IsSequence()) return "a sequence";
-  if (node.IsNull()) return "nothing";
-  return "a scalar";
-}
-
 // A quoted scalar ("10") or an explicit !!str: a string, never a number.
 bool isQuoted(const YAML::Node& scalar) { return scalar.Tag() == "!" || scalar.Tag() == "tag:yaml.org,2002:str"; }
-
-std::string locationOf(const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  if (mark.is_null()) return {};
-  return " (line " + std::to_string(mark.line + 1) + ", column " + std::to_string(mark.column + 1) + ")";
-}
 
 // Map keys in the document, counted up to `limit` + 1.
 std::size_t countKeys(const YAML::Node& node, std::size_t limit) {
@@ -206,6 +194,10 @@ class Reader {
   }
 
   bool isSection(const std::string& key) const { return !firstLeafUnder(key).empty(); }
+  bool isForeign(const std::string& name) const {
+    const auto& foreign = schema_.foreign_sections;
+    return std::find(foreign.begin(), foreign.end(), name) != foreign.end();
+  }
 
   std::string firstLeafUnder(const std::string& section) const {
     for (const Spec& s : schema_.specs) {
@@ -263,6 +255,7 @@ class Reader {
       }
       const std::string& name = key_node.Scalar();
       const std::string key = prefix.empty() ? name : prefix + "." + name;
+      if (prefix.empty() && isForeign(name)) continue;
       if (!seen.insert(key).second) {
         bad(canonicalKey(key), "duplicate key '" + key + "'" + locationOf(key_node));
       } else if (name.find('.') != std::string::npos) {

@@ -90,6 +90,9 @@ struct Schema {
   std::vector<Alias> aliases;
   std::vector<Derived> derived;
   std::map<std::string, std::string> mounts;  // prefix -> comment of its section in the dump
+  // Top-level sections another reader owns (the scenario's `study:`, read by swa_batch through section.h): a file
+  // may carry them and this schema skips them; --set cannot reach them.
+  std::vector<std::string> foreign_sections;
 
   const Spec* find(const std::string& key) const;
   // Puts every parameter, relation, alias and derived default of `inner` under "prefix." (the scenario's `agent:`

@@ -1,0 +1,103 @@
+#include "study_section.h"
+
+#include <stdexcept>
+
+#include "swa/params/error.h"
+#include "swa/params/section.h"
+
+namespace swa::study {
+namespace {
+
+constexpr int kMaxSeeds = 100000;  // as swa_batch --seeds
+const std::string kSweep = "sweep.";
+
+int seedsOf(const params::SectionLeaf& leaf, std::vector<std::string>& problems) {
+  const std::string bad = "study.seeds must be a whole number in [1, " + std::to_string(kMaxSeeds) + "]";
+  if (leaf.sequence || leaf.values.size() != 1) {
+    problems.push_back(bad + ", got a list" + leaf.where);
+    return 0;
+  }
+  const std::string& text = leaf.values.front();
+  std::size_t used = 0;
+  long n = 0;
+  try {
+    n = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || n < 1 || n > kMaxSeeds) {
+    problems.push_back(bad + ", got '" + text + "'" + leaf.where);
+    return 0;
+  }
+  return static_cast<int>(n);
+}
+
+}  // namespace
+
+StudySection readStudySection(const std::string& scenario_path) {
+  const params::Section section = params::readSection(scenario_path, "scenario", "study");
+  StudySection s;
+  s.present = section.present;
+  std::vector<std::string> problems = section.problems;
+  for (const params::SectionLeaf& leaf : section.leaves) {
+    if (leaf.key == "seeds") {
+      s.seeds = seedsOf(leaf, problems);
+    } else if (leaf.key.rfind(kSweep, 0) == 0) {
+      try {
+        s.axes.push_back(makeAxis(leaf.key.substr(kSweep.size()), leaf.values, "study." + leaf.key + leaf.where));
+      } catch (const std::invalid_argument& e) {
+        problems.push_back(e.what());
+      }
+    } else {
+      problems.push_back("unknown entry 'study." + leaf.key + "'" + leaf.where +
+                         ": a study section holds seeds: N and sweep: {KEY: [V1, V2, ...], ...}");
+    }
+  }
+  if (s.present && s.axes.empty() && problems.empty()) {
+    problems.push_back("the study section sweeps nothing: give sweep: {KEY: [V1, V2, ...]}");
+  }
+  if (!problems.empty()) throw params::ConfigError(scenario_path, problems);
+  return s;
+}
+
+StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& sweeps, int seeds, int fallback_seeds) {
+  StudyPlan plan;
+  plan.axes = file.axes;
+  plan.seeds = seeds > 0 ? seeds : file.seeds > 0 ? file.seeds : fallback_seeds;
+  std::vector<std::string> problems;
+  std::vector<std::string> given;  // keys the command line swept, to find one given twice there
+  for (const std::string& text : sweeps) {
+    try {
+      Axis axis = parseSweep(text);
+      if (axis.key == "seed") {
+        problems.push_back("--sweep seed: seeds are a study's repetitions, give --seeds N instead");
+        continue;
+      }
+      for (const std::string& key : given) {
+        if (key == axis.key) problems.push_back("--sweep " + key + " given twice: give its values once");
+      }
+      given.push_back(axis.key);
+      bool replaced = false;
+      for (Axis& a : plan.axes) {
+        if (a.key != axis.key) continue;
+        a.values = axis.values;
+        replaced = true;
+      }
+      if (!replaced) plan.axes.push_back(std::move(axis));
+    } catch (const std::invalid_argument& e) {
+      problems.push_back(e.what());
+    }
+  }
+  for (const Axis& a : file.axes) {
+    if (a.key == "seed") problems.push_back("study.sweep.seed: seeds are a study's repetitions, give study.seeds N");
+  }
+  for (const std::string& problem : planProblems(plan)) problems.push_back(problem);
+  if (!problems.empty()) {
+    std::string text;
+    for (const std::string& problem : problems) text += (text.empty() ? "" : "\n") + problem;
+    throw std::invalid_argument(text);
+  }
+  return plan;
+}
+
+}  // namespace swa::study

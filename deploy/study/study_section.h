@@ -1,0 +1,35 @@
+#pragma once
+// The `study:` section of a scenario file, so a study is one file under version control:
+//
+//   study:
+//     seeds: 20                                      # repetitions of every grid point (swa_batch --seeds)
+//     sweep:                                         # one axis per key, in this order (the first varies slowest)
+//       uav_count: [4, 8, 16, 32]                    # any scenario key, as --set takes it
+//       agent.formation.neighbourhood: [gabriel, k_nearest]
+//
+// The scenario's loader skips the section (params::Schema::foreign_sections), so every other program runs the file
+// as the base scenario. On swa_batch's command line, --sweep KEY=... replaces the file's values of KEY (in its place)
+// or adds an axis after the file's, and --seeds replaces study.seeds.
+
+#include <string>
+#include <vector>
+
+#include "study_plan.h"
+
+namespace swa::study {
+
+struct StudySection {
+  bool present = false;
+  int seeds = 0;           // 0: not given
+  std::vector<Axis> axes;  // in file order
+};
+
+// Throws params::ConfigError (source = path) listing every problem: an unknown entry, seeds not a whole number in
+// [1, 100000], a sweep key without values or with an empty or repeated value, the section not a map.
+StudySection readStudySection(const std::string& scenario_path);
+
+// The study's plan: the file's section with the command line's --sweep (each "KEY=V1,V2,...") and --seeds (0: not
+// given) on top; `fallback_seeds` when neither gives seeds. Throws std::invalid_argument listing every problem.
+StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& sweeps, int seeds, int fallback_seeds);
+
+}  // namespace swa::study
