@@ -33,7 +33,7 @@ Commands:
   install   apt-get install what is missing: podman, runc, netavark, aardvark-dns, iptables, debootstrap,
             podman-compose (root; apt is not contacted when nothing is missing)
   build     install, then the Debian base image (debootstrap + import, once; --rebuild-base to redo it), then the
-            images localhost/swa-{agent,sim,monitor,bridge}:latest with the binaries of --bin-dir
+            images localhost/swa-{agent,sim,monitor,bridge,batch}:latest with the binaries of --bin-dir
   compose N print the compose file for N UAVs (deploy/containers/compose.yaml is N = 4; with --vehicle px4 the
             PX4 variant, deploy/containers/compose-px4.yaml for N = 4)
   up        start the swarm in the background (images must be built): writes RUN/agent.yaml for the scenario,
@@ -49,7 +49,8 @@ Commands:
             swa_batch in --bin-dir). Exit 0 = pass
 
 Options:
-  --bin-dir DIR     where swa_agent, swa_sim, swa_monitor and swa_px4_bridge are (build; default build/bin)
+  --bin-dir DIR     where swa_agent, swa_sim, swa_monitor, swa_px4_bridge and swa_batch are (build; default
+                    build/bin)
   --uavs N          number of agent containers (up, run, test; default 4); sets the scenario's uav_count to N
   --vehicle V       direct (default) or px4: one swa_px4_bridge container per UAV too, the simulator playing each
                     UAV's PX4 v1.15 (vehicle.interface=px4); test then compares d_NB with swa_batch's direct loop
@@ -123,7 +124,7 @@ build_images() {
   install_packages
   [ "$(id -u)" -eq 0 ] || die "build needs root (debootstrap, rootful podman)"
   local b
-  for b in swa_agent swa_sim swa_monitor swa_px4_bridge; do
+  for b in swa_agent swa_sim swa_monitor swa_px4_bridge swa_batch; do
     [ -x "$bin_dir/$b" ] || die "$bin_dir/$b not found: build first (bash deploy/build.sh) or pass --bin-dir"
   done
   # Inside a container only SWA_TRANSPORT=network keeps shared memory out; binaries from before it would try
@@ -144,12 +145,12 @@ build_images() {
   mkdir -p "$context/bin" "$context/scenarios"
   # install -m: the modes in the image must not depend on how the checkout or the build set them.
   install -m 0755 "$bin_dir/swa_agent" "$bin_dir/swa_sim" "$bin_dir/swa_monitor" "$bin_dir/swa_px4_bridge" \
-    "$here/swa-entrypoint" "$context/bin/"
+    "$bin_dir/swa_batch" "$here/swa-entrypoint" "$context/bin/"
   install -m 0644 "$root/deploy/dds/profiles.xml" "$context/"
   install -m 0644 "$root"/deploy/scenarios/*.yaml "$context/scenarios/"
 
   local target start
-  for target in agent sim monitor bridge; do
+  for target in agent sim monitor bridge batch; do
     start=$SECONDS
     # Host network for the build only: apt-get in the runtime stage must reach the Debian archive; the swarm
     # itself runs on its internal bridge.

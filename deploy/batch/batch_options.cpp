@@ -12,7 +12,7 @@ app::Cli makeCli(BatchOptions& o) {
   cli.usage(R"(swa_batch --scenario FILE [--set key=value]... [--seeds N] [--jobs J] [--out DIR]
                  [--compare standalone|swa|anchored]
        swa_batch --scenario FILE [--set key=value]... --sweep KEY=V1,V2,... [--sweep ...] [--seeds N]
-                 [--jobs J] [--shard I/N] [--out DIR]
+                 [--jobs J] [--shard I/N] [--out DIR] [--dry-run]
        swa_batch merge DIR... --out DIR)");
   cli.details(R"(Runs the simulator and one SWA agent core per UAV in one process, deterministically per seed, seeds in parallel.
 Prints one line per finished seed and an aggregate table; writes DIR/summary.json (aggregate and per seed) and
@@ -47,6 +47,9 @@ and --seeds replaces study.seeds.)");
              "also run the same seeds with agent.mode = MODE and print both side by side");
   cli.list("--sweep", "KEY=V1,V2,...", o.sweeps, "sweep a scenario key over these values (a study; see above)");
   cli.text("--shard", "I/N", o.shard, "run only shard I of N of the study (1 <= I <= N)", "I/N");
+  cli.flag("--dry-run", o.dry_run,
+           "check the scenario (a study: every grid point) and print what would run, then exit without running; "
+           "deploy/slurm/submit-study.sh does this before it submits");
   cli.answer("--parameters", o.list_parameters, "list every scenario key with unit, default and bounds, then exit");
   cli.footer("Exit status: 0 when every seed ran, 2 for a usage or scenario error, 1 when a run failed.");
   return cli;

@@ -25,6 +25,7 @@ struct BatchOptions {
   // swa_batch merge DIR... --out DIR: the shards' study.json files into the study's files (no simulation)
   bool merge = false;
   std::vector<std::string> merge_dirs;
+  bool dry_run = false;                   // check everything, print what would run, run nothing
   bool help = false;
   bool list_parameters = false;
 

@@ -199,6 +199,10 @@ app::Plan prepare(const std::vector<std::string>& args) {
                                   " has a study section): sweep agent.mode instead");
     }
     auto study = std::make_shared<const batch::PreparedStudy>(batch::prepareStudy(opt, section));
+    if (opt.dry_run) {
+      batch::printStudyPlan(*study);
+      return app::exitWith(0);
+    }
     // A study uses every core unless told otherwise.
     const int jobs = opt.jobs_given ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     monitor::prepareOutputDir(opt.out_dir);
@@ -207,6 +211,12 @@ app::Plan prepare(const std::vector<std::string>& args) {
     });
   }
   const sim::Scenario scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
+  if (opt.dry_run) {
+    std::printf("scenario %s: %d UAVs, %.0f s, seeds %llu..%llu\n", opt.scenario_path.c_str(), scenario.uav_count,
+                scenario.duration_s, static_cast<unsigned long long>(scenario.seed),
+                static_cast<unsigned long long>(scenario.seed + static_cast<std::uint64_t>(opt.seeds) - 1));
+    return app::exitWith(0);
+  }
   monitor::prepareOutputDir(opt.out_dir);  // before hours of seeds, not after
   return app::startWith([opt, scenario]() -> std::unique_ptr<app::Role> { return std::make_unique<Batch>(opt, scenario); });
 }

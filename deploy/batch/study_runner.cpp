@@ -87,6 +87,21 @@ PreparedStudy prepareStudy(const BatchOptions& o, const study::StudySection& sec
   return p;
 }
 
+void printStudyPlan(const PreparedStudy& p) {
+  const study::StudyPlan& plan = p.record.plan;
+  std::printf("study %s (version %s)\nscenario %s, seeds %llu..%llu at every grid point\n", p.record.study_id.c_str(),
+              p.record.version.c_str(), p.record.scenario.c_str(),
+              static_cast<unsigned long long>(p.record.first_seed),
+              static_cast<unsigned long long>(p.record.first_seed + static_cast<std::uint64_t>(plan.seeds) - 1));
+  for (const study::Axis& a : plan.axes) {
+    std::string values;
+    for (const std::string& v : a.values) values += (values.empty() ? "" : ", ") + v;
+    std::printf("sweep %s: %s\n", a.key.c_str(), values.c_str());
+  }
+  std::printf("%zu grid point(s) x %d seed(s) = %zu runs; shard %d/%d: %zu runs\n", study::pointCount(plan),
+              plan.seeds, study::runCount(plan), p.record.shard.index, p.record.shard.count, p.runs.size());
+}
+
 int runStudy(const BatchOptions& o, const PreparedStudy& prepared, int jobs, const std::atomic<bool>& stop) {
   const study::StudyPlan& plan = prepared.record.plan;
   std::vector<sim::Scenario> scenarios;

@@ -23,6 +23,9 @@ struct PreparedStudy {
 // params::ConfigError (the base scenario) listing every problem.
 PreparedStudy prepareStudy(const BatchOptions& options, const study::StudySection& section);
 
+// What the study (or shard) would run: its id, the grid and the runs, on stdout.
+void printStudyPlan(const PreparedStudy& study);
+
 // Runs the shard's runs on `jobs` threads and writes the study (whole) or the shard's study.json into
 // options.out_dir. Returns the exit status (0; 3 interrupted: nothing written).
 int runStudy(const BatchOptions& options, const PreparedStudy& study, int jobs, const std::atomic<bool>& stop);
