@@ -134,7 +134,9 @@ env_text=$(
   echo "# SWA study submitted $(date -u +%Y-%m-%dT%H:%M:%SZ) from $PWD by deploy/slurm/submit-study.sh"
   printf 'SWA_BATCH=(%s)\n' "$(printf '%q ' "${batch[@]}")"
   printf 'SWA_SCENARIO=%q\n' "$scenario"
-  printf 'SWA_ARGS=(%s)\n' "$(printf '%q ' ${batch_args[@]+"${batch_args[@]}"})"
+  # (printf with no arguments would still print one empty word)
+  if [ ${#batch_args[@]} -gt 0 ]; then printf 'SWA_ARGS=(%s)\n' "$(printf '%q ' "${batch_args[@]}")"; else
+    echo 'SWA_ARGS=()'; fi
   printf 'SWA_SHARDS=%q\n' "$shards"
   printf 'SWA_OUT=%q\n' "$out"
 )
