@@ -3,8 +3,9 @@
 # Brings up a single-node cluster (slurmctld + slurmd + munged from Debian's packages, on free ports, everything
 # under WORK_DIR: local_cluster.sh), submits tests/slurm/study_2x3.yaml (2 x 3 grid points x 4 seeds) with
 # deploy/slurm/submit-study.sh as 4 array tasks and a dependent merge job, and checks that OUT/study/ is byte for byte
-# what swa_batch writes for the same study run here in one process. Then a study whose third shard fails: the merge
-# job must never run. Tears the cluster down on every exit.
+# what swa_batch writes for the same study run here in one process; the same for the shipped example study
+# (deploy/scenarios/study_drift_vs_n.yaml), whose drift must fall with N. Then a study whose third shard fails: the
+# merge job must never run. Tears the cluster down on every exit.
 set -euo pipefail
 bin_dir=$(cd "$1" && pwd)
 work=$2
@@ -65,6 +66,31 @@ for i in 1 2 3 4; do
   grep -q "study-shard: shard $i/4 on" "$work/slurm/logs/shard_$i.out" || fail "array task $i did not run shard $i/4"
 done
 echo "test_slurm_study: 4 array tasks + merge == local run: runs.csv ($rows rows), 6 points, study.json, study.html"
+
+# The shipped example study (deploy/scenarios/study_drift_vs_n.yaml: 160 runs of 120 s), locally and on the cluster.
+example=$root/deploy/scenarios/study_drift_vs_n.yaml
+"$bin_dir/swa_batch" --scenario "$example" --out "$work/example_local" > "$work/example_local.log"
+"$submit" --scenario "$example" --out "$work/example_slurm" --shards 4 --bin-dir "$bin_dir" --time 00:20:00 \
+  > "$work/submit-example.log"
+SLURM_WAIT_TIMEOUT=480 slurm_wait_jobs "$(cat "$work/example_slurm/array.jobid")" \
+  "$(cat "$work/example_slurm/merge.jobid")" || fail "the example study's jobs did not all complete"
+diff -r "$work/example_local" "$work/example_slurm/study" || fail "the example study differs on Slurm"
+# Its figure: for both neighbourhood rules the mean drift falls from N = 4 to N = 32 and no run collides.
+python3 - "$work/example_local/runs.csv" << 'PY' || fail "the example study does not show drift falling with N"
+import csv, statistics, sys
+cells = {}
+for row in csv.DictReader(open(sys.argv[1])):
+    cells.setdefault((row["agent.formation.neighbourhood"], int(row["uav_count"])), []).append(row)
+ok = True
+for rule in ("gabriel", "k_nearest"):
+    drift = [statistics.mean(float(r["drift_velocity_mps"]) for r in cells[(rule, n)]) for n in (4, 8, 16, 32)]
+    collisions = sum(float(r["collisions"]) for n in (4, 8, 16, 32) for r in cells[(rule, n)])
+    print(f"test_slurm_study: {rule}: mean drift at N = 4, 8, 16, 32: " + ", ".join(f"{d:.4f}" for d in drift) +
+          f" m/s; collisions {collisions:.0f}")
+    ok &= drift[3] < 0.5 * drift[0] and collisions == 0
+sys.exit(0 if ok else 1)
+PY
+echo "test_slurm_study: the example study (160 runs) on 4 array tasks + merge == local run"
 
 # A shard that fails: swa_batch exits 1 for shard 3/4 only. The merge must never run, and no study is written.
 mkdir -p "$work/failing"
