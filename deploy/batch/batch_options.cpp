@@ -25,8 +25,8 @@ It writes into DIR: runs.csv (tidy: one row per run, the swept keys, seed, and e
 read it as is), points/<k>/summary.json (per grid point: its values and the aggregate over its seeds), and
 study.json (the study id, version, plan, base scenario, every run). --shard I/N runs only the runs whose index
 (point * seeds + seed offset) is I - 1 modulo N and writes only study.json; `swa_batch merge SHARD_DIR... --out DIR`
-then writes exactly the files the whole study would have written, and refuses shards of another study or version,
-a shard given twice, or a missing one.
+then writes exactly the files the whole study would have written, and refuses shards of another study, version or
+cut, a shard given twice, or a missing one. --out must not hold an older study.
 
 A scenario file may carry the study itself, so a study is one file under version control (the other programs
 ignore the section; see deploy/scenarios/study_drift_vs_n.yaml):

@@ -203,6 +203,7 @@ app::Plan prepare(const std::vector<std::string>& args) {
       batch::printStudyPlan(*study);
       return app::exitWith(0);
     }
+    study::refuseOldStudy(opt.out_dir);  // before hours of runs, not after
     // A study uses every core unless told otherwise.
     const int jobs = opt.jobs_given ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     monitor::prepareOutputDir(opt.out_dir);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "batch_runner.h"
 #include "swa/params/error.h"
@@ -42,7 +43,8 @@ PreparedStudy prepareStudy(const BatchOptions& o, const study::StudySection& sec
   PreparedStudy p;
   std::vector<std::string> problems;
   try {
-    p.record.plan = study::combinePlan(section, o.sweeps, o.seeds_given ? o.seeds : 0, o.seeds);
+    p.record.plan =
+        study::combinePlan(section, o.sweeps, o.seeds_given ? o.seeds : 0, o.seeds, sim::canonicalScenarioKey);
   } catch (const std::invalid_argument& e) {
     problems.push_back(e.what());
   }
@@ -67,15 +69,31 @@ PreparedStudy prepareStudy(const BatchOptions& o, const study::StudySection& sec
   p.record.version = study::programVersion();
   p.record.study_id = study::studyId(p.record.version, p.record.scenario_yaml, plan, base.seed);
   // Every grid point's scenario now: a bad value must stop the study before hours of runs, not in the middle.
+  // Two grid points that make the same scenario (a key swept under two names, "0.1" and "0.10") would label equal
+  // runs with different values: refused, as is a point that moves the seed (the study's repetitions).
   std::vector<std::string> point_problems;
-  for (std::size_t point = 0; point < study::pointCount(plan); ++point) {
+  std::unordered_map<std::size_t, std::size_t> point_of_hash;
+  for (std::size_t point = 0; point < study::pointCount(plan) && point_problems.size() < 10; ++point) {
     std::vector<std::string> overrides = o.overrides;
     for (const std::string& s : study::pointOverrides(plan, point)) overrides.push_back(s);
     try {
       p.point_scenarios.push_back(sim::loadScenario(o.scenario_path, overrides));
     } catch (const params::ConfigError& e) {
       point_problems.push_back("grid point " + describe(plan, point) + ": " + e.what());
-      if (point_problems.size() >= 10) break;
+      continue;
+    }
+    const sim::Scenario& s = p.point_scenarios.back();
+    if (s.seed != base.seed) {
+      point_problems.push_back("grid point " + describe(plan, point) +
+                               " sets the seed: seeds are a study's repetitions, give --seeds N");
+      continue;
+    }
+    const std::string yaml = sim::scenarioToYaml(s);
+    const auto [it, fresh] = point_of_hash.emplace(std::hash<std::string>{}(yaml), point);
+    if (!fresh && sim::scenarioToYaml(p.point_scenarios[it->second]) == yaml) {
+      point_problems.push_back("grid points " + describe(plan, it->second) + " and " + describe(plan, point) +
+                               " are the same scenario: is a key swept under two names (an alias), or a value "
+                               "given twice in two spellings?");
     }
   }
   if (!point_problems.empty()) {
@@ -155,6 +173,7 @@ int runMerge(const BatchOptions& o) {
     std::vector<study::StudyRecord> shards;
     for (const std::string& dir : o.merge_dirs) shards.push_back(study::readStudy(dir));
     const study::StudyRecord merged = study::mergeShards(shards);
+    study::refuseOldStudy(o.out_dir);
     study::writeStudy(o.out_dir, merged);
     std::printf("swa_batch: merged %zu shard(s) of study %s: %zu runs into %s\n", shards.size(),
                 merged.study_id.c_str(), merged.runs.size(), o.out_dir.c_str());

@@ -91,26 +91,44 @@ for a in ${batch_args[@]+"${batch_args[@]}"}; do
   case $a in
     --shard | --shard=* | --out | --out=* | --jobs | --jobs=* | --scenario | --scenario=* | --compare | --compare=*)
       die "$a is this script's to set (--shards, --out, --cpus-per-task, --scenario); --compare is not for studies" ;;
+    --dry-run | --help | -h | --parameters)
+      die "$a after -- would make every shard run nothing (this script has its own --dry-run and --help)" ;;
   esac
 done
 out=$(realpath -m -- "$out")  # the jobs may start elsewhere
 [ ! -e "$out/job.env" ] || die "$out already holds a study (job.env): give a fresh --out"
 
-# What the jobs run: the installed binary, or the batch image through its runtime with the working directory, the
-# scenario's directory and OUT mounted at the same paths (`check`: the same without OUT).
-if [ -n "$image" ]; then
-  scenario_dir=$(cd "$(dirname "$scenario")" && pwd)
+# What the jobs run: the installed binary, or the batch image through its runtime. The container sees the working
+# directory, the scenario's and OUT (`check`: not OUT, which does not exist yet), each at its own path, and each only
+# once and not inside another (podman refuses a mount destination given twice).
+mounted=()
+mount_dir() {
+  local d
+  for d in ${mounted[@]+"${mounted[@]}"}; do
+    case $1/ in "$d"/*) return 0 ;; esac
+  done
+  mounted+=("$1")
+}
+# runtime_command DIR...: the runtime's command line for swa_batch in the image, with DIR... mounted.
+runtime_command() {
+  mounted=()
+  local d
+  for d in "$@"; do mount_dir "$d"; done
+  local args=()
   case $runtime in
     podman)
-      check=(podman run --rm --network none --volume "$PWD:$PWD" --volume "$scenario_dir:$scenario_dir:ro"
-        --workdir "$PWD" "$image" swa_batch)
-      batch=(podman run --rm --network none --volume "$PWD:$PWD" --volume "$scenario_dir:$scenario_dir:ro"
-        --volume "$out:$out" --workdir "$PWD" "$image" swa_batch) ;;
+      for d in "${mounted[@]}"; do args+=(--volume "$d:$d"); done
+      printf '%s\0' podman run --rm --network none "${args[@]}" --workdir "$PWD" "$image" swa_batch ;;
     apptainer)
-      check=(apptainer exec --bind "$PWD" --bind "$scenario_dir" --pwd "$PWD" "$image" swa_batch)
-      batch=(apptainer exec --bind "$PWD" --bind "$scenario_dir" --bind "$out" --pwd "$PWD" "$image" swa_batch) ;;
-    *) die "--runtime must be podman or apptainer, got '$runtime'" ;;
+      for d in "${mounted[@]}"; do args+=(--bind "$d"); done
+      printf '%s\0' apptainer exec "${args[@]}" --pwd "$PWD" "$image" swa_batch ;;
   esac
+}
+if [ -n "$image" ]; then
+  case $runtime in podman | apptainer) ;; *) die "--runtime must be podman or apptainer, got '$runtime'" ;; esac
+  scenario_dir=$(cd "$(dirname "$scenario")" && pwd)
+  mapfile -d '' -t check < <(runtime_command "$PWD" "$scenario_dir")
+  mapfile -d '' -t batch < <(runtime_command "$PWD" "$scenario_dir" "$out")
 else
   if [ -n "$bin_dir" ]; then
     exe=$bin_dir/swa_batch
@@ -127,7 +145,7 @@ fi
 # The whole study checked now, not in N array tasks after a wait in the queue (OUT does not exist yet).
 echo "submit-study: checking the study with ${check[*]} --dry-run"
 "${check[@]}" --scenario "$scenario" ${batch_args[@]+"${batch_args[@]}"} --shard "1/$shards" --dry-run ||
-  die "swa_batch refused the study (above); nothing submitted"
+  die "the study's check failed (above); nothing submitted"
 
 # Everything the jobs need, in one file they source: what ran is on record beside the results.
 env_text=$(

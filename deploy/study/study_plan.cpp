@@ -1,5 +1,7 @@
 #include "study_plan.h"
 
+#include <algorithm>
+#include <cctype>
 #include <set>
 #include <stdexcept>
 
@@ -17,6 +19,14 @@ std::vector<std::string> split(const std::string& text, char by) {
   }
 }
 
+// As the parameter engine reads a --set key and value: surrounding spaces are not part of them.
+std::string trim(const std::string& text) {
+  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  const auto begin = std::find_if_not(text.begin(), text.end(), space);
+  const auto end = std::find_if_not(text.rbegin(), text.rend(), space).base();
+  return begin < end ? std::string(begin, end) : std::string();
+}
+
 int positive(const std::string& text, const std::string& what) {
   std::size_t used = 0;
   int n = 0;
@@ -32,6 +42,8 @@ int positive(const std::string& text, const std::string& what) {
 }  // namespace
 
 Axis makeAxis(std::string key, std::vector<std::string> values, const std::string& what) {
+  key = trim(key);
+  for (std::string& v : values) v = trim(v);
   if (key.empty()) throw std::invalid_argument(what + " names no key");
   if (values.empty()) throw std::invalid_argument(what + " gives no value");
   std::set<std::string> seen;
@@ -62,7 +74,18 @@ std::vector<std::string> planProblems(const StudyPlan& plan) {
   std::vector<std::string> problems;
   std::set<std::string> keys;
   for (const Axis& a : plan.axes) {
-    if (!keys.insert(a.key).second) problems.push_back("--sweep " + a.key + " given twice: give its values once");
+    if (!keys.insert(a.key).second) problems.push_back(a.key + " is swept twice: give its values once");
+  }
+  if (plan.axes.empty()) problems.push_back("a study sweeps at least one key (--sweep KEY=V1,V2 or study.sweep)");
+  // Counted without overflow: eight axes of 256 values would wrap a 64-bit count to 0 runs.
+  std::size_t runs = static_cast<std::size_t>(std::max(plan.seeds, 1));
+  for (const Axis& a : plan.axes) {
+    if (runs > kMaxRuns / std::max<std::size_t>(a.values.size(), 1)) {
+      problems.push_back("the study has more than " + std::to_string(kMaxRuns) +
+                         " runs (grid points x seeds): cut the sweep");
+      break;
+    }
+    runs *= std::max<std::size_t>(a.values.size(), 1);
   }
   return problems;
 }

@@ -27,7 +27,7 @@ struct Shard {
   bool whole() const { return count == 1; }
 };
 
-// An axis with its values checked: a key, at least one value, none empty, none twice. `what` names the source in the
+// An axis with its values checked: a key, at least one value, none empty, none twice (key and values trimmed). `what` names the source in the
 // std::invalid_argument thrown ("--sweep 'uav_count=4,,8'", "study.sweep.uav_count (line 3, column 14)").
 Axis makeAxis(std::string key, std::vector<std::string> values, const std::string& what);
 // "KEY=V1,V2,..." -> an axis. Throws std::invalid_argument saying what is wrong (no '=', no key, an empty value, a
@@ -35,7 +35,10 @@ Axis makeAxis(std::string key, std::vector<std::string> values, const std::strin
 Axis parseSweep(const std::string& text);
 // "I/N" with 1 <= I <= N. Throws std::invalid_argument.
 Shard parseShard(const std::string& text);
-// Problems of a plan as a whole (the same key swept twice), one per entry.
+// More runs than a study may have: each run's scenario and summary stay in memory until the study is written.
+constexpr std::size_t kMaxRuns = 10'000'000;
+
+// Problems of a plan as a whole (no axis, the same key swept twice, more than kMaxRuns runs), one per entry.
 std::vector<std::string> planProblems(const StudyPlan& plan);
 
 std::size_t pointCount(const StudyPlan& plan);

@@ -8,10 +8,7 @@
 
 #include "study_html.h"
 #include "swa/record/csv.h"
-
-#ifndef SWA_VERSION
-#define SWA_VERSION "unknown"
-#endif
+#include "swa_study_version.h"  // generated at build time (write_version.cmake)
 
 namespace swa::study {
 namespace {
@@ -54,7 +51,7 @@ std::string shardText(const Shard& s) { return std::to_string(s.index) + "/" + s
 
 }  // namespace
 
-std::string programVersion() { return SWA_VERSION; }
+std::string programVersion() { return SWA_STUDY_VERSION; }
 
 std::string studyId(const std::string& version, const std::string& scenario_yaml, const StudyPlan& plan,
                     std::uint64_t first_seed) {
@@ -136,6 +133,10 @@ StudyRecord mergeShards(const std::vector<StudyRecord>& shards) {
     if (s.study_id != first.study_id) {
       throw StudyError(which + " is of study " + s.study_id + ", the first of " + first.study_id +
                        " (another scenario, sweep, seeds or version)");
+    }
+    if (s.shard.count != first.shard.count) {
+      throw StudyError(which + " is one of " + std::to_string(s.shard.count) + " shards, the first one of " +
+                       std::to_string(first.shard.count) + ": merge the shards of one cut");
     }
     for (const RunRow& r : s.runs) {
       if (!by_index.emplace(r.index, &r).second) {
@@ -229,6 +230,17 @@ StudyRecord readStudy(const std::string& dir) {
     throw;
   } catch (const std::exception& e) {
     throw StudyError(path + ": " + e.what());
+  }
+}
+
+void refuseOldStudy(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const char* entry : {"study.json", "points"}) {
+    if (fs::exists(fs::path(dir) / entry, ec)) {
+      throw StudyError(dir + " already holds a study (" + entry +
+                       "): give a fresh --out, or remove the old study first");
+    }
   }
 }
 

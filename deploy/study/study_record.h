@@ -44,7 +44,8 @@ struct StudyRecord {
   std::vector<RunRow> runs;  // by index
 };
 
-// The build's version: the project version and the commit it was built from (configure time).
+// The build's version: the project version and the commit it was built from, "-dirty" with uncommitted changes
+// (build time).
 std::string programVersion();
 // A digest of everything that makes a study's results: version, base scenario, plan, first seed.
 std::string studyId(const std::string& version, const std::string& scenario_yaml, const StudyPlan& plan,
@@ -69,5 +70,8 @@ void writeShard(const std::string& dir, const StudyRecord& shard);
 void writeStudy(const std::string& dir, const StudyRecord& study);
 // study.json of `dir`. Throws StudyError.
 StudyRecord readStudy(const std::string& dir);
+// Throws StudyError if `dir` already holds a study or a shard (study.json or points/): writing over it would leave
+// the old study's grid points beside the new one's.
+void refuseOldStudy(const std::string& dir);
 
 }  // namespace swa::study

@@ -53,22 +53,22 @@ StudySection readStudySection(const std::string& scenario_path) {
                          ": a study section holds seeds: N and sweep: {KEY: [V1, V2, ...], ...}");
     }
   }
-  if (s.present && s.axes.empty() && problems.empty()) {
-    problems.push_back("the study section sweeps nothing: give sweep: {KEY: [V1, V2, ...]}");
-  }
   if (!problems.empty()) throw params::ConfigError(scenario_path, problems);
   return s;
 }
 
-StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& sweeps, int seeds, int fallback_seeds) {
+StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& sweeps, int seeds, int fallback_seeds,
+                      const std::function<std::string(const std::string&)>& canonical) {
   StudyPlan plan;
   plan.axes = file.axes;
+  for (Axis& a : plan.axes) a.key = canonical(a.key);
   plan.seeds = seeds > 0 ? seeds : file.seeds > 0 ? file.seeds : fallback_seeds;
   std::vector<std::string> problems;
   std::vector<std::string> given;  // keys the command line swept, to find one given twice there
   for (const std::string& text : sweeps) {
     try {
       Axis axis = parseSweep(text);
+      axis.key = canonical(axis.key);
       if (axis.key == "seed") {
         problems.push_back("--sweep seed: seeds are a study's repetitions, give --seeds N instead");
         continue;
@@ -89,7 +89,8 @@ StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& 
     }
   }
   for (const Axis& a : file.axes) {
-    if (a.key == "seed") problems.push_back("study.sweep.seed: seeds are a study's repetitions, give study.seeds N");
+    if (canonical(a.key) == "seed")
+      problems.push_back("study.sweep.seed: seeds are a study's repetitions, give study.seeds N");
   }
   for (const std::string& problem : planProblems(plan)) problems.push_back(problem);
   if (!problems.empty()) {

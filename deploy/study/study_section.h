@@ -11,6 +11,7 @@
 // as the base scenario. On swa_batch's command line, --sweep KEY=... replaces the file's values of KEY (in its place)
 // or adds an axis after the file's, and --seeds replaces study.seeds.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,10 @@ struct StudySection {
 StudySection readStudySection(const std::string& scenario_path);
 
 // The study's plan: the file's section with the command line's --sweep (each "KEY=V1,V2,...") and --seeds (0: not
-// given) on top; `fallback_seeds` when neither gives seeds. Throws std::invalid_argument listing every problem.
-StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& sweeps, int seeds, int fallback_seeds);
+// given) on top; `fallback_seeds` when neither gives seeds. Keys are compared, and recorded, by their canonical name
+// (`canonical`: the scenario's aliases resolved), so `--sweep agent.k=...` replaces the file's agent.formation.k.
+// Throws std::invalid_argument listing every problem.
+StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& sweeps, int seeds, int fallback_seeds,
+                      const std::function<std::string(const std::string&)>& canonical);
 
 }  // namespace swa::study

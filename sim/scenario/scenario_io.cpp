@@ -251,4 +251,11 @@ std::string scenarioToYaml(const Scenario& scenario) { return table().dump(scena
 
 std::string describeScenarioParameters() { return table().describe(); }
 
+std::string canonicalScenarioKey(const std::string& key) {
+  for (const params::Alias& a : table().schema().aliases) {
+    if (a.alias == key) return a.key;
+  }
+  return key;
+}
+
 }  // namespace swa::sim

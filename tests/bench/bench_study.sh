@@ -40,6 +40,7 @@ sweep=(--scenario "$root/deploy/scenarios/dropout_8.yaml" --set duration_s=120 -
 echo "| round | --jobs 1 wall [s] | --jobs 2 wall [s] |"
 echo "|---|---|---|"
 for ((r = 1; r <= rounds; ++r)); do
+  rm -rf "$work/sweep_j1" "$work/sweep_j2"  # a study's --out must not hold an older study
   a=$(wall "$batch" "${sweep[@]}" --jobs 1 --out "$work/sweep_j1")
   b=$(wall "$batch" "${sweep[@]}" --jobs 2 --out "$work/sweep_j2")
   echo "$a" >> "$work/j1"

@@ -34,6 +34,7 @@ refused "is this script's to set" --scenario "$here/study_2x3.yaml" --out "$work
 refused "shards must be a whole number" --scenario "$here/study_2x3.yaml" --out "$work/never" --shards 0
 refused "not a readable file" --scenario "$work/none.yaml" --out "$work/never"
 refused "nothing submitted" --scenario "$here/study_2x3.yaml" --out "$work/never" -- --sweep uav_count=4,0
+refused "would make every shard run nothing" --scenario "$here/study_2x3.yaml" --out "$work/never" -- --dry-run
 echo "test_slurm_study: submit-study refuses bad arguments and a study with a bad grid point before submitting"
 
 cluster=$work/cluster
@@ -110,8 +111,11 @@ fi
 # (no `| head`: under pipefail a reader that stops early can fail the pipeline)
 job_info=$(scontrol show job "$broken_merge")
 state=$(grep -o -m 1 'JobState=[A-Z_]*' <<< "$job_info")
-[ "$state" != "JobState=COMPLETED" ] && [ "$state" != "JobState=RUNNING" ] ||
-  fail "the merge job ran although shard 3 failed ($state)"
+# Cancelled by Slurm without ever starting: a merge that ran and failed (no dependency, or afterany) would leave a
+# log, and would end FAILED.
+[ "$state" = "JobState=CANCELLED" ] || fail "the merge job is $state, not CANCELLED, although shard 3 failed"
+grep -q "Reason=DependencyNeverSatisfied" <<< "$job_info" || fail "the merge job was not cancelled for its dependency"
+[ ! -e "$work/broken/logs/merge.out" ] || fail "the merge job started although shard 3 failed"
 [ ! -e "$work/broken/study" ] || fail "a study was written although shard 3 failed"
 grep -q "planted failure" "$work/broken/logs/shard_3.out" || fail "shard 3's log does not show its failure"
 echo "test_slurm_study: a failed shard: merge job $broken_merge never ran ($state), no study written"

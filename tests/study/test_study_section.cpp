@@ -92,10 +92,17 @@ TEST_F(StudySectionTest, EveryMistakeIsReportedWithItsLine) {
   EXPECT_NE(problems("study:\n  seeds: [1, 2]\n  sweep: {uav_count: [4]}\n").find("got a list"), std::string::npos);
   EXPECT_NE(problems("study:\n  seeds: 2.5\n  sweep: {uav_count: [4]}\n").find("got '2.5'"), std::string::npos);
   EXPECT_NE(problems("study: [4, 8]\n").find("'study' must be a map, got a sequence"), std::string::npos);
-  EXPECT_NE(problems("study:\n  seeds: 3\n").find("sweeps nothing"), std::string::npos);
+  EXPECT_NE(problems("study:\n  seeds: 2\n  seeds: 7\n  sweep: {uav_count: [4]}\n").find("study.seeds given twice"),
+            std::string::npos);
+  EXPECT_NE(problems("study:\n  seeds: 2\nstudy:\n  sweep: {uav_count: [4]}\n").find("'study' given twice"),
+            std::string::npos);
   EXPECT_NE(problems("study:\n  sweep: {uav_count: [4]\n").find("invalid YAML"), std::string::npos);
   EXPECT_NE(problems("study:\n  sweep: {uav_count: }\n").find("has no value"), std::string::npos);
 }
+
+std::string same(const std::string& key) { return key; }
+// As the scenario's aliases (sim::canonicalScenarioKey).
+std::string aliases(const std::string& key) { return key == "agent.k" ? "agent.formation.k" : key; }
 
 TEST(StudySectionPlan, CommandLineReplacesAnAxisInPlaceAddsNewOnesAndOverridesSeeds) {
   StudySection file;
@@ -103,11 +110,11 @@ TEST(StudySectionPlan, CommandLineReplacesAnAxisInPlaceAddsNewOnesAndOverridesSe
   file.seeds = 20;
   file.axes = {parseSweep("uav_count=4,8"), parseSweep("agent.formation.neighbourhood=gabriel,k_nearest")};
 
-  const StudyPlan same = combinePlan(file, {}, 0, 1);
-  EXPECT_EQ(same.seeds, 20);
-  ASSERT_EQ(same.axes.size(), 2u);
+  const StudyPlan unchanged = combinePlan(file, {}, 0, 1, same);
+  EXPECT_EQ(unchanged.seeds, 20);
+  ASSERT_EQ(unchanged.axes.size(), 2u);
 
-  const StudyPlan plan = combinePlan(file, {"imu.bias_std=0.05,0.15", "uav_count=16"}, 3, 1);
+  const StudyPlan plan = combinePlan(file, {"imu.bias_std=0.05,0.15", "uav_count=16"}, 3, 1, same);
   EXPECT_EQ(plan.seeds, 3);
   ASSERT_EQ(plan.axes.size(), 3u);
   EXPECT_EQ(plan.axes[0].key, "uav_count");
@@ -115,14 +122,32 @@ TEST(StudySectionPlan, CommandLineReplacesAnAxisInPlaceAddsNewOnesAndOverridesSe
   EXPECT_EQ(plan.axes[1].key, "agent.formation.neighbourhood");
   EXPECT_EQ(plan.axes[2].key, "imu.bias_std");
 
-  EXPECT_EQ(combinePlan(StudySection{}, {"uav_count=4"}, 0, 7).seeds, 7) << "--seeds' default without a section";
+  EXPECT_EQ(combinePlan(StudySection{}, {"uav_count=4"}, 0, 7, same).seeds, 7) << "--seeds' default without a section";
   for (const std::vector<std::string>& bad :
        std::vector<std::vector<std::string>>{{"seed=1,2"}, {"uav_count=4", "uav_count=8"}, {"uav_count"}}) {
-    EXPECT_THROW(combinePlan(file, bad, 0, 1), std::invalid_argument) << bad.back();
+    EXPECT_THROW(combinePlan(file, bad, 0, 1, same), std::invalid_argument) << bad.back();
   }
+  // A section that sweeps nothing is a study only with the command line's sweeps.
+  StudySection seeds_only;
+  seeds_only.present = true;
+  seeds_only.seeds = 3;
+  EXPECT_THROW(combinePlan(seeds_only, {}, 0, 1, same), std::invalid_argument);
+  EXPECT_EQ(combinePlan(seeds_only, {"uav_count=4,8"}, 0, 1, same).axes.size(), 1u);
+
+  // Keys by their canonical names: an alias on the command line replaces the file's axis, spaces are not part of a
+  // key or value.
+  StudySection k_file;
+  k_file.present = true;
+  k_file.axes = {parseSweep("agent.formation.k=1,5")};
+  const StudyPlan k = combinePlan(k_file, {" agent.k = 2 , 3 "}, 0, 1, aliases);
+  ASSERT_EQ(k.axes.size(), 1u);
+  EXPECT_EQ(k.axes[0].key, "agent.formation.k");
+  EXPECT_EQ(k.axes[0].values, (std::vector<std::string>{"2", "3"}));
+  EXPECT_THROW(combinePlan(k_file, {"seed =5,9"}, 0, 1, same), std::invalid_argument);
+
   StudySection seeded = file;
   seeded.axes.push_back(parseSweep("seed=1,2"));
-  EXPECT_THROW(combinePlan(seeded, {}, 0, 1), std::invalid_argument);
+  EXPECT_THROW(combinePlan(seeded, {}, 0, 1, same), std::invalid_argument);
 }
 
 TEST_F(StudySectionTest, TheScenarioLoaderSkipsTheSectionButNothingElse) {

@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <set>
+
 #include "swa/params/error.h"
 #include "swa/params/file.h"
 #include "yaml_node.h"
@@ -34,6 +36,10 @@ class SectionReader {
     if (documents.size() != 1 || !documents.front().IsMap()) return;
     for (const auto& item : documents.front()) {
       if (!item.first.IsScalar() || item.first.Scalar() != name_) continue;
+      if (section_.present) {
+        section_.problems.push_back("'" + name_ + "' given twice" + locationOf(item.first));
+        continue;
+      }
       section_.present = true;
       if (item.second.IsMap()) {
         walk(item.second, "");
@@ -60,6 +66,10 @@ class SectionReader {
       }
       const std::string key = prefix.empty() ? item.first.Scalar() : prefix + "." + item.first.Scalar();
       const YAML::Node& value = item.second;
+      if (!seen_.insert(key).second) {
+        section_.problems.push_back(name_ + "." + key + " given twice" + locationOf(item.first));
+        continue;
+      }
       if (section_.leaves.size() >= kMaxLeaves) {
         section_.problems.push_back("'" + name_ + "' has more than " + std::to_string(kMaxLeaves) + " entries");
         return;
@@ -89,6 +99,7 @@ class SectionReader {
 
   const std::string name_;
   Section section_;
+  std::set<std::string> seen_;  // dotted keys below the section, to catch one written twice
   std::string unreadable_;
 };
 

@@ -49,4 +49,8 @@ std::string scenarioToYaml(const Scenario& scenario);
 // Every scenario parameter (key, type, unit, default, range, meaning), the agent's under `agent.`, and the rules.
 std::string describeScenarioParameters();
 
+// A key's canonical name: an alias becomes the key it stands for (agent.k -> agent.formation.k); any other key, known
+// or not, is returned unchanged.
+std::string canonicalScenarioKey(const std::string& key);
+
 }  // namespace swa::sim
