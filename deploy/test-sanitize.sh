@@ -22,9 +22,12 @@ export LSAN_OPTIONS=suppressions=$root/deploy/sanitizers/lsan.supp:print_suppres
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # EverySwarmSize for N = 10 to 16 runs in the Release suite only: under ASan those seven take 30 min of test time
 # (15 min of CI on 2 cores), and they run the same code as N = 3 to 9 here; 16 UAVs are covered here by
-# ClosedLoopCohesion.SixteenUavsHoldFormationWithin3Percent and ClosedLoopScaling.
+# ClosedLoopCohesion.SixteenUavsHoldFormationWithin3Percent and ClosedLoopScaling. Likewise the 600 s statistics of
+# tests/closedloop/test_formation_rules.cpp over 8 UAVs (FormationDrift, OldRules.TwoNearest, LimitedFieldOfView:
+# 13 min of test time here): their code runs here in the shorter closed-loop tests (bias removal and the Gabriel rule
+# are the defaults, k-nearest in OldRules.ThreeNearest, the field of view in tests/sim/test_world_mps.cpp).
 ASAN_OPTIONS=$asan ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -L 'unit|closedloop' \
-  -E 'EverySwarmSize.*/N1[0-9]' "$@"
+  -E 'EverySwarmSize.*/N1[0-9]|FormationDrift[.]|OldRules[.]TwoNearest|LimitedFieldOfView[.]' "$@"
 # The fuzz label runs swa_agent over Fast DDS 2.9, whose statistics DataReader is deleted through a base class of a
 # smaller size inside libfastrtps itself (new-delete-type-mismatch in RTPSReader::~RTPSReader, not our code): that one
 # check is off for this label only.

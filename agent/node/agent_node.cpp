@@ -41,6 +41,8 @@ constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 // is re-created (peer_book.h). Re-matching takes milliseconds when it works; the lockstep simulator waits 2 s (its
 // default agent timeout) for an answer.
 constexpr auto kRematchWait = std::chrono::milliseconds(500);
+// The agent counts as sending while its last command is at most this old (100 Hz when the loop runs).
+constexpr auto kSendingWindow = std::chrono::milliseconds(250);
 // Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (deploy/dds/profiles.xml): the most a
 // re-created participant's readers can be sent again (replay_filter.h).
 constexpr std::size_t kImuHistory = 1000;
@@ -86,6 +88,7 @@ void AgentNode::connect() {
       [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
   gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
       dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
+  link_.restart();
   peers_back_ = 0;
   peer_back_at_.reset();
   matched_once_ = {};
@@ -147,7 +150,11 @@ int AgentNode::run() {
     // waits for mutex_ (seen: every agent of a loaded host stuck after its first samples).
     const Matched matched = matchedNow();
     const std::optional<std::string> lost = endpointsLostAfterPeerReturn(matched);
+    const bool acknowledged = cmd_writer_.waitForAcknowledgments(0.0);
     std::unique_lock<std::mutex> lock(mutex_);
+    const auto now = std::chrono::steady_clock::now();
+    const std::optional<LinkWatch::Clock::duration> unheard =
+        link_.poll(now, acknowledged, last_cmd_at_ && now - *last_cmd_at_ < kSendingWindow, matched[0]);
     if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();
@@ -168,6 +175,11 @@ int AgentNode::run() {
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {
       why = *lost;
+    } else if (unheard) {
+      why = "none of its commands on " + dds::topics::cmdVel(id_) + " acknowledged for " +
+            std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(*unheard).count()) +
+            " ms while it sent them to " + std::to_string(matched[0]) +
+            " matched reader(s) (a channel to a reader broke)";
     }
     if (!why.empty()) {
       ++reconnects_;
@@ -196,11 +208,13 @@ void AgentNode::logFinalCounts() const {
   const AgentNodeStats& s = stats_;
   std::fprintf(stderr,
                "swa_agent %d: stopping on signal %d after %llu IMU, %llu detection, %llu GNSS samples; %llu commands, "
-               "%llu states, %llu foreign samples, %llu write failures\n",
+               "%llu states, %llu foreign samples, %llu write failures; commands unacknowledged while sent at most "
+               "%.3f s at a time\n",
                id_, app::shutdownSignal(), static_cast<unsigned long long>(s.imu),
                static_cast<unsigned long long>(s.detections), static_cast<unsigned long long>(s.gnss),
                static_cast<unsigned long long>(s.commands), static_cast<unsigned long long>(s.states),
-               static_cast<unsigned long long>(s.foreign), static_cast<unsigned long long>(s.write_failures));
+               static_cast<unsigned long long>(s.foreign), static_cast<unsigned long long>(s.write_failures),
+               std::chrono::duration<double>(link_.longest()).count());
   // Where the agent stood at the end: a supervisor (or a person reading the log) sees whether it was flying
   // relative to its neighbours when it stopped.
   const agent::Diagnostics& d = agent_.diagnostics();
@@ -309,6 +323,7 @@ void AgentNode::handle(Input& in) {
     msg::VelocitySetpoint out = wire::toMsg(cmd, self, ++cmd_seq_, imu->header().seq());
     if (cmd_writer_.write(out)) {
       ++stats_.commands;
+      last_cmd_at_ = std::chrono::steady_clock::now();
     } else {
       ++stats_.write_failures;
     }

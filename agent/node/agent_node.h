@@ -29,6 +29,7 @@
 #include <swa/msg/VelocitySetpoint.h>
 #include <swa/ros/TwistStamped.h>
 
+#include "link_watch.h"
 #include "replay_filter.h"
 #include "sample_order.h"
 #include "swa/agent/agent.h"
@@ -51,6 +52,9 @@ class AgentNode : public app::Role {
  public:
   // run()'s status when an older agent with this id runs in the same swarm (peer_book.h).
   static constexpr int kExitTwin = 3;
+  // Commands written but never acknowledged this long: the channel to their reader is broken, the participant is
+  // re-created (link_watch.h). Longer than the DDS lease (4 s), so that a reader that died is forgotten first.
+  static constexpr std::chrono::seconds kUnheardLimit{6};
 
   // Creates every DDS entity; throws swa::dds::DdsError.
   AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file);
@@ -113,6 +117,8 @@ class AgentNode : public app::Role {
   bool waiting_reported_ = false;
   ReplayFilter replay_;
   std::optional<msg::VelocitySetpoint> last_cmd_;  // sent again after a reconnection
+  std::optional<std::chrono::steady_clock::time_point> last_cmd_at_;  // wall time of the last command written
+  LinkWatch link_{kUnheardLimit};
 
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::VelocitySetpoint> cmd_writer_;

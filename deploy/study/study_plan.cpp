@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
+#include <optional>
 #include <set>
 #include <stdexcept>
+
+#include "swa/app/number.h"
 
 namespace swa::study {
 namespace {
@@ -28,15 +32,9 @@ std::string trim(const std::string& text) {
 }
 
 int positive(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  int n = 0;
-  try {
-    n = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || n < 1) throw std::invalid_argument(what);
-  return n;
+  const std::optional<long long> n = app::parseInteger(text, 1, std::numeric_limits<int>::max());
+  if (!n) throw std::invalid_argument(what);
+  return static_cast<int>(*n);
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "study_section.h"
 
+#include <optional>
 #include <stdexcept>
 
+#include "swa/app/number.h"
 #include "swa/params/error.h"
 #include "swa/params/section.h"
 
@@ -18,18 +20,12 @@ int seedsOf(const params::SectionLeaf& leaf, std::vector<std::string>& problems)
     return 0;
   }
   const std::string& text = leaf.values.front();
-  std::size_t used = 0;
-  long n = 0;
-  try {
-    n = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || n < 1 || n > kMaxSeeds) {
+  const std::optional<long long> n = app::parseInteger(text, 1, kMaxSeeds);
+  if (!n) {
     problems.push_back(bad + ", got '" + text + "'" + leaf.where);
     return 0;
   }
-  return static_cast<int>(n);
+  return static_cast<int>(*n);
 }
 
 }  // namespace

@@ -1,9 +1,11 @@
 // The pure parts of the DDS adapters, without DDS traffic: sample ordering, lockstep bookkeeping, message
 // command lines, domain resolution (the message conversions are tested in tests/msgs).
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "agent_options.h"
+#include "link_watch.h"
 #include "lockstep.h"
 #include "sample_order.h"
 #include "stall_watch.h"
@@ -137,6 +140,68 @@ TEST(StallWatch, OnlyGapsBeyondTheLoopsOwnWaitCount) {
   w.restart(t0 + std::chrono::milliseconds(9000));
   EXPECT_EQ(w.check(t0 + std::chrono::milliseconds(9100)), C::duration::zero());
   EXPECT_EQ(w.total(), std::chrono::milliseconds(1850));
+}
+
+// ---- LinkWatch ------------------------------------------------------------------------------------------------
+
+using LinkClock = agent_node::LinkWatch::Clock;
+constexpr auto kLinkLimit = std::chrono::seconds(6);
+
+// Polls every 20 ms (as AgentNode::run does) from `now` for `span`, moving `now`; returns the first report, if any.
+std::optional<LinkClock::duration> pollFor(agent_node::LinkWatch& w, LinkClock::time_point& now,
+                                           LinkClock::duration span, bool acknowledged, bool sending, int readers) {
+  const LinkClock::time_point end = now + span;
+  for (; now < end; now += std::chrono::milliseconds(20)) {
+    if (auto r = w.poll(now, acknowledged, sending, readers)) return r;
+  }
+  return std::nullopt;
+}
+
+TEST(LinkWatch, CommandsSentAndNeverAcknowledgedAreReportedAtTheLimitThenCountedAfresh) {
+  agent_node::LinkWatch w(kLinkLimit);
+  LinkClock::time_point now{};
+  EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(1), true, true, 1));  // healthy: acknowledged
+  const LinkClock::time_point broke = now;
+  const auto report = pollFor(w, now, std::chrono::seconds(20), false, true, 1);
+  ASSERT_TRUE(report);
+  EXPECT_GE(*report, kLinkLimit);
+  EXPECT_LT(*report, kLinkLimit + std::chrono::milliseconds(40));  // the last acknowledged poll, then 6 s
+  EXPECT_LT(now - broke, kLinkLimit + std::chrono::milliseconds(40));
+  // after a reconnection that did not help, the next report is a whole limit later, not at the next poll
+  now += std::chrono::milliseconds(20);
+  const LinkClock::time_point first = now;
+  ASSERT_TRUE(pollFor(w, now, std::chrono::seconds(20), false, true, 1));
+  EXPECT_GE(now - first, kLinkLimit - std::chrono::milliseconds(20));
+}
+
+TEST(LinkWatch, OneAcknowledgedPollStartsTheCountOver) {
+  agent_node::LinkWatch w(kLinkLimit);
+  LinkClock::time_point now{};
+  // 5.9 s unacknowledged, one acknowledged poll, 5.9 s again: a slow link, never a broken one
+  for (int round = 0; round < 5; ++round) {
+    EXPECT_FALSE(pollFor(w, now, std::chrono::milliseconds(5900), false, true, 1)) << "round " << round;
+    EXPECT_FALSE(w.poll(now, true, true, 1));
+    now += std::chrono::milliseconds(20);
+  }
+  EXPECT_GE(w.longest(), std::chrono::milliseconds(5800));
+  EXPECT_LT(w.longest(), kLinkLimit);
+}
+
+TEST(LinkWatch, NothingIsOwedWhileNotSendingOrWithoutAReader) {
+  agent_node::LinkWatch w(kLinkLimit);
+  LinkClock::time_point now{};
+  EXPECT_FALSE(w.poll(now, true, true, 1));
+  // a stopped simulator: no samples, so no commands, for a minute
+  EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(60), false, false, 1));
+  // it resumes: the count starts at the resumption, not at the last acknowledgment a minute ago
+  EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(5), false, true, 1));
+  // no matched reader: nobody to acknowledge
+  EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(60), false, true, 0));
+  EXPECT_LT(w.longest(), kLinkLimit);
+  // restart(): a new writer owes nothing, whatever came before
+  EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(5), false, true, 1));
+  w.restart();
+  EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(5), false, true, 1));
 }
 
 // ---- LockstepTracker ------------------------------------------------------------------------------------------
