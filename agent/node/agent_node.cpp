@@ -41,8 +41,12 @@ constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 // is re-created (peer_book.h). Re-matching takes milliseconds when it works; the lockstep simulator waits 2 s (its
 // default agent timeout) for an answer.
 constexpr auto kRematchWait = std::chrono::milliseconds(500);
-// The agent counts as sending while its last command is at most this old (100 Hz when the loop runs).
+// The agent counts as sending while its last command is at most this old (100 Hz when the loop runs); likewise a
+// sensor sample this recent counts as the inputs arriving.
 constexpr auto kSendingWindow = std::chrono::milliseconds(250);
+// Two polls of run() further apart than this: the process itself did not run (SIGSTOP, a starved host), and what it
+// did not hear meanwhile says nothing about its channels.
+constexpr auto kPollGapLimit = std::chrono::milliseconds(250);
 // Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (deploy/dds/profiles.xml): the most a
 // re-created participant's readers can be sent again (replay_filter.h).
 constexpr std::size_t kImuHistory = 1000;
@@ -89,6 +93,7 @@ void AgentNode::connect() {
   gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
       dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
   link_.restart();
+  inputs_watch_.restart();
   peers_back_ = 0;
   peer_back_at_.reset();
   matched_once_ = {};
@@ -155,6 +160,12 @@ int AgentNode::run() {
     const auto now = std::chrono::steady_clock::now();
     const std::optional<LinkWatch::Clock::duration> unheard =
         link_.poll(now, acknowledged, last_cmd_at_ && now - *last_cmd_at_ < kSendingWindow, matched[0]);
+    // The other direction: the writer of its IMU samples stays matched (alive to discovery), the agent had samples
+    // and keeps running, and none comes (seen: a simulator stopped for 4.75 s never reached one agent again).
+    const bool running = now - last_poll_ < kPollGapLimit;
+    last_poll_ = now;
+    const std::optional<LinkWatch::Clock::duration> silent =
+        inputs_watch_.poll(now, now - last_input_ < kSendingWindow, running && stats_.imu > 0, matched[1]);
     if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();
@@ -175,6 +186,10 @@ int AgentNode::run() {
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {
       why = *lost;
+    } else if (silent) {
+      why = "no sample on " + dds::topics::imu(id_) + " for " +
+            std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(*silent).count()) + " ms while " +
+            std::to_string(matched[1]) + " writer(s) of it stay matched (a channel from a writer broke)";
     } else if (unheard) {
       why = "none of its commands on " + dds::topics::cmdVel(id_) + " acknowledged for " +
             std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(*unheard).count()) +

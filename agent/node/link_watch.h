@@ -1,17 +1,21 @@
 #pragma once
-// Notices when the agent's commands stop reaching their reader while the agent keeps sending them. Seen in the
-// chaos test (issue #11), about 1 run in 10: after the simulator had been stopped (SIGSTOP) for 1.75 s, two agents'
-// channels to it broke for good. Discovery stayed matched and they received and answered every IMU sample, but the
-// simulator got none of their commands (nor their acknowledgments), so their UAVs stayed on failsafe to the end of
-// the run. What the agent can see of it: its reliable command writer is never fully acknowledged while it writes.
-// The cure is the one for endpoints lost after an expired lease (agent_node.cpp): re-create the participant.
+// Notices a channel that broke while discovery still calls it matched. Seen in CI, both ways, after the simulator
+// had been stopped (SIGSTOP):
+//  - chaos test, 1.75 s stop: two agents received and answered every IMU sample, but the simulator got none of their
+//    commands (nor their acknowledgments) again, so their UAVs stayed on failsafe to the end of the run. What the
+//    agent sees: its reliable command writer is never fully acknowledged while it writes.
+//  - a 4.75 s stop (beyond the lease): one agent never got a sample again while the simulator's writers stayed
+//    matched. What the agent sees: no sample while their writer is matched and it is itself running.
+// The node watches each way with one instance; the cure is the one for endpoints lost after an expired lease
+// (agent_node.cpp): re-create the participant.
 //
-// Rule: commands count as unheard from the last poll that found the writer fully acknowledged, but only while the
-// agent is writing them and a reader is matched (a paused producer sends nothing to answer, so nothing is owed; the
-// count starts over when sending resumes). Unheard for `limit`: reconnect, and the count starts over. The limit is
-// longer than the DDS lease (4 s, profiles.xml): a matched reader that died without a word (a killed recorder) is
+// Rule, written for commands (for samples read "a sample arrived", "had samples and runs", "writers"): commands
+// count as unheard from the last poll that found the writer fully acknowledged, but only while the agent is writing
+// them and a reader is matched (a paused producer sends nothing to answer, so nothing is owed; the count starts over
+// when sending resumes). Unheard for `limit`: reconnect, and the count starts over. The limit is longer than the DDS
+// lease (4 s, profiles.xml): a matched peer that died or was stopped (a killed recorder, a stopped simulator) is
 // forgotten by discovery before it can trigger a reconnection.
-// Pure: the caller supplies the time and the writer's state; the node owns one instance per participant.
+// Pure: the caller supplies the time and the channel's state; the node owns the instances.
 
 #include <algorithm>
 #include <chrono>
