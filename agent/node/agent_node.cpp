@@ -41,9 +41,8 @@ constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 // is re-created (peer_book.h). Re-matching takes milliseconds when it works; the lockstep simulator waits 2 s (its
 // default agent timeout) for an answer.
 constexpr auto kRematchWait = std::chrono::milliseconds(500);
-// The agent counts as sending while its last command is at most this old (100 Hz when the loop runs); likewise a
-// sensor sample this recent counts as the inputs arriving.
-constexpr auto kSendingWindow = std::chrono::milliseconds(250);
+// An IMU sample this recent counts as the samples arriving (100 Hz when the loop runs).
+constexpr auto kArrivingWindow = std::chrono::milliseconds(250);
 // Two polls of run() further apart than this: the process itself did not run (SIGSTOP, a starved host), and what it
 // did not hear meanwhile says nothing about its channels.
 constexpr auto kPollGapLimit = std::chrono::milliseconds(250);
@@ -92,7 +91,6 @@ void AgentNode::connect() {
       [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
   gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
       dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
-  link_.restart();
   inputs_watch_.restart();
   peers_back_ = 0;
   peer_back_at_.reset();
@@ -155,17 +153,15 @@ int AgentNode::run() {
     // waits for mutex_ (seen: every agent of a loaded host stuck after its first samples).
     const Matched matched = matchedNow();
     const std::optional<std::string> lost = endpointsLostAfterPeerReturn(matched);
-    const bool acknowledged = cmd_writer_.waitForAcknowledgments(0.0);
     std::unique_lock<std::mutex> lock(mutex_);
     const auto now = std::chrono::steady_clock::now();
-    const std::optional<LinkWatch::Clock::duration> unheard =
-        link_.poll(now, acknowledged, last_cmd_at_ && now - *last_cmd_at_ < kSendingWindow, matched[0]);
-    // The other direction: the writer of its IMU samples stays matched (alive to discovery), the agent had samples
-    // and keeps running, and none comes (seen: a simulator stopped for 4.75 s never reached one agent again).
+    // The writer of its IMU samples stays matched (alive to discovery), the agent had samples and keeps running, and
+    // none comes: a channel from the writer broke (link_watch.h).
     const bool running = now - last_poll_ < kPollGapLimit;
     last_poll_ = now;
+    const bool arriving = last_imu_at_ && now - *last_imu_at_ < kArrivingWindow;
     const std::optional<LinkWatch::Clock::duration> silent =
-        inputs_watch_.poll(now, now - last_input_ < kSendingWindow, running && stats_.imu > 0, matched[1]);
+        inputs_watch_.poll(now, arriving, running && last_imu_at_.has_value(), matched[1]);
     if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();
@@ -190,11 +186,6 @@ int AgentNode::run() {
       why = "no sample on " + dds::topics::imu(id_) + " for " +
             std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(*silent).count()) + " ms while " +
             std::to_string(matched[1]) + " writer(s) of it stay matched (a channel from a writer broke)";
-    } else if (unheard) {
-      why = "none of its commands on " + dds::topics::cmdVel(id_) + " acknowledged for " +
-            std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(*unheard).count()) +
-            " ms while it sent them to " + std::to_string(matched[0]) +
-            " matched reader(s) (a channel to a reader broke)";
     }
     if (!why.empty()) {
       ++reconnects_;
@@ -223,13 +214,11 @@ void AgentNode::logFinalCounts() const {
   const AgentNodeStats& s = stats_;
   std::fprintf(stderr,
                "swa_agent %d: stopping on signal %d after %llu IMU, %llu detection, %llu GNSS samples; %llu commands, "
-               "%llu states, %llu foreign samples, %llu write failures; commands unacknowledged while sent at most "
-               "%.3f s at a time\n",
+               "%llu states, %llu foreign samples, %llu write failures\n",
                id_, app::shutdownSignal(), static_cast<unsigned long long>(s.imu),
                static_cast<unsigned long long>(s.detections), static_cast<unsigned long long>(s.gnss),
                static_cast<unsigned long long>(s.commands), static_cast<unsigned long long>(s.states),
-               static_cast<unsigned long long>(s.foreign), static_cast<unsigned long long>(s.write_failures),
-               std::chrono::duration<double>(link_.longest()).count());
+               static_cast<unsigned long long>(s.foreign), static_cast<unsigned long long>(s.write_failures));
   // Where the agent stood at the end: a supervisor (or a person reading the log) sees whether it was flying
   // relative to its neighbours when it stopped.
   const agent::Diagnostics& d = agent_.diagnostics();
@@ -288,6 +277,7 @@ void AgentNode::onInput(Input&& in) {
     return;
   }
   last_input_ = std::chrono::steady_clock::now();
+  if (stream == Stream::kImu) last_imu_at_ = last_input_;
   const auto* det = std::get_if<msg::Detections>(&in);
   if (det != nullptr && det->items().size() > agent_.config().limits.max_detections) {
     handle(in);  // rejected whole by the core (and counted) before it is stored anywhere
@@ -338,7 +328,6 @@ void AgentNode::handle(Input& in) {
     msg::VelocitySetpoint out = wire::toMsg(cmd, self, ++cmd_seq_, imu->header().seq());
     if (cmd_writer_.write(out)) {
       ++stats_.commands;
-      last_cmd_at_ = std::chrono::steady_clock::now();
     } else {
       ++stats_.write_failures;
     }

@@ -52,10 +52,10 @@ class AgentNode : public app::Role {
  public:
   // run()'s status when an older agent with this id runs in the same swarm (peer_book.h).
   static constexpr int kExitTwin = 3;
-  // Commands written but never acknowledged this long, or no sensor sample this long from a matched writer: a channel
-  // is broken, the participant is re-created (link_watch.h). Longer than the DDS lease (4 s), so that a peer that
-  // died or was stopped is forgotten first.
-  static constexpr std::chrono::seconds kUnheardLimit{6};
+  // No IMU sample this long from a matched writer while the agent runs: a channel is broken, the participant is
+  // re-created (link_watch.h). Longer than the DDS lease (4 s), so that a writer that died or was stopped is
+  // forgotten first.
+  static constexpr std::chrono::seconds kSilentLimit{6};
 
   // Creates every DDS entity; throws swa::dds::DdsError.
   AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file);
@@ -118,10 +118,9 @@ class AgentNode : public app::Role {
   bool waiting_reported_ = false;
   ReplayFilter replay_;
   std::optional<msg::VelocitySetpoint> last_cmd_;  // sent again after a reconnection
-  std::optional<std::chrono::steady_clock::time_point> last_cmd_at_;  // wall time of the last command written
-  LinkWatch link_{kUnheardLimit};
-  // The same rule for its sensor samples: none for kUnheardLimit while their writer is matched (link_watch.h).
-  LinkWatch inputs_watch_{kUnheardLimit};
+  // No IMU sample for kSilentLimit while their writer is matched: a channel is broken (link_watch.h).
+  LinkWatch inputs_watch_{kSilentLimit};
+  std::optional<std::chrono::steady_clock::time_point> last_imu_at_;  // wall time of the last IMU sample let in
   std::chrono::steady_clock::time_point last_poll_;  // run()'s previous poll
 
   std::unique_ptr<dds::Participant> participant_;

@@ -157,15 +157,15 @@ std::optional<LinkClock::duration> pollFor(agent_node::LinkWatch& w, LinkClock::
   return std::nullopt;
 }
 
-TEST(LinkWatch, CommandsSentAndNeverAcknowledgedAreReportedAtTheLimitThenCountedAfresh) {
+TEST(LinkWatch, ABrokenChannelIsReportedAtTheLimitThenCountedAfresh) {
   agent_node::LinkWatch w(kLinkLimit);
   LinkClock::time_point now{};
-  EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(1), true, true, 1));  // healthy: acknowledged
+  EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(1), true, true, 1));  // healthy: samples arrive
   const LinkClock::time_point broke = now;
   const auto report = pollFor(w, now, std::chrono::seconds(20), false, true, 1);
   ASSERT_TRUE(report);
   EXPECT_GE(*report, kLinkLimit);
-  EXPECT_LT(*report, kLinkLimit + std::chrono::milliseconds(40));  // the last acknowledged poll, then 6 s
+  EXPECT_LT(*report, kLinkLimit + std::chrono::milliseconds(40));  // the last fine poll, then 6 s
   EXPECT_LT(now - broke, kLinkLimit + std::chrono::milliseconds(40));
   // after a reconnection that did not help, the next report is a whole limit later, not at the next poll
   now += std::chrono::milliseconds(20);
@@ -174,10 +174,10 @@ TEST(LinkWatch, CommandsSentAndNeverAcknowledgedAreReportedAtTheLimitThenCounted
   EXPECT_GE(now - first, kLinkLimit - std::chrono::milliseconds(20));
 }
 
-TEST(LinkWatch, OneAcknowledgedPollStartsTheCountOver) {
+TEST(LinkWatch, OneFinePollStartsTheCountOver) {
   agent_node::LinkWatch w(kLinkLimit);
   LinkClock::time_point now{};
-  // 5.9 s unacknowledged, one acknowledged poll, 5.9 s again: a slow link, never a broken one
+  // 5.9 s without a sample, one poll with one, 5.9 s again: a slow link, never a broken one
   for (int round = 0; round < 5; ++round) {
     EXPECT_FALSE(pollFor(w, now, std::chrono::milliseconds(5900), false, true, 1)) << "round " << round;
     EXPECT_FALSE(w.poll(now, true, true, 1));
@@ -187,18 +187,18 @@ TEST(LinkWatch, OneAcknowledgedPollStartsTheCountOver) {
   EXPECT_LT(w.longest(), kLinkLimit);
 }
 
-TEST(LinkWatch, NothingIsOwedWhileNotSendingOrWithoutAReader) {
+TEST(LinkWatch, NothingIsOwedWhilePausedOrWithoutAPeer) {
   agent_node::LinkWatch w(kLinkLimit);
   LinkClock::time_point now{};
   EXPECT_FALSE(w.poll(now, true, true, 1));
-  // a stopped simulator: no samples, so no commands, for a minute
+  // the agent itself stopped, or had no sample yet: nothing owed, for a minute
   EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(60), false, false, 1));
-  // it resumes: the count starts at the resumption, not at the last acknowledgment a minute ago
+  // it resumes: the count starts at the resumption, not at the last sample a minute ago
   EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(5), false, true, 1));
-  // no matched reader: nobody to acknowledge
+  // no matched writer: nobody owes a sample
   EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(60), false, true, 0));
   EXPECT_LT(w.longest(), kLinkLimit);
-  // restart(): a new writer owes nothing, whatever came before
+  // restart(): a new participant is owed nothing, whatever came before
   EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(5), false, true, 1));
   w.restart();
   EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(5), false, true, 1));
