@@ -19,6 +19,7 @@ double LatencyReport::missingFraction() const {
 CommandLatencyTracker::CommandLatencyTracker(int uav_count, int window) : uav_count_(uav_count), window_(window) {
   if (uav_count < 0 || window < 1) throw std::invalid_argument("CommandLatencyTracker: bad UAV count or window");
   slots_.resize(static_cast<std::size_t>(uav_count) * static_cast<std::size_t>(window));
+  newest_.resize(static_cast<std::size_t>(uav_count));
 }
 
 CommandLatencyTracker::Slot* CommandLatencyTracker::slot(int uav, std::uint32_t seq) {
@@ -33,7 +34,14 @@ void CommandLatencyTracker::published(int uav, std::uint32_t seq, std::int64_t s
   Slot* s = slot(uav, seq);
   if (s == nullptr) return;
   if (s->used && !s->answered) ++missing_;  // evicted unanswered: `window` samples later, it is not coming
-  *s = Slot{true, false, seq, stamp_ns, published_ns, due_ns.has_value(), due_ns.value_or(0)};
+  *s = Slot{true, false, seq, stamp_ns, published_ns, due_ns.has_value(), due_ns.value_or(0), false};
+  std::optional<std::uint32_t>& newest = newest_[static_cast<std::size_t>(uav)];
+  // A newer sample means its predecessor's step was taken, whether or not stepTaken() said so: deadline as it was.
+  if (newest && *newest != seq) {
+    Slot* previous = slot(uav, *newest);
+    if (previous->used && previous->seq == *newest) previous->step_taken = true;
+  }
+  newest = seq;
 }
 
 void CommandLatencyTracker::answered(int uav, std::uint32_t seq, std::int64_t stamp_ns, WallNs received_ns) {
@@ -48,7 +56,17 @@ void CommandLatencyTracker::answered(int uav, std::uint32_t seq, std::int64_t st
   }
   s->answered = true;
   histogram_.add(received_ns - s->published_ns);
-  if (s->has_due && received_ns > s->due_ns) ++late_;
+  if (s->has_due && s->step_taken && received_ns > s->due_ns) ++late_;
+}
+
+void CommandLatencyTracker::stepTaken(WallNs taken_ns) {
+  for (int uav = 0; uav < uav_count_; ++uav) {
+    const std::optional<std::uint32_t> seq = newest_[static_cast<std::size_t>(uav)];
+    Slot* s = seq ? slot(uav, *seq) : nullptr;
+    if (s == nullptr || !s->used || s->seq != *seq || s->step_taken) continue;
+    s->step_taken = true;
+    s->due_ns = std::max(s->due_ns, taken_ns);
+  }
 }
 
 void CommandLatencyTracker::finish(WallNs now_ns) {

@@ -1,9 +1,10 @@
 #pragma once
 // Loop-latency bookkeeping of swa_sim: for every sensor sample the simulator publishes to a UAV (its IMU sample, the
 // one a command answers), the wall time from publication to the reception of the command that answers it, whether
-// that command came after its deadline (realtime: when the UAV's next IMU sample is due), and which samples were
-// never answered. Pure: no DDS, no clock (times are nanoseconds on any monotonic clock, passed in), and no
-// allocation after construction, so it can sit on the simulator's hot path for runs of any length.
+// that command missed the step it answers (realtime: came after the UAV's next IMU sample was due and the simulator
+// had taken that step), and which samples were never answered. Pure: no DDS, no clock (times are nanoseconds on any
+// monotonic clock, passed in), and no allocation after construction, so it can sit on the simulator's hot path for
+// runs of any length.
 
 #include <cstdint>
 #include <limits>
@@ -35,7 +36,8 @@ struct LatencyReport {
 // with its publication time and deadline; answered() matches an answer by (seq, stamp) and records its latency;
 // finish() closes the books. A sample is MISSING when it is evicted from the ring unanswered, or is unanswered at
 // finish() with its deadline passed (samples without a deadline count as missing at finish() if unanswered). An
-// answer is LATE when received after its sample's deadline. Samples with no deadline are never late (lockstep).
+// answer is LATE when it missed the step it answers: received after its sample's deadline once stepTaken() has
+// closed that step. Samples with no deadline are never late (lockstep).
 class CommandLatencyTracker {
  public:
   CommandLatencyTracker(int uav_count, int window = 512);
@@ -43,6 +45,10 @@ class CommandLatencyTracker {
   void published(int uav, std::uint32_t seq, std::int64_t stamp_ns, WallNs published_ns,
                  std::optional<WallNs> due_ns);
   void answered(int uav, std::uint32_t seq, std::int64_t stamp_ns, WallNs received_ns);
+  // The simulator took the next step (applied the commands it had) at `taken_ns`. Until then an answer to each UAV's
+  // newest sample is in time even past its deadline, because it is still applied (a simulator that is itself late
+  // must not blame the agents); from then on the deadline is max(deadline, taken_ns).
+  void stepTaken(WallNs taken_ns);
   // Unanswered samples whose deadline is at or before `now_ns` (or that have none) become missing; those still in
   // time are dropped from the judgement. Idempotent; published()/answered() after it are undefined.
   void finish(WallNs now_ns);
@@ -59,12 +65,14 @@ class CommandLatencyTracker {
     WallNs published_ns = 0;
     bool has_due = false;
     WallNs due_ns = 0;
+    bool step_taken = false;  // the step this sample's answer feeds has been taken (stepTaken)
   };
   Slot* slot(int uav, std::uint32_t seq);
 
   int uav_count_;
   int window_;
   std::vector<Slot> slots_;  // uav_count * window
+  std::vector<std::optional<std::uint32_t>> newest_;  // per UAV: the seq of its newest sample
   LogHistogram histogram_;
   std::uint64_t late_ = 0, missing_ = 0, duplicates_ = 0, unmatched_ = 0;
 };

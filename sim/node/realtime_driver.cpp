@@ -67,12 +67,16 @@ void RealtimeDriver::run() {
   while (!world_.finished() && !stop_) {
     absorbStall(Clock::now());
     auto target = scheduledTime(world_.time_ns() + dt_ns);  // the next step
+    Clock::time_point last_drain;
     do {
       const auto now = Clock::now();
       absorbStall(now);
       target = scheduledTime(world_.time_ns() + dt_ns);
+      last_drain = now;
       drain(now < target ? std::min<Clock::duration>(target - now, kPollPeriod) : Clock::duration::zero());
     } while (Clock::now() < target && !stop_);
+    // What the last drain took is applied to this step, however late the simulator itself is: a later answer is not.
+    ports_.stepTaken(last_drain);
     absorbStall(Clock::now());
     const auto now = Clock::now();
     for (int i = 0; i < n_; ++i) {
@@ -123,6 +127,7 @@ void RealtimeDriver::drain(Clock::duration wait) {
 }
 
 void RealtimeDriver::collectLateAnswers(Clock::time_point until) {
+  ports_.stepTaken(until);  // no step follows the last: its answers are late after their due time
   while (!stop_) {
     const auto now = Clock::now();
     if (now >= until) break;

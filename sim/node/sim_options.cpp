@@ -22,8 +22,9 @@ Clock (scenario key clock.mode):
             answers again. Deterministic: same scenario and seed, same run as swa_batch.
   realtime  wall-clock pacing at clock.speed; the latest setpoint of each UAV is applied as it arrives. The
             clock starts once every agent has answered step 0 (or after --startup-timeout-s). A command is
-            late when it arrives after the UAV's next IMU sample is due (one step period), missing when it
-            never arrives; both are counted in the summary and the last line on stderr.
+            late when it misses the step it answers: it arrives after the UAV's next IMU sample is due (one
+            step period) and after the simulator has taken that step (when the simulator is late itself);
+            missing when it never arrives; both are counted in the summary and the last line on stderr.
 Before the first step the simulator waits until every agent's endpoints are discovered (--startup-timeout-s).
 At the end it publishes EVENT_SCENARIO_END and exits 0.)");
   cli.scenario(o.scenario_path, "scenario YAML (see deploy/scenarios/, swa_sim --parameters)");

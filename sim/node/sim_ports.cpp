@@ -121,6 +121,10 @@ bool SimPorts::awaitDiscovery() {
   return false;
 }
 
+void SimPorts::stepTaken(Clock::time_point t) {
+  if (time_latency_) latency_.stepTaken(wallNs(t));
+}
+
 void SimPorts::publishStepOutputs(const AliveFn& alive) {
   if (world_.step_index() % 10 == 0) noteYoungerTwin();
   for (const sim::Event& e : world_.events()) publishEvent(record::eventOf(e));

@@ -73,6 +73,8 @@ class SimPorts {
   // it; best effort may have lost it); else nothing (the sensors are reliable).
   void repeatWhileWaiting(const std::vector<int>& uavs);
   void timeLatency(bool on) { time_latency_ = on; }
+  // Realtime: the next step takes the commands drained up to `t`; an answer received later missed it (late).
+  void stepTaken(Clock::time_point t);
   void finishLatency(bool realtime, const LogHistogram& step_lag);
   // The simulator did not run for `lost`: no commander could be heard meanwhile.
   void shiftCommanders(Clock::duration lost, Clock::time_point now) { gate_.shift(lost, now); }

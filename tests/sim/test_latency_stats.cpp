@@ -107,8 +107,9 @@ TEST(CommandLatencyTracker, AnswersBeforeTheirDeadlineAreOnTimeAfterItLate) {
   CommandLatencyTracker t(2);
   t.published(0, 1, 0, 0, 10 * kMs);
   t.published(1, 1, 0, 50 * kUs, 10 * kMs + 50 * kUs);
-  // WHEN UAV 0 answers after 90 us, UAV 1 after 12 ms
+  // WHEN UAV 0 answers after 90 us, the simulator takes the next step on time, and UAV 1 answers after 12 ms
   t.answered(0, 1, 0, 90 * kUs);
+  t.stepTaken(10 * kMs);
   t.answered(1, 1, 0, 50 * kUs + 12 * kMs);
   t.finish(20 * kMs);
   // THEN both latencies are recorded, one command is late, none missing
@@ -126,8 +127,53 @@ TEST(CommandLatencyTracker, AnswersBeforeTheirDeadlineAreOnTimeAfterItLate) {
 TEST(CommandLatencyTracker, AnAnswerExactlyAtTheDeadlineIsOnTime) {
   CommandLatencyTracker t(1);
   t.published(0, 1, 0, 0, 10 * kMs);
+  t.stepTaken(10 * kMs);
   t.answered(0, 1, 0, 10 * kMs);
   EXPECT_EQ(t.report().late, 0u);
+  t.published(0, 2, kStepNs, 10 * kMs, 20 * kMs);
+  t.stepTaken(20 * kMs);
+  t.answered(0, 2, kStepNs, 20 * kMs + 1);
+  EXPECT_EQ(t.report().late, 1u);
+}
+
+TEST(CommandLatencyTracker, AnAnswerIsLateOnlyWhenItMissedTheStepItAnswers) {
+  // GIVEN two UAVs' samples due at 10 ms, and a simulator that is itself late: it takes the next step at 18 ms
+  CommandLatencyTracker t(2);
+  t.published(0, 1, 0, 0, 10 * kMs);
+  t.published(1, 1, 0, 0, 10 * kMs);
+  // WHEN UAV 0 answers at 15 ms, past the due time but before the step (the simulator still applies it) ...
+  t.answered(0, 1, 0, 15 * kMs);
+  EXPECT_EQ(t.report().late, 0u);
+  // ... and UAV 1 at 19 ms, after the step took the commands it had
+  t.stepTaken(18 * kMs);
+  t.answered(1, 1, 0, 19 * kMs);
+  // THEN only UAV 1's answer is late; both latencies are recorded as they were
+  const LatencyReport r = t.report();
+  EXPECT_EQ(r.late, 1u);
+  EXPECT_EQ(r.answered, 2u);
+  EXPECT_EQ(r.max_us, 19'000.0);
+  // THEN when the step's last drain began before the due time (the simulator on time), the due time stays the
+  // deadline: an answer at 29.5 ms is in time, one at 31 ms late
+  t.published(0, 2, kStepNs, 20 * kMs, 30 * kMs);
+  t.stepTaken(29 * kMs);
+  t.answered(0, 2, kStepNs, 29 * kMs + 500 * kUs);
+  EXPECT_EQ(t.report().late, 1u);
+  t.published(1, 2, kStepNs, 20 * kMs, 30 * kMs);
+  t.stepTaken(29 * kMs);
+  t.answered(1, 2, kStepNs, 31 * kMs);
+  EXPECT_EQ(t.report().late, 2u);
+}
+
+TEST(CommandLatencyTracker, ASampleWhoseSuccessorWasPublishedIsJudgedAgainstItsOwnDeadline) {
+  // GIVEN sample 1 due at 10 ms, then sample 2 published without a stepTaken() in between
+  CommandLatencyTracker t(1);
+  t.published(0, 1, 0, 0, 10 * kMs);
+  t.published(0, 2, kStepNs, 10 * kMs, 20 * kMs);
+  // WHEN sample 1 is answered at 12 ms, sample 2 at 15 ms (its step not taken yet)
+  t.answered(0, 1, 0, 12 * kMs);
+  t.answered(0, 2, kStepNs, 15 * kMs);
+  // THEN sample 1 missed its step (the next sample was out); sample 2 is in time
+  EXPECT_EQ(t.report().late, 1u);
 }
 
 TEST(CommandLatencyTracker, DuplicateAndForeignAnswersAreCountedApartAndNotTimed) {
