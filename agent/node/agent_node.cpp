@@ -43,9 +43,6 @@ constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 constexpr auto kRematchWait = std::chrono::milliseconds(500);
 // An IMU sample this recent counts as the samples arriving (100 Hz when the loop runs).
 constexpr auto kArrivingWindow = std::chrono::milliseconds(250);
-// Two polls of run() further apart than this: the process itself did not run (SIGSTOP, a starved host), and what it
-// did not hear meanwhile says nothing about its channels.
-constexpr auto kPollGapLimit = std::chrono::milliseconds(250);
 // Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (deploy/dds/profiles.xml): the most a
 // re-created participant's readers can be sent again (replay_filter.h).
 constexpr std::size_t kImuHistory = 1000;
@@ -91,7 +88,7 @@ void AgentNode::connect() {
       [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
   gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
       dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
-  inputs_watch_.restart();
+  imu_silence_.restart();
   peers_back_ = 0;
   peer_back_at_.reset();
   matched_once_ = {};
@@ -156,12 +153,11 @@ int AgentNode::run() {
     std::unique_lock<std::mutex> lock(mutex_);
     const auto now = std::chrono::steady_clock::now();
     // The writer of its IMU samples stays matched (alive to discovery), the agent had samples and keeps running, and
-    // none comes: a channel from the writer broke (link_watch.h).
-    const bool running = now - last_poll_ < kPollGapLimit;
-    last_poll_ = now;
+    // none comes: a channel from the writer broke (silence_watch.h).
+    const bool running = own_stall_.check(now) == app::StallWatch::Clock::duration::zero();
     const bool arriving = last_imu_at_ && now - *last_imu_at_ < kArrivingWindow;
-    const std::optional<LinkWatch::Clock::duration> silent =
-        inputs_watch_.poll(now, arriving, running && last_imu_at_.has_value(), matched[1]);
+    const std::optional<SilenceWatch::Clock::duration> silent =
+        imu_silence_.poll(now, arriving, running && last_imu_at_.has_value(), matched[1]);
     if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();

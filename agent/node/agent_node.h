@@ -29,11 +29,12 @@
 #include <swa/msg/VelocitySetpoint.h>
 #include <swa/ros/TwistStamped.h>
 
-#include "link_watch.h"
 #include "replay_filter.h"
 #include "sample_order.h"
+#include "silence_watch.h"
 #include "swa/agent/agent.h"
 #include "swa/app/program.h"
+#include "swa/app/stall_watch.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 
@@ -53,9 +54,12 @@ class AgentNode : public app::Role {
   // run()'s status when an older agent with this id runs in the same swarm (peer_book.h).
   static constexpr int kExitTwin = 3;
   // No IMU sample this long from a matched writer while the agent runs: a channel is broken, the participant is
-  // re-created (link_watch.h). Longer than the DDS lease (4 s), so that a writer that died or was stopped is
+  // re-created (silence_watch.h). Longer than the DDS lease (4 s), so that a writer that died or was stopped is
   // forgotten first.
   static constexpr std::chrono::seconds kSilentLimit{6};
+  // Two polls of run() further apart than this: the process itself did not run (SIGSTOP, a starved host), and what it
+  // did not hear meanwhile says nothing about its channels.
+  static constexpr std::chrono::milliseconds kPollGapLimit{250};
 
   // Creates every DDS entity; throws swa::dds::DdsError.
   AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file);
@@ -118,10 +122,10 @@ class AgentNode : public app::Role {
   bool waiting_reported_ = false;
   ReplayFilter replay_;
   std::optional<msg::VelocitySetpoint> last_cmd_;  // sent again after a reconnection
-  // No IMU sample for kSilentLimit while their writer is matched: a channel is broken (link_watch.h).
-  LinkWatch inputs_watch_{kSilentLimit};
+  // No IMU sample for kSilentLimit while their writer is matched: a channel is broken (silence_watch.h).
+  SilenceWatch imu_silence_{kSilentLimit};
   std::optional<std::chrono::steady_clock::time_point> last_imu_at_;  // wall time of the last IMU sample let in
-  std::chrono::steady_clock::time_point last_poll_;  // run()'s previous poll
+  app::StallWatch own_stall_{kPollGapLimit};  // whether run()'s polls come as often as they should
 
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::VelocitySetpoint> cmd_writer_;

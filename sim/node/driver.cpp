@@ -7,8 +7,8 @@
 namespace swa::sim_node {
 namespace {
 
-// A loop iteration longer than one poll plus this means the simulator itself did not run (stall_watch.h). Generous:
-// on a loaded 2-core machine a wake-up can be a few tens of milliseconds late.
+// A loop iteration longer than one poll plus this means the simulator itself did not run (swa/app/stall_watch.h).
+// Generous: on a loaded 2-core machine a wake-up can be a few tens of milliseconds late.
 constexpr auto kStallSlack = std::chrono::milliseconds(150);
 // A stall this long (beyond the slack) may have outlasted the 4 s participant lease (deploy/dds/profiles.xml) counted
 // from the simulator's last announcement (every 1 s): the agents dropped the simulator and must find it again, some by

@@ -1,7 +1,7 @@
 #pragma once
 // How the simulator advances the world: in lockstep with the agents (lockstep_driver.h) or paced by the wall clock
 // (realtime_driver.h), both around the same ports (sim_ports.h). What they share: who is alive (for the truth), and
-// what a stall of the simulator itself does to the deadlines (stall_watch.h).
+// what a stall of the simulator itself does to the deadlines (swa/app/stall_watch.h).
 
 #include <atomic>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include "sim_options.h"
 #include "sim_ports.h"
 #include "sim_summary.h"
-#include "stall_watch.h"
+#include "swa/app/stall_watch.h"
 #include "swa/sim/scenario.h"
 #include "swa/sim/world.h"
 
@@ -60,7 +60,7 @@ class Driver {
   SimSummary& summary_;
   const std::atomic<bool>& stop_;
   const int n_;
-  StallWatch stall_;
+  app::StallWatch stall_;
   Clock::time_point reconnect_grace_until_{};
   LogHistogram step_lag_;
 };

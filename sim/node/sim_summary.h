@@ -30,8 +30,8 @@ struct SimSummary {
   std::uint64_t unacknowledged_sensor_steps = 0;  // lockstep: detections / GNSS not acknowledged in time
   std::uint64_t agent_dead_events = 0;
   std::uint64_t agent_rejoined_events = 0;
-  // Times the simulator itself did not run for longer than its loop explains (stall_watch.h), and for how long in
-  // all: its wall-clock deadlines were moved by it, nobody was declared dead for it.
+  // Times the simulator itself did not run for longer than its loop explains (swa/app/stall_watch.h), and for how
+  // long in all: its wall-clock deadlines were moved by it, nobody was declared dead for it.
   int stalls = 0;
   double stalled_s = 0.0;
   std::vector<int> dead_at_end;

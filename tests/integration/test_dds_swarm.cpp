@@ -493,7 +493,7 @@ TEST_F(SwarmRun, AgentWithoutASimulatorSaysWhatItIsWaitingFor) {
 // Issue #11: stopping the simulator for 2 s declared every healthy agent dead (realtime). Stopped for 5 s here (beyond
 // the DDS lease): that can also break a shared-memory channel between the simulator and an agent for good while
 // discovery stays matched (seen in CI: one agent never got a sample again); the agent then re-creates its participant
-// after 6 s without a sample (agent/node/link_watch.h), but the simulator has declared it dead by then, and this test
+// after 6 s without a sample (agent/node/silence_watch.h), but the simulator has declared it dead by then, and this test
 // fails. In lockstep the agents' answers reach the stopped simulator's queue and complete the step when it continues,
 // so a stall there usually costs nothing and is not always seen; only realtime must report it.
 void SwarmRun::stopSimulator(const char* clock_mode, bool stall_reported) {
@@ -515,7 +515,7 @@ void SwarmRun::stopSimulator(const char* clock_mode, bool stall_reported) {
 }
 
 // A simulator stopped beyond the DDS lease once never reached an agent again while its writers stayed matched
-// (link_watch.h). An agent that had samples and gets none for 6 s from a writer that stays matched
+// (silence_watch.h). An agent that had samples and gets none for 6 s from a writer that stays matched
 // re-creates its participant; a writer that is gone (unmatched) is no reason to.
 TEST_F(SwarmRun, AgentWhoseSamplesStopWhileTheirWriterStaysMatchedReconnects) {
   // GIVEN agent 1 alone, and a writer of its IMU samples in this process

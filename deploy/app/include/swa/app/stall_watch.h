@@ -2,11 +2,12 @@
 // How long this process itself did not run (SIGSTOP, a suspended VM, a starved host): the time between two
 // consecutive checks beyond the longest gap the loop's own waits explain. The simulator moves its wall-clock
 // deadlines (agent timeouts, realtime pacing) by it, so a stalled simulator does not declare its healthy agents dead
-// for its own pause, nor race through the simulated time it missed. Pure: the caller passes the time.
+// for its own pause, nor race through the simulated time it missed; an agent does not blame a channel for what it
+// did not hear while it did not run itself. Pure: the caller passes the time.
 
 #include <chrono>
 
-namespace swa::sim_node {
+namespace swa::app {
 
 class StallWatch {
  public:
@@ -44,4 +45,4 @@ class StallWatch {
   int stalls_ = 0;
 };
 
-}  // namespace swa::sim_node
+}  // namespace swa::app
