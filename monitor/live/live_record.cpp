@@ -43,7 +43,7 @@ RunRecord makeRunRecord(const LiveRun& run, const LiveRunConfig& config, const R
   r.window_start_s = run.windowStartS();
   r.summary = run.summary();
   r.verdict = record::judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.formation_radius_m, r.tolerance,
-                     run.coverage().missed()});
+                     run.coverage().missed(), run.failsafeNow()});
   r.counts = inputCounts(run);
   r.restarts = context.restarts;
   r.events = run.events();

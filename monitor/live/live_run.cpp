@@ -73,6 +73,10 @@ void LiveRun::score(const JoinedStep& step) {
   status_.uavs = static_cast<int>(step.truth.uavs.size());
   status_.live_agents =
       static_cast<int>(std::count(step.truth.agent_alive.begin(), step.truth.agent_alive.end(), true));
+  failsafe_now_.clear();
+  for (std::size_t k = 0; k < step.truth.uavs.size(); ++k) {
+    if (!step.truth.agent_alive[k]) failsafe_now_.push_back(step.truth.uavs[k].id);
+  }
   trajectories_.add(stampSeconds(input.stamp_ns), input.uavs);
   if (config_.window_from_events) replay_.push_back(std::move(input));
 }

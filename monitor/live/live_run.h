@@ -72,6 +72,8 @@ class LiveRun {
   std::optional<agent::StampNs> newestTruth() const { return joiner_.newestTruth(); }
   bool sawTruth() const { return steps_ > 0; }
   const LiveStatus& status() const { return status_; }
+  // The UAVs whose agent the last scored step's truth calls dead (on failsafe), by id.
+  const std::vector<int>& failsafeNow() const { return failsafe_now_; }
   // The first EVENT_SCENARIO_END received.
   const std::optional<EventRecord>& endEvent() const { return end_event_; }
 
@@ -103,6 +105,7 @@ class LiveRun {
   std::optional<double> gnss_lost_any_s_;
   std::optional<agent::Mode> mode_;
   LiveStatus status_;
+  std::vector<int> failsafe_now_;
   int steps_ = 0;
   std::uint64_t unknown_events_ = 0;
   std::uint64_t rejected_steps_ = 0;

@@ -35,6 +35,12 @@ Verdict judge(const VerdictInput& in) {
   }
   if (s.collisions > 0) v.reasons.push_back(std::to_string(s.collisions) + " collision(s)");
   if (s.groups != 1) v.reasons.push_back(std::to_string(s.groups) + " groups at the end (expected 1)");
+  if (!in.failsafe_at_end.empty()) {
+    std::string uavs;
+    for (const int id : in.failsafe_at_end) uavs += (uavs.empty() ? "" : ", ") + std::to_string(id);
+    v.reasons.push_back(std::string(in.failsafe_at_end.size() == 1 ? "UAV " : "UAVs ") + uavs +
+                        " on failsafe at the end (agent declared dead, never rejoined)");
+  }
 
   if (!in.missed.empty()) {
     double total = 0.0;

@@ -95,7 +95,7 @@ void RealtimeDriver::run() {
     world_.step();
     step_lag_.add(wallNs(Clock::now()) - wallNs(target));
     ports_.publishStepOutputs(aliveFn());
-    // This step's IMU samples are answered late once the next step is due.
+    // This step's IMU samples are answered late once the next step is due and taken (stepTaken above).
     ports_.publishSensors(scheduledTime(world_.time_ns() + dt_ns));
   }
   // The last step's samples are judged like every other: collect their answers until they are due.

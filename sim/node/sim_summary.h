@@ -37,8 +37,9 @@ struct SimSummary {
   std::vector<int> dead_at_end;
   std::uint64_t write_failures = 0;
   // Loop latency: wall time from publishing a UAV's IMU sample to receiving the cmd_vel that answers it (its
-  // answered_seq / answered_stamp_ns), taken in the reader's listener. Late (realtime only): received after the UAV's
-  // next IMU sample was due. Missing: never answered although that deadline passed (lockstep: never answered).
+  // answered_seq / answered_stamp_ns), taken in the reader's listener. Late (realtime only): missed the step it answers,
+  // i.e. received after the UAV's next IMU sample was due and after the simulator took that step. Missing: never
+  // answered although that deadline passed (lockstep: never answered).
   LatencyReport latency;
   // Realtime only: how late the simulator itself stepped and published against its wall-clock schedule (us; NaN in
   // lockstep). A large lag means the simulator thread, not the agents, is what falls behind.

@@ -245,16 +245,15 @@ inline std::string useOwnSwarm() {
 // A run judged against the wall clock (realtime mode) on a 2-core machine that other users share: this thread, and
 // every process it starts from now on (they inherit it), gets nice -10, about 9 times the CPU share of a process at
 // the default priority, so a foreign load cannot make a healthy loop late. Flight stacks give their control loop
-// priority the same way (deploy/README.md). Returns the niceness now in force; unchanged (0) when not permitted.
+// priority the same way (deploy/README.md). Returns the niceness now in force: the one before when not permitted.
 inline int favourRealtimeRun() {
   ::setpriority(PRIO_PROCESS, 0, -10);
-  errno = 0;
-  return ::getpriority(PRIO_PROCESS, 0);
+  return ::getpriority(PRIO_PROCESS, 0);  // -1 is a valid niceness here, never an error (PRIO_PROCESS of self)
 }
 
-// The share of CPU time the hypervisor gave to other guests while this machine's CPUs wanted to run (steal time,
-// /proc/stat) since construction: 0 where the kernel reports none. This VM shares its physical cores; while they are
-// taken away no process of ours runs, whatever its priority, so a wall-clock bar judges the host, not the code.
+// The share of all CPU time (idle included) since construction that the hypervisor gave to other guests while this
+// machine had work to run (steal time, /proc/stat): 0 where the kernel reports none. This VM shares its physical
+// cores; while they are taken away no process of ours runs, whatever its priority.
 class StealMeter {
  public:
   StealMeter() : start_(read()) {}

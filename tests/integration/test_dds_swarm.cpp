@@ -614,23 +614,27 @@ TEST_F(SwarmRun, RealtimeFourAgentsTwentySecondsCohesiveAndEveryCommandWithinIts
   RecordProperty("niceness", std::to_string(favourRealtimeRun()));
   // THEN fewer than 1 % of the answers missed the step they answer (arrived after the UAV's next IMU sample was due
   // and the simulator had taken that step). No priority helps while the hypervisor gives this VM's cores to other
-  // guests (measured here: 5-14 % steal time during an idle-box run, the simulator's own steps then late by up to
-  // 30 ms), so a run that misses the bar while more than 2 % of the CPU time was stolen is run again, at most 3
-  // runs, and each run's figures are printed. Every other check holds in every run.
+  // guests (steal time, up to 16 % of a run here on an idle box), and then the simulator falls behind its own
+  // schedule too. So the agents are held to the bar the simulator met: a run that misses it while the simulator's
+  // own steps were more than one period late at the 99th percentile (the host did not let it keep time either) is
+  // run again, at most 3 runs, and each run's figures are printed. Every other check holds in every run.
   constexpr int kRuns = 3;
-  constexpr double kStolenLimit = 0.02;
+  constexpr double kPeriodUs = 10'000.0;
   for (int run = 1;; ++run) {
     const StealMeter steal;
     const std::string summary = realtimeFourAgents();
     if (HasFailure()) return;
     const double late = jsonNumber(summary, "late_fraction");
+    const double step_lag_p99_us = jsonNumber(summary, "step_lag_p99_us");
     const double stolen = steal.fraction();
-    std::cout << "run " << run << ": late fraction " << late << ", CPU time stolen by the host " << stolen << "\n";
+    std::cout << "run " << run << ": late fraction " << late << ", simulator step lag p99 " << step_lag_p99_us
+              << " us, CPU time stolen by the host " << stolen << "\n";
     RecordProperty("late_fraction_run" + std::to_string(run), std::to_string(late));
+    RecordProperty("step_lag_p99_us_run" + std::to_string(run), std::to_string(step_lag_p99_us));
     RecordProperty("stolen_fraction_run" + std::to_string(run), std::to_string(stolen));
-    if (late < 0.01 || stolen <= kStolenLimit || run == kRuns) {
-      EXPECT_LT(late, 0.01) << "run " << run << " of at most " << kRuns << ", " << 100.0 * stolen
-                            << " % of the CPU time stolen by the host\n"
+    if (late < 0.01 || step_lag_p99_us <= kPeriodUs || run == kRuns) {
+      EXPECT_LT(late, 0.01) << "run " << run << " of at most " << kRuns << "; the simulator's own step lag p99 "
+                            << step_lag_p99_us << " us, " << 100.0 * stolen << " % of the CPU time stolen\n"
                             << summary;
       RecordProperty("latency_p50_us", std::to_string(jsonNumber(summary, "latency_p50_us")));
       RecordProperty("latency_p99_us", std::to_string(jsonNumber(summary, "latency_p99_us")));

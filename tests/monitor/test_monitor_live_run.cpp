@@ -124,6 +124,33 @@ TEST(LiveRun, DeadAgentsUavStaysInTheMetricsWithoutAnEstimate) {
   EXPECT_EQ(run.joinCounters().missing_states, 0u);
   EXPECT_EQ(run.status().live_agents, 3);
   EXPECT_EQ(run.status().uavs, 4);
+  // AND the run ended with UAV 3 on failsafe: its record FAILs for that alone (the formation held), naming it
+  EXPECT_EQ(run.failsafeNow(), (std::vector<int>{3}));
+  const RunRecord r = makeRunRecord(run, config(0.0), RunContext{"", "", std::nullopt, 0.1, {true, "completed"}, {}});
+  EXPECT_EQ(r.verdict.outcome, Outcome::kFail) << record::verdictText(r.verdict);
+  ASSERT_EQ(r.verdict.reasons.size(), 1u) << record::verdictText(r.verdict);
+  EXPECT_EQ(r.verdict.reasons[0], "UAV 3 on failsafe at the end (agent declared dead, never rejoined)");
+}
+
+TEST(LiveRun, AnAgentThatRejoinsLeavesNoUavOnFailsafe) {
+  // GIVEN agent 2 dead for steps 10 to 14, alive again from step 15 (the truth's alive flags)
+  LiveRun run(config(0.0));
+  for (int k = 0; k < 20; ++k) {
+    TruthSample t = square(k);
+    t.agent_alive[2] = !(k >= 10 && k < 15);
+    run.onTruth(t);
+    for (int i = 0; i < 4; ++i) {
+      if (i != 2 || k < 10 || k >= 15) run.onState(i, estimate(i, k));
+    }
+    if (k == 12) {
+      EXPECT_EQ(run.failsafeNow(), (std::vector<int>{2}));
+    }
+  }
+  run.finish();
+  // THEN none is on failsafe at the end, and the run passes
+  EXPECT_TRUE(run.failsafeNow().empty());
+  const RunRecord r = makeRunRecord(run, config(0.0), RunContext{"", "", std::nullopt, 0.1, {true, "completed"}, {}});
+  EXPECT_EQ(r.verdict.outcome, Outcome::kPass) << record::verdictText(r.verdict);
 }
 
 TEST(LiveRun, MissingStatesWaitForTheHorizonThenScoreWithoutThem) {

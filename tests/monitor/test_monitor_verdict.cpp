@@ -1,5 +1,5 @@
 // The run verdict and its exit status: PASS only when the scenario completed with d_NB within the band, no
-// collision and one group; FAIL lists every failed criterion; INCOMPLETE wins whenever the run did not complete.
+// collision, one group and no UAV on failsafe at the end; FAIL lists every failed criterion; INCOMPLETE wins whenever the run did not complete.
 
 #include <gtest/gtest.h>
 
@@ -39,6 +39,21 @@ TEST(MonitorVerdict, PassNeedsEveryCriterion) {
   EXPECT_TRUE(v.reasons.empty());
   EXPECT_EQ(verdictText(v), "PASS");
   EXPECT_EQ(exitCode(v.outcome), 0);
+}
+
+TEST(MonitorVerdict, UavsOnFailsafeAtTheEndFailTheRunWhateverTheFormation) {
+  // GIVEN a run that held the formation but ended with the agents of UAVs 1 and 5 dead (their UAVs hovering)
+  VerdictInput in = good();
+  in.failsafe_at_end = {1, 5};
+  // THEN it fails, naming them
+  const Verdict v = judge(in);
+  EXPECT_EQ(v.outcome, Outcome::kFail);
+  EXPECT_EQ(verdictText(v), "FAIL: UAVs 1, 5 on failsafe at the end (agent declared dead, never rejoined)");
+  EXPECT_EQ(exitCode(v.outcome), 1);
+  // AND a run the monitor did not see whole stays INCOMPLETE, with the failsafe among its reasons
+  in.missed = {{10.0, 12.0}};
+  EXPECT_EQ(judge(in).outcome, Outcome::kIncomplete);
+  EXPECT_TRUE(mentions(judge(in), "on failsafe"));
 }
 
 TEST(MonitorVerdict, BandEdgesAreInclusive) {

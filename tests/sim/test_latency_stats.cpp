@@ -152,6 +152,13 @@ TEST(CommandLatencyTracker, AnAnswerIsLateOnlyWhenItMissedTheStepItAnswers) {
   EXPECT_EQ(r.late, 1u);
   EXPECT_EQ(r.answered, 2u);
   EXPECT_EQ(r.max_us, 19'000.0);
+  // THEN an answer received at 17 ms, before the step took its commands at 18 ms, is in time even when it is judged
+  // after the step (queued just after the last drain)
+  CommandLatencyTracker u(1);
+  u.published(0, 1, 0, 0, 10 * kMs);
+  u.stepTaken(18 * kMs);
+  u.answered(0, 1, 0, 17 * kMs);
+  EXPECT_EQ(u.report().late, 0u);
   // THEN when the step's last drain began before the due time (the simulator on time), the due time stays the
   // deadline: an answer at 29.5 ms is in time, one at 31 ms late
   t.published(0, 2, kStepNs, 20 * kMs, 30 * kMs);

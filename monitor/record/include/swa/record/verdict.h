@@ -37,6 +37,9 @@ struct VerdictInput {
   double tolerance = monitor::kDefaultRadiusTolerance;
   // Parts of the run the monitor did not see: the verdict is INCOMPLETE if there are any.
   std::vector<MissedSpan> missed;
+  // UAVs whose agent the last truth calls dead (declared dead, never rejoined): their UAVs ended on the failsafe, so
+  // the swarm did not end whole, however well the others held the formation.
+  std::vector<int> failsafe_at_end;
 };
 
 Verdict judge(const VerdictInput& input);
