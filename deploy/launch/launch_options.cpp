@@ -96,8 +96,8 @@ app::Cli makeCli(LaunchOptions& o) {
            "port (swa_monitor --live; 127.0.0.1 unless ADDR); the URL is printed",
            "[ADDR:]PORT");
   cli.footer(R"(Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 5 % of r, no collision, one
-group), 1 FAIL, 3 INCOMPLETE (interrupted, timed out, or a process failed); 2 bad arguments or scenario, or a
-missing executable (nothing started).)");
+group, no UAV on failsafe at the end), 1 FAIL, 3 INCOMPLETE (interrupted, timed out, or a process failed); 2 bad
+arguments or scenario, or a missing executable (nothing started).)");
   return cli;
 }
 

@@ -60,7 +60,7 @@ and prints the verdict and the report's path.
 
 Verdict (--tolerance F):
   PASS        EVENT_SCENARIO_END "completed", final d_NB (mean over the last 5 s) within r (1 +- F), no collision,
-              one group at the end
+              one group at the end, and no UAV on failsafe at the end (every agent declared dead has rejoined)
   FAIL        completed, but one of those failed (reasons in summary.json and printed)
   INCOMPLETE  no "completed" end event: interrupted, timeout, the simulator reported a failure, or no truth
               at all; every output that can be written still is

@@ -1,5 +1,6 @@
 #include "sim_ports.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -58,6 +59,10 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
   }
 
   participant_ = std::make_unique<dds::Participant>("swa_sim", domain_id, profiles_file);
+  if (const std::vector<int>& ports = participant_->ownSharedMemoryPorts(); ports.size() == 2) {
+    std::fprintf(stderr, "swa_sim: listening on shared-memory ports %d (discovery) and %d (data)\n", ports[0],
+                 ports[1]);
+  }
   events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
   truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
   clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
@@ -121,12 +126,25 @@ bool SimPorts::awaitDiscovery() {
   return false;
 }
 
+void SimPorts::noteDeafness() {
+  for (const int port : participant_->deafSharedMemoryPorts()) {
+    if (std::find(deaf_ports_.begin(), deaf_ports_.end(), port) != deaf_ports_.end()) continue;
+    deaf_ports_.push_back(port);
+    std::fprintf(stderr,
+                 "swa_sim: t = %.2f s: deaf on shared-memory port %d: Fast DDS re-created /dev/shm/fastrtps_port%d "
+                 "under this process (a peer judged it dead, e.g. while the simulator was stopped), so what agents "
+                 "send to it is lost and they will be declared dead; the run cannot recover (deploy/README.md)\n",
+                 sim::stampSeconds(world_.time_ns()), port, port);
+  }
+}
+
 void SimPorts::stepTaken(Clock::time_point t) {
   if (time_latency_) latency_.stepTaken(wallNs(t));
 }
 
 void SimPorts::publishStepOutputs(const AliveFn& alive) {
   if (world_.step_index() % 10 == 0) noteYoungerTwin();
+  if (world_.step_index() % 100 == 0) noteDeafness();
   for (const sim::Event& e : world_.events()) publishEvent(record::eventOf(e));
   if (world_.step_index() % options_.truth_every == 0 || world_.finished()) publishTruth(alive);
   const wire::ClockTick tick{static_cast<std::uint64_t>(world_.step_index()), world_.time_ns(),

@@ -89,6 +89,8 @@ class SimPorts {
   std::string commandTopic(int uav) const;  // where a UAV's setpoints come from (for the log)
   bool olderTwinRuns();                 // another swa_sim older than us in this swarm: refuse (logged)
   void noteYoungerTwin();
+  // Says once per port when this process no longer hears one of its shared-memory ports (shm_ports.h).
+  void noteDeafness();
   void publishTruth(const AliveFn& alive);
   void publishEvent(const record::EventRecord& event);
 
@@ -113,6 +115,7 @@ class SimPorts {
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Answer> queue_;
   std::unique_ptr<dds::Participant> participant_;
+  std::vector<int> deaf_ports_;  // shared-memory ports found deaf (noteDeafness), each said once
   std::unique_ptr<Px4Vehicles> px4_;  // vehicle.interface = px4: instead of imu_ and cmd_
   std::vector<dds::Writer<msg::Imu>> imu_;
   std::vector<dds::Writer<msg::Detections>> det_;

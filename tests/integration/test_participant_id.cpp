@@ -1,11 +1,15 @@
 // The participant id a new SWA participant takes (swa/dds/participant_id.h): never one whose shared-memory port a
-// killed process left behind. Pure, no DDS (label unit).
+// killed process left behind; and which of its own ports a process no longer hears (swa/dds/shm_ports.h). Pure, no
+// DDS (label unit).
 
 #include <gtest/gtest.h>
 
 #include <set>
+#include <string>
+#include <vector>
 
 #include "swa/dds/participant_id.h"
+#include "swa/dds/shm_ports.h"
 
 namespace swa::dds {
 namespace {
@@ -35,6 +39,39 @@ TEST(ParticipantId, StaysInsideItsDomainsPortRangeAndGivesUpWhenItIsFull) {
   EXPECT_EQ(unusedParticipantId(0, wide, [&](int port) { return taken.count(port) > 0; }), 1);
   const std::set<int> second{7414};  // id 1 under gain 4: 7414 / 7415
   EXPECT_EQ(unusedParticipantId(0, wide, [&](int port) { return second.count(port) > 0; }), 0);
+}
+
+// ---- deafPorts (shm_ports.h) ------------------------------------------------------------------------------------
+
+// Lines of /proc/<pid>/maps as Linux writes them (address range, permissions, offset, device, inode, path).
+std::string mapping(const std::string& path) {
+  return "7f2c1a000000-7f2c1a400000 rw-s 00000000 00:1a 4711                       " + path + "\n";
+}
+
+TEST(DeafPorts, AnOwnPortMappedOnlyDeletedWhileItsFileExistsIsDeaf) {
+  // GIVEN a process listening on 7411 and 7412 and writing to a peer's 7413
+  const std::string maps = "55d0c0a00000-55d0c0a21000 r-xp 00000000 08:01 1234 /usr/bin/swa_sim\n" +
+                           mapping("/dev/shm/fastrtps_port7411 (deleted)") + mapping("/dev/shm/fastrtps_port7412") +
+                           mapping("/dev/shm/fastrtps_port7413 (deleted)") +
+                           mapping("/dev/shm/fastrtps_port7411_el") + mapping("/dev/shm/sem.fastrtps_port7411_mutex");
+  const auto every = [](int) { return true; };
+  // THEN its port 7411, mapped only as deleted while a new file exists, is deaf; 7412 is live; the peer's 7413 is
+  // not its own, and the port's other files do not count
+  EXPECT_EQ(deafPorts(maps, {7411, 7412}, every), (std::vector<int>{7411}));
+  // WHEN no file of that name exists any more (the port was removed, not re-created) THEN nobody can write to it
+  EXPECT_TRUE(deafPorts(maps, {7411, 7412}, [](int port) { return port != 7411; }).empty());
+}
+
+TEST(DeafPorts, AnOwnerThatMovedToTheNewSegmentHearsIt) {
+  // GIVEN the old segment still mapped (deleted) beside the new one of the same name
+  const std::string maps =
+      mapping("/dev/shm/fastrtps_port7411 (deleted)") + mapping("/dev/shm/fastrtps_port7411");
+  // THEN it hears: the owner follows a re-created port as Fast DDS intends
+  EXPECT_TRUE(deafPorts(maps, {7411}, [](int) { return true; }).empty());
+  // AND a port it never mapped, or a process without shared memory, says nothing
+  EXPECT_TRUE(deafPorts(maps, {7500}, [](int) { return true; }).empty());
+  EXPECT_TRUE(deafPorts("", {7411}, [](int) { return true; }).empty());
+  EXPECT_TRUE(deafPorts(maps, {}, [](int) { return true; }).empty());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -25,6 +26,7 @@
 #include "swa/dds/deployment.h"
 #include "swa/dds/participant_id.h"
 #include "swa/dds/security_check.h"
+#include "swa/dds/shm_ports.h"
 
 namespace swa::dds {
 
@@ -217,6 +219,16 @@ void avoidAbandonedSharedMemoryPorts(fdds::DomainParticipantQos& qos, int domain
   if (const std::optional<int> id = unusedParticipantId(domain_id, ports, exists)) wire.participant_id = *id;
 }
 
+// The two unicast ports of the participant id in `qos` (none when Fast DDS is to choose it).
+std::vector<int> unicastPorts(const fdds::DomainParticipantQos& qos, int domain_id) {
+  const fdds::WireProtocolConfigQos& wire = qos.wire_protocol();
+  if (wire.participant_id < 0) return {};
+  const auto& p = wire.port;
+  const int first = static_cast<int>(p.portBase) + static_cast<int>(p.domainIDGain) * domain_id +
+                    static_cast<int>(p.participantIDGain) * wire.participant_id;
+  return {first + static_cast<int>(p.offsetd1), first + static_cast<int>(p.offsetd3)};
+}
+
 // Fast DDS says only "initialization error" when it refuses credentials: its plugins' checks are repeated on the
 // files to name the one that failed.
 std::string refusalReason(const SecurityFiles& files) {
@@ -249,7 +261,10 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     throw DdsError(std::string("participant profile '") + profile + "' missing in " + profiles_file);
   }
   qos.name(name);
-  if (deployment.transport == Transport::kLocal) avoidAbandonedSharedMemoryPorts(qos, domain_id);
+  if (deployment.transport == Transport::kLocal) {
+    avoidAbandonedSharedMemoryPorts(qos, domain_id);
+    own_shm_ports_ = unicastPorts(qos, domain_id);
+  }
   if (deployment.transport == Transport::kDiscoveryServer) useDiscoveryServers(qos, deployment.discovery_servers);
   std::optional<SecurityFiles> security;
   if (!deployment.security_dir.empty()) {
@@ -370,6 +385,17 @@ bool Participant::mustGiveWay() const {
 std::pair<int, std::string> Participant::peersBackAfterLease() const {
   return peer_listener_->withBook(
       [](PeerBook& book) { return std::make_pair(book.returnedAfterLease(), book.lastReturned()); });
+}
+
+std::vector<int> Participant::deafSharedMemoryPorts() const {
+  if (own_shm_ports_.empty()) return {};
+  std::ifstream in("/proc/self/maps");
+  std::ostringstream maps;
+  maps << in.rdbuf();
+  return deafPorts(maps.str(), own_shm_ports_, [](int port) {
+    std::error_code ec;
+    return std::filesystem::exists("/dev/shm/fastrtps_port" + std::to_string(port), ec);
+  });
 }
 
 }  // namespace swa::dds

@@ -1,0 +1,22 @@
+#pragma once
+// Whether a process still hears its own shared-memory ports.
+//
+// Fast DDS 2.9 judges a shared-memory port whose listener has not checked in for 1 s dead (healthy_check_timeout_ms);
+// a sender then deletes /dev/shm/fastrtps_port<N> and creates a fresh one under that name. Normally the owner moves
+// to the new one; in a race it keeps listening on the deleted one, and everyone who opens the port from then on
+// writes where it no longer reads (seen here: after the 4th 2 s SIGSTOP of a realtime simulator, no command of its
+// six agents reached it again). The sign, in /proc/self/maps: an own port mapped only as "(deleted)" while a file of
+// that name exists. Pure: the caller passes the maps text and says which ports exist.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace swa::dds {
+
+// The ports of `own` that `maps` (the text of /proc/<pid>/maps) shows mapped, every mapping of them deleted, and of
+// which a file exists again (`exists`), in the order of `own`.
+std::vector<int> deafPorts(const std::string& maps, const std::vector<int>& own,
+                           const std::function<bool(int)>& exists);
+
+}  // namespace swa::dds
