@@ -59,6 +59,17 @@ void CommandLatencyTracker::answered(int uav, std::uint32_t seq, std::int64_t st
   if (s->has_due && s->step_taken && received_ns > s->due_ns) ++late_;
 }
 
+bool CommandLatencyTracker::newestAnswered() const {
+  for (int uav = 0; uav < uav_count_; ++uav) {
+    const std::optional<std::uint32_t> seq = newest_[static_cast<std::size_t>(uav)];
+    if (!seq) continue;
+    const Slot& s = slots_[static_cast<std::size_t>(uav) * static_cast<std::size_t>(window_) +
+                           static_cast<std::size_t>(*seq % static_cast<std::uint32_t>(window_))];
+    if (s.used && s.seq == *seq && !s.answered) return false;
+  }
+  return true;
+}
+
 void CommandLatencyTracker::stepTaken(WallNs taken_ns) {
   for (int uav = 0; uav < uav_count_; ++uav) {
     const std::optional<std::uint32_t> seq = newest_[static_cast<std::size_t>(uav)];

@@ -49,6 +49,8 @@ class CommandLatencyTracker {
   // newest sample is in time even past its deadline, because it is still applied (a simulator that is itself late
   // must not blame the agents); from then on the deadline is max(deadline, taken_ns).
   void stepTaken(WallNs taken_ns);
+  // Whether every UAV's newest sample has been answered (or it has none).
+  bool newestAnswered() const;
   // Unanswered samples whose deadline is at or before `now_ns` (or that have none) become missing; those still in
   // time are dropped from the judgement. Idempotent; published()/answered() after it are undefined.
   void finish(WallNs now_ns);

@@ -128,12 +128,14 @@ void RealtimeDriver::drain(Clock::duration wait) {
 
 void RealtimeDriver::collectLateAnswers(Clock::time_point until) {
   ports_.stepTaken(until);  // no step follows the last: its answers are late after their due time
-  while (!stop_) {
+  // An answer a little after that is late, as at every other step, not missing: wait a while longer for them.
+  const auto end = until + kLastAnswersGrace;
+  while (!stop_ && !ports_.newestAnswered()) {
     const auto now = Clock::now();
-    if (now >= until) break;
-    ports_.drain(std::min<Clock::duration>(until - now, kPollPeriod));  // their latency is recorded; none applied
+    if (now >= end) break;
+    ports_.drain(std::min<Clock::duration>(end - now, kPollPeriod));  // their latency is recorded; none applied
   }
-  ports_.drain(Clock::duration::zero());  // what arrived in time but was not drained yet
+  ports_.drain(Clock::duration::zero());  // what arrived but was not drained yet
 }
 
 }  // namespace swa::sim_node

@@ -22,6 +22,8 @@ class RealtimeDriver : public Driver {
   void handshake();
   void drain(Clock::duration wait);
   void collectLateAnswers(Clock::time_point until);  // after the last step: statistics only
+  // How long after the last step's due time its answers are still waited for (counted late, not missing).
+  static constexpr auto kLastAnswersGrace = std::chrono::milliseconds(200);
 
   std::vector<bool> alive_;
   std::vector<Clock::time_point> last_answer_;

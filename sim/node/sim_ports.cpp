@@ -59,9 +59,10 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
   }
 
   participant_ = std::make_unique<dds::Participant>("swa_sim", domain_id, profiles_file);
-  if (const std::vector<int>& ports = participant_->ownSharedMemoryPorts(); ports.size() == 2) {
-    std::fprintf(stderr, "swa_sim: listening on shared-memory ports %d (discovery) and %d (data)\n", ports[0],
-                 ports[1]);
+  if (const std::vector<int> ports = dds::Participant::ownSharedMemoryPorts(); !ports.empty()) {
+    std::string list;
+    for (const int port : ports) list += " " + std::to_string(port);
+    std::fprintf(stderr, "swa_sim: listening on shared-memory ports%s\n", list.c_str());
   }
   events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
   truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
@@ -127,7 +128,7 @@ bool SimPorts::awaitDiscovery() {
 }
 
 void SimPorts::noteDeafness() {
-  for (const int port : participant_->deafSharedMemoryPorts()) {
+  for (const int port : dds::Participant::deafSharedMemoryPorts()) {
     if (std::find(deaf_ports_.begin(), deaf_ports_.end(), port) != deaf_ports_.end()) continue;
     deaf_ports_.push_back(port);
     std::fprintf(stderr,

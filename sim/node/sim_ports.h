@@ -75,6 +75,8 @@ class SimPorts {
   void timeLatency(bool on) { time_latency_ = on; }
   // Realtime: the next step takes the commands drained up to `t`; an answer received later missed it (late).
   void stepTaken(Clock::time_point t);
+  // Whether every UAV's newest IMU sample has been answered (true while latency is not timed).
+  bool newestAnswered() const { return !time_latency_ || latency_.newestAnswered(); }
   void finishLatency(bool realtime, const LogHistogram& step_lag);
   // The simulator did not run for `lost`: no commander could be heard meanwhile.
   void shiftCommanders(Clock::duration lost, Clock::time_point now) { gate_.shift(lost, now); }

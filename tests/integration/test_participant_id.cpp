@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -72,6 +73,27 @@ TEST(DeafPorts, AnOwnerThatMovedToTheNewSegmentHearsIt) {
   EXPECT_TRUE(deafPorts(maps, {7500}, [](int) { return true; }).empty());
   EXPECT_TRUE(deafPorts("", {7411}, [](int) { return true; }).empty());
   EXPECT_TRUE(deafPorts(maps, {}, [](int) { return true; }).empty());
+}
+
+TEST(OwnPorts, APortIsOwnWhenThisProcessHoldsTheLockOfItsExclusiveReadLockFile) {
+  // GIVEN paths a process has open: only a port's exclusive-read lock file names a port
+  EXPECT_EQ(lockFilePort("/dev/shm/fastrtps_port51920_el"), 51920);
+  for (const char* other : {"/dev/shm/fastrtps_port51650_sl", "/dev/shm/fastrtps_31d336c7463b45ca_el",
+                            "/dev/shm/fastrtps_port_el", "/dev/shm/fastrtps_port12a_el", "/tmp/dev/shm/fastrtps_port1_el",
+                            "socket:[123456]", "/dev/shm/fastrtps_port51920"}) {
+    EXPECT_FALSE(lockFilePort(other)) << other;
+  }
+  // AND /proc/locks: this process (22855) holds two locks, another process one, and 22855 waits for a third
+  const std::string locks =
+      "1: FLOCK  ADVISORY  WRITE 22855 00:1b:229995 0 EOF\n"
+      "2: FLOCK  ADVISORY  WRITE 22854 00:1b:229988 0 EOF\n"
+      "3: POSIX  ADVISORY  WRITE 22855 00:1b:229977 0 EOF\n"
+      "4: FLOCK  ADVISORY  WRITE 22854 00:1b:229900 0 EOF\n"
+      "4: -> FLOCK  ADVISORY  WRITE 22855 00:1b:229900 0 EOF\n";
+  // THEN its own are the two it holds, not the one it waits for
+  EXPECT_EQ(lockedInodes(locks, 22855), (std::set<unsigned long>{229995, 229977}));
+  EXPECT_TRUE(lockedInodes(locks, 1).empty());
+  EXPECT_TRUE(lockedInodes("", 22855).empty());
 }
 
 }  // namespace

@@ -171,6 +171,19 @@ TEST(CommandLatencyTracker, AnAnswerIsLateOnlyWhenItMissedTheStepItAnswers) {
   EXPECT_EQ(t.report().late, 2u);
 }
 
+TEST(CommandLatencyTracker, NewestAnsweredOnceEveryUavAnsweredItsNewestSample) {
+  CommandLatencyTracker t(2);
+  EXPECT_TRUE(t.newestAnswered());  // nothing published
+  t.published(0, 1, 0, 0, 10 * kMs);
+  t.published(1, 1, 0, 0, 10 * kMs);
+  t.answered(0, 1, 0, 1 * kMs);
+  EXPECT_FALSE(t.newestAnswered());
+  t.answered(1, 1, 0, 2 * kMs);
+  EXPECT_TRUE(t.newestAnswered());
+  t.published(0, 2, kStepNs, 10 * kMs, 20 * kMs);  // an older sample answered does not count for the newer one
+  EXPECT_FALSE(t.newestAnswered());
+}
+
 TEST(CommandLatencyTracker, ASampleWhoseSuccessorWasPublishedIsJudgedAgainstItsOwnDeadline) {
   // GIVEN sample 1 due at 10 ms, then sample 2 published without a stepTaken() in between
   CommandLatencyTracker t(1);

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
@@ -219,14 +220,11 @@ void avoidAbandonedSharedMemoryPorts(fdds::DomainParticipantQos& qos, int domain
   if (const std::optional<int> id = unusedParticipantId(domain_id, ports, exists)) wire.participant_id = *id;
 }
 
-// The two unicast ports of the participant id in `qos` (none when Fast DDS is to choose it).
-std::vector<int> unicastPorts(const fdds::DomainParticipantQos& qos, int domain_id) {
-  const fdds::WireProtocolConfigQos& wire = qos.wire_protocol();
-  if (wire.participant_id < 0) return {};
-  const auto& p = wire.port;
-  const int first = static_cast<int>(p.portBase) + static_cast<int>(p.domainIDGain) * domain_id +
-                    static_cast<int>(p.participantIDGain) * wire.participant_id;
-  return {first + static_cast<int>(p.offsetd1), first + static_cast<int>(p.offsetd3)};
+std::string readWhole(const char* path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 // Fast DDS says only "initialization error" when it refuses credentials: its plugins' checks are repeated on the
@@ -261,10 +259,7 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
     throw DdsError(std::string("participant profile '") + profile + "' missing in " + profiles_file);
   }
   qos.name(name);
-  if (deployment.transport == Transport::kLocal) {
-    avoidAbandonedSharedMemoryPorts(qos, domain_id);
-    own_shm_ports_ = unicastPorts(qos, domain_id);
-  }
+  if (deployment.transport == Transport::kLocal) avoidAbandonedSharedMemoryPorts(qos, domain_id);
   if (deployment.transport == Transport::kDiscoveryServer) useDiscoveryServers(qos, deployment.discovery_servers);
   std::optional<SecurityFiles> security;
   if (!deployment.security_dir.empty()) {
@@ -387,12 +382,26 @@ std::pair<int, std::string> Participant::peersBackAfterLease() const {
       [](PeerBook& book) { return std::make_pair(book.returnedAfterLease(), book.lastReturned()); });
 }
 
-std::vector<int> Participant::deafSharedMemoryPorts() const {
-  if (own_shm_ports_.empty()) return {};
-  std::ifstream in("/proc/self/maps");
-  std::ostringstream maps;
-  maps << in.rdbuf();
-  return deafPorts(maps.str(), own_shm_ports_, [](int port) {
+std::vector<int> Participant::ownSharedMemoryPorts() {
+  const std::set<unsigned long> locked = lockedInodes(readWhole("/proc/locks"), static_cast<long>(::getpid()));
+  std::vector<int> own;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it("/proc/self/fd", ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code link_ec;
+    const std::optional<int> port = lockFilePort(std::filesystem::read_symlink(it->path(), link_ec).string());
+    struct stat st {};
+    if (link_ec || !port || ::stat(it->path().c_str(), &st) != 0) continue;
+    if (locked.count(static_cast<unsigned long>(st.st_ino)) > 0) own.push_back(*port);
+  }
+  std::sort(own.begin(), own.end());
+  own.erase(std::unique(own.begin(), own.end()), own.end());
+  return own;
+}
+
+std::vector<int> Participant::deafSharedMemoryPorts() {
+  const std::vector<int> own = ownSharedMemoryPorts();
+  if (own.empty()) return {};
+  return deafPorts(readWhole("/proc/self/maps"), own, [](int port) {
     std::error_code ec;
     return std::filesystem::exists("/dev/shm/fastrtps_port" + std::to_string(port), ec);
   });

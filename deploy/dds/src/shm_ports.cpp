@@ -5,6 +5,40 @@
 
 namespace swa::dds {
 
+std::optional<int> lockFilePort(const std::string& path) {
+  static const std::string kPrefix = "/dev/shm/fastrtps_port";
+  static const std::string kSuffix = "_el";
+  if (path.size() <= kPrefix.size() + kSuffix.size() || path.compare(0, kPrefix.size(), kPrefix) != 0 ||
+      path.compare(path.size() - kSuffix.size(), kSuffix.size(), kSuffix) != 0) {
+    return std::nullopt;
+  }
+  const std::string digits = path.substr(kPrefix.size(), path.size() - kPrefix.size() - kSuffix.size());
+  if (digits.empty() || digits.size() > 6 || digits.find_first_not_of("0123456789") != std::string::npos) {
+    return std::nullopt;
+  }
+  return std::stoi(digits);
+}
+
+std::set<unsigned long> lockedInodes(const std::string& proc_locks, long pid) {
+  // "1: FLOCK  ADVISORY  WRITE 22855 00:1b:229995 0 EOF": number, class, kind, mode, pid, major:minor:inode, range
+  std::set<unsigned long> inodes;
+  std::istringstream lines(proc_locks);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.find("->") != std::string::npos) continue;
+    std::istringstream fields(line);
+    std::string number, lock_class, kind, mode, device;
+    long holder = 0;
+    if (!(fields >> number >> lock_class >> kind >> mode >> holder >> device) || holder != pid) continue;
+    const std::size_t colon = device.rfind(':');
+    if (colon == std::string::npos || colon + 1 >= device.size()) continue;
+    const std::string inode = device.substr(colon + 1);
+    if (inode.find_first_not_of("0123456789") != std::string::npos || inode.size() > 19) continue;
+    inodes.insert(std::stoul(inode));
+  }
+  return inodes;
+}
+
 std::vector<int> deafPorts(const std::string& maps, const std::vector<int>& own,
                            const std::function<bool(int)>& exists) {
   struct Seen {

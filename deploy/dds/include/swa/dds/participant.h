@@ -209,11 +209,11 @@ class Participant {
   bool mustGiveWay() const;
   std::pair<int, std::string> peersBackAfterLease() const;
 
-  // The shared-memory ports this participant listens on (its two unicast ports) that Fast DDS re-created under it, so
-  // that what peers send to them is lost (shm_ports.h). Empty without shared memory or a known participant id.
-  std::vector<int> deafSharedMemoryPorts() const;
-  // Its two unicast ports (metatraffic, user data), or none (see above).
-  const std::vector<int>& ownSharedMemoryPorts() const { return own_shm_ports_; }
+  // The shared-memory ports this process listens on as their only reader (its participants' unicast ports), and those
+  // of them that Fast DDS re-created under it, so that what peers send to them is lost (shm_ports.h). Linux; empty
+  // without shared memory.
+  static std::vector<int> ownSharedMemoryPorts();
+  static std::vector<int> deafSharedMemoryPorts();
 
  private:
   // Takes ownership of `type`.
@@ -229,7 +229,6 @@ class Participant {
   std::vector<std::unique_ptr<eprosima::fastdds::dds::DataReaderListener>> listeners_;
   std::string name_;
   int domain_id_ = 0;
-  std::vector<int> own_shm_ports_;  // its unicast ports, when it has shared memory and a known participant id
   WireNames names_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;

@@ -6,13 +6,25 @@
 // to the new one; in a race it keeps listening on the deleted one, and everyone who opens the port from then on
 // writes where it no longer reads (seen here: after the 4th 2 s SIGSTOP of a realtime simulator, no command of its
 // six agents reached it again). The sign, in /proc/self/maps: an own port mapped only as "(deleted)" while a file of
-// that name exists. Pure: the caller passes the maps text and says which ports exist.
+// that name exists. A port is a process's own when it holds the lock of its exclusive-read lock file
+// (/dev/shm/fastrtps_port<N>_el, a FLOCK in /proc/locks): the participant id and so the port number Fast DDS ends up
+// with can differ from the one asked for (two processes starting together), the ports a process writes to are mapped
+// in it too, and processes that tried a port and moved on keep its lock file open without the lock.
+// Pure: the caller passes the texts of /proc files and says which ports exist.
 
 #include <functional>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 namespace swa::dds {
+
+// The port of an exclusive-read lock file's path (/dev/shm/fastrtps_port<N>_el), if it is one.
+std::optional<int> lockFilePort(const std::string& path);
+
+// The inodes on which `pid` holds a granted lock, from the text of /proc/locks (waiters, "->", excluded).
+std::set<unsigned long> lockedInodes(const std::string& proc_locks, long pid);
 
 // The ports of `own` that `maps` (the text of /proc/<pid>/maps) shows mapped, every mapping of them deleted, and of
 // which a file exists again (`exists`), in the order of `own`.
