@@ -129,7 +129,7 @@ void RealtimeDriver::drain(Clock::duration wait) {
 void RealtimeDriver::collectLateAnswers(Clock::time_point until) {
   ports_.stepTaken(until);  // no step follows the last: its answers are late after their due time
   // An answer a little after that is late, as at every other step, not missing: wait a while longer for them.
-  const auto end = until + kLastAnswersGrace;
+  const auto end = std::max(until, Clock::now()) + kLastAnswersGrace;
   while (!stop_ && !ports_.newestAnswered()) {
     const auto now = Clock::now();
     if (now >= end) break;

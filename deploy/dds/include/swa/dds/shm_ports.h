@@ -9,7 +9,7 @@
 // that name exists. A port is a process's own when it holds the lock of its exclusive-read lock file
 // (/dev/shm/fastrtps_port<N>_el, a FLOCK in /proc/locks): the participant id and so the port number Fast DDS ends up
 // with can differ from the one asked for (two processes starting together), the ports a process writes to are mapped
-// in it too, and processes that tried a port and moved on keep its lock file open without the lock.
+// in it too, and a child can inherit its parent's lock file descriptors (Fast DDS opens them without O_CLOEXEC).
 // Pure: the caller passes the texts of /proc files and says which ports exist.
 
 #include <functional>
