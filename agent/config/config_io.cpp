@@ -18,7 +18,7 @@ std::vector<std::pair<Enum, std::string>> named(const std::pair<Enum, const char
 
 // Every tunable of AgentConfig, declared here exactly once.
 params::Table<AgentConfig> makeTable() {
-  params::Table<AgentConfig> t("SWA agent configuration", "configuration", "formation:", "formation.k=2");
+  params::Table<AgentConfig> t("SWA agent configuration", "configuration", "formation:", "formation.radius_m=12");
   SWA_PARAM(t, choice, mode, named(kModeNames),
             "swa = relative formation; standalone = dead-reckoning baseline; anchored = swa + GNSS hold");
 
@@ -111,6 +111,21 @@ params::Table<AgentConfig> makeTable() {
             "clock) is not trusted");
   SWA_PARAM(t, number, limits.resync_samples, "", closed(2, 100),
             "consecutive samples of a consistent new timeline after which a stream re-synchronises to it");
+  // Keys a chosen mode ignores: giving one is an error (a user who sets a key that changes nothing should know).
+  std::vector<params::Applies>& applies = t.schema().applies;
+  applies = {
+      {"formation.k", "formation.neighbourhood", {"k_nearest"}, "the k_nearest rule"},
+      {"formation.max_edge_factor", "formation.neighbourhood", {"gabriel"}, "the gabriel rule"},
+      {"formation.far_neighbour_weight", "formation.circle_fit", {"fixed_radius"}, "the fixed_radius fit"},
+      {"anchor.gain", "mode", {"anchored"}, "anchored mode"},
+      {"anchor.gnss_min_std_m", "mode", {"standalone", "anchored"}, "the modes that use GNSS (standalone, anchored)"},
+  };
+  // The standalone baseline flies on dead reckoning alone and never fits a floating frame.
+  for (const params::Spec& s : t.schema().specs) {
+    if (s.key.rfind("formation.", 0) == 0) {
+      applies.push_back({s.key, "mode", {"swa", "anchored"}, "the modes that fly in formation (swa, anchored)"});
+    }
+  }
   t.schema().relations = {
       {"surroundings.tentative_timeout_s", false, "surroundings.track_timeout_s",
        "a tentative track must not outlive a confirmed one"},

@@ -225,6 +225,14 @@ params::Table<Scenario> makeTable() {
       "the agents' configuration (swa_agent --parameters); formation.radius_m as used");
   params::Schema& schema = t.schema();
   schema.checks = scenarioChecks();
+  // After the mount, which brought the agent's own (agent.formation.k, ...).
+  schema.applies.insert(schema.applies.end(), {
+      {"clock.speed", "clock.mode", {"realtime"}, "realtime mode"},
+      {"mps.noise_var_m2", "mps.noise_model", {"isotropic"}, "the isotropic noise model"},
+      {"mps.range_std_m", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
+      {"mps.bearing_std_rad", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
+      {"vehicle.com_of_loss_t_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+  });
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"}};
   schema.foreign_sections = {"study"};

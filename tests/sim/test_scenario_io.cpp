@@ -99,7 +99,7 @@ Scenario everyFieldChanged() {
   s.mps.range_m = 55.0;
   s.mps.fov_deg = 120.0;
   s.mps.noise_model = MpsNoiseModel::kRangeBearing;
-  s.mps.noise_var_m2 = 0.2;
+  // mps.noise_var_m2 stays: the range_bearing model below ignores it, and its dump is a comment (read as default)
   s.mps.range_std_m = 0.3;
   s.mps.bearing_std_rad = 0.02;
   s.mps.miss_probability = 0.1;
@@ -115,6 +115,7 @@ Scenario everyFieldChanged() {
   s.clock.mode = ClockMode::kRealtime;
   s.clock.speed = 2.5;
   s.agent.mode = agent::Mode::kAnchored;
+  s.agent.formation.neighbourhood = agent::NeighbourhoodRule::kKNearest;  // so k is used
   s.agent.formation.k = 2;
   s.agent.formation.circle_fit = agent::CircleFit::kAlgebraic;
   s.agent.formation.radius_m = 11.0;  // deliberately not the spacing
@@ -228,7 +229,8 @@ TEST(ScenarioOverride, GivenASetOfEachRequiredKey_WhenApplied_ThenExactlyThatFie
          s.agent.formation.radius_m = 12.5;
        }},
       {"agent.mode=standalone", [](Scenario& s) { s.agent.mode = agent::Mode::kStandalone; }},
-      {"agent.k=2", [](Scenario& s) { s.agent.formation.k = 2; }},
+      {"agent.formation.neighbourhood=k_nearest",
+       [](Scenario& s) { s.agent.formation.neighbourhood = agent::NeighbourhoodRule::kKNearest; }},
       {"agent.circle_fit=algebraic", [](Scenario& s) { s.agent.formation.circle_fit = agent::CircleFit::kAlgebraic; }},
       {"imu.bias_std=0.15", [](Scenario& s) { s.imu.bias_std = 0.15; }},
       {"mps.ids=false", [](Scenario& s) { s.mps.ids = false; }},
@@ -372,12 +374,44 @@ TEST(ScenarioParse, GivenAShortcutAndItsLongForm_ThenItIsAConflict) {
   EXPECT_TRUE(contains(problemAbout(error, "circle_fit"), "'agent.circle_fit' and 'agent.formation.circle_fit'"));
 
   // AND either form alone is fine, and a --set of either form replaces the file's value without a conflict
-  EXPECT_EQ(parseScenario("agent: {k: 2}\n", "<t>").agent.formation.k, 2);
-  EXPECT_EQ(parseScenario("agent: {formation: {k: 2}}\n", "<t>").agent.formation.k, 2);
-  EXPECT_EQ(parseScenario("agent: {formation: {k: 2}}\n", "<t>", {"agent.k=4"}).agent.formation.k, 4);
-  EXPECT_EQ(parseScenario("agent: {k: 2}\n", "<t>", {"agent.formation.k=5"}).agent.formation.k, 5);
+  const std::string knn = "agent: {formation: {neighbourhood: k_nearest}}\n";  // the rule k applies to
+  EXPECT_EQ(parseScenario("agent: {k: 2, formation: {neighbourhood: k_nearest}}\n", "<t>").agent.formation.k, 2);
+  EXPECT_EQ(parseScenario("agent: {formation: {k: 2, neighbourhood: k_nearest}}\n", "<t>").agent.formation.k, 2);
+  EXPECT_EQ(parseScenario("agent: {formation: {k: 2, neighbourhood: k_nearest}}\n", "<t>", {"agent.k=4"})
+                .agent.formation.k,
+            4);
+  EXPECT_EQ(parseScenario(knn, "<t>", {"agent.k=2", "agent.formation.k=5"}).agent.formation.k, 5);
   EXPECT_EQ(parseScenario("agent: {circle_fit: algebraic}\n", "<t>").agent.formation.circle_fit,
             agent::CircleFit::kAlgebraic);
+}
+
+TEST(ScenarioParse, GivenKeysTheChosenModesIgnore_ThenEachIsAnErrorThatSaysWhich) {
+  // GIVEN the realtime speed in lockstep, range/bearing noise with the isotropic model, the PX4 loss timeout with
+  // the direct interface, and the agents' k with the gabriel rule
+  const ConfigError error = expectConfigError([] {
+    parseScenario("clock: {mode: lockstep, speed: 2}\nmps: {range_std_m: 0.3, bearing_std_rad: 0.02}\n"
+                  "vehicle: {com_of_loss_t_s: 2}\n",
+                  "<t>", {"agent.k=2"});
+  });
+  // THEN one error names all five, each with the choice that turns it off
+  ASSERT_EQ(error.problems().size(), 5u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "clock.speed"), "applies to realtime mode only (clock.mode is lockstep)"));
+  EXPECT_TRUE(contains(problemAbout(error, "mps.range_std_m"), "the range_bearing noise model only"));
+  EXPECT_TRUE(contains(problemAbout(error, "mps.bearing_std_rad"), "the range_bearing noise model only"));
+  EXPECT_TRUE(contains(problemAbout(error, "vehicle.com_of_loss_t_s"), "the px4 vehicle interface only"));
+  EXPECT_TRUE(contains(problemAbout(error, "agent.k "),
+                       "agent.k applies to the k_nearest rule only (agent.formation.neighbourhood is gabriel)"));
+  // AND each is accepted where its mode is chosen
+  const Scenario ok = parseScenario(
+      "clock: {mode: realtime, speed: 2}\nmps: {noise_model: range_bearing, range_std_m: 0.3}\n"
+      "vehicle: {interface: px4, com_of_loss_t_s: 2}\nagent: {formation: {neighbourhood: k_nearest, k: 2}}\n",
+      "<t>");
+  EXPECT_EQ(ok.clock.speed, 2.0);
+  EXPECT_EQ(ok.mps.range_std_m, 0.3);
+  EXPECT_EQ(ok.agent.formation.k, 2);
+  // AND a --set that turns a file's key off (lockstep for a realtime file, as a test or a study may) is accepted
+  EXPECT_EQ(parseScenario("clock: {mode: realtime, speed: 2}\n", "<t>", {"clock.mode=lockstep"}).clock.mode,
+            ClockMode::kLockstep);
 }
 
 TEST(ScenarioParse, GivenSensorRates_ThenEachMustDivideTheDynamicsRate) {

@@ -15,8 +15,7 @@ fail() {
 rm -rf "$work"
 mkdir -p "$work"
 study=(--scenario "$root/deploy/scenarios/dropout_4.yaml" --set duration_s=20 --sweep uav_count=4,6
-  --sweep agent.formation.neighbourhood=gabriel,k_nearest --sweep agent.formation.k=2,3 --seeds 4)
-# (k only matters for k_nearest; the grid is still 2 x 2 x 2 points.)
+  --sweep agent.formation.neighbourhood=gabriel,k_nearest --sweep imu.bias_std=0.05,0.1 --seeds 4)
 "$batch" "${study[@]}" --out "$work/whole" >"$work/whole.log"
 for i in 1 2 3 4; do
   "$batch" "${study[@]}" --shard "$i/4" --jobs 1 --out "$work/shard$i" >"$work/shard$i.log"
@@ -54,6 +53,9 @@ refused_study() {  # refused_study WHY ARGS...: swa_batch must exit 2 saying WHY
 base=(--scenario "$root/deploy/scenarios/dropout_4.yaml" --set duration_s=2)
 refused_study "are the same scenario" "${base[@]}" --sweep imu.bias_std=0.1,0.10 --out "$work/r1"
 refused_study "given twice" "${base[@]}" --sweep agent.formation.k=1,5 --sweep agent.k=2 --out "$work/r2"
+# k changes nothing at the gabriel points: their runs would be labelled with values that were never applied
+refused_study "agent.formation.k applies to the k_nearest rule only" "${base[@]}" \
+  --sweep agent.formation.neighbourhood=gabriel,k_nearest --sweep agent.formation.k=2,3 --out "$work/r4"
 refused_study "seeds are a study's repetitions" "${base[@]}" --sweep "seed =5,9" --out "$work/r3"
 refused_study "already holds a study" "${study[@]}" --out "$work/whole"
 echo "test_study_shards: PASS"

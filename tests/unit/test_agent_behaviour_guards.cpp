@@ -90,7 +90,7 @@ TEST(AgentDeterminism, SameStreamGivesBitIdenticalCommandsAndPerturbationIsVisib
 
 TEST(AgentSaturation, FarNeighbourGivesCommandsOfExactlyVmaxTowardsTheFrame) {
   // GIVEN one neighbour 39 m away (inside sensing_range_m = 40) at 0.7 rad in the stable frame, heading 0.4 rad: the
-  // floating frame is r = 10 m short of it, ~29 m from self, far beyond what k_p (0.5/s) can cover at v_max = 2 m/s
+  // floating frame is r = 10 m short of it, ~29 m from self, far beyond what k_p (0.7/s) can cover at v_max = 2 m/s
   const AgentConfig config = configFor(Mode::kSwa);
   ASSERT_GT(config.formation.sensing_range_m, 39.0);
   const Vec2 dir(std::cos(0.7), std::sin(0.7));

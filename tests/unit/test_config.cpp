@@ -33,6 +33,7 @@ void expectSameConfig(const AgentConfig& a, const AgentConfig& b) {
   EXPECT_EQ(a.surroundings.tentative_timeout_s, b.surroundings.tentative_timeout_s);
   EXPECT_EQ(a.surroundings.gate_probability, b.surroundings.gate_probability);
   EXPECT_EQ(a.formation.radius_m, b.formation.radius_m);
+  EXPECT_EQ(a.formation.neighbourhood, b.formation.neighbourhood);
   EXPECT_EQ(a.formation.k, b.formation.k);
   EXPECT_EQ(a.formation.sensing_range_m, b.formation.sensing_range_m);
   EXPECT_EQ(a.formation.circle_fit, b.formation.circle_fit);
@@ -73,6 +74,7 @@ AgentConfig everyFieldChanged() {
   c.surroundings.tentative_timeout_s = 0.4;
   c.surroundings.gate_probability = 0.999;
   c.formation.radius_m = 12.345678901234567;
+  c.formation.neighbourhood = NeighbourhoodRule::kKNearest;  // so k is used (max_edge_factor then is not)
   c.formation.k = 4;
   c.formation.sensing_range_m = 55.5;
   c.formation.circle_fit = CircleFit::kAlgebraic;
@@ -86,7 +88,7 @@ AgentConfig everyFieldChanged() {
   c.focal.r_acc_m2ps4 = 1.5;
   c.focal.q_c_mps2 = 9.81;
   c.focal.frame_timeout_s = 3.0;
-  c.control.k_p = 0.7;
+  c.control.k_p = 0.45;
   c.control.k_v = 0.9;
   c.control.v_max_mps = 3.0;
   c.anchor.gain = 0.5;
@@ -187,7 +189,7 @@ TEST(AgentConfigDefaults, GivenADefaultConfig_ThenItHoldsTableI) {
   EXPECT_DOUBLE_EQ(c.formation.max_edge_factor, 1.5);
   EXPECT_DOUBLE_EQ(c.focal.bias_window_s, 30.0);
   EXPECT_DOUBLE_EQ(c.focal.tau_s, 2.8);
-  EXPECT_DOUBLE_EQ(c.control.k_p, 0.5);
+  EXPECT_DOUBLE_EQ(c.control.k_p, 0.7);  // tuned to the simulator's velocity lag (Table I: 0.5)
   EXPECT_DOUBLE_EQ(c.control.k_v, 0.63);
   EXPECT_DOUBLE_EQ(c.surroundings.q_pos_m2, 1e-3);
   EXPECT_DOUBLE_EQ(c.surroundings.q_vel_m2ps2, 1e-2);
@@ -225,23 +227,25 @@ TEST(AgentConfigParse, GivenAnEmptyOrCommentOnlyText_WhenParsed_ThenAllDefaults)
 TEST(AgentConfigParse, GivenAPartialFile_WhenLoaded_ThenOnlyItsKeysChange) {
   // GIVEN a file that sets three keys in two sections and the mode
   const TempFile file(
-      "mode: standalone\n"
+      "mode: anchored\n"
       "formation:\n"
       "  radius_m: 12.5\n"
+      "  neighbourhood: k_nearest\n"
       "  k: 4\n"
       "control:\n"
       "  k_p: 0.8\n");
   // WHEN it is loaded
   const AgentConfig loaded = loadAgentConfig(file.path());
   // THEN those keys have the file's values
-  EXPECT_EQ(loaded.mode, Mode::kStandalone);
+  EXPECT_EQ(loaded.mode, Mode::kAnchored);
   EXPECT_EQ(loaded.formation.radius_m, 12.5);
   EXPECT_EQ(loaded.formation.k, 4);
   EXPECT_EQ(loaded.control.k_p, 0.8);
   // AND everything else is the default
   AgentConfig expected;
-  expected.mode = Mode::kStandalone;
+  expected.mode = Mode::kAnchored;
   expected.formation.radius_m = 12.5;
+  expected.formation.neighbourhood = NeighbourhoodRule::kKNearest;
   expected.formation.k = 4;
   expected.control.k_p = 0.8;
   expectSameConfig(loaded, expected);
@@ -430,11 +434,15 @@ TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEvery
   // THEN it is exactly the default configuration
   expectSameConfig(loaded, AgentConfig{});
   EXPECT_EQ(toYaml(loaded), toYaml(AgentConfig{}));
-  // AND it spells out every key (so it documents all of them), none missing and none extra
+  // AND it gives every key the defaults use, none missing and none extra, and names the three they ignore (k of
+  // k_nearest, anchor.* of anchored mode) as comments, as the dump does: giving them would be an error
   std::ifstream file(path);
   const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
-  EXPECT_EQ(keysOf(text).size(), 44u);
+  EXPECT_EQ(keysOf(text).size(), 41u);
+  EXPECT_TRUE(contains(text, "  # k: 3 ")) << text;
+  EXPECT_TRUE(contains(text, "#   gain: 0.2 ")) << text;
+  EXPECT_TRUE(contains(text, "#   gnss_min_std_m: 0.05 ")) << text;
 }
 
 TEST(AgentConfigOverride, GivenSetArguments_WhenApplied_ThenTheyOverrideTheFileValues) {
@@ -442,10 +450,11 @@ TEST(AgentConfigOverride, GivenSetArguments_WhenApplied_ThenTheyOverrideTheFileV
   const AgentConfig base = parseAgentConfig("formation: {radius_m: 12}\n");
   // WHEN --set arguments are applied
   const AgentConfig c =
-      applyOverrides(base, {"formation.k=2", "formation.radius_m=8.5", "mode=anchored", "formation.circle_fit=algebraic",
-                            "limits.max_detections=32"});
+      applyOverrides(base, {"formation.neighbourhood=k_nearest", "formation.k=2", "formation.radius_m=8.5",
+                            "mode=anchored", "formation.circle_fit=algebraic", "limits.max_detections=32"});
   // THEN they win, and the rest is untouched
   AgentConfig expected;
+  expected.formation.neighbourhood = NeighbourhoodRule::kKNearest;
   expected.formation.k = 2;
   expected.formation.radius_m = 8.5;
   expected.mode = Mode::kAnchored;
@@ -515,8 +524,13 @@ TEST(AgentConfigYaml, GivenAConfigWithEveryFieldChanged_WhenDumpedAndParsed_Then
 
 TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
   const std::string yaml = toYaml(AgentConfig{});
-  EXPECT_EQ(keysOf(yaml).size(), 44u);
-  EXPECT_TRUE(contains(yaml, "k_p: 0.5")) << yaml;
+  EXPECT_EQ(keysOf(yaml).size(), 41u);
+  EXPECT_TRUE(contains(yaml, "k_p: 0.7")) << yaml;
+  // AND the three keys the defaults ignore are written as comments that say so
+  EXPECT_TRUE(contains(yaml, "  # k: 3")) << yaml;
+  EXPECT_TRUE(contains(yaml, "not used: the k_nearest rule only")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  # gain: 0.2")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  # gnss_min_std_m: 0.05")) << yaml;
   EXPECT_TRUE(contains(yaml, "# 1/s")) << yaml;
   expectSameConfig(parseAgentConfig(yaml), AgentConfig{});
 }
@@ -531,6 +545,80 @@ TEST(AgentConfigValidate, GivenAnInvalidConfigBuiltInCode_ThenValidationListsEve
   EXPECT_TRUE(contains(problemAbout(error, "formation.k"), "= 0 is out of range [1, 16]"));
   EXPECT_TRUE(contains(problemAbout(error, "control.k_v"), "is not a finite number"));
   EXPECT_TRUE(contains(problemAbout(error, "limits.max_detections"), "= 0 is out of range [1, 1024]"));
+}
+
+// ===============================================================================================================
+// Keys the chosen mode ignores
+
+TEST(AgentConfigApplies, GivenKWithTheGabrielRule_ThenItIsAnErrorThatSaysWhy) {
+  // GIVEN formation.k in a file whose rule is gabriel (the default), and the same as a --set
+  const ConfigError file = expectConfigError([] { parseAgentConfig("formation:\n  k: 2\n", "a.yaml"); });
+  const ConfigError set = expectConfigError([] { applyOverrides(AgentConfig{}, {"formation.k=2"}); });
+  // THEN each says that k applies to the k_nearest rule only, where it was given, and what to change
+  ASSERT_EQ(file.problems().size(), 1u) << file.what();
+  EXPECT_TRUE(contains(file.problems()[0], "formation.k applies to the k_nearest rule only "
+                                           "(formation.neighbourhood is gabriel)")) << file.what();
+  EXPECT_TRUE(contains(file.problems()[0], "(line 2, column 6)")) << file.what();
+  ASSERT_EQ(set.problems().size(), 1u) << set.what();
+  EXPECT_TRUE(contains(set.problems()[0], "formation.k applies to the k_nearest rule only")) << set.what();
+  EXPECT_TRUE(contains(set.problems()[0], "(from --set formation.k=2)")) << set.what();
+  // AND with the rule it belongs to, the same k is accepted
+  EXPECT_EQ(parseAgentConfig("formation: {neighbourhood: k_nearest, k: 2}\n").formation.k, 2);
+  EXPECT_EQ(applyOverrides(AgentConfig{}, {"formation.k=2", "formation.neighbourhood=k_nearest"}).formation.k, 2);
+}
+
+TEST(AgentConfigApplies, GivenEveryKeyAModeIgnores_ThenEachIsReported) {
+  // GIVEN in swa mode with Gabriel: k (k_nearest), anchor.* (anchored; standalone too for the GNSS floor); with the
+  // algebraic fit: far_neighbour_weight; with k_nearest: max_edge_factor
+  const ConfigError error = expectConfigError([] {
+    parseAgentConfig("formation: {k: 4, circle_fit: algebraic, far_neighbour_weight: 0.5}\n"
+                     "anchor: {gain: 0.3, gnss_min_std_m: 0.1}\n");
+  });
+  ASSERT_EQ(error.problems().size(), 4u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "formation.k "), "the k_nearest rule only")) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "formation.far_neighbour_weight"),
+                       "applies to the fixed_radius fit only (formation.circle_fit is algebraic)"));
+  EXPECT_TRUE(contains(problemAbout(error, "anchor.gain"), "applies to anchored mode only (mode is swa)"));
+  EXPECT_TRUE(contains(problemAbout(error, "anchor.gnss_min_std_m"), "the modes that use GNSS"));
+  const ConfigError edge = expectConfigError(
+      [] { parseAgentConfig("formation: {neighbourhood: k_nearest, max_edge_factor: 2}\n"); });
+  ASSERT_EQ(edge.problems().size(), 1u) << edge.what();
+  EXPECT_TRUE(contains(edge.problems()[0], "formation.max_edge_factor applies to the gabriel rule only"));
+  // AND the standalone baseline, which fits no floating frame, refuses every formation key but takes the GNSS floor
+  const ConfigError standalone = expectConfigError([] {
+    parseAgentConfig("mode: standalone\nformation: {radius_m: 12, neighbourhood: gabriel}\n"
+                     "anchor: {gnss_min_std_m: 0.1}\n");
+  });
+  ASSERT_EQ(standalone.problems().size(), 2u) << standalone.what();
+  EXPECT_TRUE(contains(problemAbout(standalone, "formation.radius_m"),
+                       "applies to the modes that fly in formation (swa, anchored) only (mode is standalone)"));
+  EXPECT_TRUE(contains(problemAbout(standalone, "formation.neighbourhood"), "(mode is standalone)"));
+}
+
+TEST(AgentConfigApplies, GivenALaterSetThatTurnsAFileKeyOff_ThenItIsAccepted) {
+  // GIVEN a k_nearest file with k = 2, run once with gabriel by a --set (a study's sweep, swa_launch --compare)
+  const TempFile file("formation:\n  neighbourhood: k_nearest\n  k: 2\n");
+  const AgentConfig c = configTable().load(file.path(), {"formation.neighbourhood=gabriel", "mode=standalone"});
+  // THEN the --set wins and the file's k, now unused, is no error
+  EXPECT_EQ(c.formation.neighbourhood, NeighbourhoodRule::kGabriel);
+  EXPECT_EQ(c.mode, Mode::kStandalone);
+  // BUT a --set of k after the rule was chosen is judged against it
+  const ConfigError error = expectConfigError(
+      [&] { configTable().load(file.path(), {"formation.neighbourhood=gabriel", "formation.k=3"}); });
+  ASSERT_EQ(error.problems().size(), 1u) << error.what();
+  EXPECT_TRUE(contains(error.problems()[0], "(from --set formation.k=3)")) << error.what();
+}
+
+TEST(AgentConfigApplies, GivenAnUnusedKeyBuiltInCode_WhenDumped_ThenItReadsBackAsAComment) {
+  // GIVEN code that set k while the rule is gabriel (no file: nothing to refuse)
+  AgentConfig c;
+  c.formation.k = 5;
+  EXPECT_NO_THROW(validateAgentConfig(c));
+  // WHEN dumped and read back
+  const std::string yaml = toYaml(c);
+  // THEN k is written, commented, and reading the dump is no error (k keeps its default there)
+  EXPECT_TRUE(contains(yaml, "  # k: 5")) << yaml;
+  EXPECT_EQ(parseAgentConfig(yaml).formation.k, 3);
 }
 
 TEST(AgentConfigHelp, GivenTheParameterTable_ThenTheHelpListsEveryKeyWithUnitDefaultAndRange) {

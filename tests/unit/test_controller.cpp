@@ -13,7 +13,9 @@ using testing::FocalWorld;
 
 TEST(Controller, StableSignPointsFromEstimateTowardsFrameOrigin) {
   // GIVEN the UAV estimated 3 m east of its frame origin, at rest
-  const Vec2 v = formationVelocity(Vec2(3.0, 0.0), Vec2::Zero(), ControlConfig{});
+  ControlConfig paper;
+  paper.k_p = 0.5;  // Table I
+  const Vec2 v = formationVelocity(Vec2(3.0, 0.0), Vec2::Zero(), paper);
   // THEN the command is west at k_p * 3 = 1.5 m/s (the paper's literal sign would push east, away)
   EXPECT_DOUBLE_EQ(v.x(), -1.5);
   EXPECT_DOUBLE_EQ(v.y(), 0.0);

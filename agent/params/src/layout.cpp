@@ -172,6 +172,11 @@ std::string dump(const Schema& schema, const Values& values) {
       for (const Record& r : std::get<std::vector<Record>>(v)) group.push_back({indent + "  - " + formatRecord(s, r), ""});
       continue;
     }
+    if (const Applies* a = schema.unused(s.key, values)) {
+      // Written, so the reader sees it exists, but not read back: giving it would be an error.
+      group.push_back({indent + "# " + leaf + ": " + yamlValue(s, v), "not used: " + a->what + " only"});
+      continue;
+    }
     group.push_back({indent + leaf + ": " + yamlValue(s, v), dumpComment(s)});
   }
   return out + alignComments(group);

@@ -55,6 +55,7 @@ struct Entry {
   YAML::Node value;
   std::string where;    // " (line L, column C)", " (from --set k=v)" or ""
   bool from_file = false;
+  int level = 0;  // 0 = the file, i = the i-th --set: a later level was given after this one
 
   Entry(std::string k, std::string w, const YAML::Node& v, std::string at, bool file)
       : key(std::move(k)), written(std::move(w)), value(v), where(std::move(at)), from_file(file) {}
@@ -103,7 +104,9 @@ class Reader {
 
   // The --set arguments replace (or add) entries; a later one wins.
   void readOverrides(const std::vector<std::string>& overrides) {
+    int level = 0;
     for (const std::string& text : overrides) {
+      ++level;
       const std::string where = " (from --set " + text + ")";
       const auto eq = text.find('=');
       const std::string key = eq == std::string::npos ? std::string() : trim(text.substr(0, eq));
@@ -118,7 +121,7 @@ class Reader {
         entries_.remove_if([&](const Entry& e) { return e.key == canonical; });
         const std::string value_text = text.substr(eq + 1);
         try {
-          entries_.emplace_back(canonical, key, YAML::Load(value_text), where, false);
+          entries_.emplace_back(canonical, key, YAML::Load(value_text), where, false).level = level;
         } catch (const YAML::Exception& e) {
           bad(canonical, key + " = '" + value_text + "' is not a valid YAML value: " + e.msg + where);
         }
@@ -150,10 +153,24 @@ class Reader {
               (r.strict ? "<" : "<=") + " " + nameOf(r.rhs) + " = " + plainValue(*schema_.find(r.rhs), values_[r.rhs]) +
               ": " + r.why);
     }
+    checkApplies();
     for (const Check& c : schema_.checks) {
       if (std::none_of(c.keys.begin(), c.keys.end(), [&](const std::string& k) { return bad_.count(k) > 0; })) {
         c.run(values_, problems_);
       }
+    }
+  }
+
+  // A key given while the choice it depends on turns it off changes nothing: the user meant something else.
+  void checkApplies() {
+    for (const Entry& e : entries_) {
+      if (bad_.count(e.key) > 0) continue;
+      const Applies* a = schema_.unused(e.key, values_);
+      if (a == nullptr || bad_.count(a->when) > 0) continue;
+      const Entry* when = findEntry(a->when);
+      if (when != nullptr && when->level > e.level) continue;  // a later --set turned it off
+      problem(e.written + " applies to " + a->what + " only (" + nameOf(a->when) + " is " +
+              std::get<std::string>(values_.at(a->when)) + "); remove it or set " + nameOf(a->when) + e.where);
     }
   }
 

@@ -1,5 +1,7 @@
 #include "swa/params/schema.h"
 
+#include <algorithm>
+
 #include "swa/params/error.h"
 #include "swa/params/file.h"
 
@@ -29,6 +31,15 @@ const Spec* Schema::find(const std::string& key) const {
   return nullptr;
 }
 
+const Applies* Schema::unused(const std::string& key, const Values& values) const {
+  for (const Applies& a : applies) {
+    if (a.key != key) continue;
+    const auto* chosen = std::get_if<std::string>(&values.at(a.when));
+    if (chosen != nullptr && std::find(a.values.begin(), a.values.end(), *chosen) == a.values.end()) return &a;
+  }
+  return nullptr;
+}
+
 void Schema::mount(const std::string& prefix, const Schema& inner, const std::string& comment) {
   const std::string p = prefix + ".";
   for (Spec s : inner.specs) {
@@ -36,6 +47,7 @@ void Schema::mount(const std::string& prefix, const Schema& inner, const std::st
     specs.push_back(std::move(s));
   }
   for (const Relation& r : inner.relations) relations.push_back({p + r.lhs, r.strict, p + r.rhs, r.why});
+  for (const Applies& a : inner.applies) applies.push_back({p + a.key, p + a.when, a.values, a.what});
   for (const Alias& a : inner.aliases) aliases.push_back({p + a.alias, p + a.key});
   for (const Derived& d : inner.derived) derived.push_back({p + d.key, p + d.source});
   mounts[prefix] = comment;

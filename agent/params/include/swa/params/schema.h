@@ -66,6 +66,17 @@ struct Check {
   std::function<void(const Values&, std::vector<std::string>& problems)> run;
 };
 
+// `key` is used only while the choice parameter `when` holds one of `values`; `what` names that case in messages
+// ("the k_nearest rule"). Giving `key` is an error while it changes nothing, unless `when` was given after it: a
+// --set of `when` (a study's sweep, swa_launch --compare) may turn a file's key off. The dump writes such a key as
+// a comment.
+struct Applies {
+  std::string key;
+  std::string when;
+  std::vector<std::string> values;
+  std::string what;
+};
+
 // A second spelling of a parameter; giving both in one file is an error, a --set of either replaces the other.
 struct Alias {
   std::string alias;
@@ -87,6 +98,7 @@ struct Schema {
   std::vector<Spec> specs;
   std::vector<Relation> relations;
   std::vector<Check> checks;
+  std::vector<Applies> applies;
   std::vector<Alias> aliases;
   std::vector<Derived> derived;
   std::map<std::string, std::string> mounts;  // prefix -> comment of its section in the dump
@@ -95,6 +107,8 @@ struct Schema {
   std::vector<std::string> foreign_sections;
 
   const Spec* find(const std::string& key) const;
+  // The first rule under which `key` is unused with these values, or nullptr.
+  const Applies* unused(const std::string& key, const Values& values) const;
   // Puts every parameter, relation, alias and derived default of `inner` under "prefix." (the scenario's `agent:`
   // section is the agent's configuration schema). Checks are not mounted: they belong to the outer schema.
   void mount(const std::string& prefix, const Schema& inner, const std::string& comment);

@@ -2,7 +2,7 @@
 // A Schema bound to the struct it fills: each parameter is declared once with an accessor to its field, and the
 // engine's reading, validation, dump and description then work on that struct directly.
 //
-//   Table<AgentConfig> t("SWA agent configuration", "configuration", "formation:", "formation.k=2");
+//   Table<AgentConfig> t("SWA agent configuration", "configuration", "formation:", "formation.radius_m=12");
 //   SWA_PARAM(t, number, formation.radius_m, "m", openClosed(0, 1000), "r: desired distance to the neighbours");
 //
 // SWA_PARAM spells the key as the field's path, so a key cannot drift from its field; an accessor is a generic
