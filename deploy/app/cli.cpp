@@ -210,6 +210,27 @@ void Cli::choice(const std::string& name, const std::string& value_name, const s
   });
 }
 
+void Cli::flagChoice(const std::string& name, const std::vector<std::string>& names,
+                     std::function<void(std::size_t)> take, const std::string& meaning) {
+  // CLI11's flag default "{value}": a bare flag reads as names[0], "--name=x" as x; any other value reaches the check.
+  CLI::Option* o = impl_->app.add_flag(name + "{" + names.front() + "}");
+  o->description(meaning + "; one of " + oneOf(names));
+  o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  std::string shown = "[=";
+  for (std::size_t k = 0; k < names.size(); ++k) shown += (k ? "|" : "") + names[k];
+  o->option_text(shown + "]");
+  const std::string problem = name + " must be " + oneOf(names) + ", got '";
+  impl_->entries.push_back({o, [names, take = std::move(take), problem](const std::string& v, Problems& p) {
+                              const auto it = std::find(names.begin(), names.end(), v);
+                              if (it == names.end()) {
+                                p.push_back(problem + v + "'");
+                              } else {
+                                take(static_cast<std::size_t>(it - names.begin()));
+                              }
+                            },
+                            false});
+}
+
 void Cli::scenario(std::string& out, const std::string& meaning) { path("--scenario", "FILE", out, meaning); }
 
 void Cli::overrides(std::vector<std::string>& out, const std::string& example) {

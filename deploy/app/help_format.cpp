@@ -51,6 +51,11 @@ std::string wrap(const std::string& text, std::size_t width) {
   return out;
 }
 
+// A flag with a default value ("--record{all}", Cli::flagChoice) and the text of its values.
+bool isFlagChoice(const CLI::Option* option) {
+  return option->get_name(false, true).find('{') != std::string::npos && !option->get_option_text().empty();
+}
+
 }  // namespace
 
 HelpFormat::HelpFormat(std::string usage, std::string details) : usage_(std::move(usage)), details_(std::move(details)) {
@@ -63,6 +68,15 @@ std::string HelpFormat::make_usage(const CLI::App* /*app*/, std::string /*name*/
 
 std::string HelpFormat::make_option_desc(const CLI::Option* option) const {
   return wrap(option->get_description(), kLineWidth - kColumn);
+}
+
+std::string HelpFormat::make_option_name(const CLI::Option* option, bool positional) const {
+  if (!positional && isFlagChoice(option)) return option->get_name() + option->get_option_text();
+  return CLI::Formatter::make_option_name(option, positional);
+}
+
+std::string HelpFormat::make_option_opts(const CLI::Option* option) const {
+  return isFlagChoice(option) ? std::string() : CLI::Formatter::make_option_opts(option);
 }
 
 }  // namespace swa::app

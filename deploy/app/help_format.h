@@ -14,6 +14,10 @@ class HelpFormat : public CLI::Formatter {
 
   std::string make_usage(const CLI::App* app, std::string name) const override;
   std::string make_option_desc(const CLI::Option* option) const override;
+  // A flag that may carry a value (Cli::flagChoice) shows as "--record[=all|monitor]", not CLI11's
+  // "--record{all} [=all|monitor]": its value is attached, never a separate argument.
+  std::string make_option_name(const CLI::Option* option, bool positional) const override;
+  std::string make_option_opts(const CLI::Option* option) const override;
 
  private:
   std::string usage_;

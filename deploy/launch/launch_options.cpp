@@ -87,10 +87,18 @@ app::Cli makeCli(LaunchOptions& o) {
            "with --naming ros2: a ROS namespace in front of every SWA topic (/NS/swa/uav1/imu), so two swarms can "
            "share a domain; sets SWA_ROS_NAMESPACE",
            "a ROS namespace");
-  cli.flag("--record", o.record,
-           "record each run into its directory's run.mcap (swa_monitor --record: every topic's payloads unchanged, "
-           "with their swa_msgs schemas, and the monitor's metrics; opens in Foxglove, Lichtblick, PlotJuggler; "
-           "replays with swa_replay). A restarted monitor records into run_restart<K>.mcap");
+  const std::vector<std::string> sets = record::recordSetNames();
+  cli.flagChoice("--record", sets,
+                 [&o, sets](std::size_t k) {
+                   o.record = true;
+                   o.record_set = *record::recordSetFromName(sets[k]);
+                 },
+                 "record each run into its directory's run.mcap (swa_monitor --record FILE --record-set SET). "
+                 "--record (= all): every topic's payloads unchanged, with their swa_msgs schemas, and the monitor's "
+                 "metrics; opens in Foxglove, Lichtblick, PlotJuggler; replays with swa_replay; costs the monitor "
+                 "what receiving every UAV's sensors costs. --record=monitor: only truth, events, the agents' states "
+                 "and the metrics, a small file at little cost, not replayable. A restarted monitor records into "
+                 "run_restart<K>.mcap");
   cli.text("--live", "[ADDR:]PORT", o.live,
            "watch the run while it flies: the monitor serves a live page and the Foxglove WebSocket protocol on this "
            "port (swa_monitor --live; 127.0.0.1 unless ADDR); the URL is printed",

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "swa/agent/config.h"
+#include "swa/record/record_set.h"
 
 namespace swa::launch {
 
@@ -30,12 +31,13 @@ struct LaunchOptions {
   std::string vehicle;                    // --vehicle direct|px4: sets vehicle.interface (px4: one bridge per agent)
   std::string naming;                     // --naming swa|ros2 (else $SWA_NAMING, else swa)
   std::string ros_namespace;              // --ros-namespace NS (ros2 naming; else $SWA_ROS_NAMESPACE)
-  bool record = false;                    // --record: each run's monitor records it into <run dir>/run.mcap
+  bool record = false;                    // --record[=SET]: each run's monitor records it into <run dir>/run.mcap
+  record::RecordSet record_set = record::RecordSet::kAll;  // --record=monitor: only the monitor's own topics
   std::string live;                       // --live [ADDR:]PORT: passed to the monitor (empty: no live view)
   bool help = false;
 };
 
-// Accepts "--opt value" and "--opt=value". Throws std::invalid_argument listing every problem, one per line.
+// Accepts "--opt value" and "--opt=value" (--record takes a value only as --record=SET). Throws std::invalid_argument listing every problem, one per line.
 LaunchOptions parseLaunchOptions(const std::vector<std::string>& args);
 std::string launchUsage();
 

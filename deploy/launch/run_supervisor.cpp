@@ -140,6 +140,8 @@ class Supervisor {
           monitor_restarts_ == 0 ? "run.mcap" : "run_restart" + std::to_string(monitor_restarts_) + ".mcap";
       argv.push_back("--record");
       argv.push_back((spec_.dir / file).string());
+      argv.push_back("--record-set");
+      argv.push_back(record::toString(o_.record_set));
     }
     if (!o_.live.empty()) {
       argv.push_back("--live");

@@ -11,6 +11,7 @@
 #include "replay_options.h"
 #include "swa/app/program.h"
 #include "swa/dds/options.h"
+#include "swa/record/record_set.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::replay {
@@ -31,6 +32,14 @@ app::Plan prepare(const std::vector<std::string>& args) {
   if (run.truncated) {
     std::fprintf(stderr, "swa_replay: %s ends early (a recorder that crashed): read up to its last whole record\n",
                  options.file.c_str());
+  }
+  if (run.record_set && *run.record_set != record::toString(record::RecordSet::kAll)) {
+    // Without the sensors and commands there is nothing to re-run or re-send; say why rather than "no input".
+    throw std::invalid_argument(options.file + " is a '" + *run.record_set +
+                                "' recording (swa_monitor --record-set " + *run.record_set +
+                                ", swa_launch --record=" + *run.record_set +
+                                "): it holds no sensors or commands; swa_replay needs a complete recording "
+                                "(--record, the set 'all')");
   }
   if (options.uav && run.uavs.count(*options.uav) == 0) {
     throw std::invalid_argument(options.file + " has no input of UAV " + std::to_string(*options.uav));

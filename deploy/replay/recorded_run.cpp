@@ -4,6 +4,7 @@
 #include <tuple>
 
 #include "swa/record/mcap_reader.h"
+#include "swa/record/record_set.h"
 #include "swa/record/recording.h"
 
 namespace swa::replay {
@@ -64,6 +65,11 @@ RecordedRun readRecordedRun(const std::string& path, std::optional<int> only_uav
   if (scenario != reader.metadata().end()) {
     const auto yaml = scenario->second.find(record::kScenarioYamlKey);
     if (yaml != scenario->second.end()) run.scenario_yaml = yaml->second;
+  }
+  const auto set = reader.metadata().find(record::kRecordingMetadata);
+  if (set != reader.metadata().end()) {
+    const auto name = set->second.find(record::kRecordSetKey);
+    if (name != set->second.end()) run.record_set = name->second;
   }
   for (auto& [uav, recording] : run.uavs) {
     std::sort(recording.inputs.begin(), recording.inputs.end(), [](const InputSample& a, const InputSample& b) {

@@ -42,6 +42,7 @@ struct RecordedRun {
   std::map<int, UavRecording> uavs;
   std::vector<WorldSample> world;           // by (log time, order)
   std::optional<std::string> scenario_yaml;  // the run's effective scenario, if the recorder knew it
+  std::optional<std::string> record_set;     // which topics the recorder took (swa/record/record_set.h), if it said
   std::string profile;
   bool truncated = false;          // the file ends before its Data End (a recorder that crashed)
   std::uint64_t unstamped = 0;     // input payloads without a readable header: skipped

@@ -48,6 +48,9 @@ LiveMonitor::LiveMonitor(const MonitorOptions& options, const std::optional<sim:
     metrics_ = std::make_unique<MetricsRecorder>(*recording_);
     node_options.recording = recording_.get();
     node_options.metrics = metrics_.get();
+    node_options.record_set = options_.record_set;
+    recording_->writeMetadata(record::kRecordingMetadata,
+                              {{record::kRecordSetKey, record::toString(options_.record_set)}});
     if (scenario_) {
       recording_->writeMetadata(record::kScenarioMetadata,
                                 {{record::kScenarioYamlKey, sim::scenarioToYaml(*scenario_)},

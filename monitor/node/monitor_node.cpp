@@ -87,7 +87,7 @@ void MonitorNode::connect() {
   command_taps_.clear();
   truth_reader_ = {};
   for (const int uav : state_readers_) createStateReader(uav);
-  if (options_.recording != nullptr) tapClock(*participant_, *options_.recording);
+  if (recordsEveryTopic()) tapClock(*participant_, *options_.recording);
   // With a known swarm, the truth and event readers wait until every agent's state writer is matched (see
   // createRunReadersWhenReady); without one, the UAVs are only known from the first truth sample.
   run_readers_pending_ = options_.uav_count.has_value();
@@ -96,10 +96,10 @@ void MonitorNode::connect() {
 }
 
 void MonitorNode::createRunReaders() {
-  readAndRecord<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader",
+  readAndRecord<msg::ScenarioEventPubSubType>(dds::topics::kEvents, kEventProfile,
                                               [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
   truth_reader_ = readAndRecord<msg::SwarmTruthPubSubType>(
-      dds::topics::kTruth, "swa_truth_reader", [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
+      dds::topics::kTruth, kTruthProfile, [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
 }
 
 void MonitorNode::createRunReadersWhenReady() {
@@ -139,9 +139,9 @@ void MonitorNode::subscribeState(int uav) {
 
 void MonitorNode::createStateReader(int uav) {
   state_reader_handles_[uav] = readAndRecord<msg::AgentStatePubSubType>(
-      dds::topics::state(uav), "swa_state_reader",
+      dds::topics::state(uav), kStateProfile,
       [this, uav](msg::AgentState&& m) { queue_.push(StateInput{uav, std::move(m)}); });
-  if (options_.recording != nullptr) command_taps_[uav] = tapUavTopics(*participant_, *options_.recording, uav);
+  if (recordsEveryTopic()) command_taps_[uav] = tapUavTopics(*participant_, *options_.recording, uav);
 }
 
 void MonitorNode::reconnectIfHandshakeStalled() {

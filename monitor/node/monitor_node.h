@@ -25,6 +25,7 @@
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
+#include "swa/record/record_set.h"
 #include "swa/record/recording.h"
 
 namespace swa::monitor_node {
@@ -36,6 +37,8 @@ struct MonitorNodeOptions {
   bool quiet = false;
   // Where every payload read also goes (swa_monitor --record); nullptr: no recording. Must outlive the node.
   record::Recording* recording = nullptr;
+  // kMonitor: only the monitor's own inputs go into `recording`, no reader is created just to record.
+  record::RecordSet record_set = record::RecordSet::kAll;
   MetricsRecorder* metrics = nullptr;  // with `recording`: the monitor's metrics channel of it
   live::LiveView* live = nullptr;      // swa_monitor --live; nullptr: none. Must outlive the node.
   // After EVENT_SCENARIO_END, wall seconds to wait for the truth samples and states of the last steps (they travel
@@ -76,6 +79,10 @@ class MonitorNode {
   template <class PubSubType, class Push>
   dds::Reader<dds::Payload> readAndRecord(const std::string& topic, const char* profile, Push push);
   void publishNewMetrics();  // to the recording and the live view
+  // Whether readers are created only to record (recording every topic).
+  bool recordsEveryTopic() const {
+    return options_.recording != nullptr && options_.record_set == record::RecordSet::kAll;
+  }
 
   LiveRun& run_;
   MonitorNodeOptions options_;

@@ -13,7 +13,8 @@ namespace {
 constexpr double kMaxTimeoutS = 1e6;
 
 // The options that only make sense while joining a running swarm.
-constexpr const char* kLiveOnly[] = {"--label", "--domain", "--restarts", "--timeout-s", "--record", "--live"};
+constexpr const char* kLiveOnly[] = {"--label",  "--domain",     "--restarts", "--timeout-s",
+                                     "--record", "--record-set", "--live"};
 
 const char* const kDetails = R"(Live mode (the default) joins a running swarm as the Fast DDS participant "swa_monitor":
 Reads      swa/truth, swa/events, swa/uav<i>/state for every UAV (i < scenario uav_count with --scenario;
@@ -49,6 +50,11 @@ and prints the verdict and the report's path.
   is its header stamp (simulated time in a simulated run). Chunked and indexed for seeking; a chunk is written at
   least every second, so a crash loses at most the last second. Writes recording.json into --out: the file, and
   every channel's schema and message count.
+  Receiving every UAV's sensors and commands is what a complete recording costs: about what a bare Fast DDS reader
+  of those topics costs, several times the monitor alone (BENCHMARKS.md, issue #24). For a small, cheap file:
+--record-set monitor  records only what the monitor reads anyway: swa/truth, swa/events, swa/uav<i>/state and
+  /swa/monitor/metrics (no sensors, commands, bridge states or clock). The file says so in its metadata
+  (swa_recording: record_set); swa_replay refuses it, as it needs the sensors and commands. Default: all.
 
 --live [ADDR:]PORT  serves a live view on one port while the run goes on (off by default): GET / is a page with the
   swarm top-down and rolling d_NB, drift and minimum-separation plots (self-contained: no internet needed), and
@@ -74,8 +80,8 @@ app::Cli makeCli(MonitorOptions& o) {
   app::Cli cli("swa_monitor",
                "swarm metrics, verdict and report of a run, from ground truth and the agents' diagnostics.");
   cli.usage(R"(swa_monitor [--out DIR] [--scenario FILE [--set key=value]...] [--label NAME] [--domain D]
-                   [--restarts FILE] [--timeout-s S] [--tolerance F] [--record FILE.mcap] [--live [ADDR:]PORT]
-                   [--quiet]
+                   [--restarts FILE] [--timeout-s S] [--tolerance F] [--record FILE.mcap [--record-set all|monitor]]
+                   [--live [ADDR:]PORT] [--quiet]
        swa_monitor --combine LABEL=DIR [LABEL=DIR]... --out DIR [--scenario FILE [--set key=value]...])");
   cli.details(kDetails);
   cli.path("--out", "DIR", o.out_dir, "output directory (required with --combine); created if needed");
@@ -94,6 +100,11 @@ app::Cli makeCli(MonitorOptions& o) {
            "PASS band for the final d_NB, as a fraction of r, not 0; with --combine only the band drawn in the "
            "report, by default the first run's");
   cli.path("--record", "FILE.mcap", o.record_path, "also record the run into this MCAP file (see above)");
+  const std::vector<std::string> sets = record::recordSetNames();
+  cli.choice("--record-set", "SET", sets,
+             [&o, sets](std::size_t k) { o.record_set = *record::recordSetFromName(sets[k]); },
+             "what --record holds: all, every topic of the run (default; what swa_replay needs), or monitor, only "
+             "truth, events, the agents' states and the metrics (see above); needs --record");
   cli.value("--live", "[ADDR:]PORT",
             [&o](const std::string& v, app::Problems& p) {
               const std::size_t colon = v.rfind(':');
@@ -139,6 +150,9 @@ void finish(MonitorOptions& o, const app::Cli& cli, app::Problems& problems) {
   o.tolerance_given = cli.given("--tolerance");
   if (o.tolerance_given && !(o.tolerance > 0.0)) problems.push_back("--tolerance must be > 0");
   if (!o.overrides.empty() && o.scenario_path.empty()) problems.push_back("--set needs --scenario");
+  if (cli.given("--record-set") && o.record_path.empty() && !o.combineMode()) {
+    problems.push_back("--record-set needs --record FILE.mcap (it says what the recording holds)");
+  }
   if (!o.combineMode()) return;
   for (const char* live : kLiveOnly) {
     if (cli.given(live)) problems.push_back(std::string(live) + " applies to the live mode only, not to --combine");

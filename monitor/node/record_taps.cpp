@@ -1,14 +1,5 @@
 #include "record_taps.h"
 
-#include <swa/msg/BridgeStatePubSubTypes.h>
-#include <swa/msg/ClockPubSubTypes.h>
-#include <swa/msg/DetectionsPubSubTypes.h>
-#include <swa/msg/GnssFixPubSubTypes.h>
-#include <swa/msg/ImuPubSubTypes.h>
-#include <swa/msg/VelocitySetpointPubSubTypes.h>
-
-#include "swa/dds/topics.h"
-
 namespace swa::monitor_node {
 namespace {
 
@@ -22,6 +13,17 @@ dds::Reader<dds::Payload> tap(dds::Participant& p, record::Recording& recording,
     recording.writeCdr(channel, s.payload, s.source_time_ns);
   });
 }
+
+struct TapInto {
+  dds::Participant& participant;
+  record::Recording& recording;
+  dds::Reader<dds::Payload> last;  // the last tapped: cmd_vel (forEachUavTap)
+
+  template <class PubSubType>
+  void operator()(const std::string& topic, const char* profile) {
+    last = tap<PubSubType>(participant, recording, topic, profile);
+  }
+};
 
 }  // namespace
 
@@ -38,16 +40,13 @@ std::string msgTypeName(const std::string& generated) {
 }
 
 dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, record::Recording& recording, int uav) {
-  namespace topics = dds::topics;
-  tap<msg::DetectionsPubSubType>(participant, recording, topics::detections(uav), "swa_detections_gnss_reader");
-  tap<msg::ImuPubSubType>(participant, recording, topics::imu(uav), "swa_sensor_reader");
-  tap<msg::GnssFixPubSubType>(participant, recording, topics::gnss(uav), "swa_detections_gnss_reader");
-  tap<msg::BridgeStatePubSubType>(participant, recording, topics::bridgeState(uav), "swa_state_reader");
-  return tap<msg::VelocitySetpointPubSubType>(participant, recording, topics::cmdVel(uav), "swa_command_reader");
+  TapInto visitor{participant, recording, {}};
+  forEachUavTap(uav, visitor);
+  return visitor.last;
 }
 
 void tapClock(dds::Participant& participant, record::Recording& recording) {
-  tap<msg::ClockPubSubType>(participant, recording, dds::topics::kClock, "swa_clock_reader");
+  tap<msg::ClockPubSubType>(participant, recording, dds::topics::kClock, kClockProfile);
 }
 
 }  // namespace swa::monitor_node

@@ -6,7 +6,18 @@
 #include <cstdint>
 #include <string>
 
+#include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/BridgeStatePubSubTypes.h>
+#include <swa/msg/ClockPubSubTypes.h>
+#include <swa/msg/DetectionsPubSubTypes.h>
+#include <swa/msg/GnssFixPubSubTypes.h>
+#include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SwarmTruthPubSubTypes.h>
+#include <swa/msg/VelocitySetpointPubSubTypes.h>
+
 #include "swa/dds/participant.h"
+#include "swa/dds/topics.h"
 #include "swa/record/recording.h"
 
 namespace swa::monitor_node {
@@ -26,6 +37,23 @@ std::uint16_t recordingChannel(record::Recording& recording, const dds::Particip
   return recording.cdrChannel(recordedTopic(participant.wireNames(), swa_topic), msgTypeName(type.getName()));
 }
 
+// The reader profiles of the monitor's own inputs (deploy/dds/profiles.xml), named once for the monitor and for the
+// bare-reader baseline of tests/bench/bench_record_reader.cpp.
+constexpr const char* kTruthProfile = "swa_truth_reader";
+constexpr const char* kEventProfile = "swa_event_reader";
+constexpr const char* kStateProfile = "swa_state_reader";
+constexpr const char* kClockProfile = "swa_clock_reader";
+
+// The topics the monitor reads only to record them, per UAV, each with the reader profile matching its writer:
+// `visit.template operator()<PubSubType>(swa_topic, profile)`. cmd_vel comes last.
+template <class Visit>
+void forEachUavTap(int uav, Visit&& visit);
+
+// Every topic of a complete recording (RecordSet::kAll) of UAVs 0..uav_count-1 with the profile the monitor reads it
+// with: truth, events, clock, and per UAV its state and forEachUavTap. Same visitor as above.
+template <class Visit>
+void forEachRecordedTopic(int uav_count, Visit&& visit);
+
 // Readers of UAV `uav`'s detections, imu, gnss, cmd_vel and bridge_state into `recording` (which must outlive the
 // participant's readers). Returns the cmd_vel reader: its writer keeps only the newest command (KEEP_LAST 1), so a
 // recorder that matches it after the run started misses the commands before; the monitor waits for it to match
@@ -33,5 +61,26 @@ std::uint16_t recordingChannel(record::Recording& recording, const dds::Particip
 dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, record::Recording& recording, int uav);
 // A reader of swa/clock into `recording`.
 void tapClock(dds::Participant& participant, record::Recording& recording);
+
+template <class Visit>
+void forEachUavTap(int uav, Visit&& visit) {
+  namespace topics = dds::topics;
+  visit.template operator()<msg::DetectionsPubSubType>(topics::detections(uav), "swa_detections_gnss_reader");
+  visit.template operator()<msg::ImuPubSubType>(topics::imu(uav), "swa_sensor_reader");
+  visit.template operator()<msg::GnssFixPubSubType>(topics::gnss(uav), "swa_detections_gnss_reader");
+  visit.template operator()<msg::BridgeStatePubSubType>(topics::bridgeState(uav), kStateProfile);
+  visit.template operator()<msg::VelocitySetpointPubSubType>(topics::cmdVel(uav), "swa_command_reader");
+}
+
+template <class Visit>
+void forEachRecordedTopic(int uav_count, Visit&& visit) {
+  visit.template operator()<msg::SwarmTruthPubSubType>(dds::topics::kTruth, kTruthProfile);
+  visit.template operator()<msg::ScenarioEventPubSubType>(dds::topics::kEvents, kEventProfile);
+  visit.template operator()<msg::ClockPubSubType>(dds::topics::kClock, kClockProfile);
+  for (int uav = 0; uav < uav_count; ++uav) {
+    visit.template operator()<msg::AgentStatePubSubType>(dds::topics::state(uav), kStateProfile);
+    forEachUavTap(uav, visit);
+  }
+}
 
 }  // namespace swa::monitor_node

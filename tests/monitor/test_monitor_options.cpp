@@ -168,5 +168,32 @@ TEST(MonitorOptions, UsageDocumentsTheContract) {
   }
 }
 
+TEST(MonitorOptions, RecordSetChoosesWhatTheRecordingHolds) {
+  // WHEN --record is given without --record-set THEN the recording is complete
+  EXPECT_TRUE(parseMonitorOptions({"--record", "r.mcap"}).record_set == record::RecordSet::kAll);
+  EXPECT_TRUE(parseMonitorOptions({}).record_set == record::RecordSet::kAll);
+  // WHEN --record-set monitor (either spelling) THEN only the monitor's topics, all names it back
+  EXPECT_TRUE(parseMonitorOptions({"--record", "r.mcap", "--record-set", "monitor"}).record_set ==
+              record::RecordSet::kMonitor);
+  EXPECT_TRUE(parseMonitorOptions({"--record-set=monitor", "--record=r.mcap"}).record_set ==
+              record::RecordSet::kMonitor);
+  EXPECT_TRUE(parseMonitorOptions({"--record", "r.mcap", "--record-set", "all"}).record_set ==
+              record::RecordSet::kAll);
+  // WHEN the set is unknown THEN the error lists the valid ones
+  EXPECT_EQ(errorOf({"--record", "r.mcap", "--record-set", "sensors"}),
+            "--record-set must be all or monitor, got 'sensors'");
+  // WHEN --record-set comes without --record THEN it says what it needs
+  EXPECT_EQ(errorOf({"--record-set", "monitor"}),
+            "--record-set needs --record FILE.mcap (it says what the recording holds)");
+  // WHEN it is given with --combine THEN it is a live-mode option
+  const std::string e = errorOf({"--combine", "a=x", "--out", "o", "--record-set", "monitor"});
+  EXPECT_TRUE(contains(e, "--record-set applies to the live mode only")) << e;
+  EXPECT_FALSE(contains(e, "needs --record")) << e;
+  // AND --help names both sets
+  const std::string help = monitorUsage();
+  EXPECT_TRUE(contains(help, "--record-set SET")) << help;
+  EXPECT_TRUE(contains(help, "one of all or monitor")) << help;
+}
+
 }  // namespace
 }  // namespace swa::monitor_node

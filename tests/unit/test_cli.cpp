@@ -276,5 +276,45 @@ TEST(Cli, HelpWrapsLongMeaningsWithoutSplittingARange) {
   EXPECT_TRUE(contains(h, "[0.001, 3600]")) << h;
 }
 
+// A flag that may carry a value (swa_launch --record[=all|monitor]): what each spelling reads as.
+struct FlagChoiceRead {
+  std::optional<std::size_t> value;  // index into {"all", "monitor"}; nullopt: the flag was not taken
+  std::string problems;
+  std::string help;
+};
+
+FlagChoiceRead readFlagChoice(const std::vector<std::string>& args) {
+  FlagChoiceRead r;
+  bool verbose = false;
+  Cli cli("tool", "a program under test.");
+  cli.flagChoice("--record", {"all", "monitor"}, [&r](std::size_t k) { r.value = k; }, "record the run");
+  cli.flag("--verbose", verbose, "say more");
+  for (const std::string& p : cli.parse(args)) r.problems += p + "\n";
+  r.help = cli.help();
+  return r;
+}
+
+TEST(Cli, AFlagChoiceIsItsFirstNameBareAndTakesAValueOnlyAfterAnEqualsSign) {
+  // WHEN the flag is given bare, before another option THEN it reads as the first name and takes nothing after it
+  FlagChoiceRead bare = readFlagChoice({"--record", "--verbose"});
+  EXPECT_EQ(bare.problems, "");
+  EXPECT_EQ(bare.value, std::optional<std::size_t>(0));
+  // WHEN given "=monitor" or "=all" THEN that name
+  EXPECT_EQ(readFlagChoice({"--record=monitor"}).value, std::optional<std::size_t>(1));
+  EXPECT_EQ(readFlagChoice({"--record=all"}).value, std::optional<std::size_t>(0));
+  // WHEN absent THEN nothing is taken
+  EXPECT_FALSE(readFlagChoice({"--verbose"}).value.has_value());
+  // WHEN the value is unknown (also "true", which a plain CLI11 flag would accept) THEN the problem lists the names
+  EXPECT_EQ(readFlagChoice({"--record=sensors"}).problems, "--record must be all or monitor, got 'sensors'\n");
+  EXPECT_EQ(readFlagChoice({"--record=true"}).problems, "--record must be all or monitor, got 'true'\n");
+  // WHEN the value is a separate argument THEN it is not the flag's: an unknown argument, the flag bare
+  const FlagChoiceRead separate = readFlagChoice({"--record", "monitor"});
+  EXPECT_EQ(separate.problems, "unknown argument 'monitor' (see --help)\n");
+  // AND --help shows the values next to the name and lists them in the meaning
+  EXPECT_TRUE(contains(bare.help, "--record[=all|monitor]")) << bare.help;
+  EXPECT_TRUE(contains(bare.help, "record the run; one of all or monitor")) << bare.help;
+  EXPECT_FALSE(contains(bare.help, "{all}")) << bare.help;
+}
+
 }  // namespace
 }  // namespace swa::app

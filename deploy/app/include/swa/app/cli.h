@@ -65,6 +65,11 @@ class Cli {
   // One of `names`, else the problem "<name> must be a, b or c, got '<value>'"; `take` gets the index of the name.
   void choice(const std::string& name, const std::string& value_name, const std::vector<std::string>& names,
               std::function<void(std::size_t)> take, const std::string& meaning);
+  // A flag that may carry one of `names` after '=' ("--record" is names[0], "--record=monitor" names[1]), else the
+  // problem "<name> must be a, b or c, got '<value>'". A separate argument is never its value ("--record monitor"
+  // leaves "monitor" unknown), so the flag can stand before anything. --help shows "<name>[=a|b]".
+  void flagChoice(const std::string& name, const std::vector<std::string>& names, std::function<void(std::size_t)> take,
+                  const std::string& meaning);
   // The same for values named by toString(value) (found by argument-dependent lookup), e.g. agent::Mode.
   template <class T>
   void choice(const std::string& name, const std::string& value_name, std::initializer_list<T> values,
