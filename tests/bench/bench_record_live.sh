@@ -7,6 +7,13 @@
 # Per run: the monitor's CPU time (user + system, its own getrusage at exit: monitor.log), the simulator's late
 # commands (sim_summary.json: answers after their step's deadline), and with the live view the messages sent and
 # dropped. The table shows each run, the medians, and the ratio of the medians (with / without).
+#
+# Issue #24: a complete recording has to receive every sample, so the recording run also has a bare Fast DDS reader
+# beside the monitor (bench_record_reader: the same topics, reader profiles, participant code, swarm partition and
+# domain; it only counts), started before the launcher and stopped after it. Its own getrusage gives the baseline;
+# the ratio monitor / bare reader is the issue's figure. Sample counts: the bare reader's per topic, the recording's
+# per channel (read back from run.mcap with SWA's McapReader), and where the simulator's summary implies one, the
+# expected count (IMU and clock: one per simulated step).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 bin=${1:-$root/build/bin}
@@ -14,13 +21,15 @@ duration=${2:-60}
 rounds=${3:-3}
 work=$(mktemp -d /tmp/swa_bench_record_live.XXXXXX)
 client_pid=""
+reader_pid=""
 cleanup() {
   if [ -n "$client_pid" ]; then kill "$client_pid" 2>/dev/null || true; fi
+  if [ -n "$reader_pid" ]; then kill "$reader_pid" 2>/dev/null || true; fi
   rm -rf "$work"
 }
 trap cleanup EXIT
 
-for b in swa_launch swa_sim swa_agent swa_monitor; do
+for b in swa_launch swa_sim swa_agent swa_monitor bench_record_reader; do
   [ -x "$bin/$b" ] || { echo "bench_record_live: no $bin/$b (bash deploy/build.sh)" >&2; exit 2; }
 done
 mkdir -p "$work/client"
@@ -29,10 +38,17 @@ cp "$root/tests/live/live_client/package.json" "$root/tests/live/live_client/pac
 (cd "$work/client" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
 
 run() {  # run WITH(0|1) ROUND
-  local out=$work/run_$1_$2 extra=()
-  if [ "$1" = 1 ]; then extra=(--record --live 0); fi
+  local out=$work/run_$1_$2 extra=() domain=$((160 + $2)) swarm=benchrec$$r$1x$2
+  if [ "$1" = 1 ]; then
+    extra=(--record --live 0)
+    # The bare reader joins first, so like the monitor it has matched every writer before the simulator starts.
+    SWA_SWARM=$swarm "$bin/bench_record_reader" --uav-count 8 --domain "$domain" >"$work/reader_$2.json" \
+      2>"$work/reader_$2.log" &
+    reader_pid=$!
+    sleep 2
+  fi
   "$bin/swa_launch" --scenario "$root/deploy/scenarios/dropout_8.yaml" --set "duration_s=$duration" \
-    --set clock.mode=realtime --domain "$((160 + $2))" --out "$out" "${extra[@]}" >"$out.log" 2>&1 &
+    --set clock.mode=realtime --domain "$domain" --swarm "$swarm" --out "$out" "${extra[@]}" >"$out.log" 2>&1 &
   local launch=$!
   if [ "$1" = 1 ]; then
     local port=""
@@ -52,6 +68,12 @@ run() {  # run WITH(0|1) ROUND
   if [ -n "$client_pid" ]; then
     wait "$client_pid" 2>/dev/null || true
     client_pid=""
+  fi
+  if [ -n "$reader_pid" ]; then
+    kill -TERM "$reader_pid"
+    wait "$reader_pid" || { echo "bench_record_live: the bare reader failed:" >&2; cat "$work/reader_$2.log" >&2; exit 1; }
+    reader_pid=""
+    "$bin/bench_record_reader" --count-mcap "$out/run.mcap" >"$work/recording_$2.json"
   fi
 }
 
@@ -81,4 +103,42 @@ plain = statistics.median(c for c, _, _ in rows[0])
 with_ = statistics.median(c for c, _, _ in rows[1])
 print(f"median monitor CPU: plain {plain:.3f} s, with {with_:.3f} s, ratio {with_ / plain:.3f}")
 print(f"late commands: plain {sum(l for _, l, _ in rows[0])}, with {sum(l for _, l, _ in rows[1])}")
+
+# Issue #24: the recording monitor against the bare reader of the same run.
+readers = [json.load(open(f"{work}/reader_{r}.json")) for r in range(1, rounds + 1)]
+recordings = [json.load(open(f"{work}/recording_{r}.json")) for r in range(1, rounds + 1)]
+print()
+print(f"{'round':<8}{'monitor --record --live [s]':>29}{'bare reader [s] (user+sys)':>28}{'ratio':>8}")
+for r in range(rounds):
+    m, b = rows[1][r][0], readers[r]
+    print(f"{'#' + str(r + 1):<8}{m:>29.3f}{b['cpu_s']:>13.3f} ({b['user_s']:.2f}+{b['system_s']:.2f}){'':>3}{m / b['cpu_s']:>8.2f}")
+bare = statistics.median(b["cpu_s"] for b in readers)
+print(f"median: monitor {with_:.3f} s, bare reader {bare:.3f} s, ratio {with_ / bare:.3f} (issue #24 target <= 1.3)")
+
+def kind(topic):
+    leaf = topic.rsplit("/", 1)[-1]
+    return leaf if "/uav" in topic else topic
+print()
+print("samples per kind (all UAVs), each round: bare reader / recording / expected")
+for r in range(rounds):
+    sim = json.load(open(f"{work}/run_1_{r + 1}/sim_summary.json"))
+    steps = sim["steps"]
+    totals = {}
+    for source, counts in (("reader", readers[r]["counts"]), ("recording", recordings[r]["counts"])):
+        for topic, n in counts.items():
+            totals.setdefault(kind(topic), {}).setdefault(source, 0)
+            totals[kind(topic)][source] += n
+    expected = {"imu": 8 * (steps + 1), "/swa/clock": steps + 1}
+    lost = []
+    cells = []
+    for k in sorted(totals):
+        if k == "/swa/monitor/metrics":  # the monitor's own, on no DDS topic
+            continue
+        a, b = totals[k].get("reader", 0), totals[k].get("recording", 0)
+        e = expected.get(k)
+        cells.append(f"{k} {a}/{b}" + (f"/{e}" if e is not None else ""))
+        if a != b or (e is not None and (a != e or b != e)):
+            lost.append(k)
+    print(f"#{r + 1} (sim steps {steps}, truncated {recordings[r]['truncated']}): " + ", ".join(cells))
+    print(f"   differ: {', '.join(lost) if lost else 'none'}")
 PY
