@@ -119,7 +119,8 @@ def kind(topic):
     leaf = topic.rsplit("/", 1)[-1]
     return leaf if "/uav" in topic else topic
 print()
-print("samples per kind (all UAVs), each round: bare reader / recording / expected")
+print("samples per kind (all UAVs), each round: bare reader / recording / expected (imu, clock: the steps; cmd_vel: "
+      "the commands the simulator received)")
 for r in range(rounds):
     sim = json.load(open(f"{work}/run_1_{r + 1}/sim_summary.json"))
     steps = sim["steps"]
@@ -128,7 +129,10 @@ for r in range(rounds):
         for topic, n in counts.items():
             totals.setdefault(kind(topic), {}).setdefault(source, 0)
             totals[kind(topic)][source] += n
-    expected = {"imu": 8 * (steps + 1), "/swa/clock": steps + 1}
+    # The simulator counts the commands it received (applied, or ignored as stale or duplicate): a recorder that
+    # lost none has exactly as many.
+    expected = {"imu": 8 * (steps + 1), "/swa/clock": steps + 1,
+                "cmd_vel": sim["applied_commands"] + sim["ignored_commands"]}
     lost = []
     cells = []
     for k in sorted(totals):
@@ -139,6 +143,7 @@ for r in range(rounds):
         cells.append(f"{k} {a}/{b}" + (f"/{e}" if e is not None else ""))
         if a != b or (e is not None and (a != e or b != e)):
             lost.append(k)
-    print(f"#{r + 1} (sim steps {steps}, truncated {recordings[r]['truncated']}): " + ", ".join(cells))
+    print(f"#{r + 1} (sim steps {steps}, missing answers {sim['missing_answers']}, truncated "
+          f"{recordings[r]['truncated']}): " + ", ".join(cells))
     print(f"   differ: {', '.join(lost) if lost else 'none'}")
 PY

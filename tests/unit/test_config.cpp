@@ -584,6 +584,12 @@ TEST(AgentConfigApplies, GivenEveryKeyAModeIgnores_ThenEachIsReported) {
       [] { parseAgentConfig("formation: {neighbourhood: k_nearest, max_edge_factor: 2}\n"); });
   ASSERT_EQ(edge.problems().size(), 1u) << edge.what();
   EXPECT_TRUE(contains(edge.problems()[0], "formation.max_edge_factor applies to the gabriel rule only"));
+  // AND with IMU-bias removal off (window 0) its freeze settings change nothing
+  const ConfigError bias =
+      expectConfigError([] { parseAgentConfig("focal: {bias_window_s: 0, bias_freeze_hold_s: 3}\n"); });
+  ASSERT_EQ(bias.problems().size(), 1u) << bias.what();
+  EXPECT_TRUE(contains(bias.problems()[0], "focal.bias_freeze_hold_s applies to IMU-bias removal only "
+                                           "(focal.bias_window_s is 0)")) << bias.what();
   // AND the standalone baseline, which fits no floating frame, refuses every formation key but takes the GNSS floor
   const ConfigError standalone = expectConfigError([] {
     parseAgentConfig("mode: standalone\nformation: {radius_m: 12, neighbourhood: gabriel}\n"

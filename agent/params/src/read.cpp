@@ -170,7 +170,8 @@ class Reader {
       const Entry* when = findEntry(a->when);
       if (when != nullptr && when->level > e.level) continue;  // a later --set turned it off
       problem(e.written + " applies to " + a->what + " only (" + nameOf(a->when) + " is " +
-              std::get<std::string>(values_.at(a->when)) + "); remove it or set " + nameOf(a->when) + e.where);
+              plainValue(*schema_.find(a->when), values_.at(a->when)) + "); remove it or set " + nameOf(a->when) +
+              e.where);
     }
   }
 

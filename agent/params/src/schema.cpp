@@ -34,8 +34,12 @@ const Spec* Schema::find(const std::string& key) const {
 const Applies* Schema::unused(const std::string& key, const Values& values) const {
   for (const Applies& a : applies) {
     if (a.key != key) continue;
-    const auto* chosen = std::get_if<std::string>(&values.at(a.when));
-    if (chosen != nullptr && std::find(a.values.begin(), a.values.end(), *chosen) == a.values.end()) return &a;
+    const Value& when = values.at(a.when);
+    if (const auto* chosen = std::get_if<std::string>(&when)) {
+      if (std::find(a.values.begin(), a.values.end(), *chosen) == a.values.end()) return &a;
+    } else if (const auto* number = std::get_if<double>(&when)) {
+      if (a.values.empty() && *number == 0.0) return &a;
+    }
   }
   return nullptr;
 }

@@ -66,8 +66,8 @@ struct Check {
   std::function<void(const Values&, std::vector<std::string>& problems)> run;
 };
 
-// `key` is used only while the choice parameter `when` holds one of `values`; `what` names that case in messages
-// ("the k_nearest rule"). Giving `key` is an error while it changes nothing, unless `when` was given after it: a
+// `key` is used only while the choice parameter `when` holds one of `values` or, with no `values`, while the number
+// `when` is not 0 (0 = off); `what` names that case in messages ("the k_nearest rule"). Giving `key` is an error while it changes nothing, unless `when` was given after it: a
 // --set of `when` (a study's sweep, swa_launch --compare) may turn a file's key off. The dump writes such a key as
 // a comment.
 struct Applies {
