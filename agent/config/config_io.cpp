@@ -118,14 +118,14 @@ params::Table<AgentConfig> makeTable() {
       {"formation.max_edge_factor", "formation.neighbourhood", {"gabriel"}, "the gabriel rule"},
       {"formation.far_neighbour_weight", "formation.circle_fit", {"fixed_radius"}, "the fixed_radius fit"},
       {"anchor.gain", "mode", {"anchored"}, "anchored mode"},
-      {"anchor.gnss_min_std_m", "mode", {"standalone", "anchored"}, "the modes that use GNSS (standalone, anchored)"},
+      {"anchor.gnss_min_std_m", "mode", {"standalone", "anchored"}, "the modes that use GNSS"},
       {"focal.bias_freeze_speed_mps", "focal.bias_window_s", {}, "IMU-bias removal"},
       {"focal.bias_freeze_hold_s", "focal.bias_window_s", {}, "IMU-bias removal"},
   };
   // The standalone baseline flies on dead reckoning alone and never fits a floating frame.
   for (const params::Spec& s : t.schema().specs) {
     if (s.key.rfind("formation.", 0) == 0) {
-      applies.push_back({s.key, "mode", {"swa", "anchored"}, "the modes that fly in formation (swa, anchored)"});
+      applies.push_back({s.key, "mode", {"swa", "anchored"}, "the modes that fly in formation"});
     }
   }
   t.schema().relations = {

@@ -597,7 +597,7 @@ TEST(AgentConfigApplies, GivenEveryKeyAModeIgnores_ThenEachIsReported) {
   });
   ASSERT_EQ(standalone.problems().size(), 2u) << standalone.what();
   EXPECT_TRUE(contains(problemAbout(standalone, "formation.radius_m"),
-                       "applies to the modes that fly in formation (swa, anchored) only (mode is standalone)"));
+                       "applies to the modes that fly in formation only (mode is standalone)"));
   EXPECT_TRUE(contains(problemAbout(standalone, "formation.neighbourhood"), "(mode is standalone)"));
 }
 
@@ -648,6 +648,10 @@ TEST(AgentConfigHelp, GivenTheParameterTable_ThenTheHelpListsEveryKeyWithUnitDef
   EXPECT_EQ(default_value, "10");
   EXPECT_EQ(range_lo + " " + range_hi, "(0, 1000]");
   EXPECT_TRUE(contains(help, "fixed_radius|algebraic"));
+  // AND it says which keys a mode ignores
+  EXPECT_TRUE(contains(help, "  - formation.k: the k_nearest rule (formation.neighbourhood: k_nearest).")) << help;
+  EXPECT_TRUE(contains(help, "focal.bias_freeze_speed_mps, focal.bias_freeze_hold_s: IMU-bias removal "
+                             "(focal.bias_window_s not 0).")) << help;
 }
 
 }  // namespace

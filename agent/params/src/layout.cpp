@@ -1,6 +1,7 @@
 // Writing parameters: the commented YAML dump and the --help description, and the wording they share with the
 // messages of read.cpp.
 
+#include <algorithm>
 #include <limits>
 
 #include "spec_text.h"
@@ -189,10 +190,25 @@ std::string describe(const Schema& schema, const Values& defaults) {
                     rangeText(s), s.meaning});
   }
   for (const Alias& a : schema.aliases) rows.push_back({a.alias, "alias", "-", "-", "-", "the same as " + a.key});
+  // Keys used only in some modes, grouped by the case they apply to.
+  std::vector<std::pair<std::string, std::vector<std::string>>> cases;  // "what (when: values)" -> keys
+  for (const Applies& a : schema.applies) {
+    const std::string when = a.values.empty() ? a.when + " not 0" : a.when + ": " + join(a.values, ", ");
+    const std::string name = a.what + " (" + when + ")";
+    auto it = std::find_if(cases.begin(), cases.end(), [&](const auto& c) { return c.first == name; });
+    if (it == cases.end()) it = cases.insert(cases.end(), {name, {}});
+    it->second.push_back(a.key);
+  }
+  std::string applies;
+  if (!cases.empty()) {
+    applies = "\nKeys used only in some modes (given otherwise they change nothing, so giving one is an error, unless a\n"
+              "later --set turned it off):\n";
+    for (const auto& c : cases) applies += "  - " + join(c.second, ", ") + ": " + c.first + ".\n";
+  }
   return schema.title +
          " parameters. In the YAML file a key a.b is written nested (a map 'a:' holding 'b:'); on the command\n"
          "line use --set a.b=value. Ranges: [ ] includes the bound, ( ) excludes it; '-' = dimensionless.\n\n" +
-         formatTable(rows) + (schema.notes.empty() ? "" : "\n" + schema.notes);
+         formatTable(rows) + applies + (schema.notes.empty() ? "" : "\n" + schema.notes);
 }
 
 }  // namespace swa::params
