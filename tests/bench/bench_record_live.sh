@@ -83,7 +83,7 @@ for ((r = 1; r <= rounds; r++)); do
 done
 
 python3 - "$work" "$rounds" "$duration" <<'PY'
-import json, re, statistics, sys
+import glob, json, re, statistics, sys
 work, rounds, duration = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 def figures(with_, r):
     d = f"{work}/run_{with_}_{r}"
@@ -119,8 +119,8 @@ def kind(topic):
     leaf = topic.rsplit("/", 1)[-1]
     return leaf if "/uav" in topic else topic
 print()
-print("samples per kind (all UAVs), each round: bare reader / recording / expected (imu, clock: the steps; cmd_vel: "
-      "the commands the simulator received)")
+print("samples per kind (all UAVs), each round: bare reader / recording / published (imu, clock: the steps; cmd_vel, "
+      "state: the agents' own counts)")
 for r in range(rounds):
     sim = json.load(open(f"{work}/run_1_{r + 1}/sim_summary.json"))
     steps = sim["steps"]
@@ -129,10 +129,18 @@ for r in range(rounds):
         for topic, n in counts.items():
             totals.setdefault(kind(topic), {}).setdefault(source, 0)
             totals[kind(topic)][source] += n
-    # The simulator counts the commands it received (applied, or ignored as stale or duplicate): a recorder that
-    # lost none has exactly as many.
-    expected = {"imu": 8 * (steps + 1), "/swa/clock": steps + 1,
-                "cmd_vel": sim["applied_commands"] + sim["ignored_commands"]}
+    # What was published: the steps for the simulator's topics, and for the agents' commands and states what each
+    # agent says it wrote when it stops ("... 12001 commands, 1201 states ..."). The simulator's own count of
+    # received commands (applied + ignored) is printed beside it: it stops listening after the last step.
+    published = {"commands": 0, "states": 0}
+    for log_path in glob.glob(f"{work}/run_1_{r + 1}/logs/agent_*.log"):
+        m = re.search(r"(\d+) commands, (\d+) states", open(log_path).read())
+        if m is None:
+            sys.exit(f"bench_record_live: no command count in {log_path}")
+        published["commands"] += int(m.group(1))
+        published["states"] += int(m.group(2))
+    expected = {"imu": 8 * (steps + 1), "/swa/clock": steps + 1, "cmd_vel": published["commands"],
+                "state": published["states"]}
     lost = []
     cells = []
     for k in sorted(totals):
@@ -143,7 +151,8 @@ for r in range(rounds):
         cells.append(f"{k} {a}/{b}" + (f"/{e}" if e is not None else ""))
         if a != b or (e is not None and (a != e or b != e)):
             lost.append(k)
-    print(f"#{r + 1} (sim steps {steps}, missing answers {sim['missing_answers']}, truncated "
-          f"{recordings[r]['truncated']}): " + ", ".join(cells))
+    received = sim["applied_commands"] + sim["ignored_commands"]
+    print(f"#{r + 1} (sim steps {steps}, commands the simulator received {received}, missing answers "
+          f"{sim['missing_answers']}, truncated {recordings[r]['truncated']}): " + ", ".join(cells))
     print(f"   differ: {', '.join(lost) if lost else 'none'}")
 PY
