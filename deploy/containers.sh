@@ -196,9 +196,13 @@ down() {
   fi
 }
 
-# "uav_count=N" first, so the scenario runs exactly as many UAVs as there are agent containers.
+# "uav_count=N" first, so the scenario runs exactly as many UAVs as there are agent containers; with --vehicle px4
+# the interface too, so that a --set of a PX4-only key (vehicle.com_of_loss_t_s) is judged against it everywhere
+# (the agents' exported configuration, swa_batch's reference run), not only in the simulator's container.
 swa_set() {
-  local all=("uav_count=$uavs" ${sets[@]+"${sets[@]}"})
+  local all=("uav_count=$uavs")
+  if [ "$vehicle" = px4 ]; then all+=("vehicle.interface=px4"); fi
+  all+=(${sets[@]+"${sets[@]}"})
   echo "${all[*]}"
 }
 

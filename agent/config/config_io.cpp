@@ -112,8 +112,15 @@ params::Table<AgentConfig> makeTable() {
   SWA_PARAM(t, number, limits.resync_samples, "", closed(2, 100),
             "consecutive samples of a consistent new timeline after which a stream re-synchronises to it");
   // Keys a chosen mode ignores: giving one is an error (a user who sets a key that changes nothing should know).
+  // The standalone baseline flies on dead reckoning alone and fits no floating frame; the radius stays, as the
+  // monitor scores every run against it. The mode comes first: it is what a message should name.
   std::vector<params::Applies>& applies = t.schema().applies;
-  applies = {
+  for (const params::Spec& s : t.schema().specs) {
+    if (s.key.rfind("formation.", 0) == 0 && s.key != "formation.radius_m") {
+      applies.push_back({s.key, "mode", {"swa", "anchored"}, "the modes that fly in formation"});
+    }
+  }
+  applies.insert(applies.end(), {
       {"formation.k", "formation.neighbourhood", {"k_nearest"}, "the k_nearest rule"},
       {"formation.max_edge_factor", "formation.neighbourhood", {"gabriel"}, "the gabriel rule"},
       {"formation.far_neighbour_weight", "formation.circle_fit", {"fixed_radius"}, "the fixed_radius fit"},
@@ -121,13 +128,7 @@ params::Table<AgentConfig> makeTable() {
       {"anchor.gnss_min_std_m", "mode", {"standalone", "anchored"}, "the modes that use GNSS"},
       {"focal.bias_freeze_speed_mps", "focal.bias_window_s", {}, "IMU-bias removal"},
       {"focal.bias_freeze_hold_s", "focal.bias_window_s", {}, "IMU-bias removal"},
-  };
-  // The standalone baseline flies on dead reckoning alone and never fits a floating frame.
-  for (const params::Spec& s : t.schema().specs) {
-    if (s.key.rfind("formation.", 0) == 0) {
-      applies.push_back({s.key, "mode", {"swa", "anchored"}, "the modes that fly in formation"});
-    }
-  }
+  });
   t.schema().relations = {
       {"surroundings.tentative_timeout_s", false, "surroundings.track_timeout_s",
        "a tentative track must not outlive a confirmed one"},

@@ -22,7 +22,7 @@ agent::AgentConfig checkConfig(const ReplayOptions& o, const RecordedRun& run) {
   if (!run.scenario_yaml) {
     throw std::invalid_argument(o.file + " carries no scenario (recorded without one): give --scenario FILE");
   }
-  return sim::parseScenario(*run.scenario_yaml, o.file + " (its recorded scenario)", o.overrides).agent;
+  return sim::parseRecordedScenario(*run.scenario_yaml, o.file + " (its recorded scenario)", o.overrides).agent;
 }
 
 app::Plan prepare(const std::vector<std::string>& args) {

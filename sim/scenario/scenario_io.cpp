@@ -255,6 +255,11 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source,
   return table().parse(yaml_text, source, overrides);
 }
 
+Scenario parseRecordedScenario(const std::string& yaml_text, const std::string& source,
+                               const std::vector<std::string>& overrides) {
+  return table().parseDump(yaml_text, source, overrides);
+}
+
 std::string scenarioToYaml(const Scenario& scenario) { return table().dump(scenario); }
 
 std::string describeScenarioParameters() { return table().describe(); }

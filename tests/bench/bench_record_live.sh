@@ -134,11 +134,12 @@ for r in range(rounds):
     # received commands (applied + ignored) is printed beside it: it stops listening after the last step.
     published = {"commands": 0, "states": 0}
     for log_path in glob.glob(f"{work}/run_1_{r + 1}/logs/agent_*.log"):
-        m = re.search(r"(\d+) commands, (\d+) states", open(log_path).read())
-        if m is None:
+        # One line per process that wrote to this log: a restarted agent appends its own.
+        counts = re.findall(r"(\d+) commands, (\d+) states", open(log_path).read())
+        if not counts:
             sys.exit(f"bench_record_live: no command count in {log_path}")
-        published["commands"] += int(m.group(1))
-        published["states"] += int(m.group(2))
+        published["commands"] += sum(int(c) for c, _ in counts)
+        published["states"] += sum(int(s) for _, s in counts)
     expected = {"imu": 8 * (steps + 1), "/swa/clock": steps + 1, "cmd_vel": published["commands"],
                 "state": published["states"]}
     lost = []

@@ -70,7 +70,9 @@ TEST(ClosedLoopFit, PapersAlgebraicFitCollapsesTheFormation) {
   // GIVEN the paper's literal method: k = 3 nearest with the algebraic (Kasa) circle fit, where with c free r
   // cancels out of the fit, and no bias removal
   // WHEN 8 UAVs fly
-  const Stats s = runSeeds(shipped("dropout_8", kNearest(3, {"agent.circle_fit=algebraic"})));
+  // (kNearest's unweighted fixed-radius setting would be refused: the algebraic fit has no neighbour weights)
+  const Stats s = runSeeds(shipped("dropout_8", {"agent.formation.neighbourhood=k_nearest", "agent.formation.k=3",
+                                                 "agent.focal.bias_window_s=0", "agent.circle_fit=algebraic"}));
   // THEN they collapse onto each other, which is why fixed_radius is the default
   EXPECT_LT(s.mean("mean_neighbor_distance_m"), 0.3 * kR);
   EXPECT_GT(s.mean("collisions"), 0.0);

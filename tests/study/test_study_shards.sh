@@ -56,6 +56,8 @@ refused_study "given twice" "${base[@]}" --sweep agent.formation.k=1,5 --sweep a
 # k changes nothing at the gabriel points: their runs would be labelled with values that were never applied
 refused_study "agent.formation.k applies to the k_nearest rule only" "${base[@]}" \
   --sweep agent.formation.neighbourhood=gabriel,k_nearest --sweep agent.formation.k=2,3 --out "$work/r4"
+refused_study "agent.formation.k applies to the k_nearest rule only" "${base[@]}" \
+  --sweep agent.formation.k=2,3 --sweep agent.formation.neighbourhood=gabriel,k_nearest --out "$work/r5"
 refused_study "seeds are a study's repetitions" "${base[@]}" --sweep "seed =5,9" --out "$work/r3"
 refused_study "already holds a study" "${study[@]}" --out "$work/whole"
 echo "test_study_shards: PASS"

@@ -37,6 +37,11 @@ void expectSameConfig(const AgentConfig& a, const AgentConfig& b) {
   EXPECT_EQ(a.formation.k, b.formation.k);
   EXPECT_EQ(a.formation.sensing_range_m, b.formation.sensing_range_m);
   EXPECT_EQ(a.formation.circle_fit, b.formation.circle_fit);
+  EXPECT_EQ(a.formation.max_edge_factor, b.formation.max_edge_factor);
+  EXPECT_EQ(a.formation.far_neighbour_weight, b.formation.far_neighbour_weight);
+  EXPECT_EQ(a.focal.bias_window_s, b.focal.bias_window_s);
+  EXPECT_EQ(a.focal.bias_freeze_speed_mps, b.focal.bias_freeze_speed_mps);
+  EXPECT_EQ(a.focal.bias_freeze_hold_s, b.focal.bias_freeze_hold_s);
   EXPECT_EQ(a.focal.tau_s, b.focal.tau_s);
   EXPECT_EQ(a.focal.q_pos_m2, b.focal.q_pos_m2);
   EXPECT_EQ(a.focal.q_vel_m2ps2, b.focal.q_vel_m2ps2);
@@ -590,29 +595,45 @@ TEST(AgentConfigApplies, GivenEveryKeyAModeIgnores_ThenEachIsReported) {
   ASSERT_EQ(bias.problems().size(), 1u) << bias.what();
   EXPECT_TRUE(contains(bias.problems()[0], "focal.bias_freeze_hold_s applies to IMU-bias removal only "
                                            "(focal.bias_window_s is 0)")) << bias.what();
-  // AND the standalone baseline, which fits no floating frame, refuses every formation key but takes the GNSS floor
+  // AND the standalone baseline, which fits no floating frame, refuses the formation keys (k for its mode first),
+  // but takes the radius (the monitor scores every run against it) and the GNSS floor
   const ConfigError standalone = expectConfigError([] {
-    parseAgentConfig("mode: standalone\nformation: {radius_m: 12, neighbourhood: gabriel}\n"
+    parseAgentConfig("mode: standalone\nformation: {radius_m: 12, neighbourhood: gabriel, k: 2}\n"
                      "anchor: {gnss_min_std_m: 0.1}\n");
   });
   ASSERT_EQ(standalone.problems().size(), 2u) << standalone.what();
-  EXPECT_TRUE(contains(problemAbout(standalone, "formation.radius_m"),
+  EXPECT_TRUE(contains(problemAbout(standalone, "formation.neighbourhood"),
                        "applies to the modes that fly in formation only (mode is standalone)"));
-  EXPECT_TRUE(contains(problemAbout(standalone, "formation.neighbourhood"), "(mode is standalone)"));
+  EXPECT_TRUE(contains(problemAbout(standalone, "formation.k "), "(mode is standalone); remove it or set mode"));
+  EXPECT_EQ(parseAgentConfig("mode: standalone\nformation: {radius_m: 12}\n").formation.radius_m, 12.0);
 }
 
 TEST(AgentConfigApplies, GivenALaterSetThatTurnsAFileKeyOff_ThenItIsAccepted) {
   // GIVEN a k_nearest file with k = 2, run once with gabriel by a --set (a study's sweep, swa_launch --compare)
   const TempFile file("formation:\n  neighbourhood: k_nearest\n  k: 2\n");
-  const AgentConfig c = configTable().load(file.path(), {"formation.neighbourhood=gabriel", "mode=standalone"});
+  const AgentConfig c = configTable().load(file.path(), {"formation.neighbourhood=gabriel"});
   // THEN the --set wins and the file's k, now unused, is no error
   EXPECT_EQ(c.formation.neighbourhood, NeighbourhoodRule::kGabriel);
-  EXPECT_EQ(c.mode, Mode::kStandalone);
-  // BUT a --set of k after the rule was chosen is judged against it
-  const ConfigError error = expectConfigError(
-      [&] { configTable().load(file.path(), {"formation.neighbourhood=gabriel", "formation.k=3"}); });
-  ASSERT_EQ(error.problems().size(), 1u) << error.what();
-  EXPECT_TRUE(contains(error.problems()[0], "(from --set formation.k=3)")) << error.what();
+  // AND the same for the whole formation section under a --set of the standalone mode (swa_launch --compare)
+  EXPECT_EQ(configTable().load(file.path(), {"mode=standalone"}).mode, Mode::kStandalone);
+  // BUT a --set of k is judged against a --set rule, before or after it (a grid point's values come together)
+  for (const auto& sets : {std::vector<std::string>{"formation.neighbourhood=gabriel", "formation.k=3"},
+                           std::vector<std::string>{"formation.k=3", "formation.neighbourhood=gabriel"}}) {
+    const ConfigError error = expectConfigError([&] { configTable().load(file.path(), sets); });
+    ASSERT_EQ(error.problems().size(), 1u) << error.what();
+    EXPECT_TRUE(contains(error.problems()[0], "(from --set formation.k=3)")) << error.what();
+  }
+}
+
+TEST(AgentConfigApplies, GivenADumpOfAnOlderVersionThatWroteEveryKey_ThenItIsReadAsADump) {
+  // GIVEN a dump that gives k although its rule is gabriel (every dump before issue #24 did)
+  const std::string old_dump = "formation:\n  neighbourhood: gabriel\n  k: 4\n";
+  // THEN it is refused as a user's file, read as a program's dump, and a --set on top is judged as ever
+  EXPECT_EQ(expectConfigError([&] { parseAgentConfig(old_dump); }).problems().size(), 1u);
+  EXPECT_EQ(configTable().parseDump(old_dump, "dump").formation.k, 4);
+  const ConfigError set = expectConfigError([&] { configTable().parseDump(old_dump, "dump", {"anchor.gain=1"}); });
+  ASSERT_EQ(set.problems().size(), 1u) << set.what();
+  EXPECT_TRUE(contains(set.problems()[0], "anchor.gain applies to anchored mode only")) << set.what();
 }
 
 TEST(AgentConfigApplies, GivenAnUnusedKeyBuiltInCode_WhenDumped_ThenItReadsBackAsAComment) {

@@ -55,7 +55,6 @@ struct Entry {
   YAML::Node value;
   std::string where;    // " (line L, column C)", " (from --set k=v)" or ""
   bool from_file = false;
-  int level = 0;  // 0 = the file, i = the i-th --set: a later level was given after this one
 
   Entry(std::string k, std::string w, const YAML::Node& v, std::string at, bool file)
       : key(std::move(k)), written(std::move(w)), value(v), where(std::move(at)), from_file(file) {}
@@ -104,9 +103,7 @@ class Reader {
 
   // The --set arguments replace (or add) entries; a later one wins.
   void readOverrides(const std::vector<std::string>& overrides) {
-    int level = 0;
     for (const std::string& text : overrides) {
-      ++level;
       const std::string where = " (from --set " + text + ")";
       const auto eq = text.find('=');
       const std::string key = eq == std::string::npos ? std::string() : trim(text.substr(0, eq));
@@ -121,7 +118,7 @@ class Reader {
         entries_.remove_if([&](const Entry& e) { return e.key == canonical; });
         const std::string value_text = text.substr(eq + 1);
         try {
-          entries_.emplace_back(canonical, key, YAML::Load(value_text), where, false).level = level;
+          entries_.emplace_back(canonical, key, YAML::Load(value_text), where, false);
         } catch (const YAML::Exception& e) {
           bad(canonical, key + " = '" + value_text + "' is not a valid YAML value: " + e.msg + where);
         }
@@ -143,7 +140,7 @@ class Reader {
     }
   }
 
-  void checkRules() {
+  void checkRules(bool trust_file = false) {
     for (const Relation& r : schema_.relations) {
       if (bad_.count(r.lhs) > 0 || bad_.count(r.rhs) > 0) continue;
       const double a = number(values_, r.lhs);
@@ -153,7 +150,7 @@ class Reader {
               (r.strict ? "<" : "<=") + " " + nameOf(r.rhs) + " = " + plainValue(*schema_.find(r.rhs), values_[r.rhs]) +
               ": " + r.why);
     }
-    checkApplies();
+    checkApplies(trust_file);
     for (const Check& c : schema_.checks) {
       if (std::none_of(c.keys.begin(), c.keys.end(), [&](const std::string& k) { return bad_.count(k) > 0; })) {
         c.run(values_, problems_);
@@ -161,19 +158,25 @@ class Reader {
     }
   }
 
-  // A key given while the choice it depends on turns it off changes nothing: the user meant something else.
-  void checkApplies() {
+  // A key given while a choice it depends on turns it off changes nothing: the user meant something else. A file's
+  // key that --set turned off is fine (a sweep over the rule, a comparison run), and so is any key of a file a
+  // program wrote (`trust_file`: an older dump wrote them all). Among --sets the order does not matter: a grid
+  // point's values come together.
+  void checkApplies(bool trust_file) {
     for (const Entry& e : entries_) {
-      if (bad_.count(e.key) > 0) continue;
-      const Applies* a = schema_.unused(e.key, values_);
-      if (a == nullptr || bad_.count(a->when) > 0) continue;
-      const Entry* when = findEntry(a->when);
-      if (when != nullptr && when->level > e.level) continue;  // a later --set turned it off
-      problem(e.written + " applies to " + a->what + " only (" + nameOf(a->when) + " is " +
-              plainValue(*schema_.find(a->when), values_.at(a->when)) + "); remove it or set " + nameOf(a->when) +
-              e.where);
+      if (bad_.count(e.key) > 0 || (trust_file && e.from_file)) continue;
+      for (const Applies& a : schema_.applies) {
+        if (a.key != e.key || !turnsOff(a, values_) || bad_.count(a.when) > 0) continue;
+        const Entry* when = findEntry(a.when);
+        if (e.from_file && when != nullptr && !when->from_file) continue;
+        problem(e.written + " applies to " + a.what + " only (" + nameOf(a.when) + " is " +
+                plainValue(*schema_.find(a.when), values_.at(a.when)) + "); remove it or set " + nameOf(a.when) +
+                e.where);
+        break;  // one problem per key: the first rule that turns it off
+      }
     }
   }
+
 
   // Values built in code: each against its bounds.
   void checkValues() {
@@ -499,7 +502,7 @@ class Reader {
 };
 
 Values read(const Schema& schema, Values values, const std::string* text, std::string unreadable,
-            const std::string& source, const std::vector<std::string>& overrides) {
+            const std::string& source, const std::vector<std::string>& overrides, bool trust_file = false) {
   Reader reader(schema, std::move(values));
   bool file_ok = text != nullptr;
   if (!file_ok) reader.problem(std::move(unreadable));
@@ -507,7 +510,7 @@ Values read(const Schema& schema, Values values, const std::string* text, std::s
   reader.readOverrides(overrides);
   reader.assignAll();
   // Rules over a file that could not be read would judge defaults the file may have changed.
-  if (file_ok) reader.checkRules();
+  if (file_ok) reader.checkRules(trust_file);
   return reader.take(source);
 }
 
@@ -523,6 +526,11 @@ Values loadFile(const Schema& schema, Values values, const std::string& path,
 Values parseText(const Schema& schema, Values values, const std::string& text, const std::string& source,
                  const std::vector<std::string>& overrides) {
   return read(schema, std::move(values), &text, {}, source, overrides);
+}
+
+Values parseDump(const Schema& schema, Values values, const std::string& text, const std::string& source,
+                 const std::vector<std::string>& overrides) {
+  return read(schema, std::move(values), &text, {}, source, overrides, /*trust_file=*/true);
 }
 
 void validate(const Schema& schema, const Values& values, const std::string& source) {

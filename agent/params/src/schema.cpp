@@ -31,15 +31,18 @@ const Spec* Schema::find(const std::string& key) const {
   return nullptr;
 }
 
+bool turnsOff(const Applies& a, const Values& values) {
+  const Value& when = values.at(a.when);
+  if (const auto* chosen = std::get_if<std::string>(&when)) {
+    return std::find(a.values.begin(), a.values.end(), *chosen) == a.values.end();
+  }
+  const auto* number = std::get_if<double>(&when);
+  return number != nullptr && a.values.empty() && *number == 0.0;
+}
+
 const Applies* Schema::unused(const std::string& key, const Values& values) const {
   for (const Applies& a : applies) {
-    if (a.key != key) continue;
-    const Value& when = values.at(a.when);
-    if (const auto* chosen = std::get_if<std::string>(&when)) {
-      if (std::find(a.values.begin(), a.values.end(), *chosen) == a.values.end()) return &a;
-    } else if (const auto* number = std::get_if<double>(&when)) {
-      if (a.values.empty() && *number == 0.0) return &a;
-    }
+    if (a.key == key && turnsOff(a, values)) return &a;
   }
   return nullptr;
 }

@@ -9,9 +9,11 @@
 //   mode: swa
 //   formation:
 //     radius_m: 10.0
+//     neighbourhood: k_nearest
 //     k: 3
 //
-// Keys left out keep their defaults; an empty file is the default configuration. Every problem is reported
+// Keys left out keep their defaults; an empty file is the default configuration. A key that the chosen mode
+// ignores (k with the gabriel rule, ...: params::Applies) is an error when given. Every problem is reported
 // together in one ConfigError (swa/params/engine.h).
 
 #include <string>

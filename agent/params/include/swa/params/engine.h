@@ -25,6 +25,11 @@ Values loadFile(const Schema& schema, Values values, const std::string& path,
 Values parseText(const Schema& schema, Values values, const std::string& text, const std::string& source,
                  const std::vector<std::string>& overrides);
 
+// As parseText, for a text a program wrote (a dump, perhaps of an older version that wrote every key): keys that
+// its own choices turn off are not refused from it; the overrides are judged as ever.
+Values parseDump(const Schema& schema, Values values, const std::string& text, const std::string& source,
+                 const std::vector<std::string>& overrides);
+
 // Every value within its bounds and every rule kept, else ConfigError (source = `source`) listing each violation.
 void validate(const Schema& schema, const Values& values, const std::string& source);
 

@@ -67,9 +67,9 @@ struct Check {
 };
 
 // `key` is used only while the choice parameter `when` holds one of `values` or, with no `values`, while the number
-// `when` is not 0 (0 = off); `what` names that case in messages ("the k_nearest rule"). Giving `key` is an error while it changes nothing, unless `when` was given after it: a
-// --set of `when` (a study's sweep, swa_launch --compare) may turn a file's key off. The dump writes such a key as
-// a comment.
+// `when` is not 0 (0 = off); `what` names that case in messages ("the k_nearest rule"). Giving `key` while it
+// changes nothing is an error, unless the file gave it and a --set of `when` turned it off (a study's sweep over
+// the rule); the dump writes such a key as a comment.
 struct Applies {
   std::string key;
   std::string when;
@@ -113,6 +113,9 @@ struct Schema {
   // section is the agent's configuration schema). Checks are not mounted: they belong to the outer schema.
   void mount(const std::string& prefix, const Schema& inner, const std::string& comment);
 };
+
+// Whether the values of `a.when` turn `a.key` off.
+bool turnsOff(const Applies& a, const Values& values);
 
 // Typed reads of a Values map, for checks.
 double number(const Values& values, const std::string& key);

@@ -12,12 +12,15 @@
 //     keep_uavs: [0]
 //   agent:
 //     mode: anchored
+//     formation: {neighbourhood: k_nearest}
 //     k: 2              # alias of agent.formation.k
 //
 // Rules beyond the per-key bounds:
 //   - `agent.k` / `agent.circle_fit` are aliases of agent.formation.k / agent.formation.circle_fit; giving both
 //     spellings in one file is an error (a `--set` of either replaces whatever the file gave).
 //   - Unless `agent.formation.radius_m` is given, it is set to `formation.spacing_m`.
+//   - A key that the chosen mode ignores (params::Applies: agent.k with gabriel, clock.speed in lockstep, ...) is
+//     an error when given, unless the file gave it and a --set turned it off.
 //   - `gnss.dropout_end_s` may be `.inf` (or left out): GNSS is never restored.
 //   - imu/mps/gnss `rate_hz` must each divide `dynamics.rate_hz` exactly; dropout_end_s > dropout_start_s;
 //     `gnss.keep_uavs` are distinct indices in [0, uav_count); every `gnss.windows` entry names a UAV in
@@ -41,6 +44,11 @@ Scenario loadScenario(const std::string& path, const std::vector<std::string>& o
 // scenario.
 Scenario parseScenario(const std::string& yaml_text, const std::string& source,
                        const std::vector<std::string>& overrides = {});
+
+// As parseScenario, for a scenario a program wrote (a recording's, perhaps of a version whose dump gave every key):
+// keys that the scenario's own modes turn off are not refused from it.
+Scenario parseRecordedScenario(const std::string& yaml_text, const std::string& source,
+                               const std::vector<std::string>& overrides = {});
 
 // The full effective scenario as commented YAML (every key, agent.formation.radius_m explicit) that reads back to
 // exactly `scenario`: a run directory's scenario.yaml.
