@@ -37,7 +37,8 @@ struct LaunchOptions {
   bool help = false;
 };
 
-// Accepts "--opt value" and "--opt=value" (--record takes a value only as --record=SET). Throws std::invalid_argument listing every problem, one per line.
+// Accepts "--opt value" and "--opt=value" (--record takes a value only as --record=SET). Throws
+// std::invalid_argument listing every problem, one per line.
 LaunchOptions parseLaunchOptions(const std::vector<std::string>& args);
 std::string launchUsage();
 

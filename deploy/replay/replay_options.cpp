@@ -49,7 +49,8 @@ app::Cli makeCli(ReplayOptions& o) {
            "recorded seconds per wall second; 0: as fast as possible (with --lockstep: as fast as the agents answer)");
   cli.flag("--lockstep", o.lockstep, "wait for each replayed agent's answer to each IMU sample (see above)");
   cli.scenario(o.scenario_path, "--check: the parameters to run the agents with, instead of the recorded ones");
-  cli.overrides(o.overrides, "--check: on top of the recorded (or --scenario) parameters, e.g. agent.formation.radius_m=12");
+  cli.overrides(o.overrides,
+                "--check: on top of the recorded (or --scenario) parameters, e.g. agent.formation.radius_m=12");
   cli.domain(o.domain, dds::kMaxDomainId);
   cli.real("--wait-s", "S", o.wait_s, 0.0, 3600.0, "a wall time in seconds",
            "longest wait for the agents' IMU readers before replaying (then it replays anyway)");

@@ -71,7 +71,11 @@ run() {  # run WITH(0|1) ROUND
   fi
   if [ -n "$reader_pid" ]; then
     kill -TERM "$reader_pid"
-    wait "$reader_pid" || { echo "bench_record_live: the bare reader failed:" >&2; cat "$work/reader_$2.log" >&2; exit 1; }
+    if ! wait "$reader_pid"; then
+      echo "bench_record_live: the bare reader failed:" >&2
+      cat "$work/reader_$2.log" >&2
+      exit 1
+    fi
     reader_pid=""
     "$bin/bench_record_reader" --count-mcap "$out/run.mcap" >"$work/recording_$2.json"
   fi
@@ -111,7 +115,8 @@ print()
 print(f"{'round':<8}{'monitor --record --live [s]':>29}{'bare reader [s] (user+sys)':>28}{'ratio':>8}")
 for r in range(rounds):
     m, b = rows[1][r][0], readers[r]
-    print(f"{'#' + str(r + 1):<8}{m:>29.3f}{b['cpu_s']:>13.3f} ({b['user_s']:.2f}+{b['system_s']:.2f}){'':>3}{m / b['cpu_s']:>8.2f}")
+    split = f"({b['user_s']:.2f}+{b['system_s']:.2f})"
+    print(f"{'#' + str(r + 1):<8}{m:>29.3f}{b['cpu_s']:>13.3f} {split}{'':>3}{m / b['cpu_s']:>8.2f}")
 bare = statistics.median(b["cpu_s"] for b in readers)
 print(f"median: monitor {with_:.3f} s, bare reader {bare:.3f} s, ratio {with_ / bare:.3f} (issue #24 target <= 1.3)")
 

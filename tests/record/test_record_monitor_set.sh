@@ -75,4 +75,5 @@ for mode in "--check" "--lockstep --speed 0 --wait-s 5"; do
   grep -q "is a 'monitor' recording .*swa_replay needs a complete recording" "$work/replay.err" \
     || fail "swa_replay $mode does not say why: $(cat "$work/replay.err")"
 done
-echo "test_record_monitor_set: PASS ($(python3 -c "import json;print(len(json.load(open('$run/recording.json'))['channels']))") channels)"
+channels=$(python3 -c "import json, sys; print(len(json.load(open(sys.argv[1]))['channels']))" "$run/recording.json")
+echo "test_record_monitor_set: PASS ($channels channels)"

@@ -413,7 +413,8 @@ TEST(ScenarioParse, GivenKeysTheChosenModesIgnore_ThenEachIsAnErrorThatSaysWhich
   EXPECT_EQ(parseScenario("clock: {mode: realtime, speed: 2}\n", "<t>", {"clock.mode=lockstep"}).clock.mode,
             ClockMode::kLockstep);
   // AND a recording's scenario, written by a version whose dump gave every key, is read (swa_replay --check)
-  const std::string old_dump = "clock: {mode: lockstep, speed: 1}\nagent: {formation: {neighbourhood: gabriel, k: 3}}\n";
+  const std::string old_dump =
+      "clock: {mode: lockstep, speed: 1}\nagent: {formation: {neighbourhood: gabriel, k: 3}}\n";
   EXPECT_EQ(expectConfigError([&] { parseScenario(old_dump, "<t>"); }).problems().size(), 2u);
   EXPECT_EQ(parseRecordedScenario(old_dump, "<t>").clock.speed, 1.0);
 }

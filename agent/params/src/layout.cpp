@@ -201,8 +201,9 @@ std::string describe(const Schema& schema, const Values& defaults) {
   }
   std::string applies;
   if (!cases.empty()) {
-    applies = "\nKeys used only in some modes (given otherwise they change nothing, so giving one is an error, unless the\n"
-              "file gave it and a --set turned it off):\n";
+    applies =
+        "\nKeys used only in some modes (given otherwise they change nothing, so giving one is an error, unless the\n"
+        "file gave it and a --set turned it off):\n";
     for (const auto& c : cases) applies += "  - " + join(c.second, ", ") + ": " + c.first + ".\n";
   }
   return schema.title +

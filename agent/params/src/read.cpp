@@ -177,7 +177,6 @@ class Reader {
     }
   }
 
-
   // Values built in code: each against its bounds.
   void checkValues() {
     for (const Spec& s : schema_.specs) {

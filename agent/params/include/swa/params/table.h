@@ -143,7 +143,8 @@ class Table {
   T parse(const std::string& text, const std::string& source, const std::vector<std::string>& overrides = {}) const {
     return build(parseText(schema_, values(T{}), text, source, overrides));
   }
-  T parseDump(const std::string& text, const std::string& source, const std::vector<std::string>& overrides = {}) const {
+  T parseDump(const std::string& text, const std::string& source,
+              const std::vector<std::string>& overrides = {}) const {
     return build(params::parseDump(schema_, values(T{}), text, source, overrides));
   }
   // `overrides` on top of `base`; ConfigError with source "--set".
