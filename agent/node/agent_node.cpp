@@ -124,12 +124,13 @@ std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn(const Matched
       {dds::topics::gnss(id_), matched[3] >= 1},
   }};
   for (std::size_t k = 0; k < endpoints.size(); ++k) matched_once_[k] = matched_once_[k] || endpoints[k].second;
-  const auto [back, name] = participant_->peersBackAfterLease();
+  const dds::Participant::PeersBack back = participant_->peersBackAfterLease();
   const auto now = std::chrono::steady_clock::now();
-  if (back != peers_back_) {
-    peers_back_ = back;
+  if (back.count != peers_back_) {
+    peers_back_ = back.count;
     peer_back_at_ = now;
-    peer_back_name_ = name;
+    peer_back_name_ = back.last_name;
+    peer_back_key_ = back.last_key;
   }
   if (!peer_back_at_ || now - *peer_back_at_ < kRematchWait) return std::nullopt;
   peer_back_at_.reset();
@@ -137,8 +138,18 @@ std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn(const Matched
   for (std::size_t k = 0; k < endpoints.size(); ++k) {
     if (matched_once_[k] && !endpoints[k].second) lost += " " + endpoints[k].first;
   }
-  if (lost.empty()) return std::nullopt;
-  return "participant " + peer_back_name_ + " came back after its DDS lease expired and these did not re-match:" + lost;
+  if (!lost.empty()) {
+    return "participant " + peer_back_name_ + " came back after its DDS lease expired and these did not re-match:" +
+           lost;
+  }
+  // The reader of our commands may have dropped us while it was silent and not learnt our writer again: it looks
+  // matched from here and hears nothing (CI: the simulator stopped 5 s, one agent declared dead for the rest of the
+  // run). Nothing on this side shows it, so its return is reason enough.
+  if (participant_->readBy(cmd_writer_, peer_back_key_)) {
+    return "participant " + peer_back_name_ + ", the reader of " + dds::topics::cmdVel(id_) +
+           ", came back after its DDS lease expired and may not know our writer any more";
+  }
+  return std::nullopt;
 }
 
 AgentNode::~AgentNode() { participant_.reset(); }

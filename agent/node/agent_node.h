@@ -116,6 +116,7 @@ class AgentNode : public app::Role {
   int peers_back_ = 0;  // PeerBook count of the current participant
   std::optional<std::chrono::steady_clock::time_point> peer_back_at_;
   std::string peer_back_name_;
+  dds::PeerKey peer_back_key_{};
   // Which of our endpoints (cmd_vel, imu, detections, gnss) have matched since connect(): only those can be lost.
   std::array<bool, 4> matched_once_{};
   std::chrono::steady_clock::time_point connected_at_;

@@ -10,9 +10,10 @@
 // starts over when samples are expected again. Silent for `limit`: report, and the count starts over. The limit is
 // longer than the DDS lease (4 s, profiles.xml), so a writer that died or was stopped is forgotten by discovery first.
 //
-// The other direction (the agent's commands not reaching the simulator) is not watched: a command writer that is
-// not fully acknowledged is no sign of it, since a fast lockstep run (1 ms steps, 5 ms acknowledgment delay) almost
-// never is. Pure: the caller supplies the time and the channel's state; the node owns the instance.
+// The other direction (the agent's commands not reaching the simulator) is not watched here: a command writer that
+// is not fully acknowledged is no sign of it, since a fast lockstep run (1 ms steps, 5 ms acknowledgment delay) almost
+// never is. The agent re-creates its participant instead when the reader of its commands comes back after its lease
+// (agent_node.cpp). Pure: the caller supplies the time and the channel's state; the node owns the instance.
 
 #include <chrono>
 #include <optional>

@@ -134,6 +134,7 @@ void BridgeNode::onAck(px4_msgs::msg::VehicleCommandAck&& m) {
 
 void BridgeNode::onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& writer) {
   const std::lock_guard<std::mutex> lock(mutex_);
+  for (const dds::PeerKey& gone : participant_->takePeersGone()) gate_.participantGone(gone);
   if (gate_.admit(0, writer, std::chrono::steady_clock::now()) == dds::Admission::kRefused) {
     if (gate_.firstRefusal(0, writer)) {
       std::fprintf(stderr, "swa_px4_bridge %d: a second writer on %s while the current one is active: refused\n", id_,

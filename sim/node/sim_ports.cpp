@@ -229,6 +229,7 @@ void SimPorts::publishEnd(const AliveFn& alive, bool completed) {
 const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
   batch_.clear();
   admitted_.clear();
+  for (const dds::PeerKey& gone : participant_->takePeersGone()) gate_.participantGone(gone);
   if (px4_) {
     px4_->drain(batch_, wait, world_.time_ns(), [this](const Answer& a) { return fromCommander(a); });
   } else {
@@ -304,7 +305,7 @@ bool SimPorts::fromCommander(const Answer& a) {
   }
   if (admission == dds::Admission::kHandover && gate_.handovers() != summary_.command_handovers) {
     summary_.command_handovers = gate_.handovers();
-    std::fprintf(stderr, "swa_sim: t = %.2f s: %s now written by writer %s (the previous one fell silent)\n",
+    std::fprintf(stderr, "swa_sim: t = %.2f s: %s now written by writer %s (the previous one fell silent or left)\n",
                  sim::stampSeconds(world_.time_ns()), commandTopic(a.uav).c_str(), guidText(a.writer).c_str());
   }
   return true;

@@ -1,5 +1,6 @@
 // One commander per UAV (swa/dds/command_gate.h): the first writer heard owns a UAV's cmd_vel, another writer is
-// refused while the owner is active and takes over once the owner has been silent for the handover time.
+// refused while the owner is active and takes over once the owner has been silent for the handover time or its
+// participant left.
 
 #include <gtest/gtest.h>
 
@@ -45,6 +46,28 @@ TEST_F(CommandGateTest, AWriterTakesOverOnlyAfterTheOwnerFellSilent) {
   // ... and from then on the old writer is the foreign one
   EXPECT_EQ(gate.admit(0, writer(1), t0 + milliseconds(510)), Admission::kRefused);
   EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(520)), Admission::kOwner);
+}
+
+TEST_F(CommandGateTest, AWriterTakesOverAtOnceWhenTheOwnersParticipantLeft) {
+  // Writers 1 and 2 of one participant (prefix 0x01...), writer 3 of another
+  WriterId mixed = writer(3);
+  std::fill(mixed.begin(), mixed.begin() + 12, std::uint8_t{1});
+  gate.admit(0, writer(1), t0);
+  gate.admit(1, writer(1), t0);
+  std::array<std::uint8_t, 12> other{};
+  other.fill(7);
+  gate.participantGone(other);  // someone else's goodbye changes nothing
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(10)), Admission::kRefused);
+  // The agent re-created its participant: the old one said goodbye, its new writer owns the UAV without waiting
+  std::array<std::uint8_t, 12> prefix{};
+  prefix.fill(1);
+  gate.participantGone(prefix);
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(20)), Admission::kHandover);
+  EXPECT_EQ(gate.handovers(), 1u);
+  EXPECT_EQ(gate.admit(0, writer(1), t0 + milliseconds(30)), Admission::kRefused);
+  // A participant back after its lease with the same writer, before anyone else spoke, owns its UAV again
+  EXPECT_EQ(gate.admit(1, writer(1), t0 + milliseconds(40)), Admission::kOwner);
+  EXPECT_EQ(gate.admit(1, mixed, t0 + milliseconds(50)), Admission::kRefused);
 }
 
 TEST_F(CommandGateTest, LateDeliveredOwnerSamplesDoNotMoveItsLastHeardBack) {

@@ -103,6 +103,10 @@ TEST(PeerBook, CountsPeersBackAfterTheirLeaseExpiredButNotAfterAGoodbye) {
   book.discovered({key(1), "swa_sim", card("", 1)});
   EXPECT_EQ(book.returnedAfterLease(), 1);
   EXPECT_EQ(book.lastReturned(), "swa_sim");
+  EXPECT_EQ(book.lastReturnedKey(), key(1));  // the agent asks whether this participant reads its commands
+  // Every departure, goodbye or lease, is handed out once, in order (the command gate frees the say of its writers)
+  EXPECT_EQ(book.takeGone(), (std::vector<PeerKey>{key(2), key(1)}));
+  EXPECT_TRUE(book.takeGone().empty());
   // A QoS change announcement of a live peer is not a return
   book.discovered({key(1), "swa_sim", card("", 1)});
   EXPECT_EQ(book.returnedAfterLease(), 1);

@@ -20,9 +20,10 @@ Admission CommandGate::admit(int uav, const WriterId& writer, Clock::time_point 
   std::optional<Owner>& owner = owners_[static_cast<std::size_t>(uav)];
   if (owner && owner->writer == writer) {
     if (received > owner->last_heard) owner->last_heard = received;
+    owner->gone = false;
     return Admission::kOwner;
   }
-  if (owner && received - owner->last_heard < handover_) {
+  if (owner && !owner->gone && received - owner->last_heard < handover_) {
     ++refused_;
     return Admission::kRefused;
   }
@@ -39,6 +40,12 @@ bool CommandGate::firstRefusal(int uav, const WriterId& writer) {
 void CommandGate::shift(Clock::duration lost, Clock::time_point now) {
   for (std::optional<Owner>& owner : owners_) {
     if (owner) owner->last_heard = std::min(owner->last_heard + lost, now);
+  }
+}
+
+void CommandGate::participantGone(const std::array<std::uint8_t, 12>& prefix) {
+  for (std::optional<Owner>& owner : owners_) {
+    if (owner && std::equal(prefix.begin(), prefix.end(), owner->writer.begin())) owner->gone = true;
   }
 }
 

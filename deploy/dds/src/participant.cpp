@@ -6,7 +6,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
+#include <set>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -151,6 +153,26 @@ class Participant::PeerListener : public fdds::DomainParticipantListener {
   }
 #endif
 
+  // Which participants read each of our writers: a matched reader's handle is its GUID, whose first 12 bytes are
+  // its participant's prefix.
+  void on_publication_matched(fdds::DataWriter* writer, const fdds::PublicationMatchedStatus& status) override {
+    PeerKey key{};
+    for (std::size_t i = 0; i < key.size(); ++i) key[i] = status.last_subscription_handle.value[i];
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::multiset<PeerKey>& readers = readers_[writer];
+    if (status.current_count_change > 0) {
+      readers.insert(key);
+    } else if (status.current_count_change < 0) {
+      if (const auto it = readers.find(key); it != readers.end()) readers.erase(it);
+    }
+  }
+
+  bool readBy(const fdds::DataWriter* writer, const PeerKey& peer) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = readers_.find(writer);
+    return it != readers_.end() && it->second.count(peer) > 0;
+  }
+
   template <class F>
   auto withBook(F&& f) {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -162,6 +184,7 @@ class Participant::PeerListener : public fdds::DomainParticipantListener {
   std::mutex mutex_;
   PeerBook book_;
   bool trace_;
+  std::map<const fdds::DataWriter*, std::multiset<PeerKey>> readers_;
 };
 
 namespace {
@@ -272,7 +295,7 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
   qos.user_data().data_vec(std::vector<eprosima::fastrtps::rtps::octet>(card_text.begin(), card_text.end()));
   peer_listener_ = std::make_unique<PeerListener>(name, card, trace != nullptr && std::string(trace) == "1");
   participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos, peer_listener_.get(),
-                                             fdds::StatusMask::none());
+                                             fdds::StatusMask::publication_matched());
   if (participant_ == nullptr) {
     if (security) {
       throw DdsError("DDS Security refused the credentials of participant '" + name + "' on domain " +
@@ -377,9 +400,18 @@ bool Participant::mustGiveWay() const {
   return peer_listener_->withBook([](PeerBook& book) { return book.mustGiveWay(); });
 }
 
-std::pair<int, std::string> Participant::peersBackAfterLease() const {
-  return peer_listener_->withBook(
-      [](PeerBook& book) { return std::make_pair(book.returnedAfterLease(), book.lastReturned()); });
+Participant::PeersBack Participant::peersBackAfterLease() const {
+  return peer_listener_->withBook([](PeerBook& book) {
+    return PeersBack{book.returnedAfterLease(), book.lastReturned(), book.lastReturnedKey()};
+  });
+}
+
+std::vector<PeerKey> Participant::takePeersGone() {
+  return peer_listener_->withBook([](PeerBook& book) { return book.takeGone(); });
+}
+
+bool Participant::writerReadBy(const fdds::DataWriter* w, const PeerKey& peer) const {
+  return peer_listener_->readBy(w, peer);
 }
 
 std::vector<int> Participant::ownSharedMemoryPorts() {

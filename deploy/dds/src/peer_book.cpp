@@ -81,6 +81,7 @@ void PeerBook::discovered(const Peer& peer) {
   if (const auto it = expired_.find(peer.key); it != expired_.end()) {
     ++returned_;
     last_returned_ = it->second;
+    last_returned_key_ = peer.key;
     expired_.erase(it);
   }
   live_[peer.key] = peer;
@@ -97,7 +98,15 @@ void PeerBook::lost(const PeerKey& key, bool lease_expired) {
     if (expired_.size() >= kMaxExpired) expired_.erase(expired_.begin());
     expired_[key] = it->second.name;
   }
+  if (gone_.size() >= kMaxExpired) gone_.pop_front();
+  gone_.push_back(key);
   live_.erase(it);
+}
+
+std::vector<PeerKey> PeerBook::takeGone() {
+  std::vector<PeerKey> gone(gone_.begin(), gone_.end());
+  gone_.clear();
+  return gone;
 }
 
 std::optional<Peer> PeerBook::oldestTwin() const {

@@ -2,8 +2,9 @@
 // One commander per UAV. DDS lets any participant in the swarm write swa/uav<i>/cmd_vel: a second agent started with
 // the same id, a test tool, a rogue. The simulator and the autopilot bridges apply the commands of one writer per UAV,
 // the owner: the first writer heard from, until it has been silent for `handover` (its agent crashed and a restarted
-// one took over); commands of any other writer meanwhile are refused and counted, and each new refused writer is
-// reported once.
+// one took over) or until its participant left (an agent that re-created its participant: its new writer takes over
+// at once); commands of any other writer meanwhile are refused and counted, and each new refused writer is reported
+// once.
 // Pure (no DDS, no clock): the node passes the writer's identity (its GUID) and the time the sample arrived.
 
 #include <array>
@@ -35,6 +36,9 @@ class CommandGate {
   // Moves every owner's last-heard time by `lost` (a stall of the simulator itself: nobody could be heard), but not
   // past `now` (a sample drained after the stall, before it was noticed, is already recent).
   void shift(Clock::duration lost, Clock::time_point now);
+  // The participant with this GUID prefix left (a goodbye, or its lease expired): its writers own nothing any more.
+  // If it comes back with the same writer before another one spoke, that writer is the owner again.
+  void participantGone(const std::array<std::uint8_t, 12>& prefix);
 
   std::uint64_t refused() const { return refused_; }
   std::uint64_t handovers() const { return handovers_; }  // owner changes after the first owner of each UAV
@@ -44,6 +48,7 @@ class CommandGate {
   struct Owner {
     WriterId writer{};
     Clock::time_point last_heard{};
+    bool gone = false;  // its participant left
   };
   Clock::duration handover_;
   std::vector<std::optional<Owner>> owners_;

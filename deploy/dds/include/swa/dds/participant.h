@@ -207,7 +207,19 @@ class Participant {
   // older than us (we must give way); how many peers came back after their lease had expired, and the last one's name.
   std::optional<Peer> twin() const;
   bool mustGiveWay() const;
-  std::pair<int, std::string> peersBackAfterLease() const;
+  struct PeersBack {
+    int count = 0;
+    std::string last_name;
+    PeerKey last_key{};
+  };
+  PeersBack peersBackAfterLease() const;
+  // Participants that left since the last call (PeerBook::takeGone).
+  std::vector<PeerKey> takePeersGone();
+  // Whether a reader of participant `peer` is matched with `w` (as this side's discovery sees it).
+  template <class Msg>
+  bool readBy(const Writer<Msg>& w, const PeerKey& peer) const {
+    return writerReadBy(w.writer_, peer);
+  }
 
   // The shared-memory ports this process listens on as their only reader (its participants' unicast ports), and those
   // of them that Fast DDS re-created under it, so that what peers send to them is lost (shm_ports.h). Linux; empty
@@ -221,6 +233,7 @@ class Participant {
   // Deleted after the participant (the destructor deletes the participant explicitly).
   class PeerListener;
   std::unique_ptr<PeerListener> peer_listener_;
+  bool writerReadBy(const eprosima::fastdds::dds::DataWriter* w, const PeerKey& peer) const;
   eprosima::fastdds::dds::DataWriter* createWriter(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
   eprosima::fastdds::dds::DataReader* createReader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
                                                    eprosima::fastdds::dds::DataReaderListener* listener);

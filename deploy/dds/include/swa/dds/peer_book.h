@@ -15,9 +15,11 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace swa::dds {
 
@@ -62,6 +64,10 @@ class PeerBook {
   // construction.
   int returnedAfterLease() const { return returned_; }
   const std::string& lastReturned() const { return last_returned_; }
+  const PeerKey& lastReturnedKey() const { return last_returned_key_; }
+  // Peers that left (goodbye or lease) since the last call, oldest first (bounded like the expired ones): a node
+  // that gives one writer the say over a UAV frees the say of a writer whose participant left (command_gate.h).
+  std::vector<PeerKey> takeGone();
   // Peers remembered as expired (bounded: crashed peers never come back).
   std::size_t expiredRemembered() const { return expired_.size(); }
   static constexpr std::size_t kMaxExpired = 1024;
@@ -74,6 +80,8 @@ class PeerBook {
   std::map<PeerKey, std::string> expired_;  // dropped for silence, by name, until they come back
   int returned_ = 0;
   std::string last_returned_;
+  PeerKey last_returned_key_{};
+  std::deque<PeerKey> gone_;
 };
 
 }  // namespace swa::dds
