@@ -16,7 +16,7 @@ bash "$root/deploy/install-deps.sh"
 generator=()
 if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
 cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSWA_WERROR=ON -DSWA_SANITIZE=ON \
-  -DSWA_BUILD_BENCHMARKS=OFF
+  -DSWA_BUILD_BENCHMARKS=OFF -DSWA_UNITY_BUILD=ON
 cmake --build "$build" -j "$(nproc)" --target swa_sanitized_tests
 # detect_stack_use_after_return is left off: it made the closed-loop tests 1.6 times slower again (20 times Release).
 asan=detect_leaks=1:strict_string_checks=1:check_initialization_order=1

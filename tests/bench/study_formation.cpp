@@ -1,6 +1,6 @@
 // Formation-quality study (issue #10): the closed loop over seeds for every swarm size in a range, one row per size
 // and neighbourhood rule, the metrics of DESIGN §5 side by side. A table-printing program, not a test: the
-// closed-loop tests assert the targets on fewer seeds (tests/closedloop/test_formation_rules.cpp).
+// closed-loop statistics assert the targets on fewer seeds (tests/closedloop/formation_statistics.cpp).
 //
 //   study_formation [--seeds 20] [--jobs 2] [--sizes 3-16] [--duration 600] [--rules gabriel,k3]
 //                   [--scenario FILE] [--set key=value]...

@@ -1,5 +1,5 @@
 // DESIGN §5 / issues #3 and #10: SWA holds the formation after GNSS is lost, standalone UAVs drift apart. The
-// targets of the neighbourhood rules over every swarm size are in test_formation_rules.cpp.
+// targets of the neighbourhood rules over every swarm size are in formation_statistics.cpp (a benchmark).
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,6 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -241,46 +240,5 @@ inline std::string useOwnSwarm() {
   ::setenv("SWA_SWARM", name.c_str(), 1);
   return name;
 }
-
-// A run judged against the wall clock (realtime mode) on a 2-core machine that other users share: this thread, and
-// every process it starts from now on (they inherit it), gets nice -10, about 9 times the CPU share of a process at
-// the default priority, so a foreign load cannot make a healthy loop late. Flight stacks give their control loop
-// priority the same way (deploy/README.md). Returns the niceness now in force: the one before when not permitted.
-inline int favourRealtimeRun() {
-  ::setpriority(PRIO_PROCESS, 0, -10);
-  return ::getpriority(PRIO_PROCESS, 0);  // -1 is a valid niceness here, never an error (PRIO_PROCESS of self)
-}
-
-// The share of all CPU time (idle included) since construction that the hypervisor gave to other guests while this
-// machine had work to run (steal time, /proc/stat): 0 where the kernel reports none. This VM shares its physical
-// cores; while they are taken away no process of ours runs, whatever its priority.
-class StealMeter {
- public:
-  StealMeter() : start_(read()) {}
-  double fraction() const {
-    const Ticks now = read();
-    const double total = now.total - start_.total;
-    return total > 0.0 ? (now.steal - start_.steal) / total : 0.0;
-  }
-
- private:
-  struct Ticks {
-    double steal = 0.0, total = 0.0;
-  };
-  // The "cpu" line: user nice system idle iowait irq softirq steal (guest time is already in user and nice).
-  static Ticks read() {
-    std::ifstream in("/proc/stat");
-    std::string label;
-    in >> label;
-    Ticks t;
-    double v = 0.0;
-    for (int i = 0; i < 8 && in >> v; ++i) {
-      t.total += v;
-      if (i == 7) t.steal = v;
-    }
-    return t;
-  }
-  Ticks start_;
-};
 
 }  // namespace swa::testing

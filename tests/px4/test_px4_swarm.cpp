@@ -89,9 +89,10 @@ std::string logs(const fs::path& run) {
 
 TEST_F(Px4SwarmTest, FourAndEightUavsFlyThroughPx4AsCohesivelyAsDirect) {
   for (const std::string scenario : {"dropout_4.yaml", "dropout_8.yaml"}) {
-    // GIVEN the shipped scenario (GNSS lost at 10 s, 120 s, lockstep), run directly and through PX4, same seed
-    const LaunchedRun direct = launch(scenario, "direct");
-    const LaunchedRun px4 = launch(scenario, "px4");
+    // GIVEN the shipped scenario (GNSS lost at 10 s, lockstep) for 60 s, run directly and through PX4, same seed:
+    // 50 s without GNSS show a loop that does not hold (the shipped 120 s add test time, not evidence)
+    const LaunchedRun direct = launch(scenario, "direct", {"duration_s=60"});
+    const LaunchedRun px4 = launch(scenario, "px4", {"duration_s=60"});
     ASSERT_NE(px4.status, -1) << scenario << ": still running after " << kRunBoundS << " s";
     const double d_direct = jsonNumber(direct.summary, "mean_neighbor_distance_m");
     const double d_px4 = jsonNumber(px4.summary, "mean_neighbor_distance_m");

@@ -59,7 +59,7 @@ struct FocalConfig {
   // filter is badly conservative (velocity ANEES ~0.02 for n_x = 2 in the §IV-C scenario). The defaults are tuned
   // against the simulator model of DESIGN §4 by two ANEES Monte Carlos that must both hold: the single agent of
   // tests/unit/test_focal_consistency.cpp and the closed loop of the default scenario
-  // (tests/closedloop/test_formation_rules.cpp; tuned on seeds 101-120, asserted on 1-10).
+  // (tests/closedloop/test_cohesion.cpp; tuned on seeds 101-120, asserted on 1-10).
   double q_pos_m2 = 1.5e-4;
   double q_vel_m2ps2 = 1.7e-4;
   double q_acc_m2ps4 = 0.1;
