@@ -248,9 +248,9 @@ void avoidAbandonedSharedMemoryPorts(fdds::DomainParticipantQos& qos, int domain
   // None left (120 abandoned ports: `fastdds shm clean`): Fast DDS's own choice.
   if (const std::optional<int> id = unusedParticipantId(domain_id, ports, exists)) {
     wire.participant_id = *id;
-    const int first = ports.base + ports.domain_gain * domain_id + ports.participant_gain * *id;
-    used.insert(first + ports.meta_unicast_offset);
-    used.insert(first + ports.user_unicast_offset);
+    const auto [meta, user] = unicastPorts(domain_id, ports, *id);
+    used.insert(meta);
+    used.insert(user);
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include <functional>
 #include <optional>
+#include <utility>
 
 namespace swa::dds {
 
@@ -24,6 +25,9 @@ struct PortMapping {
 
 // Ids stay below this so that a participant's ports stay inside its domain's range of DG ports.
 constexpr int kMaxParticipantId = 120;
+
+// The metatraffic and user unicast ports of participant `id` on `domain`.
+std::pair<int, int> unicastPorts(int domain, const PortMapping& ports, int id);
 
 // The lowest participant id in [0, kMaxParticipantId) of which neither unicast port exists, if there is one.
 std::optional<int> unusedParticipantId(int domain, const PortMapping& ports, const std::function<bool(int)>& exists);
