@@ -10,7 +10,7 @@
 namespace swa::launch {
 namespace {
 
-std::string errorOf(const std::vector<std::string>& args) {
+std::string recordOptionsError(const std::vector<std::string>& args) {
   try {
     parseLaunchOptions(args);
   } catch (const std::invalid_argument& e) {
@@ -33,9 +33,9 @@ TEST(LaunchRecordOptions, BareRecordIsCompleteAndEqualsNamesTheSet) {
   EXPECT_TRUE(monitor.record_set == record::RecordSet::kMonitor);
   EXPECT_TRUE(parseLaunchOptions({"--scenario", "s", "--record=all"}).record_set == record::RecordSet::kAll);
   // WHEN the set is unknown THEN exit-2 error naming the valid sets
-  EXPECT_EQ(errorOf({"--scenario", "s", "--record=sensors"}), "--record must be all or monitor, got 'sensors'");
+  EXPECT_EQ(recordOptionsError({"--scenario", "s", "--record=sensors"}), "--record must be all or monitor, got 'sensors'");
   // WHEN the set is a separate argument THEN it is not taken as the set (it would be the scenario's neighbour)
-  EXPECT_EQ(errorOf({"--scenario", "s", "--record", "monitor"}), "unknown argument 'monitor' (see --help)");
+  EXPECT_EQ(recordOptionsError({"--scenario", "s", "--record", "monitor"}), "unknown argument 'monitor' (see --help)");
   // AND --help shows the syntax and both sets
   const std::string help = launchUsage();
   EXPECT_NE(help.find("--record[=all|monitor]"), std::string::npos) << help;

@@ -23,7 +23,7 @@ std::vector<UavTruth> swarm(const std::vector<Vec2>& positions) {
 }
 
 // Equilateral triangle of side `side`, first corner at `origin`.
-std::vector<UavTruth> triangle(double side, const Vec2& origin = Vec2::Zero()) {
+std::vector<UavTruth> equilateral(double side, const Vec2& origin = Vec2::Zero()) {
   return swarm({origin, origin + Vec2(side, 0.0), origin + Vec2(0.5 * side, 0.5 * std::sqrt(3.0) * side)});
 }
 
@@ -31,7 +31,7 @@ TEST(MetricsGeometry, EquilateralTriangleOfSideRIsAPerfectSingleGroup) {
   // GIVEN 3 UAVs in an equilateral triangle of side 10 m = r
   const MetricsConfig config;
   // WHEN the geometry is computed
-  const Geometry g = computeGeometry(triangle(10.0, Vec2(3.0, -2.0)), config);
+  const Geometry g = computeGeometry(equilateral(10.0, Vec2(3.0, -2.0)), config);
   // THEN every UAV's two nearest others are 10 m away, there is one group and the formation error is zero
   EXPECT_EQ(g.uav_count, 3);
   EXPECT_NEAR(g.mean_neighbor_distance_m, 10.0, 1e-12);
@@ -104,8 +104,8 @@ TEST(MetricsGeometry, SquareHasNoDiagonalEdges) {
 
 TEST(MetricsGeometry, TwoClustersFarApartAreTwoGroups) {
   // GIVEN two triangles of side 10 m whose centres are 100 m apart
-  std::vector<UavTruth> uavs = triangle(10.0);
-  for (UavTruth u : triangle(10.0, Vec2(100.0, 0.0))) {
+  std::vector<UavTruth> uavs = equilateral(10.0);
+  for (UavTruth u : equilateral(10.0, Vec2(100.0, 0.0))) {
     u.id += 3;
     uavs.push_back(u);
   }
@@ -165,7 +165,7 @@ TEST(MetricsGeometry, DistanceNeighboursIsAParameter) {
 
 TEST(MetricsGeometry, DeadAndNonFiniteUavsAreLeftOut) {
   // GIVEN a triangle plus one dead UAV on top of corner 0 and one with a NaN position
-  std::vector<UavTruth> uavs = triangle(10.0);
+  std::vector<UavTruth> uavs = equilateral(10.0);
   uavs.push_back({7, Vec2(0.1, 0.0), Vec2::Zero(), false});
   uavs.push_back({8, Vec2(std::nan(""), 0.0), Vec2::Zero(), true});
   const Geometry g = computeGeometry(uavs, MetricsConfig{});

@@ -15,11 +15,11 @@ namespace {
 using agent::Mat2;
 using agent::Vec2;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
 constexpr double kR = 10.0;
 
 Vec2 onCircle(const Vec2& centre, double deg) {
-  const double t = deg * kPi / 180.0;
+  const double t = deg * kRadPerDeg;
   return centre + kR * Vec2(std::cos(t), std::sin(t));
 }
 

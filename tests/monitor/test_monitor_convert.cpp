@@ -15,7 +15,7 @@
 namespace swa::monitor_node {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNotANumber = std::numeric_limits<double>::quiet_NaN();
 
 agent::Diagnostics tracking(agent::Mode mode = agent::Mode::kSwa) {
   agent::Diagnostics d;
@@ -125,10 +125,10 @@ TEST(MonitorConvert, NonFiniteNumbersMakeTheEstimateInvalid) {
   // WHEN one number of a tracking agent's state (position, velocity, a covariance) is NaN or infinite
   for (int field = 0; field < 4; ++field) {
     msg::AgentState m = wire::toMsg(tracking(), 0, 1);
-    if (field == 0) m.est_x_m(kNaN);
+    if (field == 0) m.est_x_m(kNotANumber);
     if (field == 1) m.est_vy_mps(std::numeric_limits<double>::infinity());
-    if (field == 2) m.pos_cov_xy_m2(kNaN);
-    if (field == 3) m.vel_cov_yy_m2ps2(kNaN);
+    if (field == 2) m.pos_cov_xy_m2(kNotANumber);
+    if (field == 3) m.vel_cov_yy_m2ps2(kNotANumber);
     // THEN the sample is marked non-finite and its estimate invalid
     const StateSample s = fromStateMsg(m, f);
     EXPECT_FALSE(s.finite) << field;

@@ -19,12 +19,12 @@ namespace {
 
 using record::Outcome;
 
-constexpr agent::StampNs kStep = 100'000'000;
+constexpr agent::StampNs kLiveStep = 100'000'000;
 
 // Four UAVs on a 10 m square drifting east at 0.1 m/s; agent `dead` (if >= 0) is not alive from step 10 on.
 TruthSample square(int k, int dead = -1) {
   TruthSample t;
-  t.stamp_ns = k * kStep;
+  t.stamp_ns = k * kLiveStep;
   const double x0 = 0.01 * k;
   const agent::Vec2 corners[] = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
   for (int i = 0; i < 4; ++i) {
@@ -42,7 +42,7 @@ TruthSample square(int k, int dead = -1) {
 StateSample estimate(int uav, int k) {
   StateSample s;
   s.uav = uav;
-  s.stamp_ns = k * kStep;
+  s.stamp_ns = k * kLiveStep;
   s.mode = agent::Mode::kSwa;
   s.estimate.valid = true;
   s.estimate.position_m = agent::Vec2(0.1, -0.1);

@@ -14,7 +14,7 @@ namespace swa::monitor_node {
 namespace {
 
 // The message of the std::invalid_argument parsing throws ("" when it does not throw).
-std::string errorOf(const std::vector<std::string>& args) {
+std::string optionsError(const std::vector<std::string>& args) {
   try {
     parseMonitorOptions(args);
   } catch (const std::invalid_argument& e) {
@@ -95,42 +95,42 @@ TEST(MonitorOptions, CombineListAfterOneFlagAndRepeatedFlags) {
 
 TEST(MonitorOptions, BareArgumentOutsideCombineIsUnknown) {
   // WHEN a LABEL=DIR argument comes without --combine THEN it is an unknown argument
-  EXPECT_TRUE(contains(errorOf({"swa=out/a"}), "unknown argument 'swa=out/a'"));
+  EXPECT_TRUE(contains(optionsError({"swa=out/a"}), "unknown argument 'swa=out/a'"));
   // WHEN it comes after the option that ends the --combine list THEN it is unknown too
-  EXPECT_TRUE(contains(errorOf({"--combine", "a=b", "--out", "o", "c=d"}), "unknown argument 'c=d'"));
+  EXPECT_TRUE(contains(optionsError({"--combine", "a=b", "--out", "o", "c=d"}), "unknown argument 'c=d'"));
 }
 
 TEST(MonitorOptions, EachErrorIsReported) {
   // WHEN an option is unknown, lacks its value, or its value is empty or out of range THEN the error names it
-  EXPECT_TRUE(contains(errorOf({"--frobnicate"}), "unknown argument '--frobnicate'"));
-  EXPECT_TRUE(contains(errorOf({"--out"}), "--out needs a value"));
-  EXPECT_TRUE(contains(errorOf({"--out="}), "--out needs a file name"));
-  EXPECT_TRUE(contains(errorOf({"--scenario="}), "--scenario needs a file name"));
-  EXPECT_TRUE(contains(errorOf({"--restarts", ""}), "--restarts needs a file name"));
-  EXPECT_TRUE(contains(errorOf({"--label="}), "--label needs a name"));
-  EXPECT_TRUE(contains(errorOf({"--set", "a=b"}), "--set needs --scenario"));
-  EXPECT_TRUE(contains(errorOf({"--timeout-s", "-1"}), "--timeout-s '-1' is not a wall time"));
-  EXPECT_TRUE(contains(errorOf({"--timeout-s", "nan"}), "--timeout-s 'nan'"));
-  EXPECT_TRUE(contains(errorOf({"--timeout-s", "5s"}), "--timeout-s '5s'"));
-  EXPECT_TRUE(contains(errorOf({"--tolerance", "0"}), "--tolerance must be > 0"));
-  EXPECT_TRUE(contains(errorOf({"--tolerance", "1.5"}), "--tolerance '1.5' is not a fraction"));
+  EXPECT_TRUE(contains(optionsError({"--frobnicate"}), "unknown argument '--frobnicate'"));
+  EXPECT_TRUE(contains(optionsError({"--out"}), "--out needs a value"));
+  EXPECT_TRUE(contains(optionsError({"--out="}), "--out needs a file name"));
+  EXPECT_TRUE(contains(optionsError({"--scenario="}), "--scenario needs a file name"));
+  EXPECT_TRUE(contains(optionsError({"--restarts", ""}), "--restarts needs a file name"));
+  EXPECT_TRUE(contains(optionsError({"--label="}), "--label needs a name"));
+  EXPECT_TRUE(contains(optionsError({"--set", "a=b"}), "--set needs --scenario"));
+  EXPECT_TRUE(contains(optionsError({"--timeout-s", "-1"}), "--timeout-s '-1' is not a wall time"));
+  EXPECT_TRUE(contains(optionsError({"--timeout-s", "nan"}), "--timeout-s 'nan'"));
+  EXPECT_TRUE(contains(optionsError({"--timeout-s", "5s"}), "--timeout-s '5s'"));
+  EXPECT_TRUE(contains(optionsError({"--tolerance", "0"}), "--tolerance must be > 0"));
+  EXPECT_TRUE(contains(optionsError({"--tolerance", "1.5"}), "--tolerance '1.5' is not a fraction"));
   // WHEN a --combine list is missing, malformed, without --out or with a label twice THEN the error names it
-  EXPECT_TRUE(contains(errorOf({"--combine"}), "--combine needs a value"));
-  EXPECT_TRUE(contains(errorOf({"--combine", "nolabel", "--out", "o"}), "--combine 'nolabel' is not LABEL=DIR"));
-  EXPECT_TRUE(contains(errorOf({"--combine", "=dir", "--out", "o"}), "--combine '=dir' is not LABEL=DIR"));
-  EXPECT_TRUE(contains(errorOf({"--combine", "a=", "--out", "o"}), "--combine 'a=' is not LABEL=DIR"));
-  EXPECT_TRUE(contains(errorOf({"--combine", "a=x"}), "--combine needs --out DIR"));
-  EXPECT_TRUE(contains(errorOf({"--combine", "a=x", "a=y", "--out", "o"}), "label 'a' given twice"));
+  EXPECT_TRUE(contains(optionsError({"--combine"}), "--combine needs a value"));
+  EXPECT_TRUE(contains(optionsError({"--combine", "nolabel", "--out", "o"}), "--combine 'nolabel' is not LABEL=DIR"));
+  EXPECT_TRUE(contains(optionsError({"--combine", "=dir", "--out", "o"}), "--combine '=dir' is not LABEL=DIR"));
+  EXPECT_TRUE(contains(optionsError({"--combine", "a=", "--out", "o"}), "--combine 'a=' is not LABEL=DIR"));
+  EXPECT_TRUE(contains(optionsError({"--combine", "a=x"}), "--combine needs --out DIR"));
+  EXPECT_TRUE(contains(optionsError({"--combine", "a=x", "a=y", "--out", "o"}), "label 'a' given twice"));
   // WHEN a live-mode option is given with --combine THEN the error says it applies to the live mode only
   for (const char* live : {"--label", "--domain", "--restarts", "--timeout-s"}) {
-    const std::string e = errorOf({"--combine", "a=x", "--out", "o", live, "1"});
+    const std::string e = optionsError({"--combine", "a=x", "--out", "o", live, "1"});
     EXPECT_TRUE(contains(e, std::string(live) + " applies to the live mode only")) << e;
   }
 }
 
 TEST(MonitorOptions, AllProblemsTogetherOnePerLine) {
   // WHEN four arguments are wrong at once
-  const std::string e = errorOf({"--bogus", "--timeout-s", "x", "--set", "a=b", "--tolerance", "2"});
+  const std::string e = optionsError({"--bogus", "--timeout-s", "x", "--set", "a=b", "--tolerance", "2"});
   // THEN the error names each of them, one per line
   EXPECT_TRUE(contains(e, "unknown argument '--bogus'"));
   EXPECT_TRUE(contains(e, "--timeout-s 'x'"));
@@ -180,13 +180,13 @@ TEST(MonitorOptions, RecordSetChoosesWhatTheRecordingHolds) {
   EXPECT_TRUE(parseMonitorOptions({"--record", "r.mcap", "--record-set", "all"}).record_set ==
               record::RecordSet::kAll);
   // WHEN the set is unknown THEN the error lists the valid ones
-  EXPECT_EQ(errorOf({"--record", "r.mcap", "--record-set", "sensors"}),
+  EXPECT_EQ(optionsError({"--record", "r.mcap", "--record-set", "sensors"}),
             "--record-set must be all or monitor, got 'sensors'");
   // WHEN --record-set comes without --record THEN it says what it needs
-  EXPECT_EQ(errorOf({"--record-set", "monitor"}),
+  EXPECT_EQ(optionsError({"--record-set", "monitor"}),
             "--record-set needs --record FILE.mcap (it says what the recording holds)");
   // WHEN it is given with --combine THEN it is a live-mode option
-  const std::string e = errorOf({"--combine", "a=x", "--out", "o", "--record-set", "monitor"});
+  const std::string e = optionsError({"--combine", "a=x", "--out", "o", "--record-set", "monitor"});
   EXPECT_TRUE(contains(e, "--record-set applies to the live mode only")) << e;
   EXPECT_FALSE(contains(e, "needs --record")) << e;
   // AND --help names both sets

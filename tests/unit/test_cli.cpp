@@ -69,7 +69,7 @@ std::string problemsOf(const std::vector<std::string>& args, Options* read = nul
   return all;
 }
 
-bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+bool mentions(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
 TEST(Cli, ReadsBothSpellingsAndLeavesDefaultsAlone) {
   // GIVEN every kind of option, some as "--opt value", some as "--opt=value"
@@ -109,7 +109,7 @@ TEST(Cli, TheArgumentAfterAnOptionIsItsValueWhateverItLooksLike) {
   Options o;
   const std::string problems = problemsOf({"--scenario", "s", "--rate", "-1", "--name", "--verbose"}, &o);
   // THEN they are values (a bad number, a name), not options
-  EXPECT_TRUE(contains(problems, "--rate '-1' is not a rate in hertz in [0.5, 10]")) << problems;
+  EXPECT_TRUE(mentions(problems, "--rate '-1' is not a rate in hertz in [0.5, 10]")) << problems;
   EXPECT_EQ(o.name, "--verbose");
   EXPECT_FALSE(o.verbose);
 }
@@ -125,7 +125,7 @@ TEST(Cli, EveryProblemOfOneLineIsReportedOnePerLine) {
                            "--name needs a name\n", "--colour must be red or green, got 'blue'\n",
                            "unknown argument '--frobnicate' (see --help)\n", "unknown argument 'stray' (see --help)\n",
                            "--count needs a value\n", "--scenario FILE is required\n"}) {
-    EXPECT_TRUE(contains(p, line)) << line << " missing from:\n" << p;
+    EXPECT_TRUE(mentions(p, line)) << line << " missing from:\n" << p;
   }
   EXPECT_EQ(std::count(p.begin(), p.end(), '\n'), 9) << p;
 }
@@ -141,10 +141,10 @@ TEST(Cli, AnEmptyInlineValueIsAValueAndTakesNothingAfterIt) {
 
 TEST(Cli, NumbersMustBeWholeAndInRange) {
   for (const char* bad : {"", " 3", "3 ", "0x10", "1e2", "101", "0", "-5"}) {
-    EXPECT_TRUE(contains(problemsOf({"--scenario", "s", "--count", bad}), "--count '")) << "'" << bad << "'";
+    EXPECT_TRUE(mentions(problemsOf({"--scenario", "s", "--count", bad}), "--count '")) << "'" << bad << "'";
   }
   for (const char* bad : {"inf", "nan", "10.5", "0.4", "1,5", "5s"}) {
-    EXPECT_TRUE(contains(problemsOf({"--scenario", "s", "--rate", bad}), "--rate '")) << bad;
+    EXPECT_TRUE(mentions(problemsOf({"--scenario", "s", "--rate", bad}), "--rate '")) << bad;
   }
   Options o;
   EXPECT_EQ(problemsOf({"--scenario", "s", "--rate", "1e1", "--count", "007"}, &o), "");
@@ -251,10 +251,10 @@ TEST(Cli, HelpListsEveryOptionWithValueNameDefaultRangeAndMeaning) {
                            "how often; in [0.5, 10]", "--count N=3", "how many; in [1, 100]", "--set key=value",
                            "repeatable, applied in order", "--pair A=B ...", "one of red or green",
                            "--domain D", "0..232 (default: $SWA_DOMAIN, else 0)", "--verbose", "--keys"}) {
-    EXPECT_TRUE(contains(h, must)) << must << " missing from:\n" << h;
+    EXPECT_TRUE(mentions(h, must)) << must << " missing from:\n" << h;
   }
   // AND an empty text shows no default
-  EXPECT_FALSE(contains(h, "--name NAME=")) << h;
+  EXPECT_FALSE(mentions(h, "--name NAME=")) << h;
 }
 
 TEST(Cli, HelpWrapsLongMeaningsWithoutSplittingARange) {
@@ -272,8 +272,8 @@ TEST(Cli, HelpWrapsLongMeaningsWithoutSplittingARange) {
   std::istringstream lines(h);
   std::string line;
   while (std::getline(lines, line)) EXPECT_LE(line.size(), 116u) << line;
-  EXPECT_TRUE(contains(h, "word39")) << h;
-  EXPECT_TRUE(contains(h, "[0.001, 3600]")) << h;
+  EXPECT_TRUE(mentions(h, "word39")) << h;
+  EXPECT_TRUE(mentions(h, "[0.001, 3600]")) << h;
 }
 
 // A flag that may carry a value (swa_launch --record[=all|monitor]): what each spelling reads as.
@@ -311,9 +311,9 @@ TEST(Cli, AFlagChoiceIsItsFirstNameBareAndTakesAValueOnlyAfterAnEqualsSign) {
   const FlagChoiceRead separate = readFlagChoice({"--record", "monitor"});
   EXPECT_EQ(separate.problems, "unknown argument 'monitor' (see --help)\n");
   // AND --help shows the values next to the name and lists them in the meaning
-  EXPECT_TRUE(contains(bare.help, "--record[=all|monitor]")) << bare.help;
-  EXPECT_TRUE(contains(bare.help, "record the run; one of all or monitor")) << bare.help;
-  EXPECT_FALSE(contains(bare.help, "{all}")) << bare.help;
+  EXPECT_TRUE(mentions(bare.help, "--record[=all|monitor]")) << bare.help;
+  EXPECT_TRUE(mentions(bare.help, "record the run; one of all or monitor")) << bare.help;
+  EXPECT_FALSE(mentions(bare.help, "{all}")) << bare.help;
 }
 
 }  // namespace

@@ -13,7 +13,7 @@
 namespace swa::agent {
 namespace {
 
-constexpr double kR = 10.0;
+constexpr double kLatticeR = 10.0;
 constexpr double kRange = 40.0;
 constexpr double kNoCap = 1e6;  // Gabriel's test alone, no edge-length cap
 
@@ -38,9 +38,9 @@ std::set<int> ids(const Neighbourhood& nb) { return {nb.ids.begin(), nb.ids.begi
 std::vector<Track> triangularLattice(double rot_deg) {
   std::vector<Track> t;
   for (int k = 0; k < 6; ++k) {
-    t.push_back(track(k, polar(kR, rot_deg + 60.0 * k)));
-    t.push_back(track(10 + k, polar(std::sqrt(3.0) * kR, rot_deg + 30.0 + 60.0 * k)));
-    t.push_back(track(20 + k, polar(2.0 * kR, rot_deg + 60.0 * k)));
+    t.push_back(track(k, polar(kLatticeR, rot_deg + 60.0 * k)));
+    t.push_back(track(10 + k, polar(std::sqrt(3.0) * kLatticeR, rot_deg + 30.0 + 60.0 * k)));
+    t.push_back(track(20 + k, polar(2.0 * kLatticeR, rot_deg + 60.0 * k)));
   }
   return t;
 }
@@ -55,7 +55,7 @@ TEST(Gabriel, TriangularLatticeGivesExactlyTheSixLatticeEdges) {
     // THEN the neighbours are the six first-shell nodes, nearest first: every second-shell node at sqrt(3) r has two
     // first-shell nodes inside its disc, every node at 2 r has one on its diameter
     EXPECT_EQ(ids(nb), (std::set<int>{0, 1, 2, 3, 4, 5}));
-    for (int i = 0; i < nb.count(); ++i) EXPECT_NEAR(nb.positions.position[i].norm(), kR, 1e-9);
+    for (int i = 0; i < nb.count(); ++i) EXPECT_NEAR(nb.positions.position[i].norm(), kLatticeR, 1e-9);
   }
 }
 
@@ -66,8 +66,8 @@ TEST(Gabriel, SquareLatticeHasNoDiagonals) {
     SCOPED_TRACE(rot);
     std::vector<Track> tracks;
     for (int k = 0; k < 4; ++k) {
-      tracks.push_back(track(k, polar(kR, rot + 90.0 * k)));
-      tracks.push_back(track(10 + k, polar(std::sqrt(2.0) * kR, rot + 45.0 + 90.0 * k)));
+      tracks.push_back(track(k, polar(kLatticeR, rot + 90.0 * k)));
+      tracks.push_back(track(10 + k, polar(std::sqrt(2.0) * kLatticeR, rot + 45.0 + 90.0 * k)));
     }
     // WHEN selecting THEN only the four sides: a witness on the circle blocks (the closed disc of Gabriel's graph)
     EXPECT_EQ(ids(selectGabriel(tracks, kRange, kNoCap)), (std::set<int>{0, 1, 2, 3}));
@@ -76,10 +76,10 @@ TEST(Gabriel, SquareLatticeHasNoDiagonals) {
 
 TEST(Gabriel, WitnessJustOutsideTheCircleDoesNotBlock) {
   // GIVEN j at (2r, 0) and m just outside the circle with diameter self-j (centre (r, 0), radius r)
-  const std::vector<Track> tracks = {track(1, Vec2(2 * kR, 0)), track(2, Vec2(kR, 1.001 * kR))};
+  const std::vector<Track> tracks = {track(1, Vec2(2 * kLatticeR, 0)), track(2, Vec2(kLatticeR, 1.001 * kLatticeR))};
   // THEN both are neighbours; moved just inside, m blocks j
   EXPECT_EQ(ids(selectGabriel(tracks, kRange, kNoCap)), (std::set<int>{1, 2}));
-  const std::vector<Track> inside = {track(1, Vec2(2 * kR, 0)), track(2, Vec2(kR, 0.999 * kR))};
+  const std::vector<Track> inside = {track(1, Vec2(2 * kLatticeR, 0)), track(2, Vec2(kLatticeR, 0.999 * kLatticeR))};
   EXPECT_EQ(ids(selectGabriel(inside, kRange, kNoCap)), (std::set<int>{2}));
 }
 
@@ -118,12 +118,12 @@ TEST(Gabriel, HiddenMiddleUavsAreCoveredByTheEdgeCap) {
   // WHEN the default cap of 1.5 r applies THEN only the four tracked first-shell nodes remain
   const FormationConfig defaults;
   EXPECT_DOUBLE_EQ(defaults.max_edge_factor, 1.5);
-  EXPECT_EQ(ids(selectGabriel(tracks, kRange, defaults.max_edge_factor * kR)), (std::set<int>{2, 3, 4, 5}));
+  EXPECT_EQ(ids(selectGabriel(tracks, kRange, defaults.max_edge_factor * kLatticeR)), (std::set<int>{2, 3, 4, 5}));
 }
 
 TEST(Gabriel, NearestPassesWhateverItsLength) {
   // GIVEN only a far UAV at 2 r behind an untracked one THEN it is kept: with one track it is the only reference
-  EXPECT_EQ(ids(selectGabriel({track(3, Vec2(2 * kR, 0))}, kRange, 1.5 * kR)), (std::set<int>{3}));
+  EXPECT_EQ(ids(selectGabriel({track(3, Vec2(2 * kLatticeR, 0))}, kRange, 1.5 * kLatticeR)), (std::set<int>{3}));
 }
 
 TEST(Gabriel, TentativeTracksAndTracksBeyondRangeAreNotNeighbours) {
@@ -155,7 +155,7 @@ TEST(Gabriel, TiesAreBrokenByIdWhateverTheTrackOrder) {
 TEST(Gabriel, ManyTracksAreCappedAtTheNeighbourLimit) {
   // GIVEN 40 tracks on a circle of r (every one passes: the circle's points are all outside each other's discs)
   std::vector<Track> tracks;
-  for (int k = 0; k < 40; ++k) tracks.push_back(track(k, polar(kR, 9.0 * k)));
+  for (int k = 0; k < 40; ++k) tracks.push_back(track(k, polar(kLatticeR, 9.0 * k)));
   // THEN at most kMaxNeighbours are returned
   EXPECT_EQ(selectGabriel(tracks, kRange, kNoCap).count(), kMaxNeighbours);
 }
