@@ -26,6 +26,7 @@
 #include <fastdds/rtps/writer/WriterDiscoveryInfo.h>
 
 #include "isolation_audit.h"
+#include "test_domain.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 
@@ -138,12 +139,13 @@ class DiscoveryObserver {
 using discovery_detail::DiscoveryLog;
 using discovery_detail::DiscoveryObserver;
 
-// An observer on a private domain (100..199, never 0) that is also quiet: anything already on it would pollute an
+// An observer on a private domain (from 100..199, never 0, reserved: test_domain.h) that is also quiet: anything already on it would pollute an
 // audit, so the observer listens for a moment first (the profile announces every 1 s) and moves on if it hears
 // anyone. Sets `domain`; null if five domains were all in use.
 inline std::unique_ptr<DiscoveryObserver> observeQuietDomain(int& domain, const std::string& name) {
   for (int attempt = 0; attempt < 5; ++attempt) {
-    domain = 100 + (::getpid() + 37 * attempt) % 100;
+    domain = reserveTestDomain(100 + (::getpid() + 37 * attempt) % 100);
+    if (domain < 0) return nullptr;
     auto observer = std::make_unique<DiscoveryObserver>(domain, name);
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
     if (observer->log().participantCount() == 0) return observer;

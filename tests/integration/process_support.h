@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "shm_janitor.h"
+#include "test_domain.h"
 #include "swa/dds/sample_queue.h"
 
 namespace swa::testing {
@@ -221,15 +222,38 @@ class ShmJanitor : public launch::ShmJanitor {
   ShmJanitor& operator=(const ShmJanitor&) = delete;
 };
 
-// The abandoned shared-memory files `janitor` finds: "" when there are none, else how many and the first.
-inline std::string shmFilesLeft(const launch::ShmJanitor& janitor) {
-  const std::vector<std::string> left = janitor.zombies();
+// Of the shared-memory file names `files`, those that can be a test's on DDS domain `domain`: the ports of that domain
+// (Fast DDS numbers them 7400 + 250 domain + 0..249; files fastrtps_port<N>, its _el/_sl locks and its
+// sem.fastrtps_port<N>_mutex) and the segments, which carry no domain. Tests run two at a time, and the ports of
+// another test's processes stay in /dev/shm for a moment after they exit, until the last peer that wrote to them
+// closes them.
+inline std::vector<std::string> ofDomain(const std::vector<std::string>& files, int domain) {
+  std::vector<std::string> out;
+  for (const std::string& f : files) {
+    const std::size_t at = f.find("fastrtps_port");
+    if (at != std::string::npos) {
+      const std::size_t digits = at + std::string("fastrtps_port").size();
+      const std::size_t end = f.find_first_not_of("0123456789", digits);
+      if (end != digits) {
+        const long port = std::stol(f.substr(digits, end - digits));
+        if (port < 7400 || (port - 7400) / 250 != domain) continue;
+      }
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
+// The abandoned shared-memory files `janitor` finds that can be those of a test on `domain` (ofDomain): "" when there
+// are none, else how many and the first.
+inline std::string shmFilesLeft(const launch::ShmJanitor& janitor, int domain) {
+  const std::vector<std::string> left = ofDomain(janitor.zombies(), domain);
   if (left.empty()) return "";
   return std::to_string(left.size()) + " /dev/shm file(s), first " + left.front();
 }
 
-// A DDS domain of our own: derived from the PID (Fast DDS's own tests do the same), never 0, at most 232.
-inline int testDomain(int offset = 0) { return 1 + static_cast<int>((::getpid() + offset) % 200); }
+// A DDS domain of our own: from the PID (Fast DDS's own tests do the same), never 0, at most 232, reserved.
+inline int testDomain(int offset = 0) { return reserveTestDomain(1 + static_cast<int>((::getpid() + offset) % 200)); }
 
 // A swarm of our own (SWA_SWARM, a DDS partition): set in this process's environment, so this test's participants
 // and every child it starts (the launcher too) share it, and another DDS user that happens to be on the same domain

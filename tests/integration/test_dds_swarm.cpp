@@ -331,7 +331,7 @@ void SwarmRun::lockstepDropout4(const std::vector<std::string>& overrides, doubl
   // THEN, once our monitor participant is gone too, no process left shared memory behind (a port stays while any
   // participant that ever sent to it is alive, so this is checked after the monitor)
   monitor_.reset();
-  const std::string left = shmFilesLeft(janitor_);
+  const std::string left = shmFilesLeft(janitor_, domain_);
   EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left;
 
   // THEN lockstep reproduces the in-process closed loop bit for bit (same scenario, seed, sample order)
@@ -694,12 +694,14 @@ class BadInput : public ::testing::Test {
 
   ShmJanitor janitor_;
   fs::path dir_;
+  int domain_ = testDomain(5);  // reserved: nothing of another test's may be counted as ours
+  std::string domain_arg_ = std::to_string(domain_);
 };
 
 TEST_F(BadInput, MalformedScenarioMakesTheSimulatorExitWithAClearError) {
   const fs::path bad = dir_ / "bad.yaml";
   std::ofstream(bad) << "uav_count: -3\nduration_s: [1, 2]\nfrobnicate: 1\n";
-  const auto [status, out] = run({SWA_SIM_BINARY, "--scenario", bad.string(), "--domain", "5"});
+  const auto [status, out] = run({SWA_SIM_BINARY, "--scenario", bad.string(), "--domain", domain_arg_});
   EXPECT_EQ(status, 2) << out;
   for (const char* needle : {"invalid scenario", "uav_count", "duration_s", "frobnicate"}) {
     EXPECT_NE(out.find(needle), std::string::npos) << needle << " missing from:\n" << out;
@@ -714,7 +716,7 @@ TEST_F(BadInput, MalformedScenarioMakesTheSimulatorExitWithAClearError) {
   EXPECT_EQ(status4, 2) << out4;
   EXPECT_NE(out4.find("--domain"), std::string::npos) << out4;
   EXPECT_EQ(run({SWA_SIM_BINARY, "--help"}).first, 0);
-  EXPECT_TRUE(janitor_.zombies().empty());
+  EXPECT_TRUE(ofDomain(janitor_.zombies(), domain_).empty());
 }
 
 TEST_F(BadInput, BadDeploymentEnvironmentIsAClearErrorNotACrash) {
@@ -726,13 +728,13 @@ TEST_F(BadInput, BadDeploymentEnvironmentIsAClearErrorNotACrash) {
       {{"SWA_DISCOVERY_SERVER=127.0.0.1:11811"}, "SWA_TRANSPORT is local"},
       {{"SWA_SECURITY_DIR=" + (dir_ / "nowhere").string()}, "swa_agent_1/permissions.p7s"}};
   for (const auto& [env, needle] : cases) {
-    const auto [status, out] = run({SWA_AGENT_BINARY, "--id", "1", "--domain", "5"}, env);
+    const auto [status, out] = run({SWA_AGENT_BINARY, "--id", "1", "--domain", domain_arg_}, env);
     EXPECT_EQ(status, 1) << env.front() << ":\n" << out;  // a DDS failure, not a signal (134 = abort)
     EXPECT_NE(out.find(needle), std::string::npos) << needle << " missing from:\n" << out;
-    const auto [sim_status, sim_out] = run({SWA_SIM_BINARY, "--scenario", kScenario, "--domain", "5"}, env);
+    const auto [sim_status, sim_out] = run({SWA_SIM_BINARY, "--scenario", kScenario, "--domain", domain_arg_}, env);
     EXPECT_EQ(sim_status, 1) << env.front() << ":\n" << sim_out;
   }
-  EXPECT_TRUE(janitor_.zombies().empty());
+  EXPECT_TRUE(ofDomain(janitor_.zombies(), domain_).empty());
 }
 
 TEST_F(BadInput, BadIdMakesTheAgentExitWithAClearError) {
@@ -752,7 +754,7 @@ TEST_F(BadInput, BadIdMakesTheAgentExitWithAClearError) {
   const auto [status2, out2] = run({SWA_AGENT_BINARY, "--id", "1", "--config", (dir_ / "missing.yaml").string()});
   EXPECT_EQ(status2, 2) << out2;
   EXPECT_EQ(run({SWA_AGENT_BINARY, "--help"}).first, 0);
-  EXPECT_TRUE(janitor_.zombies().empty());
+  EXPECT_TRUE(ofDomain(janitor_.zombies(), domain_).empty());
 }
 
 }  // namespace

@@ -135,7 +135,7 @@ TEST_F(IsolationRun, NoAgentReadsWhatAnotherAgentWritesOrAnythingOutsideItsNames
 
   // THEN, once the observer is gone too, no process left shared memory behind
   observer_.reset();
-  const std::string left = shmFilesLeft(janitor_);
+  const std::string left = shmFilesLeft(janitor_, domain_);
   EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left;
 }
 

@@ -59,7 +59,7 @@ class LaunchTest : public ::testing::Test {
   void expectNothingLeft(ShmJanitor* since = nullptr) {
     EXPECT_TRUE(processesOnDomain(domain_).empty()) << "processes left on domain " << domain_;
     std::string left;
-    for (const std::string& f : (since ? *since : janitor_).zombies()) left += " " + f;
+    for (const std::string& f : ofDomain((since ? *since : janitor_).zombies(), domain_)) left += " " + f;
     EXPECT_TRUE(left.empty()) << "the launcher left shared-memory files behind:" << left;
   }
 

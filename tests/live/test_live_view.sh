@@ -50,10 +50,13 @@ cp "$here/live_client/package.json" "$here/live_client/package-lock.json" "$here
 (cd "$work/client" && npm ci --no-audit --no-fund --loglevel=error)
 client() { node "$work/client/live_check.mjs" "$@"; }
 
+source "$root/tests/test_domain.sh"
+reserve_test_domain $((120 + RANDOM % 100))
+
 # 2.
 run=$work/run
 "$bin/swa_launch" --scenario "$root/deploy/scenarios/dropout_4.yaml" --set duration_s=40 --set clock.mode=realtime \
-  --domain $((120 + RANDOM % 100)) --out "$run" --live 0 --timeout-s 180 >"$work/launch.log" 2>&1 &
+  --domain "$TEST_DOMAIN" --out "$run" --live 0 --timeout-s 180 >"$work/launch.log" 2>&1 &
 launch=$!
 port=""
 for _ in $(seq 300); do

@@ -51,7 +51,7 @@ class Px4SwarmTest : public ::testing::Test {
   void expectNothingLeft(const ShmJanitor* since = nullptr) const {
     EXPECT_TRUE(processesOnDomain(domain_).empty()) << "processes left on domain " << domain_;
     std::string left;
-    for (const std::string& f : (since ? *since : janitor_).zombies()) left += " " + f;
+    for (const std::string& f : ofDomain((since ? *since : janitor_).zombies(), domain_)) left += " " + f;
     EXPECT_TRUE(left.empty()) << "shared-memory files left behind:" << left;
   }
 

@@ -34,7 +34,9 @@ cp "$here/mcap_reader/package.json" "$here/mcap_reader/package-lock.json" "$here
   "$work/reader/"
 (cd "$work/reader" && npm ci --no-audit --no-fund --loglevel=error)
 check() { node "$work/reader/mcap_check.mjs" "$@"; }
-domain=$((120 + RANDOM % 100))
+source "$root/tests/test_domain.sh"
+reserve_test_domain $((120 + RANDOM % 100))
+domain=$TEST_DOMAIN
 
 # 2. A whole run.
 "$bin/swa_launch" --scenario "$scenario" --set duration_s=30 --domain "$domain" --out "$work/run" --record \

@@ -31,9 +31,12 @@ cp "$here/mcap_reader/package.json" "$here/mcap_reader/package-lock.json" "$here
   "$work/reader/"
 (cd "$work/reader" && npm ci --no-audit --no-fund --loglevel=error)
 
+source "$root/tests/test_domain.sh"
+reserve_test_domain $((120 + RANDOM % 100))
+
 # 1.
 "$bin/swa_launch" --scenario "$root/deploy/scenarios/dropout_4.yaml" --set duration_s=5 \
-  --domain $((120 + RANDOM % 100)) --out "$work/run" --record=monitor --timeout-s 120 \
+  --domain "$TEST_DOMAIN" --out "$work/run" --record=monitor --timeout-s 120 \
   || fail "the recorded run did not PASS (exit $?)"
 run=$work/run
 [ -s "$run/run.mcap" ] || fail "no $run/run.mcap"

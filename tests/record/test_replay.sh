@@ -26,7 +26,9 @@ trap cleanup EXIT
 
 rm -rf "$work"
 mkdir -p "$work"
-export SWA_DOMAIN=$((120 + RANDOM % 100))
+source "$root/tests/test_domain.sh"
+reserve_test_domain $((120 + RANDOM % 100))
+export SWA_DOMAIN=$TEST_DOMAIN
 
 # 1.
 "$bin/swa_launch" --scenario "$scenario" --set duration_s=20 --out "$work/run" --record --timeout-s 240 \

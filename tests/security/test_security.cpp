@@ -214,7 +214,7 @@ class SecurityTest : public ::testing::Test {
   void expectNothingLeft() {
     EXPECT_TRUE(processesOnDomain(domain_).empty()) << "processes left on domain " << domain_;
     std::string left;
-    for (const std::string& f : janitor_.zombies()) left += " " + f;
+    for (const std::string& f : ofDomain(janitor_.zombies(), domain_)) left += " " + f;
     EXPECT_TRUE(left.empty()) << "shared-memory files left behind:" << left;
   }
 
