@@ -139,9 +139,9 @@ class DiscoveryObserver {
 using discovery_detail::DiscoveryLog;
 using discovery_detail::DiscoveryObserver;
 
-// An observer on a private domain (from 100..199, never 0, reserved: test_domain.h) that is also quiet: anything already on it would pollute an
-// audit, so the observer listens for a moment first (the profile announces every 1 s) and moves on if it hears
-// anyone. Sets `domain`; null if five domains were all in use.
+// An observer on a private domain (reserved, test_domain.h: the first free one from 100..199 up) that is also quiet:
+// anything already on it would pollute an audit, so the observer listens for a moment first (the profile announces
+// every 1 s) and moves on if it hears anyone. Sets `domain`; null if no domain is free or five were all in use.
 inline std::unique_ptr<DiscoveryObserver> observeQuietDomain(int& domain, const std::string& name) {
   for (int attempt = 0; attempt < 5; ++attempt) {
     domain = reserveTestDomain(100 + (::getpid() + 37 * attempt) % 100);

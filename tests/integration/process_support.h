@@ -20,12 +20,14 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "shm_janitor.h"
 #include "test_domain.h"
+#include "swa/dds/participant_id.h"
 #include "swa/dds/sample_queue.h"
 
 namespace swa::testing {
@@ -236,7 +238,8 @@ inline std::vector<std::string> ofDomain(const std::vector<std::string>& files, 
       const std::size_t end = f.find_first_not_of("0123456789", digits);
       if (end != digits) {
         const long port = std::stol(f.substr(digits, end - digits));
-        if (port < 7400 || (port - 7400) / 250 != domain) continue;
+        const swa::dds::PortMapping ports;  // the mapping every SWA participant uses
+        if (port < ports.base || (port - ports.base) / ports.domain_gain != domain) continue;
       }
     }
     out.push_back(f);
@@ -252,8 +255,15 @@ inline std::string shmFilesLeft(const launch::ShmJanitor& janitor, int domain) {
   return std::to_string(left.size()) + " /dev/shm file(s), first " + left.front();
 }
 
-// A DDS domain of our own: from the PID (Fast DDS's own tests do the same), never 0, at most 232, reserved.
-inline int testDomain(int offset = 0) { return reserveTestDomain(1 + static_cast<int>((::getpid() + offset) % 200)); }
+// A DDS domain of our own: from the PID (Fast DDS's own tests do the same), never 0, at most 232, reserved. Throws
+// (the test fails saying why) when other SWA tests hold all of them.
+inline int testDomain(int offset = 0) {
+  const int domain = reserveTestDomain(1 + static_cast<int>((::getpid() + offset) % 200));
+  if (domain < 0) {
+    throw std::runtime_error("no free DDS domain: other SWA tests hold all 232 (/tmp/swa-test-domain-<d>.lock)");
+  }
+  return domain;
+}
 
 // A swarm of our own (SWA_SWARM, a DDS partition): set in this process's environment, so this test's participants
 // and every child it starts (the launcher too) share it, and another DDS user that happens to be on the same domain
