@@ -1,23 +1,38 @@
 #!/usr/bin/env bash
-# The sanitizer stage of the README's test command (deploy/test.sh runs it after the Release tests): everything the
-# ctest labels unit, closedloop and fuzz need, built with AddressSanitizer + UndefinedBehaviorSanitizer
-# (-DSWA_SANITIZE=ON: any finding aborts the process, so the test fails), then those labels. Leaks are checked too
-# (LeakSanitizer, part of ASan), with the suppressions in deploy/sanitizers/lsan.supp for Debian's uninstrumented
-# libraries.
-#   bash deploy/test-sanitize.sh [ctest args...]     e.g. bash deploy/test-sanitize.sh -R Fuzz
+# The sanitizer stage of the README's test command (deploy/test.sh runs it): everything the ctest labels unit,
+# closedloop and fuzz need, built with AddressSanitizer + UndefinedBehaviorSanitizer (-DSWA_SANITIZE=ON: any finding
+# aborts the process, so the test fails), and the check that every header compiles on its own; then those labels.
+# Leaks are checked too (LeakSanitizer, part of ASan), with the suppressions in deploy/sanitizers/lsan.supp for
+# Debian's uninstrumented libraries.
+#   bash deploy/test-sanitize.sh [ctest args...]     build, then run, e.g. bash deploy/test-sanitize.sh -R Fuzz
+#   bash deploy/test-sanitize.sh --build-only        build only (deploy/test.sh builds beside the Release tests)
+#   bash deploy/test-sanitize.sh --test-only [ctest args...]   run what an earlier --build-only built
 #   SWA_SANITIZE_BUILD_DIR   build directory (default: <repo>/build-sanitize)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${SWA_SANITIZE_BUILD_DIR:-$root/build-sanitize}
+do_build=1 do_test=1
+case "${1:-}" in
+  --build-only) do_test=0; shift ;;
+  --test-only) do_build=0; shift ;;
+esac
 
-bash "$root/deploy/install-deps.sh"
-# Only what those labels run (the target swa_sanitized_tests: their test executables and the programs they start),
-# in batches like the Release build: that every header includes what it uses is checked there (tests/headers).
-generator=()
-if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
-cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSWA_WERROR=ON -DSWA_SANITIZE=ON \
-  -DSWA_BUILD_BENCHMARKS=OFF -DSWA_UNITY_BUILD=ON
-cmake --build "$build" -j "$(nproc)" --target swa_sanitized_tests
+if [ "$do_build" = 1 ]; then
+  bash "$root/deploy/install-deps.sh"
+  # Only what those labels run (the target swa_sanitized_tests: their test executables and the programs they start),
+  # in batches like the Release build, and the check that every header includes what it uses (swa_headers_alone,
+  # tests/headers: each header compiled on its own, which the batches would hide).
+  generator=()
+  if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSWA_WERROR=ON -DSWA_SANITIZE=ON \
+    -DSWA_BUILD_BENCHMARKS=OFF -DSWA_UNITY_BUILD=ON
+  cmake --build "$build" -j "$(nproc)" --target swa_sanitized_tests swa_headers_alone
+fi
+[ "$do_test" = 1 ] || exit 0
+if [ ! -f "$build/CTestTestfile.cmake" ]; then
+  echo "test-sanitize.sh: nothing built in $build; run it without --test-only first" >&2
+  exit 2
+fi
 # detect_stack_use_after_return is left off: it made the closed-loop tests 1.6 times slower again (20 times Release).
 asan=detect_leaks=1:strict_string_checks=1:check_initialization_order=1
 export LSAN_OPTIONS=suppressions=$root/deploy/sanitizers/lsan.supp:print_suppressions=0
