@@ -37,6 +37,8 @@ setsid bash -c '{ echo 19 >/proc/self/autogroup; } 2>/dev/null
 san_pid=$!
 san_epoch=$(date +%s)
 trap 'kill -TERM -- "-$san_pid" 2>/dev/null || true; rm -f "$san_log" "$san_done"' EXIT
+trap 'exit 130' INT  # so that the EXIT trap above also runs on Ctrl-C and on a CI job's SIGTERM
+trap 'exit 143' TERM
 
 timed "Release tests" ctest --test-dir "$build" --output-on-failure -j "$(nproc)"
 waited=$SECONDS
