@@ -13,7 +13,14 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${SWA_SANITIZE_BUILD_DIR:-$root/build-sanitize}
 do_build=1 do_test=1
 case "${1:-}" in
-  --build-only) do_test=0; shift ;;
+  --build-only)
+    do_test=0
+    shift
+    if [ $# -gt 0 ]; then
+      echo "test-sanitize.sh: --build-only takes no ctest arguments (got: $*)" >&2
+      exit 2
+    fi
+    ;;
   --test-only) do_build=0; shift ;;
 esac
 

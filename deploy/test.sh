@@ -6,7 +6,8 @@
 #
 # The sanitizer build runs beside the Release tests, at the lowest CPU and I/O priority (nice 19, ionice idle): most
 # of the Release suite's time is realtime runs that wait, and a nice-19 compiler gets about 1.5 % of a core that a
-# test wants (CFS weights 15 against 1024), so it takes the idle time without slowing what the tests measure.
+# test wants (CFS weights 15 against 1024), so it takes mostly idle time (measured: the suite 9 % longer beside it,
+# BENCHMARKS.md "Build and test time").
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${SWA_BUILD_DIR:-$root/build}
@@ -19,10 +20,11 @@ timed() {  # timed NAME COMMAND...: runs it, notes its wall time
   "$@"
   stages+=("$name $(duration $((SECONDS - start)))")
 }
+summary() { echo "test.sh: $(IFS=';'; echo "${stages[*]}" | sed 's/;/, /g'); $(duration $SECONDS) in all"; }
 timed build bash "$root/deploy/build.sh"
 if [ $# -gt 0 ]; then
   timed "Release tests" ctest --test-dir "$build" --output-on-failure -j "$(nproc)" "$@"
-  echo "test.sh: $(IFS=';'; echo "${stages[*]}" | sed 's/;/, /g'); $(duration $SECONDS) in all"
+  summary
   exit 0
 fi
 
@@ -51,4 +53,4 @@ tail -n 3 "$san_log"
 san_took=$(($(cat "$san_done") - san_epoch))
 stages+=("sanitizer build $(duration "$san_took") (beside the Release tests, then $(duration $((SECONDS - waited))) alone)")
 timed "sanitizer tests" bash "$root/deploy/test-sanitize.sh" --test-only
-echo "test.sh: $(IFS=';'; echo "${stages[*]}" | sed 's/;/, /g'); $(duration $SECONDS) in all"
+summary
