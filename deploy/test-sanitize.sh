@@ -5,13 +5,16 @@
 # Leaks are checked too (LeakSanitizer, part of ASan), with the suppressions in deploy/sanitizers/lsan.supp for
 # Debian's uninstrumented libraries.
 #   bash deploy/test-sanitize.sh [ctest args...]     build, then run, e.g. bash deploy/test-sanitize.sh -R Fuzz
-#   bash deploy/test-sanitize.sh --build-only        build only (deploy/test.sh builds beside the Release tests)
-#   bash deploy/test-sanitize.sh --test-only [ctest args...]   run what an earlier --build-only built
+#   bash deploy/test-sanitize.sh --build-only        build only
+#   bash deploy/test-sanitize.sh --test-only [PART] [ctest args...]   run what an earlier --build-only built: the
+#       labels unit and closedloop, then fuzz; PART --in-process runs the first two only, --fuzz the last only
+#       (deploy/test.sh runs the first beside the Release tests, and fuzz, whose rogue publisher runs in realtime,
+#       after them)
 #   SWA_SANITIZE_BUILD_DIR   build directory (default: <repo>/build-sanitize)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${SWA_SANITIZE_BUILD_DIR:-$root/build-sanitize}
-do_build=1 do_test=1
+do_build=1 do_test=1 do_main=1 do_fuzz=1
 case "${1:-}" in
   --build-only)
     do_test=0
@@ -21,7 +24,14 @@ case "${1:-}" in
       exit 2
     fi
     ;;
-  --test-only) do_build=0; shift ;;
+  --test-only)
+    do_build=0
+    shift
+    case "${1:-}" in
+      --in-process) do_fuzz=0; shift ;;
+      --fuzz) do_main=0; shift ;;
+    esac
+    ;;
 esac
 
 if [ "$do_build" = 1 ]; then
@@ -44,7 +54,10 @@ fi
 asan=detect_leaks=1:strict_string_checks=1:check_initialization_order=1
 export LSAN_OPTIONS=suppressions=$root/deploy/sanitizers/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ASAN_OPTIONS=$asan ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -L 'unit|closedloop' "$@"
+if [ "$do_main" = 1 ]; then
+  ASAN_OPTIONS=$asan ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -L 'unit|closedloop' "$@"
+fi
+[ "$do_fuzz" = 1 ] || exit 0
 # The fuzz label runs swa_agent over Fast DDS 2.9, whose statistics DataReader is deleted through a base class of a
 # smaller size inside libfastrtps itself (new-delete-type-mismatch in RTPSReader::~RTPSReader, not our code): that one
 # check is off for this label only.

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# The README's test command: install what is missing, build, run every test, then the sanitizer stage (the labels
+# The README's test command: install what is missing, build, run every test, and the sanitizer stage (the labels
 # unit, closedloop and fuzz again, built with ASan + UBSan: deploy/test-sanitize.sh). Ends with what each stage took.
 #   bash deploy/test.sh                      everything (what CI runs)
 #   bash deploy/test.sh [ctest args...]      the Release build and those ctest arguments only, e.g. -L unit
 #
-# The sanitizer build runs beside the Release tests, at the lowest CPU and I/O priority (nice 19, ionice idle): most
-# of the Release suite's time is realtime runs that wait, and a nice-19 compiler gets about 1.5 % of a core that a
-# test wants (CFS weights 15 against 1024), so it takes mostly idle time (measured: the suite 9 % longer beside it,
-# BENCHMARKS.md "Build and test time").
+# The sanitizer build and its in-process tests run beside the Release tests, at the lowest CPU and I/O priority
+# (nice 19, ionice idle): much of the Release suite's time is realtime runs that wait, and a nice-19 process gets
+# about 1.5 % of a core that a test wants (CFS weights 15 against 1024), so it takes mostly idle time (measured: the
+# suite 9 % longer beside the build, BENCHMARKS.md "Build and test time").
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${SWA_BUILD_DIR:-$root/build}
@@ -28,29 +28,38 @@ if [ $# -gt 0 ]; then
   exit 0
 fi
 
-# The sanitizer build in its own session (setsid), so that a failure here ends all of it, compilers included. A new
-# session is a new scheduler autogroup where the kernel has them (sched_autogroup_enabled): autogroups share the CPU
-# evenly whatever their members' nice, so the group itself gets nice 19 too.
-san_log=$(mktemp /tmp/swa-sanitize-build.XXXXXX.log)
-san_done=$(mktemp /tmp/swa-sanitize-build.XXXXXX.end)
+# The sanitizer stage beside the Release tests: its build, then its labels unit and closedloop (in-process runs,
+# nothing on the wall clock), in a session of their own (setsid, so that a failure here ends all of it, compilers and
+# tests included). A new session is a new scheduler autogroup where the kernel has them (sched_autogroup_enabled):
+# autogroups share the CPU evenly whatever their members' nice, so the group itself gets nice 19 too. Its label fuzz
+# runs after the Release tests: its rogue publisher drives an agent in realtime, which is not for nice 19 on a busy
+# host.
+san_log=$(mktemp /tmp/swa-sanitize.XXXXXX.log)
+san_times=$(mktemp /tmp/swa-sanitize.XXXXXX.times)
 setsid bash -c '{ echo 19 >/proc/self/autogroup; } 2>/dev/null
-  nice -n 19 ionice -c 3 bash "$1" --build-only >"$2" 2>&1; rc=$?; date +%s >"$3"; exit $rc' _ \
-  "$root/deploy/test-sanitize.sh" "$san_log" "$san_done" &
+  date +%s >"$2"
+  nice -n 19 ionice -c 3 bash "$1" --build-only || exit 1
+  date +%s >>"$2"
+  nice -n 19 ionice -c 3 bash "$1" --test-only --in-process || exit 2
+  date +%s >>"$2"' _ "$root/deploy/test-sanitize.sh" "$san_times" >"$san_log" 2>&1 &
 san_pid=$!
-san_epoch=$(date +%s)
-trap 'kill -TERM -- "-$san_pid" 2>/dev/null || true; rm -f "$san_log" "$san_done"' EXIT
+trap 'kill -TERM -- "-$san_pid" 2>/dev/null || true; rm -f "$san_log" "$san_times"' EXIT
 trap 'exit 130' INT  # so that the EXIT trap above also runs on Ctrl-C and on a CI job's SIGTERM
 trap 'exit 143' TERM
 
 timed "Release tests" ctest --test-dir "$build" --output-on-failure -j "$(nproc)"
-waited=$SECONDS
-if ! wait "$san_pid"; then
-  echo "test.sh: the sanitizer build failed; its output:" >&2
+suite_end=$(date +%s)
+san_rc=0
+wait "$san_pid" || san_rc=$?
+if [ "$san_rc" -ne 0 ]; then
+  what=$([ "$san_rc" = 1 ] && echo build || echo "tests (labels unit and closedloop)")
+  echo "test.sh: the sanitizer $what failed; its output:" >&2
   cat "$san_log" >&2
   exit 1
 fi
-tail -n 3 "$san_log"
-san_took=$(($(cat "$san_done") - san_epoch))
-stages+=("sanitizer build $(duration "$san_took") (beside the Release tests, then $(duration $((SECONDS - waited))) alone)")
-timed "sanitizer tests" bash "$root/deploy/test-sanitize.sh" --test-only
+grep -E "tests passed|Total Test time" "$san_log" || true
+mapfile -t at <"$san_times"  # start, build done, tests done (epoch seconds)
+after=$((at[2] > suite_end ? at[2] - suite_end : 0))
+stages+=("sanitizer build $(duration $((at[1] - at[0]))) and tests $(duration $((at[2] - at[1]))), beside the Release tests ($(duration "$after") after them)")
+timed "sanitizer fuzz" bash "$root/deploy/test-sanitize.sh" --test-only --fuzz
 summary

@@ -21,3 +21,14 @@ reserve_test_domain() {
   echo "no free DDS domain: all 232 are reserved by other tests" >&2
   return 1
 }
+
+# hold_test_domain D WAIT_S: sets TEST_DOMAIN to D itself and holds it like reserve_test_domain, waiting up to WAIT_S
+# seconds for a test that has it to end: for a swarm on a fixed domain (the containers' 42). Fails after that.
+hold_test_domain() {
+  exec {TEST_DOMAIN_FD}>>"/tmp/swa-test-domain-$1.lock"
+  if ! flock -w "$2" "$TEST_DOMAIN_FD"; then
+    echo "DDS domain $1 is still reserved by another test after $2 s" >&2
+    return 1
+  fi
+  TEST_DOMAIN=$1
+}

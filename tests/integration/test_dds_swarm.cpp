@@ -25,6 +25,7 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
+#include "private_shm.h"
 #include "process_test.h"
 #include "swa/agent/agent.h"
 #include "swa/dds/options.h"
@@ -570,6 +571,8 @@ bool holdsOpen(pid_t pid, const std::string& file) {
 // holds (in a run here it had asked for agent 0's participant id and Fast DDS gave it the next free ports, so they
 // cannot be computed from the id it asked for).
 TEST_F(SwarmRun, SimulatorSaysWhenItsOwnSharedMemoryPortWasRecreatedUnderIt) {
+  // It plants files in /dev/shm: in a /dev/shm of its own (private_shm.h), a test beside it never counts them.
+  ASSERT_EQ(usePrivateShm(), "");
   // GIVEN a realtime run of 4 agents, 3 s in
   start({"duration_s=60", "clock.mode=realtime"}, {});
   ASSERT_FALSE(HasFatalFailure());

@@ -21,6 +21,7 @@
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 
 #include "../integration/launch_support.h"
+#include "../integration/private_shm.h"
 #include "../integration/process_test.h"
 #include "closed_loop.h"
 #include "swa/sim/scenario_io.h"
@@ -173,6 +174,7 @@ TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveScenarioAndNoSet) {
 // Agent 2 is SIGKILLed mid-run. The launcher must restart it; the new process must rebuild its picture of the
 // swarm (it ends tracking its neighbours), and the run must stay cohesive.
 TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
+  ASSERT_EQ(usePrivateShm(), "");  // it SIGKILLs a process: its files are nobody else's to see (private_shm.h)
   // GIVEN a lockstep launch of 240 s, and an observer of agent 2's state in this test
   constexpr int kVictim = 2;
   auto watch = std::make_unique<StateStampWatch>(domain_, kVictim);
@@ -217,6 +219,7 @@ TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
 // Issue #11: kill -9 of the monitor under swa_launch ended the whole run with no summary and printed the path of a
 // report that did not exist. Now the monitor is restarted like an agent, and the new one says what it missed.
 TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
+  ASSERT_EQ(usePrivateShm(), "");  // it SIGKILLs a process: its files are nobody else's to see (private_shm.h)
   // GIVEN a lockstep launch of 400 s, and an observer of agent 0's state in this test
   auto watch = std::make_unique<StateStampWatch>(domain_, 0);
   ShmJanitor launcher_files;

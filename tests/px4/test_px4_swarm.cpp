@@ -15,6 +15,7 @@
 
 #include "../integration/discovery_observer.h"
 #include "../integration/launch_support.h"
+#include "../integration/private_shm.h"
 #include "../integration/process_test.h"
 #include "swa/dds/topics.h"
 
@@ -163,6 +164,7 @@ double meanSpeed(const fs::path& run, int uav, double from_s, double to_s) {
 }
 
 TEST_F(Px4SwarmTest, AKilledBridgeLetsPx4FailSafeThenItIsRestartedAndTheUavRejoins) {
+  ASSERT_EQ(usePrivateShm(), "");  // it SIGKILLs a process: its files are nobody else's to see (private_shm.h)
   constexpr int kVictim = 2;
   constexpr double kComOfLossT = 1.0;
   const fs::path out = dir_ / "kill";

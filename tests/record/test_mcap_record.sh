@@ -109,8 +109,11 @@ sys.exit(1 if problems else 0)
 PY
 
 # 4. SIGKILL of the recording monitor in a realtime run: the launcher restarts it (into run_restart1.mcap); the file
-#    of the killed one is readable up to its last chunk, which is at most about a second old.
-"$bin/swa_launch" --scenario "$scenario" --set duration_s=12 --set clock.mode=realtime --domain "$domain" \
+#    of the killed one is readable up to its last chunk, which is at most about a second old. The launch has a /dev/shm
+#    of its own (a new mount namespace with a tmpfs there): the files Fast DDS leaves of the killed monitor are never
+#    seen by a test running beside this one.
+unshare --mount --propagation private sh -c 'mount -t tmpfs -o mode=1777,size=1g swa-test-shm /dev/shm && exec "$@"' sh \
+  "$bin/swa_launch" --scenario "$scenario" --set duration_s=12 --set clock.mode=realtime --domain "$domain" \
   --out "$work/killed" --record --timeout-s 120 >"$work/killed.log" 2>&1 &
 launch=$!
 monitor=""
