@@ -71,8 +71,10 @@ params::Table<AgentConfig> makeTable() {
   SWA_PARAM(t, number, focal.q_scale, "", openClosed(0, 100), "factor applied to all of Q_f (1 = Table I)");
   SWA_PARAM(t, number, focal.q_ref_dt_s, "s", openClosed(0, 1),
             "prediction step the Q_f blocks refer to (scaled linearly with the actual step)");
+  SWA_PARAM(t, number, focal.fit_noise_gain, "", closed(0, 100),
+            "R_c = this x the frame fit's covariance propagated from the neighbours' tracks (0 = constant r_pos_m2)");
   SWA_PARAM(t, number, focal.r_pos_m2, "m^2", openClosed(0, 100),
-            "R_c: noise of the floating-frame position measurement");
+            "R_c where the fit has no covariance model (algebraic fit, coincident points) or fit_noise_gain = 0");
   SWA_PARAM(t, number, focal.r_acc_m2ps4, "m^2/s^4", openClosed(0, 1000),
             "R_a: noise of the tilt-derived acceleration measurement");
   SWA_PARAM(t, number, focal.q_c_mps2, "m/s^2/rad", openClosed(0, 50), "q_c: lateral acceleration per radian of tilt");

@@ -10,6 +10,10 @@ namespace {
 
 // An anchored UAV adds its absolute hold only while its GNSS is fresh; 1 s is ten missed 10 Hz fixes.
 constexpr double kGnssFreshS = 1.0;
+// Bounds of the propagated R_c (fitNoise): 1e-6 m^2 is far below any relative-localisation accuracy, 1e4 m^2 makes
+// a fit worthless to the filter without putting its arithmetic near overflow.
+constexpr double kMinFitVarianceM2 = 1e-6;
+constexpr double kMaxFitVarianceM2 = 1e4;
 
 StampNs toNs(double seconds) { return static_cast<StampNs>(std::llround(seconds * 1e9)); }
 
@@ -171,16 +175,17 @@ void Agent::updateFrame(StampNs stamp) {
     return;
   }
   const Vec2 z = -now.centre;  // z_p = -r_c: own position in the floating frame
+  const Mat2 r_fit = fitNoise(next, now);
   focal_.predictTo(stamp, command_);
   const bool stale = secondsBetween(last_frame_ns_, stamp) > config_.focal.frame_timeout_s;
   if (!focal_.initialized()) {
-    focal_.initialize(stamp, z, r_pos_);
+    focal_.initialize(stamp, z, r_fit);
     imu_bias_.reset();
   } else if (stale) {
-    focal_.resetPosition(z, r_pos_);
+    focal_.resetPosition(z, r_fit);
     ++diag_.frame_resets;
-  } else if (!next.sameIdsAs(neighbours_)) {
-    // The frame jumps when the neighbour set changes. Where the old neighbours are all still tracked, evaluate the
+  } else if (!next.sameFrameAs(neighbours_, rankedFit())) {
+    // The frame jumps when the neighbour set changes (or, with the weighted fit, which two are the nearest). Where the old neighbours are all still tracked, evaluate the
     // old frame now and move the estimate by the jump, so the filter never sees it as an innovation; otherwise
     // restart the position from this measurement.
     NeighbourPositions old;
@@ -190,19 +195,40 @@ void Agent::updateFrame(StampNs stamp) {
     }
     if (old_fit.valid) {
       focal_.shiftFrame(now.centre - old_fit.centre);
-      focal_.correctPosition(z, r_pos_);
+      focal_.correctPosition(z, r_fit);
       ++diag_.frame_shifts;
     } else {
-      focal_.resetPosition(z, r_pos_);
+      focal_.resetPosition(z, r_fit);
       ++diag_.frame_resets;
     }
   } else {
-    focal_.correctPosition(z, r_pos_);
+    focal_.correctPosition(z, r_fit);
   }
   neighbours_ = next;
   frame_valid_ = true;
   frame_centre_ = now.centre;
   last_frame_ns_ = stamp;
+}
+
+Mat2 Agent::fitNoise(const Neighbourhood& neighbours, const FrameFit& fit) const {
+  const double gain = config_.focal.fit_noise_gain;
+  Mat2 cov;
+  if (gain <= 0.0 || !fitCovariance(neighbours.positions, neighbours.covariances, fit, config_.formation.radius_m,
+                                    config_.formation.far_neighbour_weight, cov)) {
+    return r_pos_;
+  }
+  Mat2 r = gain * cov;
+  // A tiny floor keeps R positive definite where the fit does not depend on a direction at all (n = 1: the
+  // tangent), and a ceiling keeps it finite where it is nearly undetermined (two neighbours in line with the
+  // centre): such a fit then weighs next to nothing.
+  r.diagonal().array() += kMinFitVarianceM2;
+  if (!isCovariance(r) || r.trace() > kMaxFitVarianceM2) return Mat2::Identity() * kMaxFitVarianceM2;
+  return r;
+}
+
+bool Agent::rankedFit() const {
+  const FormationConfig& fc = config_.formation;
+  return fc.circle_fit == CircleFit::kFixedRadius && fc.far_neighbour_weight != 1.0;
 }
 
 FrameFit Agent::fit(const NeighbourPositions& neighbours) const {

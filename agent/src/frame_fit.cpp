@@ -142,6 +142,52 @@ FrameFit fitFixedRadius(const NeighbourPositions& nb, double radius, double far_
   return fit;
 }
 
+bool fitCovariance(const NeighbourPositions& nb, const NeighbourCovariances& cov, const FrameFit& fit, double radius,
+                   double far_weight, Mat2& out) {
+  out.setZero();
+  switch (fit.fit_case) {
+    case FitCase::kOne: {
+      // r_c = p - r p/|p|: only the radial part of the neighbour's error moves the centre (exactly so at |p| = r).
+      const Vec2& p = nb.position[0];
+      const double d = p.norm();
+      const Vec2 u = p / d;
+      const Mat2 J = Mat2::Identity() - (radius / d) * (Mat2::Identity() - u * u.transpose());
+      out = J * cov[0] * J.transpose();
+      break;
+    }
+    case FitCase::kTwoFarApart:
+      out = 0.25 * (cov[0] + cov[1]);
+      break;
+    case FitCase::kTwo:
+    case FitCase::kFixedRadius:
+    case FitCase::kCollinearFallback: {
+      const int n = fit.fit_case == FitCase::kFixedRadius ? nb.count : 2;
+      std::array<Vec2, kMaxNeighbours> u;
+      Mat2 A = Mat2::Zero();
+      for (int j = 0; j < n; ++j) {
+        const Vec2 d = nb.position[j] - fit.centre;
+        const double dist = d.norm();
+        if (dist < kCoincidentM) return false;
+        u[j] = d / dist;
+        A.noalias() += weightOf(j, far_weight) * u[j] * u[j].transpose();
+      }
+      // Two neighbours on a line through the centre leave it free across the line: a little damping keeps the
+      // solve defined and reports that direction as very uncertain rather than as known.
+      A.diagonal().array() += 1e-6;
+      const Eigen::LDLT<Mat2> ldlt(A);
+      for (int j = 0; j < n; ++j) {
+        const Mat2 J = ldlt.solve(weightOf(j, far_weight) * u[j] * u[j].transpose());
+        out.noalias() += J * cov[j] * J.transpose();
+      }
+      break;
+    }
+    default:
+      return false;
+  }
+  out = 0.5 * (out + out.transpose());
+  return out.allFinite();
+}
+
 FrameFit fitFloatingFrame(const NeighbourPositions& nb, double radius, CircleFit method, double far_weight) {
   switch (nb.count) {
     case 0:

@@ -9,6 +9,7 @@ struct Candidate {
   double dist2;
   int id;
   Vec2 position;
+  const Track* track;
 };
 
 bool nearer(const Candidate& a, const Candidate& b) { return a.dist2 < b.dist2 || (a.dist2 == b.dist2 && a.id < b.id); }
@@ -23,21 +24,33 @@ Neighbourhood fromCandidates(const Candidate* c, int n) {
   for (int i = 0; i < n; ++i) {
     out.positions.position[i] = c[i].position;
     out.ids[i] = c[i].id;
+    out.covariances[i] = block<pva::Pos, pva::Pos>(c[i].track->estimate.P);
   }
   return out;
 }
 
 }  // namespace
 
-bool Neighbourhood::sameIdsAs(const Neighbourhood& other) const {
-  if (count() != other.count()) return false;
-  // Order is by distance and may swap without the set changing; the set is what defines the frame.
-  for (int i = 0; i < count(); ++i) {
+namespace {
+
+bool sameSet(const int* a, const int* b, int count) {
+  for (int i = 0; i < count; ++i) {
     bool found = false;
-    for (int j = 0; j < other.count() && !found; ++j) found = ids[i] == other.ids[j];
+    for (int j = 0; j < count && !found; ++j) found = a[i] == b[j];
     if (!found) return false;
   }
   return true;
+}
+
+}  // namespace
+
+bool Neighbourhood::sameFrameAs(const Neighbourhood& other, bool ranked) const {
+  if (count() != other.count()) return false;
+  // Order is by distance and may swap without the set changing. Unweighted, the set alone defines the frame; with
+  // the weighted fit, so does which two of them are the nearest (weight 1).
+  if (!sameSet(ids.data(), other.ids.data(), count())) return false;
+  if (!ranked || count() < 3) return true;
+  return sameSet(ids.data(), other.ids.data(), 2);
 }
 
 Neighbourhood selectKNearest(const std::vector<Track>& tracks, int k, double sensing_range_m) {
@@ -49,7 +62,7 @@ Neighbourhood selectKNearest(const std::vector<Track>& tracks, int k, double sen
   for (const Track& t : tracks) {
     if (!t.confirmed) continue;
     const Vec2 p = t.position();
-    const Candidate c{p.squaredNorm(), t.id, p};
+    const Candidate c{p.squaredNorm(), t.id, p, &t};
     if (c.dist2 > range2) continue;
     if (n < wanted) {
       best[n++] = c;
@@ -71,7 +84,7 @@ Neighbourhood selectGabriel(const std::vector<Track>& tracks, double sensing_ran
   for (const Track& t : tracks) {
     if (!t.confirmed || n == all.size()) continue;
     const Vec2 p = t.position();
-    all[n++] = Candidate{p.squaredNorm(), t.id, p};
+    all[n++] = Candidate{p.squaredNorm(), t.id, p, &t};
   }
   std::sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(n), nearer);
 

@@ -195,9 +195,9 @@ TruthInFrame truthInFloatingFrame(const UavTruth& self, const std::vector<UavTru
     const Vec2 q = u->position_m - self.position_m;
     nb.push_back({q.norm(), id, q, u->velocity_mps - self.velocity_mps});
   }
-  std::sort(nb.begin(), nb.end(), [](const FrameNeighbour& a, const FrameNeighbour& b) {
-    return a.distance != b.distance ? a.distance < b.distance : a.id < b.id;
-  });
+  // In the record's order, not re-sorted by true distance: with the weighted fit, the two the agent ranks nearest
+  // weigh 1, and that is part of the frame it reports. Ranked by the true distances, the truth would jump between
+  // two frames whenever near-equal distances swap, an error no estimate of the agent's frame can see.
 
   auto fitAt = [&nb, &record](double step_m, double speed) {
     const double dt = speed > 0.0 ? step_m / speed : 0.0;  // seconds of relative motion

@@ -68,14 +68,27 @@ TEST(MetricsTruthFrame, ThreeNeighboursOnACircleGiveTheOffsetFromItsCentre) {
   EXPECT_NEAR(a.position_m.y(), -2.0, 1e-9);
 }
 
-TEST(MetricsTruthFrame, NeighboursAreSortedNearestFirstWhateverTheReportedOrder) {
-  // GIVEN the same neighbours reported in two orders
-  const Fixture f;
-  const TruthInFrame a = truthInFloatingFrame(f.uavs[0], f.uavs, recordWith({1, 2, 3}), FrameVelocity::kNeighbourMean);
-  const TruthInFrame b = truthInFloatingFrame(f.uavs[0], f.uavs, recordWith({3, 1, 2}), FrameVelocity::kNeighbourMean);
-  // THEN the frame is identical, bit for bit
-  ASSERT_TRUE(a.ok() && b.ok());
-  EXPECT_EQ(a.position_m, b.position_m);
+TEST(MetricsTruthFrame, TheWeightedFitWeighsTheTwoNeighboursTheAgentRanksNearest) {
+  // GIVEN neighbours off the circle (so the weights matter), the weighted fit, and two records of the same set: one
+  // ranking 1 and 2 nearest, one ranking 3 and 1 nearest (as an agent whose estimates order them so would report)
+  Fixture f;
+  f.uavs[2].position_m += Vec2(0.4, -0.3);
+  f.uavs[3].position_m += Vec2(-0.5, 0.2);
+  EstimateRecord a = recordWith({1, 2, 3});
+  EstimateRecord b = recordWith({3, 1, 2});
+  a.far_neighbour_weight = b.far_neighbour_weight = 0.2;
+  const TruthInFrame ta = truthInFloatingFrame(f.uavs[0], f.uavs, a, FrameVelocity::kNeighbourMean);
+  const TruthInFrame tb = truthInFloatingFrame(f.uavs[0], f.uavs, b, FrameVelocity::kNeighbourMean);
+  // THEN each truth is the agent's fit in the record's order on the true positions, and the two frames differ
+  ASSERT_TRUE(ta.ok() && tb.ok());
+  auto fitIn = [&f](const std::vector<int>& ids) {
+    agent::NeighbourPositions p;
+    for (int id : ids) p.position[static_cast<std::size_t>(p.count++)] = f.uavs[static_cast<std::size_t>(id)].position_m - f.uavs[0].position_m;
+    return agent::fitFloatingFrame(p, kR, agent::CircleFit::kFixedRadius, 0.2);
+  };
+  EXPECT_EQ(ta.position_m, -fitIn({1, 2, 3}).centre);
+  EXPECT_EQ(tb.position_m, -fitIn({3, 1, 2}).centre);
+  EXPECT_GT((ta.position_m - tb.position_m).norm(), 0.01);
 }
 
 TEST(MetricsTruthFrame, OneNeighbourFrameIsRFromItTowardsSelf) {

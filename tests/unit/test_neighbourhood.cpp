@@ -182,5 +182,38 @@ TEST(SelectNeighbours, DispatchesOnTheConfiguredRule) {
   EXPECT_EQ(selectNeighbours(tracks, f).count(), 2);
 }
 
+TEST(Neighbourhood, ARankedFrameChangesWhenTheTwoNearestDoWithinTheSameSet) {
+  // GIVEN three neighbours, then the same three with the third and the second nearest swapped, then the first two
+  // swapped with each other
+  std::vector<Track> t{track(1, polar(9.8, 0.0)), track(2, polar(10.0, 120.0)), track(3, polar(10.2, 240.0))};
+  const Neighbourhood before = selectGabriel(t, kRange, kNoCap);
+  t[2] = track(3, polar(9.9, 240.0));
+  const Neighbourhood third_in = selectGabriel(t, kRange, kNoCap);
+  t[0] = track(1, polar(9.95, 0.0));
+  const Neighbourhood first_two_swapped = selectGabriel(t, kRange, kNoCap);
+  // THEN unranked (set only) all three are the same frame; ranked (the weighted fit) the one that lets 3 into the
+  // nearest two is another frame, the swap of the two nearest is not
+  ASSERT_EQ(before.count(), 3);
+  EXPECT_TRUE(before.sameFrameAs(third_in, false));
+  EXPECT_FALSE(before.sameFrameAs(third_in, true));
+  EXPECT_TRUE(third_in.sameFrameAs(first_two_swapped, true));
+  EXPECT_EQ(first_two_swapped.ids[0], 3);
+  // AND with two neighbours the order never matters
+  const std::vector<Track> two{track(1, polar(9.8, 0.0)), track(2, polar(10.0, 120.0))};
+  const std::vector<Track> two_swapped{track(1, polar(10.1, 0.0)), track(2, polar(10.0, 120.0))};
+  EXPECT_TRUE(selectGabriel(two, kRange, kNoCap).sameFrameAs(selectGabriel(two_swapped, kRange, kNoCap), true));
+}
+
+TEST(Neighbourhood, CarriesEachNeighboursTrackCovarianceInItsOrder) {
+  std::vector<Track> t{track(1, polar(12.0, 0.0)), track(2, polar(10.0, 120.0))};
+  t[0].estimate.P.setIdentity();
+  t[1].estimate.P = 2.0 * PvaMat::Identity();
+  const Neighbourhood nb = selectGabriel(t, kRange, kNoCap);
+  ASSERT_EQ(nb.count(), 2);
+  EXPECT_EQ(nb.ids[0], 2);
+  EXPECT_EQ(nb.covariances[0], 2.0 * Mat2::Identity());
+  EXPECT_EQ(nb.covariances[1], Mat2::Identity());
+}
+
 }  // namespace
 }  // namespace swa::agent

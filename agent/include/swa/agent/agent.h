@@ -44,6 +44,8 @@ class Agent {
   Vec2 computeCommand(StampNs stamp);
   void refreshDiagnostics(StampNs stamp);
   FrameFit fit(const NeighbourPositions& neighbours) const;
+  bool rankedFit() const;
+  Mat2 fitNoise(const Neighbourhood& neighbours, const FrameFit& fit) const;
 
   AgentConfig config_;
   TrackBank bank_;

@@ -18,6 +18,8 @@ struct NeighbourPositions {
   std::array<Vec2, kMaxNeighbours> position{};  // sorted nearest first
 };
 
+using NeighbourCovariances = std::array<Mat2, kMaxNeighbours>;  // same order as NeighbourPositions
+
 enum class FitCase : std::uint8_t {
   kNone,             // no neighbours: no frame
   kOne,              // n = 1
@@ -40,6 +42,15 @@ struct FrameFit {
 // the other cases ignore it.
 FrameFit fitFloatingFrame(const NeighbourPositions& neighbours, double radius, CircleFit method,
                           double far_weight = 1.0);
+
+// Covariance of `fit.centre` given the neighbours' position covariances (independent of one another), to first
+// order: r_c moves by J_j dp_j when neighbour j moves by dp_j. For the fixed-radius fit (and n = 2, its exact case)
+// J_j = A^-1 w_j u_j u_j' with u_j the unit vector centre -> neighbour and A = sum w_j u_j u_j' (the Gauss-Newton
+// normal matrix at the optimum): a neighbour's error along the circle's tangent does not move the centre, and a
+// centre held by two nearly opposite neighbours is poorly known across them. False for the cases it does not model
+// (algebraic fit, coincident points): the caller then keeps its configured noise.
+bool fitCovariance(const NeighbourPositions& neighbours, const NeighbourCovariances& covariances, const FrameFit& fit,
+                   double radius, double far_weight, Mat2& out);
 
 // The individual cases, exposed for the tests and the benchmark.
 FrameFit fitOne(const Vec2& p, double radius);

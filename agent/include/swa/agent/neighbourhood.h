@@ -25,8 +25,11 @@ namespace swa::agent {
 struct Neighbourhood {
   NeighbourPositions positions;            // nearest first
   std::array<int, kMaxNeighbours> ids{};   // same order
+  NeighbourCovariances covariances{};      // same order: the tracks' position covariances
   int count() const { return positions.count; }
-  bool sameIdsAs(const Neighbourhood& other) const;
+  // Whether both define the same floating frame: the same ids, and with a `ranked` fit (weights by rank, see
+  // frame_fit.h) the same two nearest.
+  bool sameFrameAs(const Neighbourhood& other, bool ranked) const;
 };
 
 Neighbourhood selectNeighbours(const std::vector<Track>& tracks, const FormationConfig& formation);

@@ -51,6 +51,9 @@ struct VelocityCommand {
   StampNs answered_stamp_ns = 0;  // the IMU sample this command answers (latency and lockstep bookkeeping)
   std::uint64_t seq = 0;
   Vec2 velocity_mps = Vec2::Zero();  // stable frame
+  // Heading rate, counter-clockwise positive (the heading's own sense). 0 holds the heading, which is all an agent
+  // with an all-round sensor ever commands; always finite and within control.max_yaw_rate_radps.
+  double yaw_rate_radps = 0.0;
   bool fresh = false;  // computed from this IMU sample; false: a rejected sample, answered with the previous command
 };
 

@@ -133,8 +133,9 @@ enum class TruthStatus : std::uint8_t {
 };
 
 // Where UAV `self` truly is (and how it truly moves) in the floating frame it reported: the frame is refitted with
-// agent::fitFloatingFrame on the TRUE positions of the reported neighbours relative to `self`, sorted nearest first
-// (ties by id), with the record's radius and method.
+// agent::fitFloatingFrame on the TRUE positions of the reported neighbours relative to `self`, in the record's order
+// (the agent's ranking, nearest first by its own estimates: the weighted fit's weights go by it), with the record's
+// radius and method.
 struct TruthInFrame {
   TruthStatus status = TruthStatus::kNoNeighbours;
   agent::Vec2 position_m = agent::Vec2::Constant(kNaN);   // = -r_c
