@@ -92,6 +92,16 @@ params::Table<AgentConfig> makeTable() {
   SWA_PARAM(t, number, control.k_p, "1/s", closed(0, 20), "position feedback gain");
   SWA_PARAM(t, number, control.k_v, "", closed(0, 10), "velocity feedback gain");
   SWA_PARAM(t, number, control.v_max_mps, "m/s", openClosed(0, 50), "saturation of the desired velocity |v_d|");
+  SWA_PARAM(t, number, control.k_yaw, "1/s", closed(0, 20),
+            "heading gain (sensor.fov_deg < 360 only): yaw rate per radian of heading error");
+  SWA_PARAM(t, number, control.max_yaw_rate_radps, "rad/s", openClosed(0, 10),
+            "saturation of the commanded yaw rate: the vehicle's limit");
+  SWA_PARAM(t, number, control.facing_deg, "deg", closed(-360, 360),
+            "world direction (counter-clockwise from east) every sensor axis holds when sensor.fov_deg < 360");
+  SWA_PARAM(t, number, sensor.fov_deg, "deg", openClosed(0, 360),
+            "the relative sensor's horizontal field of view (360 = all round: the heading is never commanded)");
+  SWA_PARAM(t, number, sensor.mount_deg, "deg", closed(-360, 360),
+            "the centre of that field of view, counter-clockwise from body x");
 
   SWA_PARAM(t, number, anchor.gain, "", closed(0, 10),
             "weight of the absolute (GNSS) hold added to the relative command in anchored mode");

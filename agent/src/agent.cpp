@@ -108,6 +108,7 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
     absolute_.predictTo(imu.stamp_ns, command_);
     absolute_.correctAcceleration(to_stable * acc_body, r_acc_);
     command_ = computeCommand(imu.stamp_ns);
+    yaw_rate_ = headingRate(imu.heading_rad, config_.sensor, config_.control);
   }
 
   VelocityCommand cmd;
@@ -115,6 +116,7 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
   cmd.answered_stamp_ns = imu.stamp_ns;
   cmd.seq = ++seq_;
   cmd.velocity_mps = command_;
+  cmd.yaw_rate_radps = yaw_rate_;
   cmd.fresh = accepted;
   ++diag_.commands;
   refreshDiagnostics(accepted ? imu.stamp_ns : diag_.stamp_ns);

@@ -148,6 +148,10 @@ params::Table<Scenario> makeTable() {
       "initial heading of each UAV: random per UAV, or zero (body = world axes)");
   SWA_PARAM(t, number, dynamics.heading_rate_std_radps, "rad/s", closed(0, 10),
             "std of a per-UAV constant turn rate (0 = constant heading)");
+  SWA_PARAM(t, number, dynamics.yaw_lag_s, "s", openClosed(0, 60),
+            "first-order time constant of the yaw rate's response to the commanded yaw rate");
+  SWA_PARAM(t, number, dynamics.max_yaw_rate_radps, "rad/s", openClosed(0, 100),
+            "commanded yaw rates are clamped to +- this (the vehicle's limit)");
 
   SWA_PARAM(t, number, wind.gust_std, "m/s^2", closed(0, 100),
             "std of the per-UAV Ornstein-Uhlenbeck gust acceleration");
@@ -166,7 +170,10 @@ params::Table<Scenario> makeTable() {
   SWA_PARAM(t, number, mps.rate_hz, "Hz", openClosed(0, 10000),
             "mutual-perception sensor scan rate; must divide dynamics.rate_hz");
   SWA_PARAM(t, number, mps.range_m, "m", openClosed(0, 10000), "neighbours farther than this are not detected");
-  SWA_PARAM(t, number, mps.fov_deg, "deg", openClosed(0, 360), "horizontal field of view, centred on the body x axis");
+  SWA_PARAM(t, number, mps.fov_deg, "deg", openClosed(0, 360),
+            "horizontal field of view, centred on mps.mount_deg; also agent.sensor.fov_deg unless that is given");
+  SWA_PARAM(t, number, mps.mount_deg, "deg", closed(-360, 360),
+            "centre of the field of view, counter-clockwise from body x; also agent.sensor.mount_deg unless given");
   SWA_PARAM(t, choice, mps.noise_model,
             std::vector<std::pair<MpsNoiseModel, std::string>>{{MpsNoiseModel::kIsotropic, "isotropic"},
                                                                {MpsNoiseModel::kRangeBearing, "range_bearing"}},
@@ -234,7 +241,9 @@ params::Table<Scenario> makeTable() {
       {"vehicle.com_of_loss_t_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
   });
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
-  schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"}};
+  schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"},
+                    {"agent.sensor.fov_deg", "mps.fov_deg"},
+                    {"agent.sensor.mount_deg", "mps.mount_deg"}};
   schema.foreign_sections = {"study"};
   return t;
 }

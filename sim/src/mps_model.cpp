@@ -15,10 +15,13 @@ constexpr double kMinBearingStd = 1e-6;  // rad
 MpsModel::MpsModel(const MpsSetup& setup, MpsStreams streams)
     : setup_(setup),
       half_fov_rad_(0.5 * setup.fov_deg * M_PI / 180.0),
+      mount_rad_(setup.mount_deg * M_PI / 180.0),
       all_round_(setup.fov_deg >= 360.0),
       rng_(std::move(streams)) {}
 
-bool MpsModel::inFieldOfView(double bearing_rad) const { return all_round_ || std::abs(bearing_rad) <= half_fov_rad_; }
+bool MpsModel::inFieldOfView(double bearing_rad) const {
+  return all_round_ || std::abs(std::remainder(bearing_rad - mount_rad_, 2.0 * M_PI)) <= half_fov_rad_;
+}
 
 agent::Mat2 MpsModel::rangeBearingCovariance(double range_m, double bearing_rad, double range_std_m,
                                               double bearing_std_rad) {
@@ -57,7 +60,7 @@ agent::Detection MpsModel::clutterReturn() {
   // Uniform in area: radius ~ R sqrt(u).
   const double u = rng_.clutter.uniform();
   const double bearing =
-      all_round_ ? rng_.clutter.uniform(-M_PI, M_PI) : rng_.clutter.uniform(-half_fov_rad_, half_fov_rad_);
+      all_round_ ? rng_.clutter.uniform(-M_PI, M_PI) : mount_rad_ + rng_.clutter.uniform(-half_fov_rad_, half_fov_rad_);
   const double range = setup_.range_m * std::sqrt(u);
   agent::Detection det;
   det.target_id = agent::kAnonymousId;

@@ -1,5 +1,6 @@
 #include "swa/sim/world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -77,6 +78,7 @@ World::World(const Scenario& scenario)
       gnss_period_steps_(sensorPeriodSteps(scenario.gnss.rate_hz, scenario.dynamics.rate_hz)),
       common_gust_(scenario.wind.common_std, scenario.wind.common_corr_s, dt_s_,
                    Rng(scenario.seed, kWorldOwner, Stream::kGust)),
+      yaw_response_(-std::expm1(-dt_s_ / scenario.dynamics.yaw_lag_s)),
       collisions_(scenario.uav_count) {
   const auto n = static_cast<std::size_t>(scenario_.uav_count);
   const std::vector<agent::Vec2> slots = hexLattice(scenario_.uav_count, scenario_.formation.spacing_m);
@@ -96,9 +98,11 @@ void World::command(int uav, const agent::VelocityCommand& cmd) {
   if (uav < 0 || uav >= uav_count()) {
     throw std::out_of_range("World::command: no UAV " + std::to_string(uav));
   }
-  if (!agent::isFinite(cmd.velocity_mps)) return;
+  if (!agent::isFinite(cmd.velocity_mps) || !std::isfinite(cmd.yaw_rate_radps)) return;
   Uav& u = uavs_[static_cast<std::size_t>(uav)];
   u.setpoint_mps = cmd.velocity_mps;
+  const double max_yaw = scenario_.dynamics.max_yaw_rate_radps;
+  u.yaw_rate_setpoint_radps = std::clamp(cmd.yaw_rate_radps, -max_yaw, max_yaw);
   u.setpoint_arrival_ns = time_ns_;
 }
 
@@ -121,6 +125,12 @@ void World::step() {
     u.last_gust_mps2 = u.gust.value() + common_gust_.value();
     const agent::Vec2 setpoint = u.failsafe ? agent::Vec2::Zero() : u.setpoint_mps;
     stepLateral(scenario_.dynamics, dt_s_, setpoint, u.last_gust_mps2, u.state);
+    // Heading: the yaw rate follows the commanded one with a first-order lag, like velocity; the failsafe holds
+    // the heading. Kept apart from the closed-form turn of heading_rate_std_radps, and exactly 0 while nothing
+    // was ever commanded, so an all-round swarm's headings are bit for bit those of a world without yaw control.
+    const double yaw_setpoint = u.failsafe ? 0.0 : u.yaw_rate_setpoint_radps;
+    u.yaw_rate_radps += (yaw_setpoint - u.yaw_rate_radps) * yaw_response_;
+    u.commanded_turn_rad = wrapAngle(u.commanded_turn_rad + u.yaw_rate_radps * dt_s_);
   }
 
   ++step_;
@@ -140,7 +150,7 @@ void World::refreshTruth() {
     t.position_m = u.state.position_m;
     t.velocity_mps = u.state.velocity_mps;
     t.acceleration_mps2 = u.state.acceleration_mps2;
-    t.heading_rad = wrapAngle(u.initial_heading_rad + u.turn_rate_radps * t_s);
+    t.heading_rad = wrapAngle(u.initial_heading_rad + u.turn_rate_radps * t_s + u.commanded_turn_rad);
     t.failsafe = u.failsafe;
     t.gust_mps2 = u.last_gust_mps2;
     positions_[i] = u.state.position_m;

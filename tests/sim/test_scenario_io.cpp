@@ -442,6 +442,16 @@ TEST(ScenarioParse, GivenSensorRates_ThenEachMustDivideTheDynamicsRate) {
   EXPECT_TRUE(contains(changed.problems()[0], "imu.rate_hz = 100 Hz must divide dynamics.rate_hz = 150 Hz"));
 }
 
+TEST(ScenarioParse, GivenNoAgentSensor_ThenTheAgentKnowsTheSimulatedFieldOfViewAndMounting) {
+  // GIVEN only the simulator's sensor THEN the agents are told its field of view and mounting
+  const Scenario s = parseScenario("", "<t>", {"mps.fov_deg=240", "mps.mount_deg=30"});
+  EXPECT_EQ(s.agent.sensor.fov_deg, 240.0);
+  EXPECT_EQ(s.agent.sensor.mount_deg, 30.0);
+  EXPECT_EQ(parseScenario("", "<t>").agent.sensor.fov_deg, 360.0);
+  // GIVEN the agent's own (a wrong belief, for a study) THEN it wins
+  EXPECT_EQ(parseScenario("", "<t>", {"mps.fov_deg=240", "agent.sensor.fov_deg=360"}).agent.sensor.fov_deg, 360.0);
+}
+
 TEST(ScenarioParse, GivenNoExplicitRadius_ThenTheAgentRadiusFollowsTheSpacing) {
   // GIVEN a spacing and no agent radius THEN the agents aim for the spacing
   EXPECT_EQ(parseScenario("formation: {spacing_m: 15}\n", "<t>").agent.formation.radius_m, 15.0);

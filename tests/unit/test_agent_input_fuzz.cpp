@@ -145,7 +145,8 @@ struct FuzzResult {
 };
 
 FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
-  const AgentConfig config = configFor(mode);
+  AgentConfig config = configFor(mode);
+  config.sensor.fov_deg = 240.0;  // so every command also carries a heading-control yaw rate (issue #26)
   Agent agent(config);
   Fuzzer fz(seed, config.limits);
   FuzzOracle oracle(config.limits);
@@ -188,6 +189,10 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
       if (!c.velocity_mps.allFinite() || !(c.velocity_mps.norm() <= v_max + 1e-12)) {
         report(res.bad_commands, "input " + std::to_string(n) + ": command (" + std::to_string(c.velocity_mps.x()) +
                                      ", " + std::to_string(c.velocity_mps.y()) + ") not finite or above v_max");
+      }
+      if (!std::isfinite(c.yaw_rate_radps) || !(std::abs(c.yaw_rate_radps) <= config.control.max_yaw_rate_radps)) {
+        report(res.bad_commands, "input " + std::to_string(n) + ": yaw rate " + std::to_string(c.yaw_rate_radps) +
+                                     " not finite or above its limit");
       }
       if (c.seq != last_seq + 1 || c.answered_stamp_ns != s.stamp_ns) {
         report(res.wrong_bookkeeping, "input " + std::to_string(n) + ": seq / answered stamp wrong");
@@ -334,7 +339,7 @@ TEST(AgentInputFuzz, CommandsFiniteAndSaturatedAndCountersMatchInEveryMode) {
       if (!hang.empty()) continue;
       const FuzzResult r = runFuzz(mode, seed, kSamples);
 
-      // THEN every command is finite and within saturation, the estimate and the tracks stay finite
+      // THEN every command (velocity and yaw rate) is finite and within saturation, the estimate and the tracks stay finite
       EXPECT_EQ(r.bad_commands, 0) << "commands not finite or above v_max";
       EXPECT_EQ(r.nonfinite_diagnostics, 0) << "inputs after which the diagnostics estimate was not finite";
       EXPECT_EQ(r.nonfinite_tracks, 0) << "inputs after which a track estimate was not finite";

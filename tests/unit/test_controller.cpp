@@ -11,6 +11,44 @@ namespace {
 
 using testing::FocalWorld;
 
+TEST(HeadingControl, AnAllRoundSensorNeverTurnsTheHeading) {
+  const SensorConfig all_round;
+  const ControlConfig c;
+  for (double h : {-3.0, -1.0, 0.0, 0.7, 3.1}) EXPECT_EQ(headingRate(h, all_round, c), 0.0);
+}
+
+TEST(HeadingControl, ALimitedSensorTurnsItsAxisToTheFacingTheShortWayWithinTheLimit) {
+  SensorConfig sensor;
+  sensor.fov_deg = 240.0;
+  sensor.mount_deg = 30.0;  // the axis is 30 deg left of body x
+  ControlConfig c;
+  c.facing_deg = 90.0;  // north: the body must head 60 deg
+  c.k_yaw = 2.0;
+  c.max_yaw_rate_radps = 0.5;
+  const double wanted = 60.0 * M_PI / 180.0;
+  // small errors: proportional, towards the wanted heading
+  EXPECT_NEAR(headingRate(wanted - 0.1, sensor, c), 0.2, 1e-12);
+  EXPECT_NEAR(headingRate(wanted + 0.05, sensor, c), -0.1, 1e-12);
+  EXPECT_EQ(headingRate(wanted, sensor, c), 0.0);
+  // large errors: saturated, and the shorter way round across +-pi
+  EXPECT_EQ(headingRate(wanted - 2.0, sensor, c), 0.5);
+  EXPECT_EQ(headingRate(wanted + 2.0, sensor, c), -0.5);
+  EXPECT_EQ(headingRate(wanted + 4.0, sensor, c), 0.5);  // 4 rad clockwise is 2.28 rad counter-clockwise
+  // a heading that is not a number never gives a command that is not
+  EXPECT_EQ(headingRate(std::nan(""), sensor, c), 0.0);
+}
+
+TEST(HeadingControl, TheAgentsCommandCarriesTheRateOnlyWithALimitedSensor) {
+  AgentConfig config;
+  ImuSample imu;
+  imu.stamp_ns = 10'000'000;
+  imu.heading_rad = 1.0;
+  EXPECT_EQ(Agent(config).onImu(imu).yaw_rate_radps, 0.0);
+  config.sensor.fov_deg = 180.0;
+  const VelocityCommand cmd = Agent(config).onImu(imu);
+  EXPECT_EQ(cmd.yaw_rate_radps, -config.control.max_yaw_rate_radps);  // facing east, 1 rad left of it: turn right
+}
+
 TEST(Controller, StableSignPointsFromEstimateTowardsFrameOrigin) {
   // GIVEN the UAV estimated 3 m east of its frame origin, at rest
   ControlConfig paper;

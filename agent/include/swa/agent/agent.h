@@ -73,6 +73,7 @@ class Agent {
   bool gnss_valid_ = false;
 
   Vec2 command_ = Vec2::Zero();
+  double yaw_rate_ = 0.0;
   std::uint64_t seq_ = 0;
   std::vector<StableDetection> stable_;  // reused conversion buffer
 };

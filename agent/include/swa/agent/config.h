@@ -99,6 +99,22 @@ struct ControlConfig {
   double k_p = 0.7;         // 1/s
   double k_v = 0.63;        // -
   double v_max_mps = 2.0;   // saturation of |v_d|
+  // Heading control (issue #26), only with a sensor that does not see all round (sensor.fov_deg < 360): the agent
+  // turns its sensor's axis to the world direction facing_deg (counter-clockwise from east) and holds it there,
+  // yaw rate = k_yaw x heading error, saturated at max_yaw_rate_radps (the vehicle's limit). Every UAV facing the
+  // same way means no pair is blind to each other: j lies in i's blind sector only if i lies in the opposite
+  // sector of j, which a blind sector narrower than 180 deg never covers. No communication: the heading is the
+  // agent's own (the stable frame is world-aligned, DESIGN §2).
+  double k_yaw = 1.0;                 // 1/s
+  double max_yaw_rate_radps = 0.5;
+  double facing_deg = 0.0;
+};
+
+// The relative sensor as the agent knows it. In a scenario both default to the simulator's mps.fov_deg and
+// mps.mount_deg, as formation.radius_m defaults to the spacing.
+struct SensorConfig {
+  double fov_deg = 360.0;   // horizontal field of view; 360: all round, and the heading is never commanded
+  double mount_deg = 0.0;   // the centre of the field of view, counter-clockwise from body x
 };
 
 struct AnchorConfig {
@@ -130,6 +146,7 @@ struct AgentConfig {
   FormationConfig formation;
   FocalConfig focal;
   ControlConfig control;
+  SensorConfig sensor;
   AnchorConfig anchor;
   LimitsConfig limits;
 };

@@ -2,6 +2,7 @@
 // Formation control (paper §III-D with the sign erratum of DESIGN §3.5): v_d = -k_p p - k_v v drives the UAV to
 // the floating-frame origin. The paper's e = -x with v_d = -k e is positive feedback and diverges.
 
+#include <algorithm>
 #include <cmath>
 
 #include "swa/agent/config.h"
@@ -27,6 +28,19 @@ inline Vec2 saturate(const Vec2& v, double v_max) {
     out = v * factor;
   }
   return out;
+}
+
+// Heading control (ControlConfig: facing_deg): the yaw rate that turns the sensor's axis to the common facing
+// direction. Exactly 0 with an all-round sensor, so such an agent never touches its heading. Always finite and
+// within +-max_yaw_rate_radps, whatever the heading (a non-finite heading gives 0).
+inline double headingRate(double heading_rad, const SensorConfig& sensor, const ControlConfig& c) {
+  if (sensor.fov_deg >= 360.0 || !std::isfinite(heading_rad)) return 0.0;
+  constexpr double kRadPerDeg = M_PI / 180.0;
+  const double wanted = (c.facing_deg - sensor.mount_deg) * kRadPerDeg;
+  const double error = std::remainder(wanted - heading_rad, 2.0 * M_PI);  // in [-pi, pi]: the shorter way round
+  const double rate = c.k_yaw * error;
+  if (!std::isfinite(rate)) return 0.0;
+  return std::clamp(rate, -c.max_yaw_rate_radps, c.max_yaw_rate_radps);
 }
 
 }  // namespace swa::agent

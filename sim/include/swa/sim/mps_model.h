@@ -48,6 +48,7 @@ class MpsModel {
 
   MpsSetup setup_;
   double half_fov_rad_;
+  double mount_rad_;
   bool all_round_;
   MpsStreams rng_;
 };

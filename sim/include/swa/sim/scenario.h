@@ -30,6 +30,8 @@ struct DynamicsSetup {
   double failsafe_timeout_s = 0.5; // commands older than this: the UAV brakes to hover
   HeadingMode heading = HeadingMode::kRandom;
   double heading_rate_std_radps = 0.0;  // per-UAV constant turn rate (0 = constant heading)
+  double yaw_lag_s = 0.3;               // first-order response of the yaw rate to the commanded one
+  double max_yaw_rate_radps = 1.0;      // commanded yaw rates are clamped to this (the vehicle's limit)
 };
 
 struct WindSetup {
@@ -50,6 +52,7 @@ struct MpsSetup {
   double rate_hz = 10.0;
   double range_m = 40.0;
   double fov_deg = 360.0;
+  double mount_deg = 0.0;          // centre of the field of view, counter-clockwise from body x
   MpsNoiseModel noise_model = MpsNoiseModel::kIsotropic;
   double noise_var_m2 = 0.1;       // isotropic model (R_o)
   double range_std_m = 0.2;        // range/bearing model

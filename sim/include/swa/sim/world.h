@@ -109,6 +109,9 @@ class World {
     GnssModel gnss;
     std::deque<agent::DetectionSet> in_flight;  // measured, waiting for the MPS latency to pass
     agent::Vec2 setpoint_mps = agent::Vec2::Zero();
+    double yaw_rate_setpoint_radps = 0.0;  // clamped to dynamics.max_yaw_rate_radps
+    double yaw_rate_radps = 0.0;           // the lagged response
+    double commanded_turn_rad = 0.0;       // heading turned by yaw commands, on top of the scenario's own turn
     agent::StampNs setpoint_arrival_ns = 0;  // t = 0 stands for "none yet": the timeout then runs from the start
     agent::Vec2 last_gust_mps2 = agent::Vec2::Zero();
     bool failsafe = false;
@@ -135,6 +138,7 @@ class World {
   agent::StampNs time_ns_ = 0;
   std::int64_t step_ = 0;
   OuProcess2 common_gust_;
+  double yaw_response_;  // 1 - exp(-dt / yaw_lag_s): the yaw rate's share of its error closed per step
   std::vector<Uav> uavs_;
   CollisionMonitor collisions_;
   std::vector<agent::Vec2> positions_;  // scratch: truth positions in id order, for the MPS and collisions
