@@ -152,11 +152,14 @@ TEST_F(IsolationRun, AuditCatchesARogueParticipantReadingAnotherAgentsOutput) {
   auto rogue = std::make_unique<dds::Participant>("swa_agent_1", domain_, dds::resolveProfilesFile());
   rogue->reader<msg::AgentStatePubSubType>(dds::topics::state(2), "swa_state_reader", [](msg::AgentState&&) {});
   rogue->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader", [](msg::SwarmTruth&&) {});
-  // WHEN the observer has discovered both
+  // WHEN the observer has discovered both: every endpoint of agent 2 (its writer alone was once seen before its
+  // readers, on a loaded host, and the completeness check below then named agent 2), and the rogue's readers
   const bool seen = waitFor(
       [&] {
         const std::vector<Endpoint> e = observer_->log().endpoints();
-        return has(e, "swa_agent_2", EndpointKind::kWriter, dds::topics::state(2)) &&
+        const std::string missing = bulleted(auditAgentEndpoints(e, 3));
+        return missing.find("swa_agent_2") == std::string::npos &&
+               has(e, "swa_agent_2", EndpointKind::kWriter, dds::topics::state(2)) &&
                has(e, "swa_agent_1", EndpointKind::kReader, dds::topics::state(2)) &&
                has(e, "swa_agent_1", EndpointKind::kReader, dds::topics::kTruth);
       },
