@@ -20,14 +20,15 @@ Reads   rt/NS/fmu/out/vehicle_attitude   -> swa/uav<I>/imu (roll, pitch, heading
         rt/NS/fmu/out/vehicle_status     armed, nav_state (logged, and for --engage)
         rt/NS/fmu/out/vehicle_command_ack  the answers to --engage's requests (logged)
         swa/uav<I>/cmd_vel               the agent's velocity setpoints (one writer at a time)
-Writes  rt/NS/fmu/in/trajectory_setpoint   velocity in NED (position, acceleration, yaw NaN; vertical speed 0)
+Writes  rt/NS/fmu/in/trajectory_setpoint   velocity in NED, the yaw rate as yawspeed (clockwise: the opposite sign
+                                            of SWA's); position, acceleration, yaw NaN; vertical speed 0
         rt/NS/fmu/in/offboard_control_mode velocity control, with every setpoint and at least every 50 ms
         rt/NS/fmu/in/vehicle_command       only with --engage: arm, then offboard mode
         swa/uav<I>/bridge_state          diagnostics: link state, PX4's arming and mode, counters, last event
 The offboard stream: every command the agent sends is sent on at once. A command older than --stale-after-s (on
-PX4's clock) is replaced by zero velocity; after --agent-lost-after-s without one, or --attitude-lost-after-s
-without attitude from PX4, the stream stops and PX4's own offboard-loss failsafe (COM_OF_LOSS_T, COM_OBL_RC_ACT)
-takes over. Commands answering samples from before this bridge started are ignored. It never arms or changes the
+PX4's clock) is replaced by zero velocity and yawspeed (the heading held); after --agent-lost-after-s without one,
+or --attitude-lost-after-s without attitude from PX4, the stream stops and PX4's own offboard-loss failsafe
+(COM_OF_LOSS_T, COM_OBL_RC_ACT) takes over. Commands answering samples from before this bridge started are ignored. It never arms or changes the
 flight mode unless given --engage (bench tests, the simulator). Every state change is logged and published.
 GNSS is not forwarded: publish swa/uav<I>/gnss from your GNSS source, or let the agent run without it.)";
 
@@ -60,6 +61,8 @@ app::Cli makeCli(BridgeOptions& o) {
            "offboard_control_mode at least this often while streaming (at most 0.1: at least 10 Hz)");
   cli.real("--max-speed-mps", "V", o.core.max_speed_mps, 0.1, 50.0, "a speed in m/s",
            "commands faster than this are clamped (and counted)");
+  cli.real("--max-yaw-rate-radps", "W", o.core.max_yaw_rate_radps, 0.01, 10.0, "a rate in rad/s",
+           "commanded yaw rates beyond this are clamped (and counted)");
   cli.flag("--engage", o.core.engage,
            "arm and switch PX4 to offboard once the agent's stream has run for 1 s (bench tests, simulation; "
            "never on a flight without a pilot who can take over)");

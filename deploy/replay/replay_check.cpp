@@ -71,8 +71,11 @@ UavCheck checkUav(int uav, const UavRecording& recording, const agent::AgentConf
       dds::decodePayload<msg::VelocitySetpointPubSubType>(*it->second, was);
       c.max_speed_difference_mps = std::max(
           c.max_speed_difference_mps, std::hypot(out.vx_mps() - was.vx_mps(), out.vy_mps() - was.vy_mps()));
+      c.max_yaw_rate_difference_radps =
+          std::max(c.max_yaw_rate_difference_radps, std::abs(out.yaw_rate_radps() - was.yaw_rate_radps()));
       if (!c.first_difference) {
-        c.first_difference = CommandDifference{it->first, was.vx_mps(), was.vy_mps(), out.vx_mps(), out.vy_mps()};
+        c.first_difference = CommandDifference{it->first,        was.vx_mps(), was.vy_mps(), was.yaw_rate_radps(),
+                                               out.vx_mps(),     out.vy_mps(), out.yaw_rate_radps()};
       }
     } else if (in.input == Input::kDetections) {
       msg::Detections det;
@@ -109,19 +112,21 @@ std::string formatChecks(const std::vector<UavCheck>& checks) {
   for (const UavCheck& c : checks) {
     std::snprintf(line, sizeof line,
                   "uav %d: %llu inputs, %llu commands replayed, %llu recorded: %llu identical, %llu differ (largest "
-                  "%.3g m/s), %llu not recorded, %llu not replayed%s\n",
+                  "%.3g m/s, %.3g rad/s), %llu not recorded, %llu not replayed%s\n",
                   c.uav, static_cast<unsigned long long>(c.inputs), static_cast<unsigned long long>(c.replayed),
                   static_cast<unsigned long long>(c.recorded), static_cast<unsigned long long>(c.identical),
                   static_cast<unsigned long long>(c.differing), c.max_speed_difference_mps,
+                  c.max_yaw_rate_difference_radps,
                   static_cast<unsigned long long>(c.not_recorded), static_cast<unsigned long long>(c.not_replayed),
                   c.undecodable > 0 ? (", " + std::to_string(c.undecodable) + " inputs skipped").c_str() : "");
     out += line;
     if (c.first_difference) {
       const CommandDifference& d = *c.first_difference;
       std::snprintf(line, sizeof line,
-                    "  first difference at %.3f s: recorded (%.17g, %.17g) m/s, replayed (%.17g, %.17g) m/s\n",
-                    static_cast<double>(d.stamp_ns) * 1e-9, d.recorded_vx, d.recorded_vy, d.replayed_vx,
-                    d.replayed_vy);
+                    "  first difference at %.3f s: recorded (%.17g, %.17g) m/s %.17g rad/s, replayed (%.17g, %.17g) "
+                    "m/s %.17g rad/s\n",
+                    static_cast<double>(d.stamp_ns) * 1e-9, d.recorded_vx, d.recorded_vy, d.recorded_yaw_rate,
+                    d.replayed_vx, d.replayed_vy, d.replayed_yaw_rate);
       out += line;
     }
     if (c.first_not_recorded_ns) {

@@ -20,8 +20,8 @@ namespace swa::replay {
 
 struct CommandDifference {
   std::int64_t stamp_ns = 0;
-  double recorded_vx = 0.0, recorded_vy = 0.0;
-  double replayed_vx = 0.0, replayed_vy = 0.0;
+  double recorded_vx = 0.0, recorded_vy = 0.0, recorded_yaw_rate = 0.0;
+  double replayed_vx = 0.0, replayed_vy = 0.0, replayed_yaw_rate = 0.0;
 };
 
 struct UavCheck {
@@ -36,6 +36,7 @@ struct UavCheck {
   std::uint64_t not_recorded = 0;  // replayed, no recorded command of that stamp
   std::uint64_t not_replayed = 0;  // recorded, not produced by the replay
   double max_speed_difference_mps = 0.0;  // largest |replayed - recorded| velocity among the differing ones
+  double max_yaw_rate_difference_radps = 0.0;  // and yaw rate
   std::optional<CommandDifference> first_difference;
   std::optional<std::int64_t> first_not_recorded_ns;  // stamp of the first replayed command the recording lacks
 

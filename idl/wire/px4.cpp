@@ -46,13 +46,15 @@ px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const px4::Setpoint& s) {
   m.acceleration({kNaN, kNaN, kNaN});
   m.jerk({kNaN, kNaN, kNaN});
   m.yaw(kNaN);
-  m.yawspeed(kNaN);
+  m.yawspeed(static_cast<float>(s.yawspeed_radps));
   return m;
 }
 
 px4::NedVelocity velocityOf(const px4_msgs::msg::TrajectorySetpoint& m) {
   return {m.velocity()[0], m.velocity()[1], m.velocity()[2]};
 }
+
+double yawspeedOf(const px4_msgs::msg::TrajectorySetpoint& m) { return m.yawspeed(); }
 
 bool isVelocityOnly(const px4_msgs::msg::TrajectorySetpoint& m) {
   for (const float p : m.position()) {

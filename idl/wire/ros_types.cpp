@@ -24,6 +24,7 @@ geometry_msgs::msg::TwistStamped toTwistStamped(const msg::VelocitySetpoint& m) 
   out.header().frame_id(enuFrameId(m.uav_id()));
   out.twist().linear().x(m.vx_mps());
   out.twist().linear().y(m.vy_mps());
+  out.twist().angular().z(m.yaw_rate_radps());
   return out;
 }
 

@@ -51,6 +51,7 @@ agent::VelocityCommand fromMsg(const msg::VelocitySetpoint& m) {
   c.answered_stamp_ns = m.answered_stamp_ns();
   c.seq = m.header().seq();
   c.velocity_mps = agent::Vec2(m.vx_mps(), m.vy_mps());
+  c.yaw_rate_radps = m.yaw_rate_radps();
   return c;
 }
 
@@ -105,6 +106,7 @@ msg::VelocitySetpoint toMsg(const agent::VelocityCommand& c, std::uint32_t uav_i
   m.vy_mps(c.velocity_mps.y());
   m.answered_stamp_ns(c.answered_stamp_ns);
   m.answered_seq(answered_seq);
+  m.yaw_rate_radps(c.yaw_rate_radps);
   return m;
 }
 

@@ -13,6 +13,7 @@
 #include "swa/dds/topics.h"
 #include "swa/px4/frames.h"
 #include "swa/wire/px4.h"
+#include "world_command.h"
 
 namespace swa::sim_node {
 namespace {
@@ -87,13 +88,17 @@ void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agen
       answer.setpoint.uav_id(static_cast<std::uint32_t>(a.uav));
       answer.setpoint.vx_mps(stable.x());
       answer.setpoint.vy_mps(stable.y());
+      answer.setpoint.yaw_rate_radps(worldYawRate(wire::yawspeedOf(*sp)));
       const std::optional<agent::StampNs> answered = px4::stampNsOf(sp->timestamp());
       const auto sample = std::find_if(v.published.begin(), v.published.end(), [&](const Vehicle::Sample& p) {
         return answered && p.stamp_ns == *answered && !p.answered;
       });
       if (sample == v.published.end()) {
         // The bridge's own setpoint (or a repeat): it answers no sample the vehicle is waiting for.
-        if (admit(answer)) v.standin.trajectorySetpoint(ned, answer.velocity_only);
+        if (admit(answer)) {
+          v.standin.trajectorySetpoint(ned, answer.velocity_only);
+          v.yaw_rate_radps = answer.setpoint.yaw_rate_radps();
+        }
         continue;
       }
       sample->answered = true;
@@ -118,9 +123,9 @@ void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agen
 }
 
 void Px4Vehicles::apply(const Answer& a) {
-  vehicles_.at(static_cast<std::size_t>(a.uav))
-      .standin.trajectorySetpoint(px4::nedOf(agent::Vec2(a.setpoint.vx_mps(), a.setpoint.vy_mps())),
-                                  a.velocity_only);
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(a.uav));
+  v.standin.trajectorySetpoint(px4::nedOf(agent::Vec2(a.setpoint.vx_mps(), a.setpoint.vy_mps())), a.velocity_only);
+  v.yaw_rate_radps = a.setpoint.yaw_rate_radps();
 }
 
 void Px4Vehicles::step(sim::World& world, const EventFn& event) {
@@ -132,6 +137,7 @@ void Px4Vehicles::step(sim::World& world, const EventFn& event) {
     agent::VelocityCommand command;
     command.stamp_ns = now;
     command.velocity_mps = d.velocity_mps;
+    command.yaw_rate_radps = d.following ? v.yaw_rate_radps : 0.0;  // holding: the heading too
     command.fresh = true;
     world.command(uav, command);
     for (const std::string& text : v.standin.takeEvents()) {

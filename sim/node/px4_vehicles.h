@@ -91,6 +91,7 @@ class Px4Vehicles {
     };
     std::deque<Sample> published;  // recent attitude samples
     std::string ns;
+    double yaw_rate_radps = 0.0;  // of the newest setpoint given to the stand-in (which knows only the velocity)
     std::uint8_t status_sent_nav = 255, status_sent_arming = 255;
     agent::StampNs status_sent_at = 0;
   };

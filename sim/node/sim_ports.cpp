@@ -20,6 +20,7 @@
 #include "swa/sim/timing.h"
 #include "swa/wire/samples.h"
 #include "swa/wire/world.h"
+#include "world_command.h"
 
 namespace swa::sim_node {
 namespace {
@@ -252,8 +253,11 @@ const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
 void SimPorts::apply(const Answer& a) {
   if (px4_) {
     px4_->apply(a);
+  } else if (const std::optional<agent::VelocityCommand> command = worldCommand(a.setpoint)) {
+    world_.command(a.uav, *command);
   } else {
-    world_.command(a.uav, wire::fromMsg(a.setpoint));
+    ++summary_.ignored_commands;  // a non-finite number: the previous setpoint stays in force
+    return;
   }
   ++summary_.applied_commands;
 }

@@ -20,7 +20,7 @@ struct SimSummary {
   double handshake_s = 0.0;      // realtime: from publishing step 0 until every agent answered it
   int collisions = 0;
   std::uint64_t applied_commands = 0;
-  std::uint64_t ignored_commands = 0;  // stale, duplicate, or naming the wrong UAV
+  std::uint64_t ignored_commands = 0;  // stale, duplicate, naming the wrong UAV, or with a non-finite number
   // Commands from a second writer on a UAV's cmd_vel while its current one is active (swa/dds/command_gate.h), and how
   // many such writers were seen; changes of a UAV's writer after its first (a restarted agent).
   std::uint64_t refused_commands = 0;

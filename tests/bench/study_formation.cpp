@@ -2,8 +2,12 @@
 // and neighbourhood rule, the metrics of DESIGN §5 side by side. A table-printing program, not a test: the
 // closed-loop statistics assert the targets on fewer seeds (tests/closedloop/formation_statistics.cpp).
 //
-//   study_formation [--seeds 20] [--jobs 2] [--sizes 3-16] [--duration 600] [--rules gabriel,k3]
+//   study_formation [--seeds 20] [--jobs 2] [--sizes 3-16] [--fov 360] [--duration 600] [--rules gabriel,k3]
 //                   [--scenario FILE] [--set key=value]...
+//
+// --sizes takes ranges and lists (3-16, or 3,8,16,32-33); --fov a list of fields of view in degrees (mps.fov_deg,
+// which the agents also take as theirs: below 360 they turn to face one way, issue #26). For the agents'
+// constant-heading behaviour under a limited field of view, add --set agent.sensor.fov_deg=360.
 //
 // Rules (each spelled out, so the table does not change meaning with the defaults): gabriel = Gabriel + weighted fit
 // (0.2) + IMU-bias removal (30 s); gabriel_nobias = the same without bias removal; gabriel_nocap = without the
@@ -48,7 +52,8 @@ const std::map<std::string, std::vector<std::string>> kRules = {
 struct Options {
   int seeds = 20;
   int jobs = 2;
-  int n_from = 3, n_to = 16;
+  std::vector<int> sizes;
+  std::vector<double> fovs = {360.0};
   double duration_s = 600.0;
   std::vector<std::string> rules = {"gabriel", "k3"};
   std::string scenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_8.yaml";
@@ -56,11 +61,39 @@ struct Options {
 };
 
 [[noreturn]] void usage(const char* why) {
-  std::fprintf(stderr, "study_formation: %s\nusage: study_formation [--seeds N] [--jobs J] [--sizes A-B] "
-                       "[--duration S] [--rules r1,r2] [--scenario FILE] [--set key=value]...\nrules:", why);
+  std::fprintf(stderr, "study_formation: %s\nusage: study_formation [--seeds N] [--jobs J] [--sizes A-B,C,...] "
+                       "[--fov D1,D2] [--duration S] [--rules r1,r2] [--scenario FILE] [--set key=value]...\nrules:",
+               why);
   for (const auto& [name, sets] : kRules) std::fprintf(stderr, " %s", name.c_str());
   std::fprintf(stderr, "\n");
   std::exit(2);
+}
+
+std::vector<std::string> splitCommas(const std::string& v) {
+  std::vector<std::string> out;
+  for (std::size_t s = 0, e; s <= v.size(); s = e + 1) {
+    e = std::min(v.find(',', s), v.size());
+    out.push_back(v.substr(s, e - s));
+  }
+  return out;
+}
+
+// "3-16", "8", "3,8,16-18": every size, in the order given; false for a malformed part or a size below 2.
+bool parseSizes(const std::string& v, std::vector<int>& out) {
+  for (const std::string& part : splitCommas(v)) {
+    int from = 0, to = 0;
+    char tail = 0;
+    if (std::sscanf(part.c_str(), "%d-%d%c", &from, &to, &tail) == 2) {
+      // a range
+    } else if (std::sscanf(part.c_str(), "%d%c", &from, &tail) == 1) {
+      to = from;
+    } else {
+      return false;
+    }
+    if (from < 2 || to < from) return false;
+    for (int n = from; n <= to; ++n) out.push_back(n);
+  }
+  return !out.empty();
 }
 
 Options parse(int argc, char** argv) {
@@ -77,13 +110,18 @@ Options parse(int argc, char** argv) {
     } else if (a == "--duration") {
       o.duration_s = std::atof(v.c_str());
     } else if (a == "--sizes") {
-      if (std::sscanf(v.c_str(), "%d-%d", &o.n_from, &o.n_to) != 2) o.n_to = o.n_from = std::atoi(v.c_str());
-    } else if (a == "--rules") {
-      o.rules.clear();
-      for (std::size_t s = 0, e; s <= v.size(); s = e + 1) {
-        e = std::min(v.find(',', s), v.size());
-        o.rules.push_back(v.substr(s, e - s));
+      o.sizes.clear();
+      if (!parseSizes(v, o.sizes)) usage(("bad --sizes " + v + " (e.g. 3-16 or 3,8,16; sizes >= 2)").c_str());
+    } else if (a == "--fov") {
+      o.fovs.clear();
+      for (const std::string& f : splitCommas(v)) {
+        char* end = nullptr;
+        const double d = std::strtod(f.c_str(), &end);
+        if (end == f.c_str() || *end != '\0' || !(d > 0.0 && d <= 360.0)) usage(("bad --fov " + f).c_str());
+        o.fovs.push_back(d);
       }
+    } else if (a == "--rules") {
+      o.rules = splitCommas(v);
     } else if (a == "--scenario") {
       o.scenario = v;
     } else if (a == "--set") {
@@ -94,8 +132,10 @@ Options parse(int argc, char** argv) {
   }
   for (const std::string& r : o.rules)
     if (kRules.count(r) == 0) usage(("unknown rule " + r).c_str());
-  if (o.seeds < 1 || o.jobs < 1 || o.n_from < 2 || o.n_to < o.n_from || !(o.duration_s > 120.0))
-    usage("need seeds >= 1, jobs >= 1, sizes >= 2, duration > 120 s");
+  if (o.sizes.empty()) {
+    for (int n = 3; n <= 16; ++n) o.sizes.push_back(n);
+  }
+  if (o.seeds < 1 || o.jobs < 1 || !(o.duration_s > 120.0)) usage("need seeds >= 1, jobs >= 1, duration > 120 s");
   return o;
 }
 
@@ -119,41 +159,47 @@ int main(int argc, char** argv) {
   std::printf("study_formation: %s, %d seeds, %.0f s, GNSS lost as in the scenario; extra:", o.scenario.c_str(),
               o.seeds, o.duration_s);
   for (const std::string& s : o.sets) std::printf(" %s", s.c_str());
-  std::printf("\n\n| N | rule | d_NB 120 s | d_NB end | edge end | runs split | collisions (runs) | worst min sep | "
+  std::printf("\n\n| N | FOV | rule | d_NB 120 s | d_NB end | edge end | runs split | collisions (runs) | "
+              "worst min sep | "
               "drift, 60 s windows | centroid disp. | ANEES pos (in band) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (int n = o.n_from; n <= o.n_to; ++n) {
-    for (const std::string& rule : o.rules) {
-      // The rule's settings first, so a --set of the user's wins over them.
-      std::vector<std::string> sets = {"uav_count=" + std::to_string(n), "duration_s=" + std::to_string(o.duration_s)};
-      const std::vector<std::string>& r = kRules.at(rule);
-      sets.insert(sets.end(), r.begin(), r.end());
-      sets.insert(sets.end(), o.sets.begin(), o.sets.end());
-      const swa::sim::Scenario scenario = swa::sim::loadScenario(o.scenario, sets);
-      const std::vector<RunResult> runs = swa::batch::runSeeds(scenario, o.seeds, o.jobs, nullptr);
-      Column d120, dend, edge, drift, disp, anees, in_band;
-      int split = 0, collided = 0;
-      std::uint64_t collisions = 0;
-      double worst = std::numeric_limits<double>::infinity();
-      for (const RunResult& run : runs) {
-        const auto& s = run.summary;
-        d120.add(swa::batch::meanNeighbourDistanceAt(run, 120.0));
-        dend.add(s.mean_neighbor_distance_m);
-        edge.add(s.edge_length_m);
-        drift.add(s.drift_velocity_windows_mps);
-        disp.add(s.centroid_displacement_m);
-        anees.add(s.anees_position);
-        in_band.add(s.anees_position_in_band);
-        split += s.groups > 1 ? 1 : 0;
-        collisions += s.collisions;
-        collided += s.collisions > 0 ? 1 : 0;
-        worst = std::min(worst, s.min_separation_m);
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const double fov : o.fovs) {
+    for (const int n : o.sizes) {
+      for (const std::string& rule : o.rules) {
+        // The rule's settings first, so a --set of the user's wins over them.
+        std::vector<std::string> sets = {"uav_count=" + std::to_string(n),
+                                         "duration_s=" + std::to_string(o.duration_s),
+                                         "mps.fov_deg=" + std::to_string(fov)};
+        const std::vector<std::string>& r = kRules.at(rule);
+        sets.insert(sets.end(), r.begin(), r.end());
+        sets.insert(sets.end(), o.sets.begin(), o.sets.end());
+        const swa::sim::Scenario scenario = swa::sim::loadScenario(o.scenario, sets);
+        const std::vector<RunResult> runs = swa::batch::runSeeds(scenario, o.seeds, o.jobs, nullptr);
+        Column d120, dend, edge, drift, disp, anees, in_band;
+        int split = 0, collided = 0;
+        std::uint64_t collisions = 0;
+        double worst = std::numeric_limits<double>::infinity();
+        for (const RunResult& run : runs) {
+          const auto& s = run.summary;
+          d120.add(swa::batch::meanNeighbourDistanceAt(run, 120.0));
+          dend.add(s.mean_neighbor_distance_m);
+          edge.add(s.edge_length_m);
+          drift.add(s.drift_velocity_windows_mps);
+          disp.add(s.centroid_displacement_m);
+          anees.add(s.anees_position);
+          in_band.add(s.anees_position_in_band);
+          split += s.groups > 1 ? 1 : 0;
+          collisions += s.collisions;
+          collided += s.collisions > 0 ? 1 : 0;
+          worst = std::min(worst, s.min_separation_m);
+        }
+        std::printf("| %d | %.0f° | %s | %.2f ± %.2f | %.2f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | "
+                    "%.1f | %.2f (%.0f %%) |\n",
+                    n, fov, rule.c_str(), d120.mean(), d120.stdev(), dend.mean(), dend.stdev(), edge.mean(), split,
+                    o.seeds, static_cast<unsigned long long>(collisions), collided, worst, drift.mean(), disp.mean(),
+                    anees.mean(), 100.0 * in_band.mean());
+        std::fflush(stdout);
       }
-      std::printf("| %d | %s | %.2f ± %.2f | %.2f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | %.1f | %.2f (%.0f %%) |\n",
-                  n, rule.c_str(), d120.mean(), d120.stdev(), dend.mean(), dend.stdev(), edge.mean(), split,
-                  o.seeds, static_cast<unsigned long long>(collisions), collided, worst, drift.mean(), disp.mean(),
-                  anees.mean(), 100.0 * in_band.mean());
-      std::fflush(stdout);
     }
   }
   return 0;

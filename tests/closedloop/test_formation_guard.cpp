@@ -47,9 +47,12 @@ std::vector<Case> cases() {
   all.push_back({"old_rule_k3_n8", "dropout_8", kNearest(3, {duration}), false});
   all.push_back({"old_rule_k3_n4", "dropout_4", kNearest(3, {duration}), false});
   all.push_back({"old_rule_k2_n8", "dropout_8", kNearest(2, {duration}), false});
-  const std::vector<std::string> fov = {duration, "mps.fov_deg=240", "agent.control.k_p=0.5"};
-  all.push_back({"fov240_gabriel", "dropout_8", fov, false});
-  all.push_back({"fov240_k3", "dropout_8", kNearest(3, fov), false});
+  // A limited field of view: heading control (issue #26), and the constant headings it replaces.
+  all.push_back({"fov240_n8", "dropout_8", {duration, "mps.fov_deg=240"}, false});
+  all.push_back({"fov240_n16", "dropout_8", {duration, "mps.fov_deg=240", "uav_count=16"}, false});
+  all.push_back({"fov180_n8", "dropout_8", {duration, "mps.fov_deg=180"}, false});
+  all.push_back({"fov240_constant_heading", "dropout_8", {duration, "mps.fov_deg=240", "agent.sensor.fov_deg=360"},
+                 false});
   return all;
 }
 

@@ -363,6 +363,29 @@ TEST_F(SwarmRun, LockstepDropout4K3EqualsTheInProcessLoop) {
                    10.0 * (2.0 + std::sqrt(2.0)) / 4.0);
 }
 
+TEST_F(SwarmRun, LockstepWithALimitedFieldOfViewTurnsAsTheInProcessLoopDoes) {
+  // GIVEN 240 deg sensors: every agent commands a yaw rate (issue #26), which travels in cmd_vel (message set 3), and
+  // the world turns each UAV, which changes what its sensor sees
+  const std::vector<std::string> overrides{"duration_s=20", "mps.fov_deg=240"};
+  start(overrides, {"--agent-timeout-s", "10"});
+  ASSERT_FALSE(HasFatalFailure());
+  ASSERT_EQ(finish(), 0) << logs();
+  // THEN the run is the in-process closed loop bit for bit: the yaw rates arrived as computed, and the UAVs turned
+  // as they do there (a heading off by one bit would move what the sensors see, and the positions with it)
+  const std::vector<TruthRow> final_rows = finalTruth();
+  const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
+  ASSERT_EQ(final_rows.size(), 4u);
+  ASSERT_EQ(ref.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(final_rows[i].x, ref[i].position_m.x()) << "UAV " << i;
+    EXPECT_EQ(final_rows[i].y, ref[i].position_m.y()) << "UAV " << i;
+    EXPECT_EQ(final_rows[i].vx, ref[i].velocity_mps.x()) << "UAV " << i;
+    EXPECT_EQ(final_rows[i].vy, ref[i].velocity_mps.y()) << "UAV " << i;
+  }
+  EXPECT_EQ(monitor_->count(msg::EVENT_COLLISION), 0);
+  EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD), 0);
+}
+
 TEST_F(SwarmRun, LockstepOverUdpOnlyEqualsTheInProcessLoop) {
   // GIVEN the network transport profile (SWA_TRANSPORT=network: UDPv4 only, as between hosts or containers), where
   // lost and repaired datagrams can reorder topics

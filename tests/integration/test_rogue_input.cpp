@@ -244,10 +244,13 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
 #else
   EXPECT_LT(rss_after - rss_before, 16 * 1024);
 #endif
-  // AND every command was finite and within the 2 m/s limit
+  // AND every command was finite and within the 2 m/s limit, its yaw rate finite and within the default
+  // control.max_yaw_rate_radps (0.5; this all-round agent holds its heading: 0), whatever heading the rogue sent
   for (const msg::VelocitySetpoint& c : cmds_.seen) {
     ASSERT_TRUE(std::isfinite(c.vx_mps()) && std::isfinite(c.vy_mps()));
     ASSERT_LE(std::hypot(c.vx_mps(), c.vy_mps()), 2.0);
+    ASSERT_TRUE(std::isfinite(c.yaw_rate_radps()));
+    ASSERT_LE(std::abs(c.yaw_rate_radps()), 0.5);
   }
   // AND the latest state counts what the rogue did
   ASSERT_FALSE(states_.seen.empty());

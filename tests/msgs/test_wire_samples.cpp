@@ -57,12 +57,16 @@ TEST(WireMessages, SensorAndCommandMessagesSurviveSerialisation) {
   sp.vy_mps(2.75);
   sp.answered_stamp_ns(6'990'000'000);
   sp.answered_seq(100);
+  sp.yaw_rate_radps(-0.4375);
   // WHEN each goes through serialize/deserialize THEN each copy equals its original, under its qualified type name
   EXPECT_DOUBLE_EQ(through_the_wire<msg::ImuPubSubType>(imu, "swa::msg::Imu").heading_rad(), 2.5);
   EXPECT_EQ(through_the_wire<msg::DetectionsPubSubType>(det, "swa::msg::Detections").items()[1].target_id(), -1);
   EXPECT_STREQ(msg::DetectionPubSubType().getName(), "swa::msg::Detection");
   EXPECT_TRUE(through_the_wire<msg::GnssFixPubSubType>(fix, "swa::msg::GnssFix").valid());
-  EXPECT_EQ(through_the_wire<msg::VelocitySetpointPubSubType>(sp, "swa::msg::VelocitySetpoint").answered_seq(), 100u);
+  const msg::VelocitySetpoint sp2 =
+      through_the_wire<msg::VelocitySetpointPubSubType>(sp, "swa::msg::VelocitySetpoint");
+  EXPECT_EQ(sp2.answered_seq(), 100u);
+  EXPECT_EQ(sp2.yaw_rate_radps(), -0.4375);
 }
 
 TEST(WireMessages, OversizeDetectionListStillReachesTheConsumer) {
@@ -97,6 +101,7 @@ TEST(WireSamples, SamplesSurviveTheBridgeAndTheWireBitForBit) {
   cmd.stamp_ns = 1000;
   cmd.answered_stamp_ns = 1000;
   cmd.velocity_mps = agent::Vec2(0.1, -1.0 / 9.0);
+  cmd.yaw_rate_radps = -1.0 / 7.0;
 
   // WHEN each goes sample -> message -> wire -> message -> sample
   const msg::Imu imu_msg = through_the_wire<msg::ImuPubSubType>(toMsg(imu, 3, 7), "swa::msg::Imu");
@@ -133,6 +138,8 @@ TEST(WireSamples, SamplesSurviveTheBridgeAndTheWireBitForBit) {
   EXPECT_EQ(cmd2.answered_stamp_ns, 1000);
   EXPECT_EQ(cmd2.seq, 11u);
   EXPECT_EQ(cmd2.velocity_mps, cmd.velocity_mps);
+  EXPECT_EQ(sp.yaw_rate_radps(), cmd.yaw_rate_radps);
+  EXPECT_EQ(cmd2.yaw_rate_radps, cmd.yaw_rate_radps);
 }
 
 }  // namespace

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "swa/px4/bridge_core.h"
 #include "swa/px4/vehicle.h"
+#include "swa/wire/px4.h"
 
 namespace swa::px4 {
 namespace {
@@ -29,11 +31,12 @@ class BridgeCoreTest : public ::testing::Test {
   }
   static std::uint64_t stamp(int steps) { return kBootUs + static_cast<std::uint64_t>(steps) * kStepUs; }
 
-  Outbox command(int answered_step, agent::Vec2 v = {1.0, 0.5}) {
+  Outbox command(int answered_step, agent::Vec2 v = {1.0, 0.5}, double yaw_rate_radps = 0.0) {
     agent::VelocityCommand c;
     c.answered_stamp_ns = static_cast<agent::StampNs>(stamp(answered_step)) * 1000;
     c.stamp_ns = c.answered_stamp_ns;
     c.velocity_mps = v;
+    c.yaw_rate_radps = yaw_rate_radps;
     c.fresh = true;
     return bridge_.onCommand(c, now_s_);
   }
@@ -83,6 +86,43 @@ TEST_F(BridgeCoreTest, ACommandIsSentAtOnceStampedWithTheSampleItAnswers) {
   EXPECT_EQ(out.heartbeat_us, std::optional<std::uint64_t>(stamp(1)));
   EXPECT_EQ(bridge_.tick(now_s_).heartbeat_us, std::nullopt);  // no second heartbeat within the period
   EXPECT_EQ(bridge_.link(), Link::kFresh);
+}
+
+TEST_F(BridgeCoreTest, TheYawRateGoesOutAsYawspeedInNedAndTheStopHoldsTheHeading) {
+  // GIVEN samples forwarded
+  attitude(0);
+  attitude(1);
+  // WHEN the agent turns left (counter-clockwise from above) at 0.3 rad/s
+  const Outbox out = command(1, {1.0, 0.5}, 0.3);
+  // THEN PX4 is sent yawspeed -0.3 (about NED down, clockwise positive), and yaw NaN so that it follows the rate
+  ASSERT_TRUE(out.setpoint);
+  EXPECT_EQ(out.setpoint->yawspeed_radps, -0.3);
+  const px4_msgs::msg::TrajectorySetpoint sent = wire::trajectorySetpoint(*out.setpoint);
+  EXPECT_EQ(sent.yawspeed(), -0.3f);
+  EXPECT_TRUE(std::isnan(sent.yaw()));
+  EXPECT_EQ(wire::yawspeedOf(sent), static_cast<double>(-0.3f));
+
+  // WHEN the agent then falls silent until its command is stale
+  std::optional<Setpoint> stop;
+  for (int k = 2; k <= 60 && !stop; ++k) {
+    attitude(k);
+    stop = last_tick_.setpoint;
+  }
+  // THEN the bridge's own stop command holds the heading: yawspeed exactly 0, not the last rate and not NaN
+  ASSERT_TRUE(stop);
+  EXPECT_EQ(bridge_.link(), Link::kStale);
+  EXPECT_EQ(stop->yawspeed_radps, 0.0);
+  EXPECT_EQ(wire::trajectorySetpoint(*stop).yawspeed(), 0.0f);
+
+  // WHEN a command's yaw rate is NaN or infinite THEN it never becomes a setpoint; a too fast turn is clamped
+  attitude(61);
+  EXPECT_FALSE(command(61, {0.0, 0.0}, std::nan("")).setpoint);
+  EXPECT_FALSE(command(61, {0.0, 0.0}, -std::numeric_limits<double>::infinity()).setpoint);
+  EXPECT_EQ(bridge_.counters().commands_nonfinite, 2u);
+  const Outbox fast = command(61, {0.0, 0.0}, -1e300);
+  ASSERT_TRUE(fast.setpoint);
+  EXPECT_EQ(fast.setpoint->yawspeed_radps, BridgeConfig{}.max_yaw_rate_radps);
+  EXPECT_EQ(bridge_.counters().commands_clamped, 1u);
 }
 
 TEST_F(BridgeCoreTest, CommandsFromBeforeTheBridgeOrForUnknownOrOlderSamplesAreIgnored) {

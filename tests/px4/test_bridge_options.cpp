@@ -24,7 +24,8 @@ TEST(BridgeOptions, ParsesEveryOption) {
   const BridgeOptions o = parseBridgeOptions(
       {"--id", "3", "--px4-namespace", "/lab/vehicle_3", "--target-system", "4", "--stale-after-s", "0.2",
        "--agent-lost-after-s", "2", "--attitude-lost-after-s", "0.4", "--heartbeat-period-s", "0.02",
-       "--max-speed-mps", "3", "--engage", "--domain", "7", "--summary-out", "/tmp/b.json"});
+       "--max-speed-mps", "3", "--max-yaw-rate-radps", "0.75", "--engage", "--domain", "7", "--summary-out",
+       "/tmp/b.json"});
   EXPECT_EQ(o.id, 3);
   EXPECT_EQ(px4Namespace(o), "lab/vehicle_3");
   EXPECT_EQ(o.target_system, 4);
@@ -33,6 +34,7 @@ TEST(BridgeOptions, ParsesEveryOption) {
   EXPECT_DOUBLE_EQ(o.core.attitude_lost_after_s, 0.4);
   EXPECT_DOUBLE_EQ(o.core.heartbeat_period_s, 0.02);
   EXPECT_DOUBLE_EQ(o.core.max_speed_mps, 3.0);
+  EXPECT_DOUBLE_EQ(o.core.max_yaw_rate_radps, 0.75);
   EXPECT_TRUE(o.core.engage);
   EXPECT_EQ(o.domain, std::optional<std::string>("7"));
   EXPECT_EQ(o.summary_out, "/tmp/b.json");

@@ -97,6 +97,18 @@ TEST(Px4Frames, VelocityCommandsBecomeNed) {
   EXPECT_EQ(stableOf(nedOf(agent::Vec2(0.25, -0.75))), agent::Vec2(0.25, -0.75));
 }
 
+TEST(Px4Frames, AYawRateIsTheOppositeSignInPx4) {
+  // A left turn (counter-clockwise from above, SWA's heading growing) is PX4's yaw falling: yawspeed -0.3
+  EXPECT_EQ(yawspeedOf(0.3), -0.3);
+  EXPECT_EQ(yawspeedOf(0.0), 0.0);
+  EXPECT_EQ(yawRateOf(yawspeedOf(-0.1234567)), -0.1234567);
+  // AND it agrees with the attitude conversion: PX4's yaw advanced by yawspeed * dt is SWA's heading advanced by the
+  // rate * dt (heading 30 deg, 0.5 s at 0.3 rad/s)
+  const double yaw = kPi / 2 - 30 * kDeg;
+  const double after = swaOf(yawOnly(yaw + yawspeedOf(0.3) * 0.5)).heading_rad;
+  EXPECT_NEAR(after - swaOf(yawOnly(yaw)).heading_rad, 0.3 * 0.5, 1e-12);
+}
+
 TEST(Px4Frames, AttitudesRoundTripThroughPx4AndFloat32) {
   // GIVEN seeded attitudes a hovering or manoeuvring multirotor can have
   std::mt19937 rng(7);

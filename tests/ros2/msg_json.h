@@ -58,7 +58,8 @@ inline json toJson(const msg::VelocitySetpoint& m) {
           {"vx_mps", m.vx_mps()},
           {"vy_mps", m.vy_mps()},
           {"answered_stamp_ns", big(m.answered_stamp_ns())},
-          {"answered_seq", m.answered_seq()}};
+          {"answered_seq", m.answered_seq()},
+          {"yaw_rate_radps", m.yaw_rate_radps()}};
 }
 
 inline json toJson(const msg::AgentState& m) {

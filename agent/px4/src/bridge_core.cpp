@@ -62,7 +62,7 @@ std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_u
 Outbox BridgeCore::onCommand(const agent::VelocityCommand& command, double now_s) {
   ++counters_.commands_in;
   Outbox out;
-  if (!agent::isFinite(command.velocity_mps)) {
+  if (!agent::isFinite(command.velocity_mps) || !std::isfinite(command.yaw_rate_radps)) {
     ++counters_.commands_nonfinite;
     return out;
   }
@@ -80,13 +80,15 @@ Outbox BridgeCore::onCommand(const agent::VelocityCommand& command, double now_s
     return out;
   }
   agent::Vec2 v = command.velocity_mps;
-  if (v.norm() > config_.max_speed_mps) {
-    ++counters_.commands_clamped;
-    v *= config_.max_speed_mps / v.norm();
-  }
+  double yaw_rate = command.yaw_rate_radps;
+  const bool too_fast = v.norm() > config_.max_speed_mps;
+  const bool turns_too_fast = std::abs(yaw_rate) > config_.max_yaw_rate_radps;
+  if (too_fast) v *= config_.max_speed_mps / v.norm();
+  if (turns_too_fast) yaw_rate = std::copysign(config_.max_yaw_rate_radps, yaw_rate);
+  if (too_fast || turns_too_fast) ++counters_.commands_clamped;
   ++counters_.commands_applied;
   applied_us_ = *answered;
-  out.setpoint = Setpoint{*answered, nedOf(v)};
+  out.setpoint = Setpoint{*answered, nedOf(v), yawspeedOf(yaw_rate)};
   out.heartbeat_us = *answered;
   sent(out, now_s);
   return out;
@@ -121,9 +123,10 @@ Outbox BridgeCore::tick(double now_s) {
   const bool streaming = now == Link::kFresh || now == Link::kStale;
   if (now != link_) {
     note(std::string("link: ") + linkName(now));
-    // Stop and hover. Stamped with the sample the last command answered: PX4 takes it as a setpoint of that moment,
-    // and it answers no new sample (a receiver that waits for answers, the simulator, does not mistake it for one).
-    if (now == Link::kStale) out.setpoint = Setpoint{*applied_us_, NedVelocity{}};
+    // Stop and hover, holding the heading (yawspeed 0, not the stale command's rate). Stamped with the sample the last
+    // command answered: PX4 takes it as a setpoint of that moment, and it answers no new sample (a receiver that
+    // waits for answers, the simulator, does not mistake it for one).
+    if (now == Link::kStale) out.setpoint = Setpoint{*applied_us_, NedVelocity{}, 0.0};
     link_ = now;
   }
   if (!streaming) {

@@ -56,6 +56,10 @@ NedVelocity nedOf(const agent::Vec2& stable_mps) { return {stable_mps.y(), stabl
 
 agent::Vec2 stableOf(const NedVelocity& ned) { return {ned.east, ned.north}; }
 
+double yawspeedOf(double yaw_rate_radps) { return -yaw_rate_radps; }
+
+double yawRateOf(double yawspeed_radps) { return -yawspeed_radps; }
+
 std::optional<agent::StampNs> stampNsOf(std::uint64_t timestamp_us) {
   constexpr std::uint64_t kMaxUs = static_cast<std::uint64_t>(std::numeric_limits<agent::StampNs>::max()) / 1000;
   if (timestamp_us > kMaxUs) return std::nullopt;

@@ -5,10 +5,11 @@
 // tell (that PX4 went quiet, and the heartbeat's period).
 //
 // The offboard stream (offboard_control_mode "velocity" + trajectory_setpoint, deploy/README.md):
-//   - every accepted command is sent at once, stamped with the PX4 timestamp of the attitude sample it answers;
+//   - every accepted command is sent at once, stamped with the PX4 timestamp of the attitude sample it answers, its
+//     yaw rate as PX4's yawspeed (yaw NaN: PX4 follows the rate; 0 holds the heading);
 //   - a command older than stale_after_s (vehicle time: newest attitude - the sample it answers) becomes zero
-//     velocity, stamped like that command (it answers no new sample): the vehicle stops and hovers while the agent may
-//     still recover;
+//     velocity and yawspeed 0, stamped like that command (it answers no new sample): the vehicle stops and hovers,
+//     holding its heading, while the agent may still recover;
 //   - no command for agent_lost_after_s, or no attitude from PX4 for attitude_lost_after_s, stops the stream: PX4's own
 //     offboard-loss failsafe (COM_OF_LOSS_T, COM_OBL_RC_ACT) takes over. The bridge never decides a failsafe itself;
 //   - otherwise the heartbeat is repeated every heartbeat_period_s, stamped 0 (PX4 stamps it on receipt).
@@ -33,6 +34,7 @@ struct BridgeConfig {
   double attitude_lost_after_s = 0.5;
   double heartbeat_period_s = 0.05;  // 20 Hz when no command comes (PX4 needs 2 Hz)
   double max_speed_mps = 5.0;        // faster commands are clamped to this, and counted
+  double max_yaw_rate_radps = 1.0;   // so are faster turns (the agent's default limit is 0.5)
   bool engage = false;
   double engage_after_s = 1.0;
   double engage_retry_s = 1.0;
@@ -53,6 +55,7 @@ enum class VehicleRequest { kArm, kOffboard };
 struct Setpoint {
   std::uint64_t timestamp_us = 0;  // the PX4 timestamp of the attitude sample it answers
   NedVelocity velocity;
+  double yawspeed_radps = 0.0;  // PX4's yawspeed (about NED down, clockwise from above); 0 holds the heading
 };
 
 // What to publish now.

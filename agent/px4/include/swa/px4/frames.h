@@ -8,7 +8,7 @@
 //        (DESIGN §3.4): body acceleration = q_c [pitch, roll] with body x forward, y left, so SWA pitch is positive
 //        nose DOWN (accelerating forward) and SWA roll positive LEFT side down (accelerating left). Stamps in ns.
 //   Hence: heading = pi/2 - yaw, pitch_swa = -pitch, roll_swa = -roll; a stable-frame velocity (east, north) is NED
-//   (north, east, 0).
+//   (north, east, 0); a yaw rate (d heading / dt) is -yawspeed.
 
 #include <cstdint>
 #include <optional>
@@ -54,6 +54,11 @@ double wrapPi(double angle_rad);
 // velocity only; the vehicle holds its altitude), and a NED velocity's horizontal part back in the stable frame.
 NedVelocity nedOf(const agent::Vec2& stable_mps);
 agent::Vec2 stableOf(const NedVelocity& ned);
+
+// SWA's yaw rate (counter-clockwise from above, the heading's sense) as PX4's yawspeed (about NED down: clockwise
+// from above), and back: heading = pi/2 - yaw, so the signs are opposite. [rad/s]
+double yawspeedOf(double yaw_rate_radps);
+double yawRateOf(double yawspeed_radps);
 
 // PX4 timestamps [us] <-> SWA stamps [ns]: the same clock (the vehicle's), so detections for the agent must be stamped
 // on the clock PX4 stamps its /fmu/out messages with (deploy/README.md). nullopt: beyond int64 nanoseconds.

@@ -21,11 +21,12 @@ namespace swa::wire {
 px4::Quaternion quaternionOf(const px4_msgs::msg::VehicleAttitude& m);
 px4_msgs::msg::VehicleAttitude vehicleAttitude(std::uint64_t timestamp_us, const px4::Quaternion& q);
 
-// A velocity-only setpoint: position, acceleration, jerk, yaw and yawspeed NaN (not controlled), as PX4's offboard
-// velocity control wants them.
+// A velocity-only setpoint: position, acceleration, jerk and yaw NaN (not controlled), as PX4's offboard velocity
+// control wants them; yawspeed the setpoint's (yaw NaN: PX4 follows the rate, 0 holds the heading).
 px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const px4::Setpoint& s);
-// The setpoint's NED velocity, and whether it is velocity-only (position NaN, velocity finite).
+// The setpoint's NED velocity and yawspeed, and whether it is velocity-only (position NaN, velocity finite).
 px4::NedVelocity velocityOf(const px4_msgs::msg::TrajectorySetpoint& m);
+double yawspeedOf(const px4_msgs::msg::TrajectorySetpoint& m);
 bool isVelocityOnly(const px4_msgs::msg::TrajectorySetpoint& m);
 
 // The offboard heartbeat for velocity control: velocity true, every other level false.

@@ -1,7 +1,8 @@
 #pragma once
 // SWA messages as the standard ROS 2 types that mean the same thing, for ROS tools that know no SWA package
 // (SWA_NAMING=ros2). REP-103: the velocity setpoint's frame is ENU-aligned (x east, y north, z up) at the UAV, named
-// swa/uav<I>/enu; the command is horizontal, so linear.z and angular are 0.
+// swa/uav<I>/enu; the command is horizontal, so linear.z, angular.x and angular.y are 0, and angular.z is the yaw
+// rate: about z up, counter-clockwise seen from above, SWA's own sense, so no sign changes.
 
 #include <cstdint>
 #include <string>
