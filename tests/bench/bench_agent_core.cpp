@@ -417,6 +417,17 @@ void BM_AgentDetectionStep(benchmark::State& state) {
 }
 BENCHMARK(BM_AgentDetectionStep);
 
+// What PauseTiming/ResumeTiming alone add to an iteration of the two detection-step benchmarks above and below:
+// subtract it from theirs for the cost of a detection set.
+void BM_PauseResumeOverhead(benchmark::State& state) {
+  for (auto _ : state) {
+    state.PauseTiming();
+    state.ResumeTiming();
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_PauseResumeOverhead);
+
 // Issue #26: the same steps with heading control on (a 240 deg sensor) and 10 tracked neighbours; the target is a
 // 5 us median for the detection step, the heavier of the two.
 constexpr int kHeadingTracks = 10;
