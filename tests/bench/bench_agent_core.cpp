@@ -189,7 +189,7 @@ std::vector<NeighbourPositions> makeFitInputs(int n) {
   return inputs;
 }
 
-// `fit(neighbours)` is timed; `gn_iters` reports the mean Gauss-Newton iterations (0 for the algebraic fit).
+// `fit(neighbours)` is timed; `newton_iters` reports the mean Newton iterations (0 for the algebraic fit).
 template <class Fit>
 void runFrameFit(benchmark::State& state, Fit fit) {
   const std::vector<NeighbourPositions> inputs = makeFitInputs(static_cast<int>(state.range(0)));
@@ -202,7 +202,8 @@ void runFrameFit(benchmark::State& state, Fit fit) {
     iterations += f.iterations;
     invalid += f.valid ? 0 : 1;
   }
-  state.counters["gn_iters"] = benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
+  state.counters["newton_iters"] =
+      benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
   if (invalid != 0) state.SkipWithError("fit returned an invalid frame");
 }
 

@@ -27,7 +27,7 @@ enum class FitCase : std::uint8_t {
   kTwoFarApart,      // n = 2 farther than 2r apart: midpoint
   kCoincident,       // neighbours on top of each other or of self: a fixed, documented direction is used
   kAlgebraic,        // n >= 3, linear least squares (Kasa)
-  kFixedRadius,      // n >= 3, (weighted) Gauss-Newton with |p_j - c| = r
+  kFixedRadius,      // n >= 3, (weighted) least squares on |p_j - c| = r, by Newton
   kCollinearFallback // n >= 3 collinear / ill-conditioned algebraic system: the n = 2 solution of the two nearest
 };
 
@@ -35,7 +35,7 @@ struct FrameFit {
   bool valid = false;
   Vec2 centre = Vec2::Zero();  // r_c: floating-frame origin relative to self
   FitCase fit_case = FitCase::kNone;
-  int iterations = 0;          // Gauss-Newton iterations used
+  int iterations = 0;          // Newton iterations used
 };
 
 // `far_weight` weighs the fixed-radius residuals of every neighbour beyond the two nearest (the two nearest weigh 1);
