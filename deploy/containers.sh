@@ -53,7 +53,7 @@ Options:
                     build/bin)
   --uavs N          number of agent containers (up, run, test; default 4); sets the scenario's uav_count to N
   --vehicle V       direct (default) or px4: one swa_px4_bridge container per UAV too, the simulator playing each
-                    UAV's PX4 v1.15 (vehicle.interface=px4); test then compares d_NB with swa_batch's direct loop
+                    UAV's PX4 (vehicle.interface=px4); test then compares d_NB with swa_batch's direct loop
                     (within 0.05 m) instead of every summary key
   --scenario FILE   scenario YAML (default deploy/scenarios/dropout_4.yaml), copied into RUN
   --set key=value   scenario override for the simulator and the monitor alike (repeatable; no spaces)

@@ -17,9 +17,11 @@
 #include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
 #include "swa/app/signals.h"
 #include "swa/dds/topics.h"
+#include "swa/px4/release.h"
 #include "swa/px4/vehicle.h"
 #include "swa/wire/px4.h"
 #include "swa/wire/samples.h"
@@ -47,6 +49,7 @@ bool isSecure() {
 BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::string& profiles_file)
     : id_(options.id),
       ns_(px4Namespace(options)),
+      status_topic_(px4::topicName(options.px4_release, "vehicle_status")),
       options_(options),
       domain_id_(domain_id),
       profiles_file_(profiles_file),
@@ -71,9 +74,15 @@ void BridgeNode::connect() {
     vehicle_command_ =
         p.writer<px4_msgs::msg::VehicleCommandPubSubType>(topics::px4In(ns_, "vehicle_command"), "px4_in_writer");
   }
-  status_reader_ = p.reader<px4_msgs::msg::VehicleStatusPubSubType>(
-      topics::px4Out(ns_, "vehicle_status"), "px4_out_reader",
-      [this](px4_msgs::msg::VehicleStatus&& m) { onStatus(std::move(m)); });
+  if (px4::hasV116VehicleStatus(options_.px4_release)) {
+    status_reader_v1_16_ = p.reader<px4_v1_16::px4_msgs::msg::VehicleStatusPubSubType>(
+        topics::px4Out(ns_, status_topic_), "px4_out_reader",
+        [this](px4_v1_16::px4_msgs::msg::VehicleStatus&& m) { onStatus(m.arming_state(), m.nav_state()); });
+  } else {
+    status_reader_ = p.reader<px4_msgs::msg::VehicleStatusPubSubType>(
+        topics::px4Out(ns_, status_topic_), "px4_out_reader",
+        [this](px4_msgs::msg::VehicleStatus&& m) { onStatus(m.arming_state(), m.nav_state()); });
+  }
   ack_reader_ = p.reader<px4_msgs::msg::VehicleCommandAckPubSubType>(
       topics::px4Out(ns_, "vehicle_command_ack"), "px4_out_reader",
       [this](px4_msgs::msg::VehicleCommandAck&& m) { onAck(std::move(m)); });
@@ -118,9 +127,10 @@ void BridgeNode::forward(const px4_msgs::msg::VehicleAttitude& m, std::chrono::s
   report();
 }
 
-void BridgeNode::onStatus(px4_msgs::msg::VehicleStatus&& m) {
+void BridgeNode::onStatus(std::uint8_t arming_state, std::uint8_t nav_state) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  core_.onStatus(m.arming_state(), m.nav_state());
+  status_seen_ = true;
+  core_.onStatus(arming_state, nav_state);
   report();
 }
 
@@ -197,9 +207,10 @@ void BridgeNode::report() {
 }
 
 int BridgeNode::run() {
-  std::fprintf(stderr, "swa_px4_bridge %d: PX4 %s namespace '%s' (%s), agent topics %s*\n", id_, px4::kRelease,
-               ns_.c_str(), topics::px4Out(ns_, "vehicle_attitude").c_str(), topics::uavPrefix(id_).c_str());
-  bool waiting_reported = false;
+  std::fprintf(stderr, "swa_px4_bridge %d: PX4 %s namespace '%s' (%s, %s), agent topics %s*\n", id_,
+               px4::releaseName(options_.px4_release), ns_.c_str(), topics::px4Out(ns_, "vehicle_attitude").c_str(),
+               status_topic_.c_str(), topics::uavPrefix(id_).c_str());
+  bool waiting_reported = false, status_missing_reported = false;
   while (!stop_requested_) {
     std::this_thread::sleep_for(kTickPeriod);
     // Matched-status queries outside mutex_ (a listener may hold its reader's lock while it waits for mutex_).
@@ -240,6 +251,15 @@ int BridgeNode::run() {
       std::fprintf(stderr, "swa_px4_bridge %d: no reader of %s after 5 s: is PX4's uXRCE-DDS agent on this domain, "
                            "with namespace '%s'?\n",
                    id_, topics::px4In(ns_, "trajectory_setpoint").c_str(), ns_.c_str());
+    }
+    // PX4 sends vehicle_status at least every second; attitude but no status is the mark of another release.
+    if (!status_seen_ && !status_missing_reported && core_.counters().attitude_in > 0 &&
+        std::chrono::steady_clock::now() - started_ > std::chrono::seconds(5)) {
+      status_missing_reported = true;
+      std::fprintf(stderr,
+                   "swa_px4_bridge %d: attitude from PX4 but no %s after 5 s: is the vehicle PX4 %s? (--px4-release; "
+                   "v1.15 names it vehicle_status, v1.16 and later vehicle_status_v1 with another layout)\n",
+                   id_, topics::px4Out(ns_, status_topic_).c_str(), px4::releaseName(options_.px4_release));
     }
     send(core_.tick(nowS()));
     report();

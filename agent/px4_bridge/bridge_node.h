@@ -25,6 +25,7 @@
 #include <swa/px4/VehicleCommandAck_v1_15.h>
 #include <swa/px4/VehicleCommand_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_15.h>
+#include <swa/px4/VehicleStatus_v1_16.h>
 
 #include "bridge_options.h"
 #include "swa/app/log_histogram.h"
@@ -51,7 +52,7 @@ class BridgeNode : public app::Role {
   void connect();  // creates the participant and the endpoints
   double nowS() const;
   void onAttitude(px4_msgs::msg::VehicleAttitude&& m);
-  void onStatus(px4_msgs::msg::VehicleStatus&& m);
+  void onStatus(std::uint8_t arming_state, std::uint8_t nav_state);
   void onAck(px4_msgs::msg::VehicleCommandAck&& m);
   void onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& writer);
   // With mutex_ held.
@@ -69,6 +70,7 @@ class BridgeNode : public app::Role {
 
   const int id_;
   const std::string ns_;
+  const std::string status_topic_;  // the release's name of vehicle_status
   const BridgeOptions options_;
   const int domain_id_;
   const std::string profiles_file_;
@@ -80,6 +82,7 @@ class BridgeNode : public app::Role {
   std::optional<px4_msgs::msg::VehicleAttitude> pending_;  // before PX4 reads our stream
   std::chrono::steady_clock::time_point pending_at_{};
   bool px4_reads_ = false;
+  bool status_seen_ = false;
   std::uint32_t imu_seq_ = 0, state_seq_ = 0;
   std::uint64_t commands_foreign_ = 0;  // naming another UAV
   std::string last_event_;
@@ -98,7 +101,8 @@ class BridgeNode : public app::Role {
   dds::Writer<px4_msgs::msg::OffboardControlMode> offboard_;
   dds::Writer<px4_msgs::msg::VehicleCommand> vehicle_command_;
   dds::Reader<px4_msgs::msg::VehicleAttitude> attitude_reader_;
-  dds::Reader<px4_msgs::msg::VehicleStatus> status_reader_;
+  dds::Reader<px4_msgs::msg::VehicleStatus> status_reader_;                // v1.15
+  dds::Reader<px4_v1_16::px4_msgs::msg::VehicleStatus> status_reader_v1_16_;  // v1.16 and later
   dds::Reader<px4_msgs::msg::VehicleCommandAck> ack_reader_;
   dds::Reader<msg::VelocitySetpoint> cmd_reader_;
 };

@@ -5,7 +5,7 @@
 #include "swa/dds/naming.h"
 #include "swa/dds/options.h"
 #include "swa/dds/topics.h"
-#include "swa/px4/vehicle.h"
+#include "swa/px4/release.h"
 
 namespace swa::px4_bridge {
 namespace {
@@ -13,11 +13,12 @@ namespace {
 constexpr int kMaxUavId = 9999;
 
 const char* const kDetails = R"(Runs on the drone beside swa_agent --id I (same domain, same SWA_SWARM / SWA_NAMING);
-PX4 v1.15's uXRCE-DDS agent puts PX4's topics on the same DDS domain under the namespace NS
-(uxrce_dds_client start -n NS).
+PX4's uXRCE-DDS agent puts PX4's topics on the same DDS domain under the namespace NS
+(uxrce_dds_client start -n NS). --px4-release must be the vehicle's: v1.16 changed vehicle_status's layout and
+renamed its topic vehicle_status_v1, and a bridge of another release would never hear the vehicle's state.
 Reads   rt/NS/fmu/out/vehicle_attitude   -> swa/uav<I>/imu (roll, pitch, heading in SWA's convention, stamped with
                                             PX4's timestamp: stamp the detections on the same clock)
-        rt/NS/fmu/out/vehicle_status     armed, nav_state (logged, and for --engage)
+        rt/NS/fmu/out/vehicle_status     armed, nav_state (logged, and for --engage); vehicle_status_v1 from v1.16
         rt/NS/fmu/out/vehicle_command_ack  the answers to --engage's requests (logged)
         swa/uav<I>/cmd_vel               the agent's velocity setpoints (one writer at a time)
 Writes  rt/NS/fmu/in/trajectory_setpoint   velocity in NED, the yaw rate as yawspeed (clockwise: the opposite sign
@@ -34,9 +35,8 @@ GNSS is not forwarded: publish swa/uav<I>/gnss from your GNSS source, or let the
 
 app::Cli makeCli(BridgeOptions& o) {
   app::Cli cli("swa_px4_bridge",
-               std::string("the autopilot bridge of one UAV: PX4 ") + px4::kRelease +
-                   " (uXRCE-DDS topics) <-> its swa_agent.");
-  cli.usage("swa_px4_bridge --id I [--px4-namespace NS] [--engage] [--domain D] [options]");
+               "the autopilot bridge of one UAV: PX4 " + px4::releaseList() + " (uXRCE-DDS topics) <-> its swa_agent.");
+  cli.usage("swa_px4_bridge --id I [--px4-release R] [--px4-namespace NS] [--engage] [--domain D] [options]");
   cli.details(kDetails);
   cli.integer("--id", "I", o.id, 0, kMaxUavId, "a UAV id", "UAV index (its agent's --id); participant swa_bridge_<I>");
   cli.required("--id");
@@ -49,6 +49,17 @@ app::Cli makeCli(BridgeOptions& o) {
         o.px4_namespace = dds::normalRosNamespace(v);
       },
       "PX4's ROS namespace (default px4_<I>, what swa_sim's PX4 stand-in uses; '' for none)");
+  cli.value(
+      "--px4-release", "R",
+      [&o](const std::string& v, app::Problems& problems) {
+        if (const std::optional<px4::Release> r = px4::parseRelease(v)) {
+          o.px4_release = *r;
+        } else {
+          problems.push_back("--px4-release '" + v + "': not a supported PX4 release (" + px4::releaseList() + ")");
+        }
+      },
+      std::string("the vehicle's PX4 release: ") + px4::releaseList() + " (default " +
+          px4::releaseName(px4::kNewestRelease) + "; a patch release such as 1.16.1 is its minor's)");
   cli.integer("--target-system", "N", o.target_system, 0, 255, "a MAVLink system id",
               "VehicleCommand.target_system of --engage's requests (0: whichever vehicle reads NS)");
   cli.real("--stale-after-s", "T", o.core.stale_after_s, 0.01, 10.0, "a time in seconds",

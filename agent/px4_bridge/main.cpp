@@ -1,4 +1,4 @@
-// swa_px4_bridge: PX4 v1.15 <-> the swa_agent of one UAV. See --help (bridge_options.cpp).
+// swa_px4_bridge: PX4 (v1.15, v1.16, v1.17) <-> the swa_agent of one UAV. See --help (bridge_options.cpp).
 
 #include <cstdio>
 #include <memory>

@@ -31,7 +31,7 @@ n=$1
 through=""
 generated="gen-compose.sh $n"
 if [ "$vehicle" = px4 ]; then
-  through=" and $n PX4 bridges (the simulator plays each UAV's PX4 v1.15)"
+  through=" and $n PX4 bridges (the simulator plays each UAV's PX4)"
   generated="gen-compose.sh $n --vehicle px4"
 fi
 

@@ -74,9 +74,9 @@ app::Cli makeCli(LaunchOptions& o) {
            "a swarm name, or none");
   const std::vector<std::string> vehicles{"direct", "px4"};
   cli.choice("--vehicle", "V", vehicles, [&o, vehicles](std::size_t k) { o.vehicle = vehicles[k]; },
-             "how the agents reach their UAVs: direct (the simulator reads cmd_vel) or px4 (each UAV a PX4 v1.15 "
-             "autopilot played by the simulator, one swa_px4_bridge --engage per agent, supervised like the agents); "
-             "the same as --set vehicle.interface=V");
+             "how the agents reach their UAVs: direct (the simulator reads cmd_vel) or px4 (each UAV a PX4 autopilot "
+             "played by the simulator, one swa_px4_bridge --engage per agent, supervised like the agents; the release "
+             "is vehicle.px4_release, default the newest); the same as --set vehicle.interface=V");
   std::vector<std::string> namings;
   for (const auto n : {dds::Naming::kSwa, dds::Naming::kRos2}) namings.emplace_back(dds::namingName(n));
   cli.choice("--naming", "N", namings, [&o, namings](std::size_t k) { o.naming = namings[k]; },

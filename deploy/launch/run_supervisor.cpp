@@ -168,11 +168,12 @@ class Supervisor {
                                         << " s ====\n";
     }
     // A bridge engages offboard itself: the simulator's PX4 stand-ins start in Hold, as a real vehicle would be
-    // handed over by its pilot.
+    // handed over by its pilot. It speaks the release the stand-ins play.
     const std::string uav = std::to_string(p.uav);
     const std::vector<std::string> argv =
-        p.bridge ? std::vector<std::string>{bin_.bridge, "--id", uav, "--domain", domain_, "--engage", "--summary-out",
-                                            (logs_ / ("bridge_" + uav + "_summary.json")).string()}
+        p.bridge ? std::vector<std::string>{bin_.bridge, "--id", uav, "--domain", domain_, "--engage",
+                                            "--px4-release", px4::releaseName(spec_.scenario.vehicle.px4_release),
+                                            "--summary-out", (logs_ / ("bridge_" + uav + "_summary.json")).string()}
                  : std::vector<std::string>{bin_.agent, "--id", uav, "--domain", domain_, "--scenario", scenarioFile()};
     p.process = std::make_unique<ChildProcess>(argv, log.string());
   }

@@ -31,16 +31,17 @@ Permissions (default DENY, nothing else is allowed):
                  writes swa/uav<I>/cmd_vel, swa/uav<I>/state (and swa/uav<I>/cmd_vel_stamped with --naming ros2)
   swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/truth, swa/events, swa/clock;
                  reads swa/uav*/cmd_vel; as every UAV's PX4 stand-in (vehicle.interface=px4) writes
-                 rt/<P>*/fmu/out/vehicle_attitude, vehicle_status, vehicle_command_ack and reads
+                 rt/<P>*/fmu/out/vehicle_attitude, vehicle_status(_v1), vehicle_command_ack and reads
                  rt/<P>*/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command
   swa_monitor    reads swa/truth, swa/events, swa/uav*/state, and to record them (swa_monitor --record) swa/clock,
                  swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/cmd_vel, swa/uav*/bridge_state
   swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I (swa_px4_bridge, or a bridge of your own):
                  writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and
                  rt/<P><I>/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command;
-                 reads swa/uav<I>/cmd_vel and rt/<P><I>/fmu/out/vehicle_attitude, vehicle_status,
+                 reads swa/uav<I>/cmd_vel and rt/<P><I>/fmu/out/vehicle_attitude, vehicle_status(_v1),
                  vehicle_command_ack
 <P> is the PX4 namespace prefix (--px4-prefix, default px4_: UAV I's PX4 runs uxrce_dds_client with -n px4_<I>).
+vehicle_status(_v1): both names, so the same credentials serve every PX4 release (v1.16 renamed it vehicle_status_v1).
 With --naming ros2 every swa/... topic above is rt/[<NS>/]swa/... (SWA_NAMING=ros2, SWA_ROS_NAMESPACE=<NS>).
 
 Options:
@@ -335,7 +336,10 @@ topics_xml() {
 
 # The topics of each role, from deploy/dds/include/swa/dds/topics.h and the nodes (sim/node, agent/node,
 # agent/px4_bridge, monitor/node). fnmatch patterns: uav* stands for every UAV index, $PX4_PREFIX* for every vehicle.
-px4_out() { echo "rt/$1/fmu/out/vehicle_attitude rt/$1/fmu/out/vehicle_status rt/$1/fmu/out/vehicle_command_ack"; }
+px4_out() {
+  echo "rt/$1/fmu/out/vehicle_attitude rt/$1/fmu/out/vehicle_status rt/$1/fmu/out/vehicle_status_v1" \
+       "rt/$1/fmu/out/vehicle_command_ack"
+}
 px4_in() { echo "rt/$1/fmu/in/trajectory_setpoint rt/$1/fmu/in/offboard_control_mode rt/$1/fmu/in/vehicle_command"; }
 
 publishes() {

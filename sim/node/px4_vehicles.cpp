@@ -9,9 +9,11 @@
 #include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
 #include "swa/dds/topics.h"
 #include "swa/px4/frames.h"
+#include "swa/px4/release.h"
 #include "swa/wire/px4.h"
 #include "world_command.h"
 
@@ -24,15 +26,21 @@ constexpr agent::StampNs kStatusPeriodNs = 200'000'000;  // vehicle_status at 5 
 
 }  // namespace
 
-Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, double com_of_loss_t_s) {
+Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup) {
   vehicles_.reserve(static_cast<std::size_t>(uav_count));
+  const std::string status_topic = px4::topicName(setup.px4_release, "vehicle_status");
   for (int i = 0; i < uav_count; ++i) {
-    Vehicle& v = vehicles_.emplace_back(com_of_loss_t_s);
+    Vehicle& v = vehicles_.emplace_back(setup.com_of_loss_t_s);
     v.ns = topics::px4Namespace(i);
     v.attitude = participant.writer<px4_msgs::msg::VehicleAttitudePubSubType>(
         topics::px4Out(v.ns, "vehicle_attitude"), "px4_out_writer");
-    v.status = participant.writer<px4_msgs::msg::VehicleStatusPubSubType>(topics::px4Out(v.ns, "vehicle_status"),
-                                                                           "px4_out_writer");
+    if (px4::hasV116VehicleStatus(setup.px4_release)) {
+      v.status_v1_16 = participant.writer<px4_v1_16::px4_msgs::msg::VehicleStatusPubSubType>(
+          topics::px4Out(v.ns, status_topic), "px4_out_writer");
+    } else {
+      v.status = participant.writer<px4_msgs::msg::VehicleStatusPubSubType>(topics::px4Out(v.ns, status_topic),
+                                                                             "px4_out_writer");
+    }
     v.ack = participant.writer<px4_msgs::msg::VehicleCommandAckPubSubType>(
         topics::px4Out(v.ns, "vehicle_command_ack"), "px4_out_writer");
     const auto arrive = [this, i](auto&& m, const dds::WriterGuid& w) {
@@ -151,18 +159,17 @@ void Px4Vehicles::publishStatus(int uav, Vehicle& v, agent::StampNs now) {
   const sim::Px4Standin& s = v.standin;
   const bool changed = s.navState() != v.status_sent_nav || s.armingState() != v.status_sent_arming;
   if (!changed && now - v.status_sent_at < kStatusPeriodNs) return;
-  px4_msgs::msg::VehicleStatus m;
-  m.timestamp(px4::timestampUsOf(now).value_or(0));
-  m.arming_state(s.armingState());
-  m.nav_state(s.navState());
-  m.nav_state_user_intention(s.navState());
-  m.nav_state_timestamp(m.timestamp());
-  m.failsafe(s.failsafe());
-  m.vehicle_type(1);  // rotary wing
-  m.system_id(static_cast<std::uint8_t>(uav + 1));
-  m.component_id(1);
-  m.pre_flight_checks_pass(true);
-  v.status.write(m);
+  const std::uint64_t timestamp = px4::timestampUsOf(now).value_or(0);
+  const auto system_id = static_cast<std::uint8_t>(uav + 1);
+  if (v.status_v1_16) {
+    auto m = wire::vehicleStatus<px4_v1_16::px4_msgs::msg::VehicleStatus>(timestamp, s.armingState(), s.navState(),
+                                                                          s.failsafe(), system_id);
+    v.status_v1_16.write(m);
+  } else {
+    auto m = wire::vehicleStatus<px4_msgs::msg::VehicleStatus>(timestamp, s.armingState(), s.navState(), s.failsafe(),
+                                                               system_id);
+    v.status.write(m);
+  }
   v.status_sent_nav = s.navState();
   v.status_sent_arming = s.armingState();
   v.status_sent_at = now;

@@ -1,7 +1,7 @@
 #pragma once
-// swa_sim's UAVs as PX4 v1.15 autopilots (vehicle.interface = px4): for each UAV, under PX4's topics of the namespace
-// px4_<i>, the simulator publishes vehicle_attitude (its IMU sample as PX4's quaternion, stamped on the vehicle's clock
-// = simulation time) and vehicle_status, reads trajectory_setpoint, offboard_control_mode and vehicle_command with
+// swa_sim's UAVs as PX4 autopilots (vehicle.interface = px4) of one release (vehicle.px4_release): for each UAV, under
+// PX4's topics of the namespace px4_<i>, the simulator publishes vehicle_attitude (its IMU sample as PX4's quaternion,
+// stamped on the vehicle's clock = simulation time) and vehicle_status (the release's layout and topic name), reads trajectory_setpoint, offboard_control_mode and vehicle_command with
 // PX4's QoS, and lets a stand-in (swa/sim/px4_standin.h) decide what the vehicle flies. The agents are reached through
 // one swa_px4_bridge each; detections and GNSS still go to the agents on SWA's topics.
 // The first trajectory_setpoint stamped with a recent attitude sample's timestamp is that sample's answer: it goes to
@@ -24,6 +24,7 @@
 #include <swa/px4/VehicleCommandAck_v1_15.h>
 #include <swa/px4/VehicleCommand_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_15.h>
+#include <swa/px4/VehicleStatus_v1_16.h>
 
 #include "answer.h"
 #include "swa/dds/participant.h"
@@ -42,7 +43,7 @@ class Px4Vehicles {
   using EventFn = std::function<void(int uav, double value, const std::string& text)>;
 
   // Creates every UAV's PX4 endpoints on `participant` (which must outlive this). Throws swa::dds::DdsError.
-  Px4Vehicles(dds::Participant& participant, int uav_count, double com_of_loss_t_s);
+  Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup);
 
   // UAV `uav`'s PX4 endpoints the bridge has not matched yet, appended to `missing`.
   void unmatched(int uav, std::vector<std::string>& missing) const;
@@ -79,7 +80,8 @@ class Px4Vehicles {
     sim::Px4Standin standin;
     dds::Writer<px4_msgs::msg::VehicleAttitude> attitude;
     std::optional<px4_msgs::msg::VehicleAttitude> last_attitude;
-    dds::Writer<px4_msgs::msg::VehicleStatus> status;
+    dds::Writer<px4_msgs::msg::VehicleStatus> status;                // v1.15
+    dds::Writer<px4_v1_16::px4_msgs::msg::VehicleStatus> status_v1_16;  // v1.16 and later
     dds::Writer<px4_msgs::msg::VehicleCommandAck> ack;
     dds::Reader<px4_msgs::msg::TrajectorySetpoint> setpoint;
     dds::Reader<px4_msgs::msg::OffboardControlMode> mode;

@@ -81,7 +81,7 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
           queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
         }));
   }
-  if (px4) px4_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle.com_of_loss_t_s);
+  if (px4) px4_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle);
 }
 
 SimPorts::~SimPorts() {

@@ -221,11 +221,17 @@ params::Table<Scenario> makeTable() {
   SWA_PARAM(t, choice, vehicle.interface,
             std::vector<std::pair<VehicleInterface, std::string>>{{VehicleInterface::kDirect, "direct"},
                                                                   {VehicleInterface::kPx4, "px4"}},
-            "swa_sim: direct (agents' cmd_vel and imu) or px4 (each UAV a PX4 v1.15 autopilot on rt/px4_<i>/fmu/..., "
+            "swa_sim: direct (agents' cmd_vel and imu) or px4 (each UAV a PX4 autopilot on rt/px4_<i>/fmu/..., "
             "reached through one swa_px4_bridge per agent; swa_launch starts them); swa_batch closes the loop "
             "directly");
   SWA_PARAM(t, number, vehicle.com_of_loss_t_s, "s", openClosed(0, 60),
             "px4: PX4's COM_OF_LOSS_T, offboard signal silent this long -> failsafe Hold");
+  SWA_PARAM(t, choice, vehicle.px4_release,
+            std::vector<std::pair<px4::Release, std::string>>{{px4::Release::kV1_15, "v1.15"},
+                                                              {px4::Release::kV1_16, "v1.16"},
+                                                              {px4::Release::kV1_17, "v1.17"}},
+            "px4: the PX4 release the stand-ins play (message layouts, versioned topic names such as "
+            "vehicle_status_v1); swa_launch gives every bridge the same --px4-release");
 
   t.mount(
       "agent", agent::configTable(), [](auto& s) -> auto& { return s.agent; },
@@ -239,6 +245,7 @@ params::Table<Scenario> makeTable() {
       {"mps.range_std_m", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
       {"mps.bearing_std_rad", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
       {"vehicle.com_of_loss_t_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.px4_release", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
   });
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"},

@@ -10,6 +10,7 @@
 
 #include "isolation_audit.h"
 #include "swa/dds/topics.h"
+#include "swa/px4/release.h"
 
 namespace swa::testing {
 namespace {
@@ -183,7 +184,9 @@ std::vector<Endpoint> px4Swarm(int n) {
   for (int i = 0; i < n; ++i) {
     const std::string bridge = "swa_bridge_" + std::to_string(i);
     const std::string ns = topics::px4Namespace(i);
-    for (const char* t : {"vehicle_attitude", "vehicle_status", "vehicle_command_ack"}) {
+    // The stand-ins play the newest release by default: vehicle_status_v1.
+    const std::string status = px4::topicName(px4::kNewestRelease, "vehicle_status");
+    for (const std::string& t : {std::string("vehicle_attitude"), status, std::string("vehicle_command_ack")}) {
       e.push_back(ep(kW, "swa_sim", topics::px4Out(ns, t)));
       e.push_back(ep(kR, bridge, topics::px4Out(ns, t)));
     }

@@ -25,8 +25,9 @@ TEST(BridgeOptions, ParsesEveryOption) {
       {"--id", "3", "--px4-namespace", "/lab/vehicle_3", "--target-system", "4", "--stale-after-s", "0.2",
        "--agent-lost-after-s", "2", "--attitude-lost-after-s", "0.4", "--heartbeat-period-s", "0.02",
        "--max-speed-mps", "3", "--max-yaw-rate-radps", "0.75", "--engage", "--domain", "7", "--summary-out",
-       "/tmp/b.json"});
+       "/tmp/b.json", "--px4-release", "1.16.1"});
   EXPECT_EQ(o.id, 3);
+  EXPECT_EQ(o.px4_release, px4::Release::kV1_16);
   EXPECT_EQ(px4Namespace(o), "lab/vehicle_3");
   EXPECT_EQ(o.target_system, 4);
   EXPECT_DOUBLE_EQ(o.core.stale_after_s, 0.2);
@@ -48,16 +49,19 @@ TEST(BridgeOptions, DefaultsAreSafeAndTheNamespaceIsTheSimulators) {
   EXPECT_EQ(px4Namespace(parseBridgeOptions({"--id", "2", "--px4-namespace", ""})), "");
   EXPECT_LE(o.core.heartbeat_period_s, 0.1);  // at least 10 Hz
   EXPECT_LT(o.core.stale_after_s, o.core.agent_lost_after_s);
+  // The newest PX4 release unless told
+  EXPECT_EQ(o.px4_release, px4::Release::kV1_17);
 }
 
 TEST(BridgeOptions, EveryProblemIsReportedTogether) {
   const std::string p = problemsOf({"--px4-namespace", "px4-1", "--heartbeat-period-s", "0.5", "--stale-after-s",
-                                    "2", "--agent-lost-after-s", "1", "--bogus"});
+                                    "2", "--agent-lost-after-s", "1", "--bogus", "--px4-release", "1.14"});
   EXPECT_NE(p.find("--id"), std::string::npos) << p;
   EXPECT_NE(p.find("--px4-namespace 'px4-1'"), std::string::npos) << p;
   EXPECT_NE(p.find("--heartbeat-period-s"), std::string::npos) << p;
   EXPECT_NE(p.find("--stale-after-s must be below --agent-lost-after-s"), std::string::npos) << p;
   EXPECT_NE(p.find("--bogus"), std::string::npos) << p;
+  EXPECT_NE(p.find("--px4-release '1.14': not a supported PX4 release (v1.15, v1.16, v1.17)"), std::string::npos) << p;
   EXPECT_TRUE(parseBridgeOptions({"--help"}).help);
 }
 

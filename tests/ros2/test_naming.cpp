@@ -54,6 +54,13 @@ TEST(Naming, Ros2NamingIsTheRosMappingOfCleanRosNames) {
   EXPECT_EQ(dds::ddsTopic(ros, dds::topics::kClock), "rt/swa/clock");
   // AND every SWA type is swa_msgs/msg/<T> as the rmw names it
   EXPECT_EQ(dds::ddsType(ros, "swa::msg::Imu"), "swa_msgs::msg::dds_::Imu_");
+  // AND under either naming a PX4 message in a later release's layout is registered under the name PX4 gives it in
+  // every release
+  for (const WireNames& n : {WireNames{}, ros}) {
+    EXPECT_EQ(dds::ddsType(n, "px4_v1_16::px4_msgs::msg::dds_::VehicleStatus_"), "px4_msgs::msg::dds_::VehicleStatus_");
+    EXPECT_EQ(dds::ddsType(n, "px4_msgs::msg::dds_::VehicleStatus_"), "px4_msgs::msg::dds_::VehicleStatus_");
+    EXPECT_EQ(dds::ddsType(n, "px4_v1_16::other::T"), "px4_v1_16::other::T");
+  }
   EXPECT_EQ(dds::ddsType(ros, "swa::msg::AgentState"), "swa_msgs::msg::dds_::AgentState_");
   EXPECT_EQ(dds::rosTypeOf(dds::ddsType(ros, "swa::msg::Detections")),
             std::optional<std::string>("swa_msgs/msg/Detections"));

@@ -35,6 +35,7 @@
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
 #include "../integration/process_test.h"
 #include "swa/dds/options.h"
@@ -155,6 +156,9 @@ void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
   }
   if (endsWith(topic, "/vehicle_status")) {
     return createWith<px4_msgs::msg::VehicleStatusPubSubType>(p, kind, topic, writer, reader);
+  }
+  if (endsWith(topic, "/vehicle_status_v1")) {
+    return createWith<px4_v1_16::px4_msgs::msg::VehicleStatusPubSubType>(p, kind, topic, writer, reader);
   }
   if (endsWith(topic, "/trajectory_setpoint")) {
     return createWith<px4_msgs::msg::TrajectorySetpointPubSubType>(p, kind, topic, writer, reader);
@@ -336,7 +340,7 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
       {"swa_sim",
        {{W, imu(0)}, {W, detections(3)}, {W, gnss(12)}, {W, truth}, {W, events}, {W, clock}, {R, cmdVel(1)},
         {W, px4Out(px4Namespace(3), "vehicle_attitude")}, {W, px4Out(px4Namespace(0), "vehicle_status")},
-        {R, px4In(px4Namespace(2), "trajectory_setpoint")}, {R, px4In(px4Namespace(1), "offboard_control_mode")}},
+        {W, px4Out(px4Namespace(2), "vehicle_status_v1")}, {R, px4In(px4Namespace(2), "trajectory_setpoint")}, {R, px4In(px4Namespace(1), "offboard_control_mode")}},
        {{R, imu(0)}, {R, detections(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth}, {R, clock},
         {R, px4Out(px4Namespace(0), "vehicle_attitude")}, {W, px4In(px4Namespace(0), "trajectory_setpoint")}}},
       // The autopilot bridge of UAV 1: its sensors out, its commands in, its own PX4's topics, nothing of another UAV
@@ -344,11 +348,12 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
       {"swa_bridge_1",
        {{W, imu(1)}, {W, detections(1)}, {W, gnss(1)}, {R, cmdVel(1)}, {W, bridgeState(1)},
         {R, px4Out(px4Namespace(1), "vehicle_attitude")}, {R, px4Out(px4Namespace(1), "vehicle_status")},
-        {W, px4In(px4Namespace(1), "trajectory_setpoint")}, {W, px4In(px4Namespace(1), "offboard_control_mode")}},
+        {R, px4Out(px4Namespace(1), "vehicle_status_v1")}, {W, px4In(px4Namespace(1), "trajectory_setpoint")},
+        {W, px4In(px4Namespace(1), "offboard_control_mode")}},
        {{W, imu(2)}, {W, detections(0)}, {R, imu(1)}, {R, cmdVel(2)}, {W, cmdVel(1)}, {R, state(1)}, {W, state(1)},
         {R, truth}, {W, truth}, {W, clock}, {W, bridgeState(2)}, {R, px4Out(px4Namespace(2), "vehicle_attitude")},
         {W, px4In(px4Namespace(0), "trajectory_setpoint")}, {W, px4Out(px4Namespace(1), "vehicle_attitude")},
-        {R, px4In(px4Namespace(1), "trajectory_setpoint")}}},
+        {R, px4In(px4Namespace(1), "trajectory_setpoint")}, {R, px4Out(px4Namespace(2), "vehicle_status_v1")}}},
       {"swa_monitor",
        {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}, {R, imu(0)}, {R, detections(2)}, {R, cmdVel(1)},
         {R, clock}},

@@ -14,6 +14,9 @@ constexpr const char* kSwaRoot = "swa/";
 constexpr const char* kRosTopicPrefix = "rt/";
 constexpr const char* kSwaTypeModule = "swa::msg::";
 constexpr const char* kRosSwaTypeModule = "swa_msgs::msg::dds_::";
+// idl/px4: a release's own layout of a PX4 message lives in an outer module px4_v<major>_<minor>.
+constexpr const char* kPx4ReleaseModule = "px4_v";
+constexpr const char* kPx4TypeModule = "px4_msgs::";
 
 bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
@@ -85,6 +88,12 @@ std::optional<std::string> swaTopic(const WireNames& names, const std::string& d
 }
 
 std::string ddsType(const WireNames& names, const std::string& generated_type) {
+  if (startsWith(generated_type, kPx4ReleaseModule)) {
+    const std::size_t at = generated_type.find("::");
+    if (at != std::string::npos && startsWith(generated_type.substr(at + 2), kPx4TypeModule)) {
+      return generated_type.substr(at + 2);
+    }
+  }
   if (names.naming == Naming::kSwa || !startsWith(generated_type, kSwaTypeModule)) return generated_type;
   return kRosSwaTypeModule + generated_type.substr(std::string(kSwaTypeModule).size()) + "_";
 }

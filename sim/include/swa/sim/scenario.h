@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "swa/agent/config.h"
+#include "swa/px4/release.h"
 
 namespace swa::sim {
 
@@ -15,7 +16,8 @@ enum class ClockMode { kLockstep, kRealtime };
 enum class HeadingMode { kRandom, kZero };
 enum class MpsNoiseModel { kIsotropic, kRangeBearing };
 // How the agents reach their vehicles in swa_sim: directly (the simulator reads cmd_vel and publishes imu), or through
-// PX4 v1.15's uXRCE-DDS topics, with the simulator playing each UAV's PX4 and one swa_px4_bridge per agent.
+// PX4's uXRCE-DDS topics (vehicle.px4_release), with the simulator playing each UAV's PX4 and one swa_px4_bridge per
+// agent.
 enum class VehicleInterface { kDirect, kPx4 };
 
 struct FormationSetup {
@@ -83,7 +85,8 @@ struct GnssSetup {
 
 struct VehicleSetup {
   VehicleInterface interface = VehicleInterface::kDirect;
-  double com_of_loss_t_s = 1.0;    // PX4's COM_OF_LOSS_T (v1.15 default): offboard signal lost after this -> Hold
+  double com_of_loss_t_s = 1.0;    // PX4's COM_OF_LOSS_T (default 1 s in v1.15-v1.17): offboard lost -> Hold
+  px4::Release px4_release = px4::kNewestRelease;  // the layouts and topic names the PX4 stand-in speaks
 };
 
 struct ClockSetup {

@@ -1,14 +1,12 @@
 #pragma once
-// What SWA uses of PX4 v1.15's vehicle states and commands (msg/VehicleStatus.msg, msg/VehicleCommand.msg,
-// px4_custom_mode.h). Mirrored here so the pure libraries need no generated message; tests/px4/test_px4_layouts.cpp
-// checks them against the constants of the IDL (idl/px4/).
+// What SWA uses of PX4's vehicle states and commands (msg/VehicleStatus.msg, msg/VehicleCommand.msg,
+// px4_custom_mode.h): the same values in v1.15, v1.16 and v1.17 (tests/px4/test_px4_definitions.cpp). Mirrored here so
+// the pure libraries need no generated message; tests/px4/test_px4_layouts.cpp checks them against the constants of
+// the IDL (idl/px4/).
 
 #include <cstdint>
 
 namespace swa::px4 {
-
-// The pinned release, named in the IDL file names and every --help.
-constexpr const char* kRelease = "v1.15";
 
 constexpr std::uint8_t kArmingStateDisarmed = 1;
 constexpr std::uint8_t kArmingStateArmed = 2;

@@ -42,8 +42,9 @@ std::string ddsTopic(const WireNames& names, const std::string& topic);
 // The SWA name of a DDS topic of this naming; nullopt if it is not one of SWA's topics under this naming.
 std::optional<std::string> swaTopic(const WireNames& names, const std::string& dds_topic);
 
-// The DDS type name of a generated type name: under ros2, swa::msg::<T> is swa_msgs::msg::dds_::<T>_; every other
-// name (a ROS-named type already) passes through.
+// The DDS type name of a generated type name: under ros2, swa::msg::<T> is swa_msgs::msg::dds_::<T>_; a PX4 type of a
+// later release's layout, px4_v1_16::px4_msgs::msg::dds_::<T>_ (idl/px4), is px4_msgs::msg::dds_::<T>_ under either
+// naming, as PX4 names it in every release; every other name (a ROS-named type already) passes through.
 std::string ddsType(const WireNames& names, const std::string& generated_type);
 
 // The ROS 2 topic a DDS topic stands for ("rt/swa/uav1/imu" -> "/swa/uav1/imu"), if it is under rt/.

@@ -25,7 +25,8 @@ inline const char* const kEvents = "swa/events";
 inline const char* const kClock = "swa/clock";
 
 // PX4's uXRCE-DDS topics of the vehicle with ROS namespace `ns` (empty: none): rt/<ns>/fmu/<in|out>/<name>. DDS names
-// already (the naming of SWA_NAMING does not apply to them); PX4 v1.15 appends no message version.
+// already (the naming of SWA_NAMING does not apply to them). `name` is the release's topic name: from v1.16 a
+// versioned message's carries its version (swa/px4/release.h: topicName).
 inline std::string px4In(const std::string& ns, const std::string& name) {
   return "rt/" + (ns.empty() ? std::string() : ns + "/") + "fmu/in/" + name;
 }

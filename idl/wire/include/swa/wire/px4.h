@@ -1,6 +1,7 @@
 #pragma once
-// PX4 v1.15's messages <-> the PX4 library's types (swa/px4/): the bridge's and the simulator's PX4 stand-in's one
-// place for message fields. Frames are converted in swa/px4/frames.h, not here: these only move values (float32 on
+// PX4's messages <-> the PX4 library's types (swa/px4/): the bridge's and the simulator's PX4 stand-in's one place for
+// message fields. Every message SWA uses has v1.15's layout in v1.16 and v1.17, except VehicleStatus
+// (swa/px4/release.h). Frames are converted in swa/px4/frames.h, not here: these only move values (float32 on
 // PX4's side).
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include <swa/px4/VehicleCommandAck_v1_15.h>
 #include <swa/px4/VehicleCommand_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_15.h>
+#include <swa/px4/VehicleStatus_v1_16.h>
 
 #include "swa/px4/bridge_core.h"
 #include "swa/px4/frames.h"
@@ -36,6 +38,25 @@ bool isVelocityControl(const px4_msgs::msg::OffboardControlMode& m);
 // Arm, or switch to offboard (DO_SET_MODE, custom main mode OFFBOARD), for the vehicle `target_system` (0: whichever
 // vehicle reads this namespace), from an external component. Stamped 0: PX4 stamps it on receipt.
 px4_msgs::msg::VehicleCommand vehicleCommand(px4::VehicleRequest request, std::uint8_t target_system);
+
+// vehicle_status as the simulator's stand-in sends it, in the layout of v1.15 (px4_msgs::msg::VehicleStatus) or
+// v1.16+ (px4_v1_16::px4_msgs::msg::VehicleStatus): what SWA reads and what a healthy multirotor's PX4 fills in.
+template <class Status>
+Status vehicleStatus(std::uint64_t timestamp_us, std::uint8_t arming_state, std::uint8_t nav_state, bool failsafe,
+                     std::uint8_t system_id) {
+  Status m;
+  m.timestamp(timestamp_us);
+  m.arming_state(arming_state);
+  m.nav_state(nav_state);
+  m.nav_state_user_intention(nav_state);
+  m.nav_state_timestamp(timestamp_us);
+  m.failsafe(failsafe);
+  m.vehicle_type(1);  // rotary wing
+  m.system_id(system_id);
+  m.component_id(1);
+  m.pre_flight_checks_pass(true);
+  return m;
+}
 
 msg::BridgeState bridgeState(const px4::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
                              std::uint64_t commands_refused, const std::string& last_event);
