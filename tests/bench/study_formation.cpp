@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
           collided += s.collisions > 0 ? 1 : 0;
           worst = std::min(worst, s.min_separation_m);
         }
-        std::printf("| %d | %.0f° | %s | %.2f ± %.2f | %.2f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | "
+        std::printf("| %d | %.0f° | %s | %.3f ± %.2f | %.3f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | "
                     "%.1f | %.2f (%.0f %%) |\n",
                     n, fov, rule.c_str(), d120.mean(), d120.stdev(), dend.mean(), dend.stdev(), edge.mean(), split,
                     o.seeds, static_cast<unsigned long long>(collisions), collided, worst, drift.mean(), disp.mean(),
