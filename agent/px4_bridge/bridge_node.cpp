@@ -9,13 +9,18 @@
 #include <thread>
 
 #include <swa/msg/BridgeStatePubSubTypes.h>
+#include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/SensorGps_v1_15PubSubTypes.h>
+#include <swa/px4/SensorGps_v1_17PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
@@ -89,9 +94,34 @@ void BridgeNode::connect() {
   cmd_reader_ = p.readerWithOrigin<msg::VelocitySetpointPubSubType>(
       topics::cmdVel(id_), "swa_command_reader",
       [this](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) { onCommand(std::move(m), w); });
+  if (!options_.no_gnss) connectGnss(p);
   attitude_reader_ = p.reader<px4_msgs::msg::VehicleAttitudePubSubType>(
       topics::px4Out(ns_, "vehicle_attitude"), "px4_out_reader",
       [this](px4_msgs::msg::VehicleAttitude&& m) { onAttitude(std::move(m)); });
+}
+
+void BridgeNode::connectGnss(dds::Participant& p) {
+  gnss_ = p.writer<msg::GnssFixPubSubType>(topics::gnss(id_), "swa_detections_gnss_writer");
+  const px4::Release r = options_.px4_release;
+  const std::string gps_topic = topics::px4Out(ns_, px4::topicName(r, "vehicle_gps_position"));
+  const std::string position_topic = topics::px4Out(ns_, px4::topicName(r, "vehicle_local_position"));
+  if (px4::hasV117SensorGps(r)) {
+    gps_reader_v1_17_ = p.reader<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>(
+        gps_topic, "px4_out_reader",
+        [this](px4_v1_17::px4_msgs::msg::SensorGps&& m) { onGps(wire::gpsReportOf(m)); });
+  } else {
+    gps_reader_ = p.reader<px4_msgs::msg::SensorGpsPubSubType>(
+        gps_topic, "px4_out_reader", [this](px4_msgs::msg::SensorGps&& m) { onGps(wire::gpsReportOf(m)); });
+  }
+  if (px4::hasV116VehicleLocalPosition(r)) {
+    position_reader_v1_16_ = p.reader<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
+        position_topic, "px4_out_reader",
+        [this](px4_v1_16::px4_msgs::msg::VehicleLocalPosition&& m) { onLocalPosition(wire::localPositionOf(m)); });
+  } else {
+    position_reader_ = p.reader<px4_msgs::msg::VehicleLocalPositionPubSubType>(
+        position_topic, "px4_out_reader",
+        [this](px4_msgs::msg::VehicleLocalPosition&& m) { onLocalPosition(wire::localPositionOf(m)); });
+  }
 }
 
 BridgeNode::~BridgeNode() { participant_.reset(); }
@@ -132,6 +162,26 @@ void BridgeNode::onStatus(std::uint8_t arming_state, std::uint8_t nav_state) {
   status_seen_ = true;
   core_.onStatus(arming_state, nav_state);
   report();
+}
+
+void BridgeNode::onGps(const px4::GpsReport& gps) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  gnss_forward_.onGps(gps);
+}
+
+void BridgeNode::onLocalPosition(const px4::LocalPositionReport& position) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const std::optional<agent::GnssSample> g = gnss_forward_.onLocalPosition(position);
+  if (!g) return;
+  if (!gnss_reported_ || g->valid != last_gnss_valid_) {
+    std::fprintf(stderr, "swa_px4_bridge %d: GNSS from PX4 %s (forwarded to %s)\n", id_,
+                 g->valid ? "valid: a 3D fix and a valid horizontal position" : "LOST: no 3D fix or no valid position",
+                 topics::gnss(id_).c_str());
+    gnss_reported_ = true;
+    last_gnss_valid_ = g->valid;
+  }
+  msg::GnssFix m = wire::toMsg(*g, static_cast<std::uint32_t>(id_), ++gnss_seq_);
+  gnss_.write(m);
 }
 
 void BridgeNode::onAck(px4_msgs::msg::VehicleCommandAck&& m) {

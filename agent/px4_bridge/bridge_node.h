@@ -17,13 +17,18 @@
 #include <string>
 
 #include <swa/msg/BridgeState.h>
+#include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
 #include <swa/msg/VelocitySetpoint.h>
 #include <swa/px4/OffboardControlMode_v1_15.h>
+#include <swa/px4/SensorGps_v1_15.h>
+#include <swa/px4/SensorGps_v1_17.h>
 #include <swa/px4/TrajectorySetpoint_v1_15.h>
 #include <swa/px4/VehicleAttitude_v1_15.h>
 #include <swa/px4/VehicleCommandAck_v1_15.h>
 #include <swa/px4/VehicleCommand_v1_15.h>
+#include <swa/px4/VehicleLocalPosition_v1_15.h>
+#include <swa/px4/VehicleLocalPosition_v1_16.h>
 #include <swa/px4/VehicleStatus_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_16.h>
 
@@ -34,6 +39,7 @@
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/px4/bridge_core.h"
+#include "swa/px4/gnss.h"
 
 namespace swa::px4_bridge {
 
@@ -53,6 +59,9 @@ class BridgeNode : public app::Role {
   double nowS() const;
   void onAttitude(px4_msgs::msg::VehicleAttitude&& m);
   void onStatus(std::uint8_t arming_state, std::uint8_t nav_state);
+  void onGps(const px4::GpsReport& gps);
+  void onLocalPosition(const px4::LocalPositionReport& position);
+  void connectGnss(dds::Participant& p);  // the readers of PX4's fix and position, the writer of swa/uav<I>/gnss
   void onAck(px4_msgs::msg::VehicleCommandAck&& m);
   void onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& writer);
   // With mutex_ held.
@@ -78,6 +87,9 @@ class BridgeNode : public app::Role {
 
   std::mutex mutex_;  // guards everything below but the DDS handles
   px4::BridgeCore core_;
+  px4::GnssForward gnss_forward_;
+  std::uint32_t gnss_seq_ = 0;
+  bool gnss_reported_ = false, last_gnss_valid_ = false;
   dds::CommandGate gate_;
   std::optional<px4_msgs::msg::VehicleAttitude> pending_;  // before PX4 reads our stream
   std::chrono::steady_clock::time_point pending_at_{};
@@ -97,6 +109,7 @@ class BridgeNode : public app::Role {
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::Imu> imu_;
   dds::Writer<msg::BridgeState> state_;
+  dds::Writer<msg::GnssFix> gnss_;  // not with --no-gnss
   dds::Writer<px4_msgs::msg::TrajectorySetpoint> setpoint_;
   dds::Writer<px4_msgs::msg::OffboardControlMode> offboard_;
   dds::Writer<px4_msgs::msg::VehicleCommand> vehicle_command_;
@@ -105,6 +118,11 @@ class BridgeNode : public app::Role {
   dds::Reader<px4_v1_16::px4_msgs::msg::VehicleStatus> status_reader_v1_16_;  // v1.16 and later
   dds::Reader<px4_msgs::msg::VehicleCommandAck> ack_reader_;
   dds::Reader<msg::VelocitySetpoint> cmd_reader_;
+  // The release's layouts of PX4's fix and local position (one of each pair), not with --no-gnss.
+  dds::Reader<px4_msgs::msg::SensorGps> gps_reader_;
+  dds::Reader<px4_v1_17::px4_msgs::msg::SensorGps> gps_reader_v1_17_;
+  dds::Reader<px4_msgs::msg::VehicleLocalPosition> position_reader_;
+  dds::Reader<px4_v1_16::px4_msgs::msg::VehicleLocalPosition> position_reader_v1_16_;
 };
 
 }  // namespace swa::px4_bridge

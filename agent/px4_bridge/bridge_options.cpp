@@ -20,6 +20,10 @@ Reads   rt/NS/fmu/out/vehicle_attitude   -> swa/uav<I>/imu (roll, pitch, heading
                                             PX4's timestamp: stamp the detections on the same clock)
         rt/NS/fmu/out/vehicle_status     armed, nav_state (logged, and for --engage); vehicle_status_v1 from v1.16
         rt/NS/fmu/out/vehicle_command_ack  the answers to --engage's requests (logged)
+        rt/NS/fmu/out/vehicle_gps_position, vehicle_local_position (vehicle_local_position_v1 from v1.17)
+                                         -> swa/uav<I>/gnss: valid while the fix is 3D or better and PX4 says
+                                            xy_valid; the loss (and the regain) at once, valid fixes at 10 Hz;
+                                            position = PX4's local x, y turned to east, north; std = eph
         swa/uav<I>/cmd_vel               the agent's velocity setpoints (one writer at a time)
 Writes  rt/NS/fmu/in/trajectory_setpoint   velocity in NED, the yaw rate as yawspeed (clockwise: the opposite sign
                                             of SWA's); position, acceleration, yaw NaN; vertical speed 0
@@ -31,7 +35,7 @@ PX4's clock) is replaced by zero velocity and yawspeed (the heading held); after
 or --attitude-lost-after-s without attitude from PX4, the stream stops and PX4's own offboard-loss failsafe
 (COM_OF_LOSS_T, COM_OBL_RC_ACT) takes over. Commands answering samples from before this bridge started are ignored. It never arms or changes the
 flight mode unless given --engage (bench tests, the simulator). Every state change is logged and published.
-GNSS is not forwarded: publish swa/uav<I>/gnss from your GNSS source, or let the agent run without it.)";
+With --no-gnss the bridge leaves swa/uav<I>/gnss alone (your own GNSS source publishes it, or none).)";
 
 app::Cli makeCli(BridgeOptions& o) {
   app::Cli cli("swa_px4_bridge",
@@ -74,6 +78,8 @@ app::Cli makeCli(BridgeOptions& o) {
            "commands faster than this are clamped (and counted)");
   cli.real("--max-yaw-rate-radps", "W", o.core.max_yaw_rate_radps, 0.01, 10.0, "a rate in rad/s",
            "commanded yaw rates beyond this are clamped (and counted)");
+  cli.flag("--no-gnss", o.no_gnss,
+           "do not forward PX4's GNSS fix and position validity to swa/uav<I>/gnss (another source publishes it)");
   cli.flag("--engage", o.core.engage,
            "arm and switch PX4 to offboard once the agent's stream has run for 1 s (bench tests, simulation; "
            "never on a flight without a pilot who can take over)");

@@ -14,6 +14,7 @@ struct BridgeOptions {
   int id = -1;                          // --id I (required)
   std::optional<std::string> px4_namespace;  // --px4-namespace NS (default px4_<I>; "" = none)
   px4::Release px4_release = px4::kNewestRelease;  // --px4-release R
+  bool no_gnss = false;                 // --no-gnss: leave swa/uav<I>/gnss to another source
   int target_system = 0;                // --target-system N: VehicleCommand.target_system (0: any)
   px4::BridgeConfig core;               // --stale-after-s, --agent-lost-after-s, ... and --engage
   std::optional<std::string> domain;    // --domain D (else SWA_DOMAIN, else 0)

@@ -116,6 +116,8 @@ EOF
       SWA_UAV_ID: "$i"
       # The simulator's PX4 stand-ins start in Hold; on a real drone leave it 0 and let the pilot switch to offboard.
       SWA_BRIDGE_ENGAGE: "1"
+      # The simulator publishes GNSS itself (vehicle.gnss_source=swa); on a real drone leave it 1 (PX4's fix).
+      SWA_BRIDGE_GNSS: "0"
     networks: [swa]
     stop_grace_period: 10s
 EOF

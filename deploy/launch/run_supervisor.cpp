@@ -168,13 +168,16 @@ class Supervisor {
                                         << " s ====\n";
     }
     // A bridge engages offboard itself: the simulator's PX4 stand-ins start in Hold, as a real vehicle would be
-    // handed over by its pilot. It speaks the release the stand-ins play.
+    // handed over by its pilot. It speaks the release the stand-ins play, and forwards their GNSS only when they
+    // report it (vehicle.gnss_source = autopilot; otherwise the simulator publishes swa/uav<i>/gnss itself).
     const std::string uav = std::to_string(p.uav);
-    const std::vector<std::string> argv =
+    const sim::VehicleSetup& vehicle = spec_.scenario.vehicle;
+    std::vector<std::string> argv =
         p.bridge ? std::vector<std::string>{bin_.bridge, "--id", uav, "--domain", domain_, "--engage",
-                                            "--px4-release", px4::releaseName(spec_.scenario.vehicle.px4_release),
+                                            "--px4-release", px4::releaseName(vehicle.px4_release),
                                             "--summary-out", (logs_ / ("bridge_" + uav + "_summary.json")).string()}
                  : std::vector<std::string>{bin_.agent, "--id", uav, "--domain", domain_, "--scenario", scenarioFile()};
+    if (p.bridge && vehicle.gnss_source != sim::GnssSource::kAutopilot) argv.emplace_back("--no-gnss");
     p.process = std::make_unique<ChildProcess>(argv, log.string());
   }
 

@@ -31,7 +31,8 @@ Permissions (default DENY, nothing else is allowed):
                  writes swa/uav<I>/cmd_vel, swa/uav<I>/state (and swa/uav<I>/cmd_vel_stamped with --naming ros2)
   swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/truth, swa/events, swa/clock;
                  reads swa/uav*/cmd_vel; as every UAV's PX4 stand-in (vehicle.interface=px4) writes
-                 rt/<P>*/fmu/out/vehicle_attitude, vehicle_status(_v1), vehicle_command_ack and reads
+                 rt/<P>*/fmu/out/vehicle_attitude, vehicle_status(_v1), vehicle_command_ack,
+                 vehicle_gps_position, vehicle_local_position(_v1) and reads
                  rt/<P>*/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command
   swa_monitor    reads swa/truth, swa/events, swa/uav*/state, and to record them (swa_monitor --record) swa/clock,
                  swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/cmd_vel, swa/uav*/bridge_state
@@ -39,9 +40,9 @@ Permissions (default DENY, nothing else is allowed):
                  writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and
                  rt/<P><I>/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command;
                  reads swa/uav<I>/cmd_vel and rt/<P><I>/fmu/out/vehicle_attitude, vehicle_status(_v1),
-                 vehicle_command_ack
+                 vehicle_command_ack, vehicle_gps_position, vehicle_local_position(_v1)
 <P> is the PX4 namespace prefix (--px4-prefix, default px4_: UAV I's PX4 runs uxrce_dds_client with -n px4_<I>).
-vehicle_status(_v1): both names, so the same credentials serve every PX4 release (v1.16 renamed it vehicle_status_v1).
+(_v1): both names, so the same credentials serve every PX4 release (v1.16 and v1.17 version these topics).
 With --naming ros2 every swa/... topic above is rt/[<NS>/]swa/... (SWA_NAMING=ros2, SWA_ROS_NAMESPACE=<NS>).
 
 Options:
@@ -338,7 +339,8 @@ topics_xml() {
 # agent/px4_bridge, monitor/node). fnmatch patterns: uav* stands for every UAV index, $PX4_PREFIX* for every vehicle.
 px4_out() {
   echo "rt/$1/fmu/out/vehicle_attitude rt/$1/fmu/out/vehicle_status rt/$1/fmu/out/vehicle_status_v1" \
-       "rt/$1/fmu/out/vehicle_command_ack"
+       "rt/$1/fmu/out/vehicle_command_ack rt/$1/fmu/out/vehicle_gps_position rt/$1/fmu/out/vehicle_local_position" \
+       "rt/$1/fmu/out/vehicle_local_position_v1"
 }
 px4_in() { echo "rt/$1/fmu/in/trajectory_setpoint rt/$1/fmu/in/offboard_control_mode rt/$1/fmu/in/vehicle_command"; }
 

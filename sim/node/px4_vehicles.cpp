@@ -4,10 +4,14 @@
 #include <cstdio>
 
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/SensorGps_v1_15PubSubTypes.h>
+#include <swa/px4/SensorGps_v1_17PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
@@ -29,6 +33,9 @@ constexpr agent::StampNs kStatusPeriodNs = 200'000'000;  // vehicle_status at 5 
 Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup) {
   vehicles_.reserve(static_cast<std::size_t>(uav_count));
   const std::string status_topic = px4::topicName(setup.px4_release, "vehicle_status");
+  const std::string gps_topic = px4::topicName(setup.px4_release, "vehicle_gps_position");
+  const std::string position_topic = px4::topicName(setup.px4_release, "vehicle_local_position");
+  const bool gnss = setup.gnss_source == sim::GnssSource::kAutopilot;
   for (int i = 0; i < uav_count; ++i) {
     Vehicle& v = vehicles_.emplace_back(setup.com_of_loss_t_s);
     v.ns = topics::px4Namespace(i);
@@ -40,6 +47,19 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
     } else {
       v.status = participant.writer<px4_msgs::msg::VehicleStatusPubSubType>(topics::px4Out(v.ns, status_topic),
                                                                              "px4_out_writer");
+    }
+    if (gnss && px4::hasV117SensorGps(setup.px4_release)) {
+      v.gps_v1_17 = participant.writer<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>(
+          topics::px4Out(v.ns, gps_topic), "px4_out_writer");
+    } else if (gnss) {
+      v.gps = participant.writer<px4_msgs::msg::SensorGpsPubSubType>(topics::px4Out(v.ns, gps_topic), "px4_out_writer");
+    }
+    if (gnss && px4::hasV116VehicleLocalPosition(setup.px4_release)) {
+      v.position_v1_16 = participant.writer<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
+          topics::px4Out(v.ns, position_topic), "px4_out_writer");
+    } else if (gnss) {
+      v.position = participant.writer<px4_msgs::msg::VehicleLocalPositionPubSubType>(
+          topics::px4Out(v.ns, position_topic), "px4_out_writer");
     }
     v.ack = participant.writer<px4_msgs::msg::VehicleCommandAckPubSubType>(
         topics::px4Out(v.ns, "vehicle_command_ack"), "px4_out_writer");
@@ -73,6 +93,29 @@ bool Px4Vehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint3
   if (v.published.size() > kRecentSamples) v.published.pop_front();
   v.last_attitude = m;
   return v.attitude.write(m);
+}
+
+bool Px4Vehicles::publishGnss(int uav, const agent::GnssSample& g) {
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(g.stamp_ns);
+  if (!timestamp) return false;
+  bool ok = false;
+  // The fix first: the bridge judges each position by the newest fix it has.
+  if (v.gps_v1_17) {
+    auto m = wire::sensorGps<px4_v1_17::px4_msgs::msg::SensorGps>(*timestamp, g);
+    ok = v.gps_v1_17.write(m);
+  } else if (v.gps) {
+    auto m = wire::sensorGps<px4_msgs::msg::SensorGps>(*timestamp, g);
+    ok = v.gps.write(m);
+  }
+  if (v.position_v1_16) {
+    auto m = wire::vehicleLocalPosition<px4_v1_16::px4_msgs::msg::VehicleLocalPosition>(*timestamp, g);
+    ok = v.position_v1_16.write(m) && ok;
+  } else if (v.position) {
+    auto m = wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(*timestamp, g);
+    ok = v.position.write(m) && ok;
+  }
+  return ok;
 }
 
 void Px4Vehicles::repeatAttitude(int uav) {

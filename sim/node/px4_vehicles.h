@@ -19,10 +19,14 @@
 #include <vector>
 
 #include <swa/px4/OffboardControlMode_v1_15.h>
+#include <swa/px4/SensorGps_v1_15.h>
+#include <swa/px4/SensorGps_v1_17.h>
 #include <swa/px4/TrajectorySetpoint_v1_15.h>
 #include <swa/px4/VehicleAttitude_v1_15.h>
 #include <swa/px4/VehicleCommandAck_v1_15.h>
 #include <swa/px4/VehicleCommand_v1_15.h>
+#include <swa/px4/VehicleLocalPosition_v1_15.h>
+#include <swa/px4/VehicleLocalPosition_v1_16.h>
 #include <swa/px4/VehicleStatus_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_16.h>
 
@@ -50,6 +54,9 @@ class Px4Vehicles {
 
   // UAV `uav`'s IMU sample as PX4's vehicle_attitude. False if the middleware refused it.
   bool publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq);
+  // UAV `uav`'s GNSS sample as its PX4 reports it (vehicle.gnss_source = autopilot): vehicle_gps_position and
+  // vehicle_local_position. False if the middleware refused either (or the source is not the autopilot).
+  bool publishGnss(int uav, const agent::GnssSample& g);
   // The newest vehicle_attitude of `uav` once more. PX4 streams its attitude whatever happens; in lockstep the
   // simulated time stands still while the simulator waits for an answer, so the stand-in repeats the sample: a
   // best-effort sample lost on the way (or sent before the bridge's reader matched) would otherwise stall the run.
@@ -82,6 +89,11 @@ class Px4Vehicles {
     std::optional<px4_msgs::msg::VehicleAttitude> last_attitude;
     dds::Writer<px4_msgs::msg::VehicleStatus> status;                // v1.15
     dds::Writer<px4_v1_16::px4_msgs::msg::VehicleStatus> status_v1_16;  // v1.16 and later
+    // vehicle.gnss_source = autopilot only, in the release's layouts.
+    dds::Writer<px4_msgs::msg::SensorGps> gps;                                        // v1.15, v1.16
+    dds::Writer<px4_v1_17::px4_msgs::msg::SensorGps> gps_v1_17;                       // v1.17
+    dds::Writer<px4_msgs::msg::VehicleLocalPosition> position;                        // v1.15
+    dds::Writer<px4_v1_16::px4_msgs::msg::VehicleLocalPosition> position_v1_16;       // v1.16, v1.17
     dds::Writer<px4_msgs::msg::VehicleCommandAck> ack;
     dds::Reader<px4_msgs::msg::TrajectorySetpoint> setpoint;
     dds::Reader<px4_msgs::msg::OffboardControlMode> mode;

@@ -69,11 +69,14 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
   truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
   clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
   const bool px4 = scenario.vehicle.interface == sim::VehicleInterface::kPx4;
+  // With GNSS from the autopilot the bridges write swa/uav<i>/gnss; the simulator reports the fix as PX4 does.
+  const bool own_gnss = !px4 || scenario.vehicle.gnss_source == sim::GnssSource::kSwa;
   for (int i = 0; i < n_; ++i) {
     det_.push_back(
         participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), "swa_detections_gnss_writer"));
-    gnss_.push_back(
-        participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), "swa_detections_gnss_writer"));
+    gnss_.push_back(own_gnss ? participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i),
+                                                                            "swa_detections_gnss_writer")
+                             : dds::Writer<msg::GnssFix>());
     if (px4) continue;
     imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
     cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
@@ -101,7 +104,7 @@ bool SimPorts::awaitDiscovery() {
     for (int i = 0; i < n_; ++i) {
       const auto k = static_cast<std::size_t>(i);
       if (det_[k].matched() < 1) missing.push_back(dds::topics::detections(i) + " (no reader)");
-      if (gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
+      if (gnss_[k] && gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
       if (px4_) {
         px4_->unmatched(i, missing);
         continue;
@@ -179,9 +182,11 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
       msg::Detections m = wire::toMsg(*s.detections, id, ++det_seq_[k]);
       if (!det_[k].write(m)) ++summary_.write_failures;
     }
-    if (s.gnss) {
+    if (s.gnss && gnss_[k]) {
       msg::GnssFix m = wire::toMsg(*s.gnss, id, ++gnss_seq_[k]);
       if (!gnss_[k].write(m)) ++summary_.write_failures;
+    } else if (s.gnss && px4_ && !px4_->publishGnss(i, *s.gnss)) {
+      ++summary_.write_failures;
     }
   }
   return imu_stamps;
@@ -287,7 +292,9 @@ bool SimPorts::detectionsAcknowledged(int uav, double wait_s) {
 }
 
 bool SimPorts::gnssAcknowledged(int uav, double wait_s) {
-  return gnss_[static_cast<std::size_t>(uav)].waitForAcknowledgments(wait_s);
+  // GNSS through the autopilot is best effort, as PX4's topics are: nothing to wait for.
+  dds::Writer<msg::GnssFix>& w = gnss_[static_cast<std::size_t>(uav)];
+  return !w || w.waitForAcknowledgments(wait_s);
 }
 
 std::string SimPorts::commandTopic(int uav) const {

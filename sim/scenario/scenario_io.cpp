@@ -232,6 +232,12 @@ params::Table<Scenario> makeTable() {
                                                               {px4::Release::kV1_17, "v1.17"}},
             "px4: the PX4 release the stand-ins play (message layouts, versioned topic names such as "
             "vehicle_status_v1); swa_launch gives every bridge the same --px4-release");
+  SWA_PARAM(t, choice, vehicle.gnss_source,
+            std::vector<std::pair<GnssSource, std::string>>{{GnssSource::kSwa, "swa"},
+                                                            {GnssSource::kAutopilot, "autopilot"}},
+            "px4: swa (the simulator publishes swa/uav<i>/gnss) or autopilot (each PX4 stand-in reports its fix on "
+            "vehicle_gps_position and vehicle_local_position, losing both when the scenario drops GNSS; the bridges "
+            "forward them as swa/uav<i>/gnss)");
 
   t.mount(
       "agent", agent::configTable(), [](auto& s) -> auto& { return s.agent; },
@@ -246,6 +252,7 @@ params::Table<Scenario> makeTable() {
       {"mps.bearing_std_rad", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
       {"vehicle.com_of_loss_t_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.px4_release", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.gnss_source", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
   });
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"},

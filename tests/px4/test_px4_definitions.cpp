@@ -16,10 +16,14 @@
 #include <vector>
 
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/SensorGps_v1_15PubSubTypes.h>
+#include <swa/px4/SensorGps_v1_17PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
@@ -168,6 +172,8 @@ struct Used {
 
 std::vector<Used> usedIn(Release r) {
   const bool new_status = hasV116VehicleStatus(r);
+  const bool new_position = hasV116VehicleLocalPosition(r);
+  const bool new_gps = hasV117SensorGps(r);
   return {
       {"VehicleAttitude", "VehicleAttitude_v1_15", "vehicle_attitude",
        wire<px4_msgs::msg::VehicleAttitudePubSubType>({})},
@@ -181,6 +187,13 @@ std::vector<Used> usedIn(Release r) {
       {"VehicleCommand", "VehicleCommand_v1_15", "vehicle_command", wire<px4_msgs::msg::VehicleCommandPubSubType>({})},
       {"VehicleCommandAck", "VehicleCommandAck_v1_15", "vehicle_command_ack",
        wire<px4_msgs::msg::VehicleCommandAckPubSubType>({})},
+      {"SensorGps", new_gps ? "SensorGps_v1_17" : "SensorGps_v1_15", "vehicle_gps_position",
+       new_gps ? wire<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>({})
+               : wire<px4_msgs::msg::SensorGpsPubSubType>({})},
+      {"VehicleLocalPosition", new_position ? "VehicleLocalPosition_v1_16" : "VehicleLocalPosition_v1_15",
+       "vehicle_local_position",
+       new_position ? wire<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>({})
+                    : wire<px4_msgs::msg::VehicleLocalPositionPubSubType>({})},
   };
 }
 
@@ -239,7 +252,7 @@ TEST(Px4Definitions, MirroredConstantsAndTopicVersionsAreEveryReleases) {
       {"VehicleAttitude", "vehicle_attitude"},     {"VehicleStatus", "vehicle_status"},
       {"OffboardControlMode", "offboard_control_mode"}, {"TrajectorySetpoint", "trajectory_setpoint"},
       {"VehicleCommand", "vehicle_command"},       {"VehicleCommandAck", "vehicle_command_ack"},
-      {"SensorGps", "sensor_gps"},                 {"VehicleLocalPosition", "vehicle_local_position"}};
+      {"SensorGps", "vehicle_gps_position"},       {"VehicleLocalPosition", "vehicle_local_position"}};
   for (const ReleaseDir& rd : kReleaseDirs) {
     SCOPED_TRACE(rd.tag);
     // GIVEN the release's definitions

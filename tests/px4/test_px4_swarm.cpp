@@ -145,6 +145,35 @@ TEST_F(Px4SwarmTest, EightUavsFlyThroughPx4V116AndV117AsCohesivelyAsDirect) {
   expectAsCohesiveAsDirect("dropout_8.yaml", {px4::Release::kV1_16, px4::Release::kV1_17});
 }
 
+TEST_F(Px4SwarmTest, GnssLostAndRegainedByTheVehiclesReachesTheAgentsThroughTheBridges) {
+  // GIVEN 4 anchored agents whose GNSS comes from their (simulated) PX4s, lost from 10 s to 20 s of 30
+  const std::vector<std::string> sets = {"duration_s=30", "gnss.dropout_start_s=10", "gnss.dropout_end_s=20",
+                                         "agent.mode=anchored"};
+  std::vector<std::string> px4_sets = sets;
+  px4_sets.emplace_back("vehicle.gnss_source=autopilot");
+  const LaunchedRun px4 = launch("dropout_4.yaml", "px4", px4_sets, "gnss");
+  ASSERT_NE(px4.status, -1) << "still running after " << kRunBoundS << " s";
+  // THEN the run passes as cohesively as the in-process loop with the simulator's own GNSS
+  EXPECT_EQ(px4.status, 0) << px4.summary << logs(px4.dir);
+  const double d_direct =
+      batch::runClosedLoop(sim::loadScenario(kScenarioDir + "dropout_4.yaml", sets)).summary.mean_neighbor_distance_m;
+  EXPECT_NEAR(jsonNumber(px4.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
+  EXPECT_EQ(jsonNumber(px4.summary, "collisions"), 0.0);
+  // AND every bridge forwarded a valid fix, then the loss, then the regain, each once
+  for (int i = 0; i < 4; ++i) {
+    const std::string log = readFile(px4.dir / "logs" / ("bridge_" + std::to_string(i) + ".log"));
+    const std::size_t valid = log.find("GNSS from PX4 valid");
+    const std::size_t lost = log.find("GNSS from PX4 LOST");
+    const std::size_t regained = valid == std::string::npos ? valid : log.find("GNSS from PX4 valid", valid + 1);
+    EXPECT_NE(valid, std::string::npos) << log;
+    EXPECT_NE(lost, std::string::npos) << log;
+    EXPECT_NE(regained, std::string::npos) << log;
+    EXPECT_TRUE(valid < lost && lost < regained) << log;
+    EXPECT_EQ(log.find("GNSS from PX4 LOST", lost + 1), std::string::npos) << log;
+  }
+  expectNothingLeft();
+}
+
 // events.csv rows of one UAV whose text contains `what`: their times [s] and values.
 std::vector<std::pair<double, double>> eventsOf(const fs::path& run, int uav, const std::string& what) {
   std::vector<std::pair<double, double>> out;

@@ -129,7 +129,8 @@ test_layout_and_documents() {
     test "$(granted "$d/swa_sim/permissions.xml" publish)" = \
     "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' swa/truth swa/events swa/clock \
       'rt/px4_*/fmu/out/vehicle_attitude' 'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_status_v1' \
-      'rt/px4_*/fmu/out/vehicle_command_ack')"
+      'rt/px4_*/fmu/out/vehicle_command_ack' 'rt/px4_*/fmu/out/vehicle_gps_position' \
+      'rt/px4_*/fmu/out/vehicle_local_position' 'rt/px4_*/fmu/out/vehicle_local_position_v1')"
   check "sim subscribes commands and PX4's inputs only" test "$(granted "$d/swa_sim/permissions.xml" subscribe)" = \
     "$(sorted 'swa/uav*/cmd_vel' 'rt/px4_*/fmu/in/trajectory_setpoint' 'rt/px4_*/fmu/in/offboard_control_mode' \
       'rt/px4_*/fmu/in/vehicle_command')"
@@ -190,7 +191,9 @@ test_bridges_and_naming() {
   check "bridge 1 subscribes UAV 1's commands and its own vehicle's PX4 outputs" \
     test "$(granted "$d/swa_bridge_1/permissions.xml" subscribe)" = \
     "$(sorted swa/uav1/cmd_vel rt/drone_1/fmu/out/vehicle_attitude rt/drone_1/fmu/out/vehicle_status \
-      rt/drone_1/fmu/out/vehicle_status_v1 rt/drone_1/fmu/out/vehicle_command_ack)"
+      rt/drone_1/fmu/out/vehicle_status_v1 rt/drone_1/fmu/out/vehicle_command_ack \
+      rt/drone_1/fmu/out/vehicle_gps_position rt/drone_1/fmu/out/vehicle_local_position \
+      rt/drone_1/fmu/out/vehicle_local_position_v1)"
   check "the simulator plays every drone_<I>" grep -q "<topic>rt/drone_\*/fmu/out/vehicle_attitude</topic>" \
     "$d/swa_sim/permissions.xml"
 

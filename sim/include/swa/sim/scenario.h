@@ -19,6 +19,10 @@ enum class MpsNoiseModel { kIsotropic, kRangeBearing };
 // PX4's uXRCE-DDS topics (vehicle.px4_release), with the simulator playing each UAV's PX4 and one swa_px4_bridge per
 // agent.
 enum class VehicleInterface { kDirect, kPx4 };
+// Where the agents' GNSS comes from with vehicle.interface = px4: the simulator's own swa/uav<i>/gnss (swa), or each
+// UAV's PX4 stand-in as a real PX4 reports it (vehicle_gps_position, vehicle_local_position), forwarded by the bridge
+// (autopilot).
+enum class GnssSource { kSwa, kAutopilot };
 
 struct FormationSetup {
   double spacing_m = 10.0;         // initial neighbour spacing; also the agents' formation.radius_m unless overridden
@@ -87,6 +91,7 @@ struct VehicleSetup {
   VehicleInterface interface = VehicleInterface::kDirect;
   double com_of_loss_t_s = 1.0;    // PX4's COM_OF_LOSS_T (default 1 s in v1.15-v1.17): offboard lost -> Hold
   px4::Release px4_release = px4::kNewestRelease;  // the layouts and topic names the PX4 stand-in speaks
+  GnssSource gnss_source = GnssSource::kSwa;
 };
 
 struct ClockSetup {

@@ -2,6 +2,7 @@
 // The PX4 releases SWA speaks to, and what differs between them on the wire for the messages SWA uses
 // (tests/px4/test_px4_definitions.cpp checks every layout against PX4's own .msg files of each release):
 // - VehicleStatus lost two fields in v1.16 (avoidance_system_required, avoidance_system_valid): its bytes differ.
+// - VehicleLocalPosition changed its distance-to-ground fields in v1.16; SensorGps gained two fields in v1.17.
 // - From v1.16 PX4's uXRCE-DDS client names the topic of a message whose definition has MESSAGE_VERSION = N > 0
 //   <name>_v<N> (vehicle_status_v1); version 0 keeps the bare name. A subscriber on the wrong name matches nothing
 //   and is told nothing, which is why the release is an explicit choice and not a guess.
@@ -31,7 +32,9 @@ int messageVersion(Release r, std::string_view message);
 // The topic name PX4's uXRCE-DDS client of `r` uses for `message`: vehicle_status_v1 from v1.16, vehicle_status before.
 std::string topicName(Release r, std::string_view message);
 
-// VehicleStatus as of v1.16 (39 fields), or v1.15's (41 fields).
-constexpr bool hasV116VehicleStatus(Release r) { return r != Release::kV1_15; }
+// Which layout a release has (idl/px4/<Message>_v<first release>.idl).
+constexpr bool hasV116VehicleStatus(Release r) { return r != Release::kV1_15; }          // else v1.15's
+constexpr bool hasV116VehicleLocalPosition(Release r) { return r != Release::kV1_15; }   // else v1.15's
+constexpr bool hasV117SensorGps(Release r) { return r == Release::kV1_17; }              // else v1.15's
 
 }  // namespace swa::px4

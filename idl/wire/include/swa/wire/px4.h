@@ -17,6 +17,7 @@
 
 #include "swa/px4/bridge_core.h"
 #include "swa/px4/frames.h"
+#include "swa/px4/gnss.h"
 
 namespace swa::wire {
 
@@ -56,6 +57,43 @@ Status vehicleStatus(std::uint64_t timestamp_us, std::uint8_t arming_state, std:
   m.component_id(1);
   m.pre_flight_checks_pass(true);
   return m;
+}
+
+// GNSS as the simulator's stand-in reports it (vehicle.gnss_source = autopilot), in any release's layout of SensorGps
+// and VehicleLocalPosition: a 3D fix with 10 satellites and a valid horizontal position while the scenario's GNSS is
+// valid, no fix and xy_valid false while it is lost. The local frame is NED with the world's origin.
+template <class Gps>
+Gps sensorGps(std::uint64_t timestamp_us, const agent::GnssSample& g) {
+  Gps m;
+  m.timestamp(timestamp_us);
+  m.timestamp_sample(timestamp_us);
+  m.fix_type(g.valid ? 3 : 0);
+  m.satellites_used(g.valid ? 10 : 0);
+  m.eph(static_cast<float>(g.std_m));
+  m.epv(static_cast<float>(2.0 * g.std_m));
+  return m;
+}
+
+template <class Position>
+Position vehicleLocalPosition(std::uint64_t timestamp_us, const agent::GnssSample& g) {
+  Position m;
+  m.timestamp(timestamp_us);
+  m.timestamp_sample(timestamp_us);
+  m.xy_valid(g.valid);
+  m.x(static_cast<float>(g.position_m.y()));  // north
+  m.y(static_cast<float>(g.position_m.x()));  // east
+  m.eph(static_cast<float>(g.std_m));
+  return m;
+}
+
+template <class Gps>
+px4::GpsReport gpsReportOf(const Gps& m) {
+  return {m.timestamp(), m.fix_type()};
+}
+
+template <class Position>
+px4::LocalPositionReport localPositionOf(const Position& m) {
+  return {m.timestamp(), m.xy_valid(), m.x(), m.y(), m.eph()};
 }
 
 msg::BridgeState bridgeState(const px4::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,

@@ -1,0 +1,96 @@
+// GNSS loss signalled by the vehicle, end to end without DDS timing: the simulator's GNSS samples as each release's
+// PX4 stand-in reports them (vehicle_gps_position, vehicle_local_position), serialised and read back in the release's
+// layout, through the bridge's GnssForward into an anchored agent. The agent must stop using GNSS at the first report
+// after the scenario drops it, and use it again at the first report after the regain: its GNSS state is the
+// vehicle's at every report, so the switch happens in the IMU period the report arrives in.
+
+#include <gtest/gtest.h>
+
+#include <optional>
+
+#include <swa/px4/SensorGps_v1_15PubSubTypes.h>
+#include <swa/px4/SensorGps_v1_17PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
+
+#include "swa/agent/agent.h"
+#include "swa/px4/gnss.h"
+#include "swa/px4/release.h"
+#include "swa/sim/scenario_io.h"
+#include "swa/sim/timing.h"
+#include "swa/sim/world.h"
+#include "swa/wire/px4.h"
+
+namespace swa::px4::gnss_vehicle_test {
+namespace {
+
+// A message through the wire and back: what the bridge reads is what the stand-in wrote, in the release's bytes.
+template <class PubSubType>
+typename PubSubType::type roundTrip(typename PubSubType::type m) {
+  PubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t p(type.getSerializedSizeProvider(&m)());
+  EXPECT_TRUE(type.serialize(&m, &p));
+  typename PubSubType::type back;
+  EXPECT_TRUE(type.deserialize(&p, &back));
+  return back;
+}
+
+// The stand-in's two reports of `g` in release `r`, read by the bridge.
+std::optional<agent::GnssSample> throughVehicle(Release r, const agent::GnssSample& g, GnssForward& forward) {
+  const std::uint64_t t = *timestampUsOf(g.stamp_ns);
+  if (hasV117SensorGps(r)) {
+    forward.onGps(wire::gpsReportOf(roundTrip<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>(
+        wire::sensorGps<px4_v1_17::px4_msgs::msg::SensorGps>(t, g))));
+  } else {
+    forward.onGps(wire::gpsReportOf(
+        roundTrip<px4_msgs::msg::SensorGpsPubSubType>(wire::sensorGps<px4_msgs::msg::SensorGps>(t, g))));
+  }
+  if (hasV116VehicleLocalPosition(r)) {
+    return forward.onLocalPosition(wire::localPositionOf(
+        roundTrip<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
+            wire::vehicleLocalPosition<px4_v1_16::px4_msgs::msg::VehicleLocalPosition>(t, g))));
+  }
+  return forward.onLocalPosition(wire::localPositionOf(roundTrip<px4_msgs::msg::VehicleLocalPositionPubSubType>(
+      wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(t, g))));
+}
+
+TEST(GnssFromVehicle, AnAnchoredAgentFollowsTheVehiclesGnssStateAtEveryReportInEveryRelease) {
+  for (const Release r : kReleases) {
+    SCOPED_TRACE(releaseName(r));
+    // GIVEN 4 UAVs that lose GNSS at 3 s and regain it at 6 s, GNSS at 10 Hz, hovering, one anchored agent on UAV 1
+    const sim::Scenario s = sim::loadScenario(std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml",
+                                              {"duration_s=9", "gnss.dropout_start_s=3", "gnss.dropout_end_s=6",
+                                               "agent.mode=anchored"});
+    sim::World world(s);
+    agent::Agent agent(s.agent);
+    GnssForward forward;
+    int reports = 0, lost_reports = 0, mismatches = 0;
+    std::optional<double> switched_off_s, switched_on_s;
+    while (!world.finished()) {
+      const sim::UavSensors& in = world.sensors()[1];
+      if (in.imu) agent.onImu(*in.imu);
+      if (in.gnss) {
+        // WHEN the stand-in reports the sample and the bridge forwards what it makes of it
+        const bool was = agent.diagnostics().gnss_valid;
+        if (const std::optional<agent::GnssSample> g = throughVehicle(r, *in.gnss, forward)) agent.onGnss(*g);
+        ++reports;
+        lost_reports += in.gnss->valid ? 0 : 1;
+        // THEN at once the agent's GNSS state is the vehicle's
+        if (agent.diagnostics().gnss_valid != in.gnss->valid) ++mismatches;
+        const double t = sim::stampSeconds(in.gnss->stamp_ns);
+        if (was && !in.gnss->valid && !switched_off_s) switched_off_s = t;
+        if (!was && in.gnss->valid && switched_off_s && !switched_on_s) switched_on_s = t;
+      }
+      world.step();
+    }
+    EXPECT_EQ(mismatches, 0) << "of " << reports << " reports";
+    EXPECT_EQ(lost_reports, 30);  // 3 s at 10 Hz
+    ASSERT_TRUE(switched_off_s && switched_on_s);
+    EXPECT_NEAR(*switched_off_s, 3.0, 1e-9);  // the first report at the loss, not a rate-limited later one
+    EXPECT_NEAR(*switched_on_s, 6.0, 1e-9);
+    EXPECT_EQ(forward.counters().forwarded + forward.counters().invalid_forwarded, static_cast<std::uint64_t>(reports));
+  }
+}
+
+}  // namespace
+}  // namespace swa::px4::gnss_vehicle_test
