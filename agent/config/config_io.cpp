@@ -102,6 +102,10 @@ params::Table<AgentConfig> makeTable() {
             "the relative sensor's horizontal field of view (360 = all round: the heading is never commanded)");
   SWA_PARAM(t, number, sensor.mount_deg, "deg", closed(-360, 360),
             "the centre of that field of view, counter-clockwise from body x");
+  SWA_PARAM(t, choice, sensor.input, named(kDetectionInputNames),
+            "the detections' message: swa (swa/uav<I>/detections), vision_msgs (vision_msgs/Detection3DArray on "
+            "/uav<I>/detections) or uvdar (mrs_msgs/PoseWithCovarianceArrayStamped on /uav<I>/uvdar/measuredPoses), "
+            "in the frame uav<I>/fcu or base_link (x forward, y left); swa_sim publishes the one chosen");
 
   SWA_PARAM(t, number, anchor.gain, "", closed(0, 10),
             "weight of the absolute (GNSS) hold added to the relative command in anchored mode");

@@ -10,12 +10,15 @@
 
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/DetectionsPubSubTypes.h>
+#include <swa/ros/Detection3DArrayPubSubTypes.h>
+#include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/wire/agent_state.h"
+#include "swa/wire/ros_detections.h"
 #include "swa/wire/ros_types.h"
 #include "swa/wire/samples.h"
 #include "swa/app/signals.h"
@@ -55,6 +58,15 @@ bool isSecure() {
   return dir != nullptr && *dir != '\0';
 }
 
+// The detection adapter of UAV `id`: the body frame the simulator names (uav<I>/fcu) or base_link, the sensor at the
+// body's origin and axes.
+agent::DetectionAdapterConfig adapterConfig(int id, const agent::AgentConfig& config) {
+  agent::DetectionAdapterConfig c;
+  c.frame_ids = {wire::bodyFrameId(static_cast<std::uint32_t>(id)), "base_link"};
+  c.max_detections = config.limits.max_detections;
+  return c;
+}
+
 }  // namespace
 
 AgentNode::AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id, const std::string& profiles_file)
@@ -62,6 +74,7 @@ AgentNode::AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id
       domain_id_(domain_id),
       profiles_file_(profiles_file),
       agent_(config),
+      adapter_(adapterConfig(uav_id, config)),
       order_(kHoldLimitNs),
       started_(std::chrono::steady_clock::now()),
       last_input_(started_),
@@ -83,9 +96,23 @@ void AgentNode::connect() {
   }
   imu_reader_ = participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), "swa_sensor_reader",
                                                          [this](msg::Imu&& m) { onInput(Input(std::move(m))); });
-  det_reader_ = participant_->reader<msg::DetectionsPubSubType>(
-      dds::topics::detections(id_), "swa_detections_gnss_reader",
-      [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
+  switch (agent_.config().sensor.input) {
+    case agent::DetectionInput::kSwa:
+      det_reader_ = participant_->reader<msg::DetectionsPubSubType>(
+          dds::topics::detections(id_), "swa_detections_gnss_reader",
+          [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
+      break;
+    case agent::DetectionInput::kVisionMsgs:
+      vision_reader_ = participant_->reader<vision_msgs::msg::Detection3DArrayPubSubType>(
+          dds::topics::visionDetections(id_), "swa_detections_gnss_reader",
+          [this](vision_msgs::msg::Detection3DArray&& m) { onForeign(wire::foreignOf(m)); });
+      break;
+    case agent::DetectionInput::kUvdar:
+      uvdar_reader_ = participant_->reader<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(
+          dds::topics::uvdarPoses(id_), "swa_detections_gnss_reader",
+          [this](mrs_msgs::msg::PoseWithCovarianceArrayStamped&& m) { onForeign(wire::foreignOf(m)); });
+      break;
+  }
   gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
       dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
   imu_silence_.restart();
@@ -97,7 +124,31 @@ void AgentNode::connect() {
 }
 
 AgentNode::Matched AgentNode::matchedNow() const {
-  return {cmd_writer_.matched(), imu_reader_.matched(), det_reader_.matched(), gnss_reader_.matched()};
+  const int detections = det_reader_      ? det_reader_.matched()
+                         : vision_reader_ ? vision_reader_.matched()
+                                          : uvdar_reader_.matched();
+  return {cmd_writer_.matched(), imu_reader_.matched(), detections, gnss_reader_.matched()};
+}
+
+std::string AgentNode::detectionsTopic() const {
+  switch (agent_.config().sensor.input) {
+    case agent::DetectionInput::kVisionMsgs: return dds::topics::visionDetections(id_);
+    case agent::DetectionInput::kUvdar: return dds::topics::uvdarPoses(id_);
+    case agent::DetectionInput::kSwa: break;
+  }
+  return dds::topics::detections(id_);
+}
+
+void AgentNode::onForeign(const agent::ForeignDetectionSet& set) {
+  std::optional<agent::DetectionSet> converted;
+  std::uint32_t seq = 0;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    converted = adapter_.convert(set);
+    seq = ++foreign_seq_;
+  }
+  // Dropped sets are counted in the adapter (logged at exit); the rest is SWA's own detections from here on.
+  if (converted) onInput(Input(wire::toMsg(*converted, static_cast<std::uint32_t>(id_), seq)));
 }
 
 void AgentNode::reportWaiting(const Matched& matched) {
@@ -108,7 +159,7 @@ void AgentNode::reportWaiting(const Matched& matched) {
                "swa_agent %d: no IMU sample %.0f s after connecting; matched: %d reader(s) of %s, %d writer(s) of %s, "
                "%d of %s, %d of %s\n",
                id_, std::chrono::duration<double>(kWaitReport).count(), matched[0], dds::topics::cmdVel(id_).c_str(),
-               matched[1], dds::topics::imu(id_).c_str(), matched[2], dds::topics::detections(id_).c_str(), matched[3],
+               matched[1], dds::topics::imu(id_).c_str(), matched[2], detectionsTopic().c_str(), matched[3],
                dds::topics::gnss(id_).c_str());
 }
 
@@ -120,7 +171,7 @@ std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn(const Matched
   const std::array<std::pair<std::string, bool>, 4> endpoints{{
       {dds::topics::cmdVel(id_), matched[0] >= 1},
       {dds::topics::imu(id_), matched[1] >= 1},
-      {dds::topics::detections(id_), matched[2] >= 1},
+      {detectionsTopic(), matched[2] >= 1},
       {dds::topics::gnss(id_), matched[3] >= 1},
   }};
   for (std::size_t k = 0; k < endpoints.size(); ++k) matched_once_[k] = matched_once_[k] || endpoints[k].second;
@@ -185,7 +236,7 @@ int AgentNode::run() {
     // What it needs before it can start: a reader of its commands and a writer of its detections (the simulator, or
     // the detection source on a drone); through PX4 these are two peers, and either handshake can stall.
     if (handshake_.stalled(stats_.imu > 0, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now())) {
-      why = "no reader of " + dds::topics::cmdVel(id_) + " or no writer of " + dds::topics::detections(id_) +
+      why = "no reader of " + dds::topics::cmdVel(id_) + " or no writer of " + detectionsTopic() +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {
       why = *lost;
@@ -243,6 +294,16 @@ void AgentNode::logFinalCounts() const {
                static_cast<unsigned long long>(r.bad_id), static_cast<unsigned long long>(r.implausible),
                static_cast<unsigned long long>(r.no_heading), static_cast<unsigned long long>(d.stamp_resyncs),
                static_cast<unsigned long long>(order_.forcedReleases()), static_cast<unsigned long long>(s.replayed));
+  if (agent_.config().sensor.input == agent::DetectionInput::kSwa) return;
+  const agent::DetectionAdapterCounters& a = adapter_.counters();
+  const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+  std::fprintf(stderr,
+               "swa_agent %d: %s detections: %llu set(s) in, %llu passed on; dropped %llu in a frame it cannot place, "
+               "%llu with a bad stamp, %llu oversize, %llu detection(s) with a non-finite position; covariance "
+               "repaired %llu, unknown %llu (the configured noise used); %llu anonymous\n",
+               id_, agent::toString(agent_.config().sensor.input).c_str(), u(a.sets_in), u(a.sets_out),
+               u(a.unknown_frame), u(a.bad_stamp), u(a.oversize), u(a.nonfinite_position), u(a.covariance_repaired),
+               u(a.covariance_missing), u(a.anonymous));
 }
 
 void AgentNode::refuseAsTwin() {

@@ -24,6 +24,8 @@
 
 #include <swa/msg/AgentState.h>
 #include <swa/msg/Detections.h>
+#include <swa/ros/Detection3DArray.h>
+#include <swa/ros/PoseWithCovarianceArrayStamped.h>
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
 #include <swa/msg/VelocitySetpoint.h>
@@ -33,6 +35,7 @@
 #include "sample_order.h"
 #include "silence_watch.h"
 #include "swa/agent/agent.h"
+#include "swa/agent/detection_adapter.h"
 #include "swa/app/program.h"
 #include "swa/app/stall_watch.h"
 #include "swa/dds/handshake_watch.h"
@@ -77,6 +80,8 @@ class AgentNode : public app::Role {
 
   void connect();             // creates the participant and the endpoints
   void onInput(Input&& in);  // listener threads
+  void onForeign(const agent::ForeignDetectionSet& set);  // listener threads: through adapter_, then onInput
+  std::string detectionsTopic() const;  // of sensor.input
   void handle(Input& in);
   void publishState(agent::StampNs stamp_ns, bool no_input = false);
   void heartbeat();  // run(): the wall-clock state
@@ -94,6 +99,8 @@ class AgentNode : public app::Role {
   const int domain_id_;
   const std::string profiles_file_;
   agent::Agent agent_;
+  agent::DetectionAdapter adapter_;  // guarded by mutex_
+  std::uint32_t foreign_seq_ = 0;    // guarded by mutex_
   StampOrderer<Input> order_;
   std::chrono::steady_clock::time_point started_;
   AgentNodeStats stats_;
@@ -133,7 +140,10 @@ class AgentNode : public app::Role {
   dds::Writer<geometry_msgs::msg::TwistStamped> twist_writer_;  // the ros2 naming only: cmd_vel as a standard type
   dds::Writer<msg::AgentState> state_writer_;
   dds::Reader<msg::Imu> imu_reader_;
-  dds::Reader<msg::Detections> det_reader_;
+  dds::Reader<msg::Detections> det_reader_;  // sensor.input = swa
+  // sensor.input = vision_msgs or uvdar: read, converted by adapter_ (under mutex_) and handled as SWA's own.
+  dds::Reader<vision_msgs::msg::Detection3DArray> vision_reader_;
+  dds::Reader<mrs_msgs::msg::PoseWithCovarianceArrayStamped> uvdar_reader_;
   dds::Reader<msg::GnssFix> gnss_reader_;
 };
 

@@ -16,5 +16,6 @@ std::string nameIn(const std::pair<Enum, const char*> (&names)[N], Enum value) {
 std::string toString(Mode mode) { return nameIn(kModeNames, mode); }
 std::string toString(CircleFit fit) { return nameIn(kCircleFitNames, fit); }
 std::string toString(NeighbourhoodRule rule) { return nameIn(kNeighbourhoodRuleNames, rule); }
+std::string toString(DetectionInput input) { return nameIn(kDetectionInputNames, input); }
 
 }  // namespace swa::agent

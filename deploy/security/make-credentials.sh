@@ -27,9 +27,11 @@ Governance (domains 0-$MAX_DOMAIN by default): only authenticated participants w
 domain may join; every topic's data and submessages are encrypted, and so is endpoint discovery and liveliness;
 reading or writing a topic needs a permissions grant.
 Permissions (default DENY, nothing else is allowed):
-  swa_agent_<I>  reads swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/clock;
+  swa_agent_<I>  reads swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/clock, and a real detector's
+                 rt/uav<I>/detections (vision_msgs) or rt/uav<I>/uvdar/measuredPoses (UVDAR);
                  writes swa/uav<I>/cmd_vel, swa/uav<I>/state (and swa/uav<I>/cmd_vel_stamped with --naming ros2)
-  swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/truth, swa/events, swa/clock;
+  swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/truth, swa/events, swa/clock,
+                 rt/uav*/detections, rt/uav*/uvdar/measuredPoses;
                  reads swa/uav*/cmd_vel; as every UAV's PX4 stand-in (vehicle.interface=px4) writes
                  rt/<P>*/fmu/out/vehicle_attitude, vehicle_status(_v1), vehicle_command_ack,
                  vehicle_gps_position, vehicle_local_position(_v1) and reads
@@ -343,12 +345,15 @@ px4_out() {
        "rt/$1/fmu/out/vehicle_local_position_v1"
 }
 px4_in() { echo "rt/$1/fmu/in/trajectory_setpoint rt/$1/fmu/in/offboard_control_mode rt/$1/fmu/in/vehicle_command"; }
+# Detections as real detectors publish them (agent sensor.input vision_msgs / uvdar), ROS names already.
+detector_topics() { echo "rt/uav$1/detections rt/uav$1/uvdar/measuredPoses"; }
 
 publishes() {
   local r=$SWA_ROOT
   case $1 in
     swa_sim)
-      echo "${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss ${r}truth ${r}events ${r}clock $(px4_out "$PX4_PREFIX*")"
+      echo "${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss ${r}truth ${r}events ${r}clock $(px4_out "$PX4_PREFIX*")" \
+        "$(detector_topics '*')"
       ;;
     swa_monitor) echo '' ;;
     swa_agent_*)
@@ -373,7 +378,7 @@ subscribes() {
       ;;
     swa_agent_*)
       local i=${1#swa_agent_}
-      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}clock"
+      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}clock $(detector_topics "$i")"
       ;;
     swa_bridge_*)
       local i=${1#swa_bridge_}

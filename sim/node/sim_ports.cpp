@@ -15,9 +15,12 @@
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
+#include <swa/ros/Detection3DArrayPubSubTypes.h>
+#include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 
 #include "swa/dds/topics.h"
 #include "swa/sim/timing.h"
+#include "swa/wire/ros_detections.h"
 #include "swa/wire/samples.h"
 #include "swa/wire/world.h"
 #include "world_command.h"
@@ -72,8 +75,20 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
   // With GNSS from the autopilot the bridges write swa/uav<i>/gnss; the simulator reports the fix as PX4 does.
   const bool own_gnss = !px4 || scenario.vehicle.gnss_source == sim::GnssSource::kSwa;
   for (int i = 0; i < n_; ++i) {
-    det_.push_back(
-        participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), "swa_detections_gnss_writer"));
+    switch (scenario.agent.sensor.input) {
+      case agent::DetectionInput::kSwa:
+        det_.push_back(participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i),
+                                                                        "swa_detections_gnss_writer"));
+        break;
+      case agent::DetectionInput::kVisionMsgs:
+        vision_det_.push_back(participant_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(
+            dds::topics::visionDetections(i), "swa_detections_gnss_writer"));
+        break;
+      case agent::DetectionInput::kUvdar:
+        uvdar_det_.push_back(participant_->writer<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(
+            dds::topics::uvdarPoses(i), "swa_detections_gnss_writer"));
+        break;
+    }
     gnss_.push_back(own_gnss ? participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i),
                                                                             "swa_detections_gnss_writer")
                              : dds::Writer<msg::GnssFix>());
@@ -103,7 +118,7 @@ bool SimPorts::awaitDiscovery() {
     missing.clear();
     for (int i = 0; i < n_; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      if (det_[k].matched() < 1) missing.push_back(dds::topics::detections(i) + " (no reader)");
+      if (detectionsMatched(k) < 1) missing.push_back("UAV " + std::to_string(i) + "'s detections (no reader)");
       if (gnss_[k] && gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
       if (px4_) {
         px4_->unmatched(i, missing);
@@ -178,10 +193,7 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
         ++summary_.write_failures;
       }
     }
-    if (s.detections) {
-      msg::Detections m = wire::toMsg(*s.detections, id, ++det_seq_[k]);
-      if (!det_[k].write(m)) ++summary_.write_failures;
-    }
+    if (s.detections && !writeDetections(k, *s.detections, ++det_seq_[k])) ++summary_.write_failures;
     if (s.gnss && gnss_[k]) {
       msg::GnssFix m = wire::toMsg(*s.gnss, id, ++gnss_seq_[k]);
       if (!gnss_[k].write(m)) ++summary_.write_failures;
@@ -288,7 +300,30 @@ void SimPorts::finishLatency(bool realtime, const LogHistogram& step_lag) {
 }
 
 bool SimPorts::detectionsAcknowledged(int uav, double wait_s) {
-  return det_[static_cast<std::size_t>(uav)].waitForAcknowledgments(wait_s);
+  const auto k = static_cast<std::size_t>(uav);
+  if (!det_.empty()) return det_[k].waitForAcknowledgments(wait_s);
+  if (!vision_det_.empty()) return vision_det_[k].waitForAcknowledgments(wait_s);
+  return uvdar_det_[k].waitForAcknowledgments(wait_s);
+}
+
+int SimPorts::detectionsMatched(std::size_t k) const {
+  if (!det_.empty()) return det_[k].matched();
+  if (!vision_det_.empty()) return vision_det_[k].matched();
+  return uvdar_det_[k].matched();
+}
+
+bool SimPorts::writeDetections(std::size_t k, const agent::DetectionSet& s, std::uint32_t seq) {
+  const auto id = static_cast<std::uint32_t>(k);
+  if (!det_.empty()) {
+    msg::Detections m = wire::toMsg(s, id, seq);
+    return det_[k].write(m);
+  }
+  if (!vision_det_.empty()) {
+    vision_msgs::msg::Detection3DArray m = wire::detection3DArray(s, id);
+    return vision_det_[k].write(m);
+  }
+  mrs_msgs::msg::PoseWithCovarianceArrayStamped m = wire::poseArray(s, id);
+  return uvdar_det_[k].write(m);
 }
 
 bool SimPorts::gnssAcknowledged(int uav, double wait_s) {

@@ -22,6 +22,8 @@
 #include <swa/msg/ScenarioEvent.h>
 #include <swa/msg/SwarmTruth.h>
 #include <swa/msg/VelocitySetpoint.h>
+#include <swa/ros/Detection3DArray.h>
+#include <swa/ros/PoseWithCovarianceArrayStamped.h>
 
 #include "swa/dds/command_gate.h"
 #include "answer.h"
@@ -120,7 +122,12 @@ class SimPorts {
   std::vector<int> deaf_ports_;  // shared-memory ports found deaf (noteDeafness), each said once
   std::unique_ptr<Px4Vehicles> px4_;  // vehicle.interface = px4: instead of imu_ and cmd_
   std::vector<dds::Writer<msg::Imu>> imu_;
+  // The detections in the message the agents read (agent sensor.input): one of these three per UAV.
   std::vector<dds::Writer<msg::Detections>> det_;
+  std::vector<dds::Writer<vision_msgs::msg::Detection3DArray>> vision_det_;
+  std::vector<dds::Writer<mrs_msgs::msg::PoseWithCovarianceArrayStamped>> uvdar_det_;
+  int detectionsMatched(std::size_t k) const;
+  bool writeDetections(std::size_t k, const agent::DetectionSet& s, std::uint32_t seq);
   std::vector<dds::Writer<msg::GnssFix>> gnss_;
   std::vector<dds::Reader<msg::VelocitySetpoint>> cmd_;
   dds::Writer<msg::SwarmTruth> truth_;

@@ -124,11 +124,11 @@ test_layout_and_documents() {
     "$(sorted swa/uav1/cmd_vel swa/uav1/state)"
   check "agent 1 subscribes only its sensors and the clock" \
     test "$(granted "$d/swa_agent_1/permissions.xml" subscribe)" = \
-    "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/clock)"
+    "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/clock rt/uav1/detections rt/uav1/uvdar/measuredPoses)"
   check "sim publishes sensors, truth, events, clock, and PX4's outputs as every UAV's PX4" \
     test "$(granted "$d/swa_sim/permissions.xml" publish)" = \
     "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' swa/truth swa/events swa/clock \
-      'rt/px4_*/fmu/out/vehicle_attitude' 'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_status_v1' \
+      'rt/uav*/detections' 'rt/uav*/uvdar/measuredPoses' 'rt/px4_*/fmu/out/vehicle_attitude' 'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_status_v1' \
       'rt/px4_*/fmu/out/vehicle_command_ack' 'rt/px4_*/fmu/out/vehicle_gps_position' \
       'rt/px4_*/fmu/out/vehicle_local_position' 'rt/px4_*/fmu/out/vehicle_local_position_v1')"
   check "sim subscribes commands and PX4's inputs only" test "$(granted "$d/swa_sim/permissions.xml" subscribe)" = \

@@ -11,6 +11,10 @@ namespace swa::agent {
 enum class Mode { kSwa, kStandalone, kAnchored };
 enum class CircleFit { kFixedRadius, kAlgebraic };
 enum class NeighbourhoodRule { kGabriel, kKNearest };
+// Where the agent reads its relative detections: SWA's own Detections on swa/uav<I>/detections, a ROS 2
+// vision_msgs/Detection3DArray on /uav<I>/detections, or UVDAR's mrs_msgs/PoseWithCovarianceArrayStamped on
+// /uav<I>/uvdar/measuredPoses (detection_adapter.h converts the latter two).
+enum class DetectionInput { kSwa, kVisionMsgs, kUvdar };
 
 // The name of each value in files and messages, listed once: toString and the configuration's choices read these.
 inline constexpr std::pair<Mode, const char*> kModeNames[] = {
@@ -19,6 +23,8 @@ inline constexpr std::pair<CircleFit, const char*> kCircleFitNames[] = {{CircleF
                                                                         {CircleFit::kAlgebraic, "algebraic"}};
 inline constexpr std::pair<NeighbourhoodRule, const char*> kNeighbourhoodRuleNames[] = {
     {NeighbourhoodRule::kGabriel, "gabriel"}, {NeighbourhoodRule::kKNearest, "k_nearest"}};
+inline constexpr std::pair<DetectionInput, const char*> kDetectionInputNames[] = {
+    {DetectionInput::kSwa, "swa"}, {DetectionInput::kVisionMsgs, "vision_msgs"}, {DetectionInput::kUvdar, "uvdar"}};
 
 struct SurroundingsConfig {
   // Q_o diagonal blocks, per `q_ref_dt_s` of prediction (scaled linearly with the actual step).
@@ -115,6 +121,8 @@ struct ControlConfig {
 struct SensorConfig {
   double fov_deg = 360.0;   // horizontal field of view; 360: all round, and the heading is never commanded
   double mount_deg = 0.0;   // the centre of the field of view, counter-clockwise from body x
+  DetectionInput input = DetectionInput::kSwa;  // the message type (and topic) the detections come in; the simulator
+                                                // publishes that one
 };
 
 struct AnchorConfig {
@@ -154,5 +162,6 @@ struct AgentConfig {
 std::string toString(Mode mode);
 std::string toString(CircleFit fit);
 std::string toString(NeighbourhoodRule rule);
+std::string toString(DetectionInput input);
 
 }  // namespace swa::agent

@@ -10,6 +10,11 @@ namespace swa::dds::topics {
 inline std::string uavPrefix(int uav) { return "swa/uav" + std::to_string(uav) + "/"; }
 
 inline std::string detections(int uav) { return uavPrefix(uav) + "detections"; }
+// Detections as real detectors publish them (agent sensor.input), DDS names of the ROS topics /uav<i>/detections
+// (vision_msgs/Detection3DArray) and /uav<i>/uvdar/measuredPoses (UVDAR's convention). ROS names already: the naming of
+// SWA_NAMING does not apply to them.
+inline std::string visionDetections(int uav) { return "rt/uav" + std::to_string(uav) + "/detections"; }
+inline std::string uvdarPoses(int uav) { return "rt/uav" + std::to_string(uav) + "/uvdar/measuredPoses"; }
 inline std::string imu(int uav) { return uavPrefix(uav) + "imu"; }
 inline std::string gnss(int uav) { return uavPrefix(uav) + "gnss"; }
 inline std::string cmdVel(int uav) { return uavPrefix(uav) + "cmd_vel"; }
