@@ -23,6 +23,23 @@ std_msgs::msg::Header headerOf(const agent::DetectionSet& s, std::uint32_t uav_i
   return h;
 }
 
+// A detection's pose: its body position, no rotation (the detector does not measure the neighbour's attitude).
+geometry_msgs::msg::Pose poseOf(const agent::Detection& d) {
+  geometry_msgs::msg::Pose p;
+  p.position().x(d.position_body_m.x());
+  p.position().y(d.position_body_m.y());
+  p.orientation().w(1.0);
+  return p;
+}
+
+agent::ForeignDetection foreignAt(const geometry_msgs::msg::Point& p) {
+  agent::ForeignDetection f;
+  f.x_m = p.x();
+  f.y_m = p.y();
+  f.z_m = p.z();
+  return f;
+}
+
 void stampOf(const std_msgs::msg::Header& h, agent::ForeignDetectionSet& out) {
   out.sec = h.stamp().sec();
   out.nanosec = h.stamp().nanosec();
@@ -38,15 +55,12 @@ agent::ForeignDetectionSet foreignOf(const vision_msgs::msg::Detection3DArray& m
   stampOf(m.header(), out);
   out.detections.reserve(m.detections().size());
   for (const vision_msgs::msg::Detection3D& d : m.detections()) {
-    agent::ForeignDetection f;
     const vision_msgs::msg::ObjectHypothesisWithPose* best = nullptr;
     for (const auto& h : d.results()) {
       if (best == nullptr || h.hypothesis().score() > best->hypothesis().score()) best = &h;
     }
-    const geometry_msgs::msg::Point& p = best != nullptr ? best->pose().pose().position() : d.bbox().center().position();
-    f.x_m = p.x();
-    f.y_m = p.y();
-    f.z_m = p.z();
+    agent::ForeignDetection f =
+        foreignAt(best != nullptr ? best->pose().pose().position() : d.bbox().center().position());
     if (best != nullptr) f.covariance = best->pose().covariance();
     f.id = agent::numericId(d.id());
     out.detections.push_back(f);
@@ -59,10 +73,7 @@ agent::ForeignDetectionSet foreignOf(const mrs_msgs::msg::PoseWithCovarianceArra
   stampOf(m.header(), out);
   out.detections.reserve(m.poses().size());
   for (const mrs_msgs::msg::PoseWithCovarianceIdentified& p : m.poses()) {
-    agent::ForeignDetection f;
-    f.x_m = p.pose().position().x();
-    f.y_m = p.pose().position().y();
-    f.z_m = p.pose().position().z();
+    agent::ForeignDetection f = foreignAt(p.pose().position());
     f.covariance = p.covariance();
     f.id = static_cast<long long>(p.id());
     out.detections.push_back(f);
@@ -79,9 +90,7 @@ vision_msgs::msg::Detection3DArray detection3DArray(const agent::DetectionSet& s
     vision_msgs::msg::ObjectHypothesisWithPose h;
     h.hypothesis().class_id("uav");
     h.hypothesis().score(1.0);
-    h.pose().pose().position().x(d.position_body_m.x());
-    h.pose().pose().position().y(d.position_body_m.y());
-    h.pose().pose().orientation().w(1.0);
+    h.pose().pose(poseOf(d));
     h.pose().covariance(covarianceOf(d.covariance_m2));
     out.results().push_back(h);
     out.bbox().center(h.pose().pose());
@@ -97,9 +106,7 @@ mrs_msgs::msg::PoseWithCovarianceArrayStamped poseArray(const agent::DetectionSe
   for (const agent::Detection& d : s.detections) {
     mrs_msgs::msg::PoseWithCovarianceIdentified p;
     p.id(d.target_id == agent::kAnonymousId ? kUvdarNoId : static_cast<std::uint32_t>(d.target_id));
-    p.pose().position().x(d.position_body_m.x());
-    p.pose().position().y(d.position_body_m.y());
-    p.pose().orientation().w(1.0);
+    p.pose(poseOf(d));
     p.covariance(covarianceOf(d.covariance_m2));
     m.poses().push_back(p);
   }
