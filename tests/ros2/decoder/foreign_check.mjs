@@ -1,0 +1,170 @@
+// The other systems' messages SWA speaks, checked with an independent ROS 2 CDR implementation (@foxglove/rosmsg +
+// @foxglove/rosmsg2-serialization, no code of SWA's) against the official definitions (issue #27):
+//   node foreign_check.mjs CAPTURE.json PX4_MSG_DIR OUT.json
+// 1. decodes every payload SWA serialised (tests/ros2/foreign_payloads.cpp write) and compares it field for field
+//    with the values SWA set: vision_msgs and mrs_msgs completely, PX4's messages on the fields the stand-in sets and
+//    zero everywhere else, each against the release's own .msg file (PX4_MSG_DIR/<tag>/<Name>.msg);
+// 2. serialises the same values of the vision_msgs and mrs_msgs payloads itself and writes them to OUT.json, for
+//    foreign_payloads check to read as the agent does.
+// It first checks that it can fail: a Point definition with x and y swapped must not match.
+// Exit 0: everything matched; 1: a difference (each printed); 2: bad usage.
+
+import { readFileSync, writeFileSync } from "node:fs";
+import { join } from "node:path";
+import { parse } from "@foxglove/rosmsg";
+import { MessageReader, MessageWriter } from "@foxglove/rosmsg2-serialization";
+
+const [capturePath, px4Dir, outPath] = process.argv.slice(2);
+if (!capturePath || !px4Dir || !outPath) {
+  console.error("usage: node foreign_check.mjs CAPTURE.json PX4_MSG_DIR OUT.json");
+  process.exit(2);
+}
+
+// The official definitions (fields only): std_msgs and geometry_msgs of ROS 2's common_interfaces, vision_msgs 4.x
+// (ros-perception/vision_msgs, branch ros2), mrs_msgs (ctu-mrs/mrs_msgs, msg/general).
+const STANDARD = {
+  "std_msgs/Header": "builtin_interfaces/Time stamp\nstring frame_id\n",
+  "geometry_msgs/Point": "float64 x\nfloat64 y\nfloat64 z\n",
+  "geometry_msgs/Quaternion": "float64 x\nfloat64 y\nfloat64 z\nfloat64 w\n",
+  "geometry_msgs/Vector3": "float64 x\nfloat64 y\nfloat64 z\n",
+  "geometry_msgs/Pose": "Point position\nQuaternion orientation\n",
+  "geometry_msgs/PoseWithCovariance": "Pose pose\nfloat64[36] covariance\n",
+  "vision_msgs/Detection3DArray": "std_msgs/Header header\nDetection3D[] detections\n",
+  "vision_msgs/Detection3D":
+    "std_msgs/Header header\nObjectHypothesisWithPose[] results\nBoundingBox3D bbox\nstring id\n",
+  "vision_msgs/ObjectHypothesisWithPose": "ObjectHypothesis hypothesis\ngeometry_msgs/PoseWithCovariance pose\n",
+  "vision_msgs/ObjectHypothesis": "string class_id\nfloat64 score\n",
+  "vision_msgs/BoundingBox3D": "geometry_msgs/Pose center\ngeometry_msgs/Vector3 size\n",
+  "mrs_msgs/PoseWithCovarianceArrayStamped": "std_msgs/Header header\nPoseWithCovarianceIdentified[] poses\n",
+  "mrs_msgs/PoseWithCovarianceIdentified": "uint32 id\ngeometry_msgs/Pose pose\nfloat64[36] covariance\n",
+};
+const PRIMITIVES = new Set(["bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16",
+  "int32", "uint32", "int64", "uint64", "string", "wstring", "builtin_interfaces/Time", "builtin_interfaces/Duration"]);
+
+function definitionText(full, tag, overrides) {
+  if (overrides && overrides[full] !== undefined) return overrides[full];
+  if (STANDARD[full] !== undefined) return STANDARD[full];
+  const [pkg, name] = full.split("/");
+  if (pkg === "px4_msgs") return readFileSync(join(px4Dir, tag, `${name}.msg`), "utf8");
+  throw new Error(`no definition of ${full}`);
+}
+
+function dependencies(text, pkg) {
+  const deps = [];
+  for (const raw of text.split("\n")) {
+    const line = raw.replace(/#.*/, "").trim();
+    if (!line || line.includes("=")) continue;
+    const type = line.split(/\s+/)[0].replace(/\[.*\]$/, "");
+    if (PRIMITIVES.has(type)) continue;
+    deps.push(type.includes("/") ? type.replace("/msg/", "/") : `${pkg}/${type}`);
+  }
+  return deps;
+}
+
+function fullDefinition(rosType, tag, overrides) {
+  const order = [];
+  const seen = new Set();
+  const visit = (full) => {
+    if (seen.has(full)) return;
+    seen.add(full);
+    order.push(full);
+    for (const dep of dependencies(definitionText(full, tag, overrides), full.split("/")[0])) visit(dep);
+  };
+  visit(rosType.replace("/msg/", "/"));
+  return order
+    .map((full, k) => (k === 0 ? "" : `${"=".repeat(80)}\nMSG: ${full}\n`) + definitionText(full, tag, overrides))
+    .join("\n");
+}
+
+const hexBytes = (hex) => Uint8Array.from(hex.match(/../g).map((h) => parseInt(h, 16)));
+const hexOf = (bytes) => Buffer.from(bytes).toString("hex");
+
+function differences(actual, expected, path, out) {
+  if (typeof actual === "bigint") {
+    if (String(actual) !== String(expected)) out.push(`${path}: ${actual} != ${expected}`);
+  } else if (ArrayBuffer.isView(actual) || Array.isArray(actual)) {
+    const a = Array.from(actual);
+    if (!Array.isArray(expected) || a.length !== expected.length) {
+      out.push(`${path}: ${a.length} elements, expected ${Array.isArray(expected) ? expected.length : "none"}`);
+      return out;
+    }
+    a.forEach((v, k) => differences(v, expected[k], `${path}[${k}]`, out));
+  } else if (actual !== null && typeof actual === "object") {
+    if (expected === null || typeof expected !== "object") {
+      out.push(`${path}: an object, expected ${JSON.stringify(expected)}`);
+      return out;
+    }
+    for (const key of new Set([...Object.keys(actual), ...Object.keys(expected)])) {
+      if (!(key in actual)) out.push(`${path}.${key}: missing in the decoded message`);
+      else if (!(key in expected)) out.push(`${path}.${key}: decoded but not expected`);
+      else differences(actual[key], expected[key], `${path}.${key}`, out);
+    }
+  } else if (actual !== expected) {
+    out.push(`${path}: ${JSON.stringify(actual)} != ${JSON.stringify(expected)}`);
+  }
+  return out;
+}
+
+// PX4: the fields given must hold their values, every other one must be zero (false, 0, 0n, zeros).
+function px4Differences(actual, expected, path) {
+  const out = [];
+  for (const key of Object.keys(expected)) {
+    if (!(key in actual)) out.push(`${path}.${key}: not in the release's definition`);
+  }
+  for (const [key, value] of Object.entries(actual)) {
+    if (key in expected) {
+      differences(value, expected[key], `${path}.${key}`, out);
+    } else {
+      const zero = ArrayBuffer.isView(value) || Array.isArray(value) ? Array.from(value).every((v) => Number(v) === 0)
+                                                                     : Number(value) === 0;
+      if (!zero) out.push(`${path}.${key}: ${value}, expected zero`);
+    }
+  }
+  return out;
+}
+
+function reader(entry, overrides) {
+  return new MessageReader(parse(fullDefinition(entry.ros_type, entry.px4_release, overrides), { ros2: true }));
+}
+
+const capture = JSON.parse(readFileSync(capturePath, "utf8"));
+
+// The comparison can fail: with x and y of Point swapped, the detections must read differently.
+const vision = capture.find((e) => e.ros_type === "vision_msgs/msg/Detection3DArray");
+if (!vision) {
+  console.error("foreign_check: no vision_msgs payload to check the comparison with");
+  process.exit(1);
+}
+const swapped = { "geometry_msgs/Point": "float64 y\nfloat64 x\nfloat64 z\n" };
+if (differences(reader(vision, swapped).readMessage(hexBytes(vision.cdr_hex)), vision.expected, "x", []).length === 0) {
+  console.error("foreign_check: a Point with x and y swapped decoded to the same values: the check is blind");
+  process.exit(1);
+}
+
+let failures = 0;
+const written = [];
+for (const entry of capture) {
+  const name = `${entry.ros_type}${entry.px4_release ? ` (PX4 ${entry.px4_release})` : ""}`;
+  let found;
+  try {
+    const decoded = reader(entry).readMessage(hexBytes(entry.cdr_hex));
+    found = entry.zero_elsewhere ? px4Differences(decoded, entry.expected, name)
+                                 : differences(decoded, entry.expected, name, []);
+  } catch (e) {
+    found = [`${name}: does not decode: ${e.message}`];
+  }
+  if (found.length > 0) {
+    failures += 1;
+    console.error(`MISMATCH:\n  ${found.join("\n  ")}`);
+  } else {
+    console.log(`${name}: decoded field for field`);
+  }
+  if (!entry.px4_release) {
+    const writer = new MessageWriter(parse(fullDefinition(entry.ros_type), { ros2: true }));
+    written.push({ ros_type: entry.ros_type, cdr_hex: hexOf(writer.writeMessage(entry.expected)) });
+  }
+}
+writeFileSync(outPath, JSON.stringify(written, null, 1));
+console.log(`foreign_check: ${capture.length - failures} of ${capture.length} payloads decoded as the official ` +
+  `definitions say; ${written.length} written for SWA to read`);
+process.exit(failures === 0 ? 0 : 1);

@@ -1,0 +1,256 @@
+// The payloads of the other systems' messages SWA speaks (issue #27), for the independent decoder
+// (test_foreign_decode.sh, decoder/foreign_check.mjs):
+//   foreign_payloads write FILE   every type's payload as SWA's generated code serialises it, with the values set
+//   foreign_payloads check FILE   payloads the independent implementation serialised, deserialised here and compared
+// Types: vision_msgs/Detection3DArray and mrs_msgs/PoseWithCovarianceArrayStamped (as the simulator writes them and
+// the agent reads them), PX4's VehicleStatus, SensorGps and VehicleLocalPosition in every release's layout (as the
+// stand-in writes them and the bridge reads them). Exit 0 when everything matched, 1 otherwise, 2 on bad usage.
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include <swa/px4/SensorGps_v1_15PubSubTypes.h>
+#include <swa/px4/SensorGps_v1_17PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
+#include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
+#include <swa/ros/Detection3DArrayPubSubTypes.h>
+#include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
+
+#include "swa/wire/px4.h"
+#include "swa/wire/ros_detections.h"
+
+namespace {
+
+using json = nlohmann::json;
+
+std::string hexOf(const std::vector<std::uint8_t>& bytes) {
+  static const char* digits = "0123456789abcdef";
+  std::string s;
+  for (const std::uint8_t b : bytes) {
+    s += digits[b >> 4];
+    s += digits[b & 15];
+  }
+  return s;
+}
+
+std::vector<std::uint8_t> bytesOf(const std::string& hex) {
+  std::vector<std::uint8_t> b;
+  for (std::size_t k = 0; k + 1 < hex.size(); k += 2) b.push_back(static_cast<std::uint8_t>(std::stoi(hex.substr(k, 2), nullptr, 16)));
+  return b;
+}
+
+template <class PubSubType>
+std::string serialise(typename PubSubType::type m) {
+  PubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t p(type.getSerializedSizeProvider(&m)());
+  if (!type.serialize(&m, &p)) throw std::runtime_error("cannot serialise " + std::string(type.getName()));
+  return hexOf(std::vector<std::uint8_t>(p.data, p.data + p.length));
+}
+
+template <class PubSubType>
+typename PubSubType::type deserialise(const std::string& hex) {
+  const std::vector<std::uint8_t> b = bytesOf(hex);
+  eprosima::fastrtps::rtps::SerializedPayload_t p(static_cast<std::uint32_t>(b.size()));
+  std::copy(b.begin(), b.end(), p.data);
+  p.length = static_cast<std::uint32_t>(b.size());
+  PubSubType type;
+  typename PubSubType::type m;
+  if (!type.deserialize(&p, &m)) throw std::runtime_error("cannot deserialise " + std::string(type.getName()));
+  return m;
+}
+
+// Three detections: identified with a covariance, identified without one, anonymous.
+swa::agent::DetectionSet detectionSet() {
+  swa::agent::DetectionSet s;
+  s.stamp_ns = 12'345'678'901LL;
+  swa::agent::Detection a;
+  a.target_id = 4;
+  a.position_body_m = swa::agent::Vec2(9.5, -1.25);
+  swa::agent::Mat2 c;
+  c << 0.04, 0.005, 0.005, 0.09;
+  a.covariance_m2 = c;
+  swa::agent::Detection b;
+  b.target_id = 7;
+  b.position_body_m = swa::agent::Vec2(-3.0, 8.0);
+  swa::agent::Detection anon;
+  anon.position_body_m = swa::agent::Vec2(0.5, 10.0);
+  s.detections = {a, b, anon};
+  return s;
+}
+
+swa::agent::GnssSample gnss() {
+  swa::agent::GnssSample g;
+  g.stamp_ns = 42'000'000'000LL;
+  g.valid = true;
+  g.position_m = swa::agent::Vec2(12.5, -7.25);
+  g.std_m = 0.75;
+  return g;
+}
+
+json header(const std::string& frame) {
+  return {{"stamp", {{"sec", 12}, {"nanosec", 345678901}}}, {"frame_id", frame}};
+}
+
+json covarianceJson(bool with) {
+  json c = json::array();
+  for (int k = 0; k < 36; ++k) c.push_back(0.0);
+  if (with) {
+    c[0] = 0.04;
+    c[1] = 0.005;
+    c[6] = 0.005;
+    c[7] = 0.09;
+  }
+  return c;
+}
+
+json pose(double x, double y) {
+  return {{"position", {{"x", x}, {"y", y}, {"z", 0.0}}},
+          {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"w", 1.0}}}};
+}
+
+// What SWA's writer puts in every field (complete: the decoder must give exactly this).
+json visionExpected() {
+  json dets = json::array();
+  const std::vector<std::tuple<double, double, bool, std::string>> rows = {
+      {9.5, -1.25, true, "4"}, {-3.0, 8.0, false, "7"}, {0.5, 10.0, false, ""}};
+  for (const auto& [x, y, cov, id] : rows) {
+    const json p = pose(x, y);
+    dets.push_back({{"header", header("uav3/fcu")},
+                    {"results", json::array({{{"hypothesis", {{"class_id", "uav"}, {"score", 1.0}}},
+                                              {"pose", {{"pose", p}, {"covariance", covarianceJson(cov)}}}}})},
+                    {"bbox", {{"center", p}, {"size", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}}},
+                    {"id", id}});
+  }
+  return {{"header", header("uav3/fcu")}, {"detections", dets}};
+}
+
+json uvdarExpected() {
+  json poses = json::array();
+  const std::vector<std::tuple<double, double, bool, std::uint32_t>> rows = {
+      {9.5, -1.25, true, 4u}, {-3.0, 8.0, false, 7u}, {0.5, 10.0, false, swa::wire::kUvdarNoId}};
+  for (const auto& [x, y, cov, id] : rows) {
+    poses.push_back({{"id", id}, {"pose", pose(x, y)}, {"covariance", covarianceJson(cov)}});
+  }
+  return {{"header", header("uav3/fcu")}, {"poses", poses}};
+}
+
+int write(const std::string& path) {
+  namespace px4 = px4_msgs::msg;
+  namespace px4_16 = px4_v1_16::px4_msgs::msg;
+  namespace px4_17 = px4_v1_17::px4_msgs::msg;
+  const swa::agent::DetectionSet s = detectionSet();
+  const swa::agent::GnssSample g = gnss();
+  json out = json::array();
+  out.push_back({{"ros_type", "vision_msgs/msg/Detection3DArray"},
+                 {"cdr_hex", serialise<vision_msgs::msg::Detection3DArrayPubSubType>(swa::wire::detection3DArray(s, 3))},
+                 {"expected", visionExpected()}});
+  out.push_back({{"ros_type", "mrs_msgs/msg/PoseWithCovarianceArrayStamped"},
+                 {"cdr_hex", serialise<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(swa::wire::poseArray(s, 3))},
+                 {"expected", uvdarExpected()}});
+  // PX4: the fields the stand-in sets; every other field must decode as zero (`zero_elsewhere`).
+  const json status = {{"timestamp", "42000000"}, {"arming_state", 2}, {"nav_state", 14}, {"nav_state_user_intention", 14},
+                       {"nav_state_timestamp", "42000000"}, {"failsafe", true}, {"vehicle_type", 1}, {"system_id", 4},
+                       {"component_id", 1}, {"pre_flight_checks_pass", true}};
+  const auto addPx4 = [&](const std::string& tag, const std::string& name, const std::string& hex, json expected) {
+    out.push_back({{"ros_type", "px4_msgs/msg/" + name}, {"px4_release", tag}, {"cdr_hex", hex},
+                   {"expected", std::move(expected)}, {"zero_elsewhere", true}});
+  };
+  const std::uint64_t t = 42'000'000;
+  addPx4("v1.15.4", "VehicleStatus",
+         serialise<px4::VehicleStatusPubSubType>(swa::wire::vehicleStatus<px4::VehicleStatus>(t, 2, 14, true, 4)), status);
+  for (const char* tag : {"v1.16.0", "v1.17.0"}) {
+    addPx4(tag, "VehicleStatus",
+           serialise<px4_16::VehicleStatusPubSubType>(swa::wire::vehicleStatus<px4_16::VehicleStatus>(t, 2, 14, true, 4)),
+           status);
+  }
+  const json gps = {{"timestamp", "42000000"}, {"timestamp_sample", "42000000"}, {"fix_type", 3},
+                    {"satellites_used", 10}, {"eph", 0.75}, {"epv", 1.5}};
+  for (const char* tag : {"v1.15.4", "v1.16.0"}) {
+    addPx4(tag, "SensorGps", serialise<px4::SensorGpsPubSubType>(swa::wire::sensorGps<px4::SensorGps>(t, g)), gps);
+  }
+  addPx4("v1.17.0", "SensorGps", serialise<px4_17::SensorGpsPubSubType>(swa::wire::sensorGps<px4_17::SensorGps>(t, g)),
+         gps);
+  const json position = {{"timestamp", "42000000"}, {"timestamp_sample", "42000000"}, {"xy_valid", true},
+                         {"x", -7.25}, {"y", 12.5}, {"eph", 0.75}};
+  addPx4("v1.15.4", "VehicleLocalPosition",
+         serialise<px4::VehicleLocalPositionPubSubType>(swa::wire::vehicleLocalPosition<px4::VehicleLocalPosition>(t, g)),
+         position);
+  for (const char* tag : {"v1.16.0", "v1.17.0"}) {
+    addPx4(tag, "VehicleLocalPosition",
+           serialise<px4_16::VehicleLocalPositionPubSubType>(
+               swa::wire::vehicleLocalPosition<px4_16::VehicleLocalPosition>(t, g)),
+           position);
+  }
+  std::ofstream(path) << out.dump(1) << "\n";
+  std::cout << "foreign_payloads: wrote " << out.size() << " payloads to " << path << "\n";
+  return 0;
+}
+
+// Payloads the independent implementation serialised from the same values: read back as the agent reads them.
+int check(const std::string& path) {
+  std::ifstream in(path);
+  const json entries = json::parse(in);
+  int failures = 0, checked = 0;
+  const auto expectSet = [&](const swa::agent::ForeignDetectionSet& f, const std::string& what) {
+    const swa::agent::DetectionSet s = detectionSet();
+    bool ok = f.sec == 12 && f.nanosec == 345678901u && f.frame_id == "uav3/fcu" && f.detections.size() == 3;
+    for (std::size_t k = 0; ok && k < 3; ++k) {
+      ok = f.detections[k].x_m == s.detections[k].position_body_m.x() &&
+           f.detections[k].y_m == s.detections[k].position_body_m.y();
+    }
+    ok = ok && f.detections[0].covariance && (*f.detections[0].covariance)[1] == 0.005 &&
+         (*f.detections[0].covariance)[7] == 0.09 && f.detections[0].id == 4 && f.detections[1].id == 7;
+    if (!ok) {
+      std::cerr << "MISMATCH: " << what << " serialised by the independent implementation reads differently\n";
+      ++failures;
+    }
+    ++checked;
+  };
+  for (const json& e : entries) {
+    const std::string type = e.at("ros_type");
+    const std::string hex = e.at("cdr_hex");
+    try {
+      if (type == "vision_msgs/msg/Detection3DArray") {
+        const swa::agent::ForeignDetectionSet f =
+            swa::wire::foreignOf(deserialise<vision_msgs::msg::Detection3DArrayPubSubType>(hex));
+        expectSet(f, type);
+        if (f.detections[2].id) {
+          std::cerr << "MISMATCH: the anonymous Detection3D read with an id\n";
+          ++failures;
+        }
+      } else if (type == "mrs_msgs/msg/PoseWithCovarianceArrayStamped") {
+        expectSet(swa::wire::foreignOf(deserialise<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(hex)), type);
+      } else {
+        std::cerr << "foreign_payloads: unexpected type " << type << "\n";
+        ++failures;
+      }
+    } catch (const std::exception& ex) {
+      std::cerr << "MISMATCH: " << type << ": " << ex.what() << "\n";
+      ++failures;
+    }
+  }
+  std::cout << "foreign_payloads: " << checked - failures << " of " << checked
+            << " payloads serialised independently read as written\n";
+  return failures == 0 && checked >= 2 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::cerr << "usage: foreign_payloads write|check FILE\n";
+    return 2;
+  }
+  const std::string mode = argv[1];
+  if (mode == "write") return write(argv[2]);
+  if (mode == "check") return check(argv[2]);
+  std::cerr << "usage: foreign_payloads write|check FILE\n";
+  return 2;
+}

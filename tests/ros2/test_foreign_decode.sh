@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The other systems' messages SWA speaks (vision_msgs, UVDAR's mrs_msgs, PX4's per release), checked both ways with an
+# independent ROS 2 CDR implementation against the official definitions (issue #27, no ROS installation):
+#   test_foreign_decode.sh FOREIGN_PAYLOADS_BINARY WORK_DIR
+# 1. installs Node.js and npm from Debian if missing, and the decoder's npm packages (package-lock.json) into WORK_DIR;
+# 2. foreign_payloads write: SWA's payloads of every type, with the values set;
+# 3. decoder/foreign_check.mjs decodes them field for field and serialises the same values itself;
+# 4. foreign_payloads check: SWA reads those as the agent does.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/../.." && pwd)
+payloads=$1
+work=$2
+
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  echo "test_foreign_decode: installing nodejs and npm (Debian packages)"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends nodejs npm
+fi
+
+rm -rf "$work"
+mkdir -p "$work/decoder"
+cp "$here/decoder/package.json" "$here/decoder/package-lock.json" "$here/decoder/foreign_check.mjs" "$work/decoder/"
+(cd "$work/decoder" && npm ci --no-audit --no-fund --loglevel=error)
+
+"$payloads" write "$work/capture.json"
+node "$work/decoder/foreign_check.mjs" "$work/capture.json" "$root/tests/px4/msg" "$work/independent.json"
+"$payloads" check "$work/independent.json"
+rm -rf "$work"
