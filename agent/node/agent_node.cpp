@@ -104,12 +104,12 @@ void AgentNode::connect() {
       break;
     case agent::DetectionInput::kVisionMsgs:
       vision_reader_ = participant_->reader<vision_msgs::msg::Detection3DArrayPubSubType>(
-          dds::topics::visionDetections(id_), "swa_detections_gnss_reader",
+          dds::topics::visionDetections(id_), "foreign_detections_reader",
           [this](vision_msgs::msg::Detection3DArray&& m) { onForeign(wire::foreignOf(m)); });
       break;
     case agent::DetectionInput::kUvdar:
       uvdar_reader_ = participant_->reader<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(
-          dds::topics::uvdarPoses(id_), "swa_detections_gnss_reader",
+          dds::topics::uvdarPoses(id_), "foreign_detections_reader",
           [this](mrs_msgs::msg::PoseWithCovarianceArrayStamped&& m) { onForeign(wire::foreignOf(m)); });
       break;
   }

@@ -24,9 +24,12 @@ std::optional<Mat2> DetectionAdapter::bodyCovariance(const std::array<double, 36
   const double scale = std::max(std::abs(xx), std::abs(yy));
   const bool symmetric = finite && std::abs(xy - yx) <= kSymmetryTolerance * scale;
   const double off = 0.5 * (xy + yx);
-  const bool positive = symmetric && xx > config_.min_variance_m2 && yy > config_.min_variance_m2 &&
-                        xx * yy - off * off > config_.min_variance_m2 * config_.min_variance_m2 &&
-                        xx < config_.max_variance_m2 && yy < config_.max_variance_m2;
+  // Both eigenvalues within [min, max]: a strongly correlated block can have a fine diagonal and still claim a
+  // sub-millimetre accuracy across its main axis.
+  const double mean = 0.5 * (xx + yy);
+  const double spread = std::hypot(0.5 * (xx - yy), off);
+  const double smallest = mean - spread, largest = mean + spread;
+  const bool positive = symmetric && smallest >= config_.min_variance_m2 && largest <= config_.max_variance_m2;
   if (!positive) return std::nullopt;
   Mat2 s;
   s << xx, off, off, yy;
@@ -63,6 +66,10 @@ std::optional<DetectionSet> DetectionAdapter::convert(const ForeignDetectionSet&
     }
     Detection det;
     det.position_body_m = config_.sensor_offset_m + Vec2(cy * d.x_m - sy * d.y_m, sy * d.x_m + cy * d.y_m);
+    if (!det.position_body_m.allFinite()) {  // finite but near the largest double: the rotation overflowed
+      ++counters_.nonfinite_position;
+      continue;
+    }
     const bool unknown = !d.covariance || ((*d.covariance)[0] == 0.0 && (*d.covariance)[1] == 0.0 &&
                                            (*d.covariance)[6] == 0.0 && (*d.covariance)[7] == 0.0);
     if (unknown) {

@@ -1,6 +1,7 @@
 #include "swa/agent/frame_fit.h"
 
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -130,19 +131,27 @@ FrameFit fitFixedRadius(const NeighbourPositions& nb, double radius, double far_
     // A whisker of Levenberg damping keeps the 2x2 solve defined when all residual directions are parallel.
     gn.diagonal().array() += 1e-9 * (1.0 + gn.trace());
     const Mat2 newton = gn + curvature;
-    const bool newton_ok = newton(0, 0) > 0.0 && newton.determinant() > 1e-12 * (1.0 + newton.trace());
-    Vec2 step = -(newton_ok ? newton : gn).inverse() * gradient;  // closed-form 2x2 inverse
-    if (!isFinite(step)) break;
-    // Halve the step until the cost does not increase: a full step can overshoot near the two-fold ambiguity.
-    double new_cost = fixedRadiusCost(nb, c + step, radius, far_weight);
-    for (int h = 0; h < 10 && new_cost > cost; ++h) {
-      step *= 0.5;
-      new_cost = fixedRadiusCost(nb, c + step, radius, far_weight);
-    }
-    if (new_cost > cost) break;
-    c += step;
-    cost = new_cost;
-    if (step.norm() < kNewtonStepTolM) {
+    // Positive definite and not nearly singular relative to its own scale (det ~ trace^2 / 4 when well conditioned).
+    const bool newton_ok = newton(0, 0) > 0.0 && newton.determinant() > 1e-9 * newton.trace() * newton.trace();
+    // Halve a step until the cost does not increase: a full step can overshoot near the two-fold ambiguity. A Newton
+    // step that finds no descent (a nearly flat valley) is followed by the Gauss-Newton step, which always descends
+    // for a small enough length.
+    const auto descend = [&](Vec2 step) {
+      if (!isFinite(step)) return std::optional<Vec2>();
+      double new_cost = fixedRadiusCost(nb, c + step, radius, far_weight);
+      for (int h = 0; h < 10 && new_cost > cost; ++h) {
+        step *= 0.5;
+        new_cost = fixedRadiusCost(nb, c + step, radius, far_weight);
+      }
+      if (new_cost > cost) return std::optional<Vec2>();
+      c += step;
+      cost = new_cost;
+      return std::optional<Vec2>(step);
+    };
+    std::optional<Vec2> step = newton_ok ? descend(-newton.inverse() * gradient) : std::nullopt;  // closed-form 2x2
+    if (!step) step = descend(-gn.inverse() * gradient);
+    if (!step) break;
+    if (step->norm() < kNewtonStepTolM) {
       ++it;
       break;
     }

@@ -81,6 +81,12 @@ void Px4Vehicles::unmatched(int uav, std::vector<std::string>& missing) const {
   if (v.attitude.matched() < 1) missing.push_back(topics::px4Out(v.ns, "vehicle_attitude") + " (no bridge reading)");
   if (v.setpoint.matched() < 1) missing.push_back(topics::px4In(v.ns, "trajectory_setpoint") + " (no bridge writing)");
   if (v.mode.matched() < 1) missing.push_back(topics::px4In(v.ns, "offboard_control_mode") + " (no bridge writing)");
+  // GNSS from the autopilot (best effort, as PX4 sends it): a fix sent before the bridge reads would be lost.
+  const int gps = v.gps ? v.gps.matched() : v.gps_v1_17 ? v.gps_v1_17.matched() : 1;
+  const int position = v.position ? v.position.matched() : v.position_v1_16 ? v.position_v1_16.matched() : 1;
+  if (gps < 1 || position < 1) {
+    missing.push_back(v.ns + "'s vehicle_gps_position / vehicle_local_position (no bridge reading)");
+  }
 }
 
 bool Px4Vehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) {

@@ -3,7 +3,8 @@
 // PX4's topics of the namespace px4_<i>, the simulator publishes vehicle_attitude (its IMU sample as PX4's quaternion,
 // stamped on the vehicle's clock = simulation time) and vehicle_status (the release's layout and topic name), reads trajectory_setpoint, offboard_control_mode and vehicle_command with
 // PX4's QoS, and lets a stand-in (swa/sim/px4_standin.h) decide what the vehicle flies. The agents are reached through
-// one swa_px4_bridge each; detections and GNSS still go to the agents on SWA's topics.
+// one swa_px4_bridge each; detections go to the agents on their own topics, GNSS too unless
+// vehicle.gnss_source = autopilot (then vehicle_gps_position and vehicle_local_position, forwarded by the bridges).
 // The first trajectory_setpoint stamped with a recent attitude sample's timestamp is that sample's answer: it goes to
 // the drivers' lockstep / realtime rules like an agent's cmd_vel (answer.h). The bridge's own setpoints (zero velocity
 // for a stale agent, stamped like the last answer), heartbeats and commands go to the stand-in at once.

@@ -118,7 +118,12 @@ bool SimPorts::awaitDiscovery() {
     missing.clear();
     for (int i = 0; i < n_; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      if (detectionsMatched(k) < 1) missing.push_back("UAV " + std::to_string(i) + "'s detections (no reader)");
+      if (detectionsMatched(k) < 1) {
+        const std::string topic = !det_.empty()        ? dds::topics::detections(i)
+                                  : !vision_det_.empty() ? dds::topics::visionDetections(i)
+                                                         : dds::topics::uvdarPoses(i);
+        missing.push_back(topic + " (no reader)");
+      }
       if (gnss_[k] && gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
       if (px4_) {
         px4_->unmatched(i, missing);

@@ -1,7 +1,8 @@
 // Bad detector output through the detection adapters (issue #27), label fuzz: one swa_agent reads its detections as a
-// real detector's message (sensor.input = vision_msgs or uvdar), a rogue publisher sends it IMU samples at 100 Hz and,
-// every 10th step, a detection set: genuine ones, and ones with NaN and infinite positions, zero, NaN, asymmetric and
-// negative covariances, frames it cannot place, a huge array, bad stamps. The agent stays alive, every command it
+// real detector's message (sensor.input = vision_msgs or uvdar), a rogue publisher with a ROS 2 node's default QoS
+// (profile ros2_default_writer: it must match) sends it IMU samples at 100 Hz and, every 10th step, a detection set:
+// genuine ones, and ones with NaN and infinite positions, zero, NaN, asymmetric and negative covariances, frames it
+// cannot place, a huge array, bad stamps. The agent stays alive, every command it
 // sends is finite and within its speed limit, and it says at exit what it dropped and repaired.
 
 #include <gtest/gtest.h>
@@ -76,10 +77,10 @@ class RogueDetections : public ::testing::TestWithParam<std::string> {
     imu_ = rogue_->writer<msg::ImuPubSubType>(dds::topics::imu(kUav), "swa_sensor_writer");
     if (GetParam() == "vision_msgs") {
       vision_ = rogue_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(dds::topics::visionDetections(kUav),
-                                                                            "swa_detections_gnss_writer");
+                                                                            "ros2_default_writer");
     } else {
       uvdar_ = rogue_->writer<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(dds::topics::uvdarPoses(kUav),
-                                                                                        "swa_detections_gnss_writer");
+                                                                                        "ros2_default_writer");
     }
     rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(kUav), "swa_command_reader", cmds_.listener());
   }

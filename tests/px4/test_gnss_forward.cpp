@@ -16,7 +16,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 LocalPositionReport position(std::uint64_t t_us, bool xy_valid = true, double x = 3.0, double y = -4.0,
                              double eph = 0.8) {
-  return {t_us, xy_valid, x, y, eph};
+  return {t_us, xy_valid, false, x, y, eph};
 }
 
 TEST(GnssForward, AFixAndAValidPositionGiveSwasSampleInEastNorthOnPx4sClock) {
@@ -53,6 +53,32 @@ TEST(GnssForward, ALostFixOrPositionIsForwardedAtOnceAndARegainToo) {
   ASSERT_TRUE(back);
   EXPECT_TRUE(back->valid);
   EXPECT_EQ(g.counters().not_xy_valid, 1u);
+}
+
+TEST(GnssForward, DeadReckoningIsNotAFixEvenWithXyValidAndAReceiverFix) {
+  GnssForward f;
+  f.onGps({0, kGpsFix3d});
+  LocalPositionReport p = position(10'000);
+  p.dead_reckoning = true;
+  const auto g = f.onLocalPosition(p);
+  ASSERT_TRUE(g);
+  EXPECT_FALSE(g->valid);
+  EXPECT_EQ(f.counters().dead_reckoning, 1u);
+}
+
+TEST(GnssForward, AFixFromBeforeAClockRestartIsNotFresh) {
+  GnssForward f;
+  f.onGps({50'000'000, kGpsFix3d});
+  ASSERT_TRUE(f.onLocalPosition(position(50'000'000))->valid);
+  // WHEN PX4 restarts and its receiver stays silent
+  const auto g = f.onLocalPosition(position(20'000));
+  // THEN the old fix does not count
+  ASSERT_TRUE(g);
+  EXPECT_FALSE(g->valid);
+  // AND a GPS report far ahead of the position (a clock mix-up) is stale too
+  GnssForward h;
+  h.onGps({9'000'000, kGpsFix3d});
+  EXPECT_FALSE(h.onLocalPosition(position(1'000'000))->valid);
 }
 
 TEST(GnssForward, NoGpsReportOrAStaleOneIsNoFix) {
@@ -129,7 +155,7 @@ TEST(GnssForward, RandomReportsNeverGiveAValidSampleWithoutAFixAValidPositionAnd
       last_fix = static_cast<std::uint8_t>(fix(rng));
       f.onGps({t, last_fix});
     }
-    LocalPositionReport p{t, coin(rng) == 1, value(rng), value(rng), std::abs(value(rng)) * 1e-2};
+    LocalPositionReport p{t, coin(rng) == 1, false, value(rng), value(rng), std::abs(value(rng)) * 1e-2};
     switch (kind(rng)) {
       case 0: p.x_m = kNaN; break;
       case 1: p.eph_m = 0.0; break;

@@ -86,15 +86,16 @@ TEST(DetectionAdapter, BadOrUnknownCovariancesAreReplacedByTheConfiguredNoiseAnd
   DetectionAdapter a(config());
   std::vector<ForeignDetection> d;
   for (const auto& c : {covariance(0, 0, 0, 0), covariance(kNaN, 0, 0, 0.1), covariance(0.1, 0.05, -0.05, 0.1),
-                        covariance(0.1, 0.2, 0.2, 0.1), covariance(-0.1, 0, 0, 0.1), covariance(1e9, 0, 0, 1e9)}) {
+                        covariance(0.1, 0.2, 0.2, 0.1), covariance(-0.1, 0, 0, 0.1), covariance(1e9, 0, 0, 1e9),
+                        covariance(1.0, 0.9999999, 0.9999999, 1.0)}) {
     d.push_back({10.0, 1.0, 0.0, c, 2});
   }
   d.push_back({10.0, 1.0, 0.0, std::nullopt, 2});
   const auto out = a.convert(set(d));
   ASSERT_TRUE(out);
-  ASSERT_EQ(out->detections.size(), 7u);  // every detection kept: only its noise is replaced
+  ASSERT_EQ(out->detections.size(), 8u);  // every detection kept: only its noise is replaced
   for (const Detection& x : out->detections) EXPECT_FALSE(x.covariance_m2);
-  EXPECT_EQ(a.counters().covariance_repaired, 5u);
+  EXPECT_EQ(a.counters().covariance_repaired, 6u);  // the last: a fine diagonal, 1e-7 m^2 across its main axis
   EXPECT_EQ(a.counters().covariance_missing, 2u);  // absent, or all zero: unknown, the ROS convention
 }
 
@@ -145,6 +146,7 @@ TEST(DetectionAdapter, RandomDetectorOutputNeverReachesTheAgentNonFiniteOrNotPos
           ASSERT_TRUE(c.allFinite());
           ASSERT_GT(c(0, 0), 0.0);
           ASSERT_GT(c.determinant(), 0.0);
+          ASSERT_GE(0.5 * c.trace() - std::hypot(0.5 * (c(0, 0) - c(1, 1)), c(0, 1)), 1e-6 * (1.0 - 1e-9));
           ASSERT_EQ(c(0, 1), c(1, 0));
         }
         ASSERT_GE(x.target_id, kAnonymousId);

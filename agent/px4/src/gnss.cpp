@@ -39,14 +39,19 @@ std::optional<agent::GnssSample> GnssForward::onLocalPosition(const LocalPositio
   if (!gps_ || gps_->fix_type < kGpsFix3d) {
     valid = false;
     ++counters_.no_fix;
-  } else if (p.timestamp_us > gps_->timestamp_us &&
-             static_cast<double>(p.timestamp_us - gps_->timestamp_us) * 1e-6 > config_.gps_max_age_s) {
+  } else if (std::abs(static_cast<double>(p.timestamp_us) - static_cast<double>(gps_->timestamp_us)) * 1e-6 >
+             config_.gps_max_age_s) {
+    // Either way: a fix from before a clock restart lies far ahead of the new timeline, and is as stale.
     valid = false;
     ++counters_.stale_gps;
   }
   if (!p.xy_valid) {
     valid = false;
     ++counters_.not_xy_valid;
+  }
+  if (p.dead_reckoning) {
+    valid = false;
+    ++counters_.dead_reckoning;
   }
   if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m) || !std::isfinite(p.eph_m) || !(p.eph_m > 0.0)) {
     valid = false;

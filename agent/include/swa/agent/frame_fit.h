@@ -44,7 +44,9 @@ FrameFit fitFloatingFrame(const NeighbourPositions& neighbours, double radius, C
                           double far_weight = 1.0);
 
 // Covariance of `fit.centre` given the neighbours' position covariances (independent of one another), to first
-// order: r_c moves by J_j dp_j when neighbour j moves by dp_j. For the fixed-radius fit (and n = 2, its exact case)
+// order in the Gauss-Newton approximation: r_c moves by J_j dp_j when neighbour j moves by dp_j, leaving out the
+// residuals' curvature (exact where the neighbours lie on the circle; tests/unit/test_fit_covariance.cpp checks it
+// against a Monte Carlo of the fit within 5 %). For the fixed-radius fit (and n = 2, its exact case)
 // J_j = A^-1 w_j u_j u_j' with u_j the unit vector centre -> neighbour and A = sum w_j u_j u_j' (the Gauss-Newton
 // normal matrix at the optimum): a neighbour's error along the circle's tangent does not move the centre, and a
 // centre held by two nearly opposite neighbours is poorly known across them. False for the cases it does not model

@@ -4,8 +4,9 @@
 // moment its autopilot says it has no fix or no valid horizontal position, and uses it again when both are back.
 // Pure: no DDS; the bridge feeds it the messages' fields, the tests feed it anything.
 //
-// A sample is valid only if the newest GPS report (at most `gps_max_age_s` older than the position, on PX4's
-// clock) has a 3D fix or better, the position says xy_valid, and x, y and eph are finite with eph > 0. Anything else
+// A sample is valid only if the newest GPS report (at most `gps_max_age_s` from the position, on PX4's clock) has a
+// 3D fix or better, the position says xy_valid and not dead_reckoning (PX4 keeps xy_valid while it dead-reckons, e.g.
+// after rejecting a jammed receiver that still reports a fix), and x, y and eph are finite with eph > 0. Anything else
 // is a valid=false sample ("no fix"), never a dropped one: the agent must hear the loss. The position is PX4's local
 // NED frame turned to SWA's (x east = y_NED, y north = x_NED); its origin is the vehicle's own EKF origin, which is
 // all the agent needs (it holds positions relative to its first fix). std_m is PX4's eph.
@@ -25,6 +26,7 @@ struct GpsReport {
 struct LocalPositionReport {
   std::uint64_t timestamp_us = 0;
   bool xy_valid = false;
+  bool dead_reckoning = false;  // the estimator runs on inertial data alone (no position aiding)
   double x_m = 0.0, y_m = 0.0;  // NED
   double eph_m = 0.0;
 };
@@ -36,7 +38,7 @@ struct GnssForwardConfig {
 
 struct GnssForwardCounters {
   std::uint64_t positions_in = 0, gps_in = 0, forwarded = 0, invalid_forwarded = 0;
-  std::uint64_t no_fix = 0, not_xy_valid = 0, bad_numbers = 0, stale_gps = 0;  // why a sample was not valid
+  std::uint64_t no_fix = 0, not_xy_valid = 0, dead_reckoning = 0, bad_numbers = 0, stale_gps = 0;  // why not valid
   std::uint64_t out_of_order = 0;    // position reports dropped: not newer than the last one
   std::uint64_t clock_restarts = 0;  // PX4's clock went back by more than a second (a reboot): started afresh
 };

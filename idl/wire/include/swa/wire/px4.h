@@ -1,7 +1,7 @@
 #pragma once
 // PX4's messages <-> the PX4 library's types (swa/px4/): the bridge's and the simulator's PX4 stand-in's one place for
-// message fields. Every message SWA uses has v1.15's layout in v1.16 and v1.17, except VehicleStatus
-// (swa/px4/release.h). Frames are converted in swa/px4/frames.h, not here: these only move values (float32 on
+// message fields. Which release has which layout: swa/px4/release.h (VehicleStatus and VehicleLocalPosition changed in
+// v1.16, SensorGps in v1.17; the rest SWA uses has v1.15's layout throughout). Frames are converted in swa/px4/frames.h, not here: these only move values (float32 on
 // PX4's side).
 
 #include <cstdint>
@@ -93,7 +93,7 @@ px4::GpsReport gpsReportOf(const Gps& m) {
 
 template <class Position>
 px4::LocalPositionReport localPositionOf(const Position& m) {
-  return {m.timestamp(), m.xy_valid(), m.x(), m.y(), m.eph()};
+  return {m.timestamp(), m.xy_valid(), m.dead_reckoning(), m.x(), m.y(), m.eph()};
 }
 
 msg::BridgeState bridgeState(const px4::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
