@@ -12,17 +12,9 @@ root=$(cd "$here/../.." && pwd)
 payloads=$1
 work=$2
 
-if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-  echo "test_foreign_decode: installing nodejs and npm (Debian packages)"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends nodejs npm
-fi
-
-rm -rf "$work"
-mkdir -p "$work/decoder"
-cp "$here/decoder/package.json" "$here/decoder/package-lock.json" "$here/decoder/foreign_check.mjs" "$work/decoder/"
-(cd "$work/decoder" && npm ci --no-audit --no-fund --loglevel=error)
+# shellcheck source=decoder/prepare.sh
+source "$here/decoder/prepare.sh"
+prepare_decoder "$work"
 
 "$payloads" write "$work/capture.json"
 node "$work/decoder/foreign_check.mjs" "$work/capture.json" "$root/tests/px4/msg" "$work/independent.json"

@@ -10,6 +10,8 @@ import { join } from "node:path";
 import { parse } from "@foxglove/rosmsg";
 import { MessageReader } from "@foxglove/rosmsg2-serialization";
 
+import { differences, fullDefinition, hexBytes } from "./ros_cdr.mjs";
+
 const [capturePath, msgDir] = process.argv.slice(2);
 if (!capturePath || !msgDir) {
   console.error("usage: node decode_check.mjs CAPTURE.json MSG_DIR");
@@ -23,9 +25,6 @@ const STANDARD = {
   "geometry_msgs/Vector3": "float64 x\nfloat64 y\nfloat64 z\n",
   "std_msgs/Header": "builtin_interfaces/Time stamp\nstring frame_id\n",
 };
-const PRIMITIVES = new Set(["bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16",
-  "int32", "uint32", "int64", "uint64", "string", "wstring", "builtin_interfaces/Time", "builtin_interfaces/Duration"]);
-
 // The text of pkg/Name ("swa_msgs/Imu"): a .msg file of MSG_DIR for swa_msgs, the standard text otherwise.
 function definitionText(full, overrides) {
   if (overrides && overrides[full] !== undefined) return overrides[full];
@@ -36,71 +35,13 @@ function definitionText(full, overrides) {
   return readFileSync(file, "utf8");
 }
 
-// The complex types a definition uses, as pkg/Name (a bare name is of the same package).
-function dependencies(text, pkg) {
-  const deps = [];
-  for (const raw of text.split("\n")) {
-    const line = raw.replace(/#.*/, "").trim();
-    if (!line || line.includes("=")) continue;
-    const type = line.split(/\s+/)[0].replace(/\[.*\]$/, "");
-    if (PRIMITIVES.has(type)) continue;
-    deps.push(type.includes("/") ? type.replace("/msg/", "/") : `${pkg}/${type}`);
-  }
-  return deps;
-}
-
-// The full definition of a ROS type in the concatenated form rosbag2 and MCAP use: the type, then each dependency
-// after a separator line and "MSG: pkg/Name".
-function fullDefinition(rosType, overrides) {
-  const root = rosType.replace("/msg/", "/");
-  const order = [];
-  const seen = new Set();
-  const visit = (full) => {
-    if (seen.has(full)) return;
-    seen.add(full);
-    order.push(full);
-    for (const dep of dependencies(definitionText(full, overrides), full.split("/")[0])) visit(dep);
-  };
-  visit(root);
-  return order
-    .map((full, k) => (k === 0 ? "" : `${"=".repeat(80)}\nMSG: ${full}\n`) + definitionText(full, overrides))
-    .join("\n");
-}
-
-function hexBytes(hex) {
-  return Uint8Array.from(hex.match(/../g).map((h) => parseInt(h, 16)));
-}
-
-// Every difference between the decoded value and the expected JSON (64-bit integers are strings there).
-function differences(actual, expected, path, out) {
-  if (typeof actual === "bigint") {
-    if (String(actual) !== String(expected)) out.push(`${path}: ${actual} != ${expected}`);
-  } else if (ArrayBuffer.isView(actual) || Array.isArray(actual)) {
-    const a = Array.from(actual);
-    if (!Array.isArray(expected) || a.length !== expected.length) {
-      out.push(`${path}: ${a.length} elements, expected ${Array.isArray(expected) ? expected.length : "none"}`);
-      return out;
-    }
-    a.forEach((v, k) => differences(v, expected[k], `${path}[${k}]`, out));
-  } else if (actual !== null && typeof actual === "object") {
-    if (expected === null || typeof expected !== "object") {
-      out.push(`${path}: an object, expected ${JSON.stringify(expected)}`);
-      return out;
-    }
-    const keys = new Set([...Object.keys(actual), ...Object.keys(expected)]);
-    for (const key of keys) {
-      if (!(key in actual)) out.push(`${path}.${key}: missing in the decoded message`);
-      else if (!(key in expected)) out.push(`${path}.${key}: decoded but not expected`);
-      else differences(actual[key], expected[key], `${path}.${key}`, out);
-    }
-  } else if (actual !== expected) {
-    out.push(`${path}: ${JSON.stringify(actual)} != ${JSON.stringify(expected)}`);
-  }
-  return out;
+// The full definition of a ROS type (ros_cdr.mjs), with `overrides` replacing some texts.
+function fullDefinitionOf(rosType, overrides) {
+  return fullDefinition(rosType, (full) => definitionText(full, overrides));
 }
 
 function decode(entry, overrides) {
-  const reader = new MessageReader(parse(fullDefinition(entry.ros_type, overrides), { ros2: true }));
+  const reader = new MessageReader(parse(fullDefinitionOf(entry.ros_type, overrides), { ros2: true }));
   return reader.readMessage(hexBytes(entry.cdr_hex));
 }
 

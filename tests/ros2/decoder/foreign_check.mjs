@@ -14,6 +14,8 @@ import { join } from "node:path";
 import { parse } from "@foxglove/rosmsg";
 import { MessageReader, MessageWriter } from "@foxglove/rosmsg2-serialization";
 
+import { differences, fullDefinition, hexBytes } from "./ros_cdr.mjs";
+
 const [capturePath, px4Dir, outPath] = process.argv.slice(2);
 if (!capturePath || !px4Dir || !outPath) {
   console.error("usage: node foreign_check.mjs CAPTURE.json PX4_MSG_DIR OUT.json");
@@ -38,9 +40,6 @@ const STANDARD = {
   "mrs_msgs/PoseWithCovarianceArrayStamped": "std_msgs/Header header\nPoseWithCovarianceIdentified[] poses\n",
   "mrs_msgs/PoseWithCovarianceIdentified": "uint32 id\ngeometry_msgs/Pose pose\nfloat64[36] covariance\n",
 };
-const PRIMITIVES = new Set(["bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16",
-  "int32", "uint32", "int64", "uint64", "string", "wstring", "builtin_interfaces/Time", "builtin_interfaces/Duration"]);
-
 function definitionText(full, tag, overrides) {
   if (overrides && overrides[full] !== undefined) return overrides[full];
   if (STANDARD[full] !== undefined) return STANDARD[full];
@@ -49,61 +48,11 @@ function definitionText(full, tag, overrides) {
   throw new Error(`no definition of ${full}`);
 }
 
-function dependencies(text, pkg) {
-  const deps = [];
-  for (const raw of text.split("\n")) {
-    const line = raw.replace(/#.*/, "").trim();
-    if (!line || line.includes("=")) continue;
-    const type = line.split(/\s+/)[0].replace(/\[.*\]$/, "");
-    if (PRIMITIVES.has(type)) continue;
-    deps.push(type.includes("/") ? type.replace("/msg/", "/") : `${pkg}/${type}`);
-  }
-  return deps;
+function fullDefinitionOf(rosType, tag, overrides) {
+  return fullDefinition(rosType, (full) => definitionText(full, tag, overrides));
 }
 
-function fullDefinition(rosType, tag, overrides) {
-  const order = [];
-  const seen = new Set();
-  const visit = (full) => {
-    if (seen.has(full)) return;
-    seen.add(full);
-    order.push(full);
-    for (const dep of dependencies(definitionText(full, tag, overrides), full.split("/")[0])) visit(dep);
-  };
-  visit(rosType.replace("/msg/", "/"));
-  return order
-    .map((full, k) => (k === 0 ? "" : `${"=".repeat(80)}\nMSG: ${full}\n`) + definitionText(full, tag, overrides))
-    .join("\n");
-}
-
-const hexBytes = (hex) => Uint8Array.from(hex.match(/../g).map((h) => parseInt(h, 16)));
 const hexOf = (bytes) => Buffer.from(bytes).toString("hex");
-
-function differences(actual, expected, path, out) {
-  if (typeof actual === "bigint") {
-    if (String(actual) !== String(expected)) out.push(`${path}: ${actual} != ${expected}`);
-  } else if (ArrayBuffer.isView(actual) || Array.isArray(actual)) {
-    const a = Array.from(actual);
-    if (!Array.isArray(expected) || a.length !== expected.length) {
-      out.push(`${path}: ${a.length} elements, expected ${Array.isArray(expected) ? expected.length : "none"}`);
-      return out;
-    }
-    a.forEach((v, k) => differences(v, expected[k], `${path}[${k}]`, out));
-  } else if (actual !== null && typeof actual === "object") {
-    if (expected === null || typeof expected !== "object") {
-      out.push(`${path}: an object, expected ${JSON.stringify(expected)}`);
-      return out;
-    }
-    for (const key of new Set([...Object.keys(actual), ...Object.keys(expected)])) {
-      if (!(key in actual)) out.push(`${path}.${key}: missing in the decoded message`);
-      else if (!(key in expected)) out.push(`${path}.${key}: decoded but not expected`);
-      else differences(actual[key], expected[key], `${path}.${key}`, out);
-    }
-  } else if (actual !== expected) {
-    out.push(`${path}: ${JSON.stringify(actual)} != ${JSON.stringify(expected)}`);
-  }
-  return out;
-}
 
 // PX4: the fields given must hold their values, every other one must be zero (false, 0, 0n, zeros).
 function px4Differences(actual, expected, path) {
@@ -124,7 +73,7 @@ function px4Differences(actual, expected, path) {
 }
 
 function reader(entry, overrides) {
-  return new MessageReader(parse(fullDefinition(entry.ros_type, entry.px4_release, overrides), { ros2: true }));
+  return new MessageReader(parse(fullDefinitionOf(entry.ros_type, entry.px4_release, overrides), { ros2: true }));
 }
 
 const capture = JSON.parse(readFileSync(capturePath, "utf8"));
@@ -160,7 +109,7 @@ for (const entry of capture) {
     console.log(`${name}: decoded field for field`);
   }
   if (!entry.px4_release) {
-    const writer = new MessageWriter(parse(fullDefinition(entry.ros_type), { ros2: true }));
+    const writer = new MessageWriter(parse(fullDefinitionOf(entry.ros_type), { ros2: true }));
     written.push({ ros_type: entry.ros_type, cdr_hex: hexOf(writer.writeMessage(entry.expected)) });
   }
 }
