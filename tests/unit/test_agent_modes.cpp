@@ -77,7 +77,8 @@ TEST(AgentFrameJump, NewCloserNeighbourShiftsTheEstimateWithoutDisturbingVelocit
 
 TEST(AgentFrameJump, NeighboursReplacedWholesaleReinitialiseThePosition) {
   // Over 8 seeds: one seed's 30 s mean position wanders ~0.3 m with the gusts, which is the size of the effect of
-  // any tuning change, so the convergence is judged against the 3 m move the jump asks for.
+  // any tuning change, so the convergence is judged against the 2.5 m move the jump asks for. (2.5 m, not more: the
+  // farthest new neighbour is then 12.5 m away, inside the Gabriel edge cap of 1.3 r, so all three are neighbours.)
   Vec2 error_sum = Vec2::Zero();
   for (std::uint64_t seed = 6; seed < 14; ++seed) {
     SCOPED_TRACE(seed);
@@ -85,8 +86,8 @@ TEST(AgentFrameJump, NeighboursReplacedWholesaleReinitialiseThePosition) {
     FocalWorld world(seed, ringAround(Vec2::Zero(), {90, 210, 330}), Vec2(0.5, 0.5), FocalWorld::Options{});
     Loop loop(AgentConfig{}, world);
     loop.run(2000);
-    // WHEN its three neighbours vanish and three different ones (new IDs) appear at once, centred 3 m away
-    loop.world.neighbours = ringAround(Vec2(3.0, 0.0), {0, 120, 240});
+    // WHEN its three neighbours vanish and three different ones (new IDs) appear at once, centred 2.5 m away
+    loop.world.neighbours = ringAround(Vec2(2.5, 0.0), {0, 120, 240});
     // (the FocalWorld gives IDs by index, so renumber by adding three dummies far out of sensing range first)
     loop.world.neighbours.insert(loop.world.neighbours.begin(), {Vec2(1e3, 0), Vec2(1e3, 50), Vec2(1e3, 100)});
     loop.run(50);
@@ -96,9 +97,9 @@ TEST(AgentFrameJump, NeighboursReplacedWholesaleReinitialiseThePosition) {
     EXPECT_EQ(d.neighbour_count, 3);
     EXPECT_LT((loop.agent.focal().position() + d.frame_centre_m).norm(), 0.5);
     // AND the agent then flies to the new frame origin: each seed's mean position within 1 m of it (the old origin
-    // is 3 m away) ...
+    // is 2.5 m away) ...
     loop.run(1000);
-    const Vec2 error = loop.run(3000) - Vec2(3.0, 0.0);
+    const Vec2 error = loop.run(3000) - Vec2(2.5, 0.0);
     EXPECT_LT(error.norm(), 1.0);
     error_sum += error;
   }

@@ -191,7 +191,7 @@ TEST(AgentConfigDefaults, GivenADefaultConfig_ThenItHoldsTableI) {
   // DESIGN §3.2-§3.4 rules measured to beat the paper's: Gabriel neighbours, weighted fit, IMU-bias removal
   EXPECT_EQ(c.formation.neighbourhood, NeighbourhoodRule::kGabriel);
   EXPECT_DOUBLE_EQ(c.formation.far_neighbour_weight, 0.2);
-  EXPECT_DOUBLE_EQ(c.formation.max_edge_factor, 1.5);
+  EXPECT_DOUBLE_EQ(c.formation.max_edge_factor, 1.3);
   EXPECT_DOUBLE_EQ(c.focal.bias_window_s, 30.0);
   EXPECT_DOUBLE_EQ(c.focal.tau_s, 2.8);
   EXPECT_DOUBLE_EQ(c.control.k_p, 0.7);  // tuned to the simulator's velocity lag (Table I: 0.5)

@@ -115,9 +115,9 @@ TEST(Gabriel, HiddenMiddleUavsAreCoveredByTheEdgeCap) {
                tracks.end());
   // WHEN Gabriel's test alone decides THEN node 10 passes, and the fit would pull it to r (a 42 % squeeze)
   EXPECT_EQ(ids(selectGabriel(tracks, kRange, kNoCap)), (std::set<int>{2, 3, 4, 5, 10}));
-  // WHEN the default cap of 1.5 r applies THEN only the four tracked first-shell nodes remain
+  // WHEN the default cap of 1.3 r applies THEN only the four tracked first-shell nodes remain
   const FormationConfig defaults;
-  EXPECT_DOUBLE_EQ(defaults.max_edge_factor, 1.5);
+  EXPECT_DOUBLE_EQ(defaults.max_edge_factor, 1.3);
   EXPECT_EQ(ids(selectGabriel(tracks, kRange, defaults.max_edge_factor * kLatticeR)), (std::set<int>{2, 3, 4, 5}));
 }
 

@@ -51,8 +51,10 @@ struct FormationConfig {
   double sensing_range_m = 40.0;   // tracks farther than this are not neighbours
   // Gabriel only: a neighbour other than the nearest must be closer than this times r. A UAV hidden by the field of
   // view or a lost track stops blocking the edge to the second-shell UAV behind it (sqrt(3) r or 2 r away); without
-  // the cap that UAV would be pulled to r.
-  double max_edge_factor = 1.5;
+  // the cap that UAV would be pulled to r. 1.3 rather than 1.5: on a swarm's ragged rim Gabriel also keeps edges of
+  // 1.3-1.5 r that are no lattice edge, and pulling them to r squeezed the whole formation by about 3 % at N = 64 and
+  // with a 240 deg field of view (issue #26, BENCHMARKS.md); no size or field of view measured split with 1.3.
+  double max_edge_factor = 1.3;
   CircleFit circle_fit = CircleFit::kFixedRadius;  // the paper's algebraic fit collapses with k = 3 (DESIGN §3)
   // Fixed-radius fit: weight of every neighbour beyond the two nearest (they weigh 1). With 3-6 equidistant
   // neighbours the unweighted fit reads d_NB ~4 % short (DESIGN §3.3); 1 = unweighted.
