@@ -12,22 +12,10 @@
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
-#include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
-#include <swa/px4/SensorGps_v1_15PubSubTypes.h>
-#include <swa/px4/SensorGps_v1_17PubSubTypes.h>
-#include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
-#include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
-#include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
-#include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
-#include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
-#include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
-#include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
-#include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
 #include "swa/app/signals.h"
+#include "swa/autopilot/ardupilot.h"
 #include "swa/dds/topics.h"
-#include "swa/px4/release.h"
-#include "swa/px4/vehicle.h"
 #include "swa/wire/px4.h"
 #include "swa/wire/samples.h"
 
@@ -49,16 +37,27 @@ bool isSecure() {
   return dir != nullptr && *dir != '\0';
 }
 
+// A tilt no multicopter flies at: the attitude is read wrongly (ArduPilot's --ap-quaternion).
+constexpr double kImplausibleTiltRad = 1.2;
+
+std::unique_ptr<VehicleLink> makeLink(const BridgeOptions& o, VehicleEvents events) {
+  return o.autopilot == AutopilotKind::kArdupilot ? makeArdupilotLink(o, std::move(events))
+                                                  : makePx4Link(o, std::move(events));
+}
+
 }  // namespace
 
 BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::string& profiles_file)
     : id_(options.id),
-      ns_(px4Namespace(options)),
-      status_topic_(px4::topicName(options.px4_release, "vehicle_status")),
       options_(options),
       domain_id_(domain_id),
       profiles_file_(profiles_file),
       started_(std::chrono::steady_clock::now()),
+      vehicle_(makeLink(options,
+                        VehicleEvents{[this](std::uint64_t t, const px4::Quaternion& q) { onAttitude({t, q}); },
+                                      [this](bool armed, std::uint8_t mode) { onStatus(armed, mode); },
+                                      [this](const agent::GnssSample& g) { onGnss(g); },
+                                      [this](const std::string& line) { onVehicleLog(line); }})),
       core_(options.core),
       gate_(1, kCommandHandover),
       handshake_(isSecure()) {
@@ -71,57 +70,11 @@ void BridgeNode::connect() {
   dds::Participant& p = *participant_;
   imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), "swa_sensor_writer");
   state_ = p.writer<msg::BridgeStatePubSubType>(topics::bridgeState(id_), "swa_state_writer");
-  setpoint_ = p.writer<px4_msgs::msg::TrajectorySetpointPubSubType>(topics::px4In(ns_, "trajectory_setpoint"),
-                                                                      "px4_in_writer");
-  offboard_ = p.writer<px4_msgs::msg::OffboardControlModePubSubType>(topics::px4In(ns_, "offboard_control_mode"),
-                                                                       "px4_in_writer");
-  if (options_.core.engage) {
-    vehicle_command_ =
-        p.writer<px4_msgs::msg::VehicleCommandPubSubType>(topics::px4In(ns_, "vehicle_command"), "px4_in_writer");
-  }
-  if (px4::hasV116VehicleStatus(options_.px4_release)) {
-    status_reader_v1_16_ = p.reader<px4_v1_16::px4_msgs::msg::VehicleStatusPubSubType>(
-        topics::px4Out(ns_, status_topic_), "px4_out_reader",
-        [this](px4_v1_16::px4_msgs::msg::VehicleStatus&& m) { onStatus(m.arming_state(), m.nav_state()); });
-  } else {
-    status_reader_ = p.reader<px4_msgs::msg::VehicleStatusPubSubType>(
-        topics::px4Out(ns_, status_topic_), "px4_out_reader",
-        [this](px4_msgs::msg::VehicleStatus&& m) { onStatus(m.arming_state(), m.nav_state()); });
-  }
-  ack_reader_ = p.reader<px4_msgs::msg::VehicleCommandAckPubSubType>(
-      topics::px4Out(ns_, "vehicle_command_ack"), "px4_out_reader",
-      [this](px4_msgs::msg::VehicleCommandAck&& m) { onAck(std::move(m)); });
+  if (!options_.no_gnss) gnss_ = p.writer<msg::GnssFixPubSubType>(topics::gnss(id_), "swa_detections_gnss_writer");
   cmd_reader_ = p.readerWithOrigin<msg::VelocitySetpointPubSubType>(
       topics::cmdVel(id_), "swa_command_reader",
       [this](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) { onCommand(std::move(m), w); });
-  if (!options_.no_gnss) connectGnss(p);
-  attitude_reader_ = p.reader<px4_msgs::msg::VehicleAttitudePubSubType>(
-      topics::px4Out(ns_, "vehicle_attitude"), "px4_out_reader",
-      [this](px4_msgs::msg::VehicleAttitude&& m) { onAttitude(std::move(m)); });
-}
-
-void BridgeNode::connectGnss(dds::Participant& p) {
-  gnss_ = p.writer<msg::GnssFixPubSubType>(topics::gnss(id_), "swa_detections_gnss_writer");
-  const px4::Release r = options_.px4_release;
-  const std::string gps_topic = topics::px4Out(ns_, px4::topicName(r, "vehicle_gps_position"));
-  const std::string position_topic = topics::px4Out(ns_, px4::topicName(r, "vehicle_local_position"));
-  if (px4::hasV117SensorGps(r)) {
-    gps_reader_v1_17_ = p.reader<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>(
-        gps_topic, "px4_out_reader",
-        [this](px4_v1_17::px4_msgs::msg::SensorGps&& m) { onGps(wire::gpsReportOf(m)); });
-  } else {
-    gps_reader_ = p.reader<px4_msgs::msg::SensorGpsPubSubType>(
-        gps_topic, "px4_out_reader", [this](px4_msgs::msg::SensorGps&& m) { onGps(wire::gpsReportOf(m)); });
-  }
-  if (px4::hasV116VehicleLocalPosition(r)) {
-    position_reader_v1_16_ = p.reader<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
-        position_topic, "px4_out_reader",
-        [this](px4_v1_16::px4_msgs::msg::VehicleLocalPosition&& m) { onLocalPosition(wire::localPositionOf(m)); });
-  } else {
-    position_reader_ = p.reader<px4_msgs::msg::VehicleLocalPositionPubSubType>(
-        position_topic, "px4_out_reader",
-        [this](px4_msgs::msg::VehicleLocalPosition&& m) { onLocalPosition(wire::localPositionOf(m)); });
-  }
+  vehicle_->connect(p);
 }
 
 BridgeNode::~BridgeNode() { participant_.reset(); }
@@ -130,66 +83,67 @@ double BridgeNode::nowS() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
 }
 
-void BridgeNode::onAttitude(px4_msgs::msg::VehicleAttitude&& m) {
+void BridgeNode::onAttitude(const Attitude& a) {
   const auto received = std::chrono::steady_clock::now();
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (!px4_reads_) {
-    pending_ = std::move(m);
+  if (!vehicle_reads_) {
+    pending_ = a;
     pending_at_ = received;
     return;
   }
-  forward(m, received);
+  forward(a, received);
 }
 
-void BridgeNode::forward(const px4_msgs::msg::VehicleAttitude& m, std::chrono::steady_clock::time_point received) {
+void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_point received) {
   const double now = nowS();
-  if (const std::optional<agent::ImuSample> imu = core_.onAttitude(m.timestamp(), wire::quaternionOf(m), now)) {
+  if (const std::optional<agent::ImuSample> imu = core_.onAttitude(a.timestamp_us, a.q, now)) {
     if (imu_seq_ == 0) {
-      std::fprintf(stderr, "swa_px4_bridge %d: first attitude from PX4 (timestamp %llu us), forwarding to %s\n", id_,
-                   static_cast<unsigned long long>(m.timestamp()), topics::imu(id_).c_str());
+      std::fprintf(stderr, "swa_px4_bridge %d: first attitude from %s (timestamp %llu us), forwarding to %s\n", id_,
+                   core_.autopilot().name, static_cast<unsigned long long>(a.timestamp_us),
+                   topics::imu(id_).c_str());
+    }
+    if (!upside_down_reported_ && options_.autopilot == AutopilotKind::kArdupilot &&
+        (std::abs(imu->roll_rad) > kImplausibleTiltRad || std::abs(imu->pitch_rad) > kImplausibleTiltRad)) {
+      upside_down_reported_ = true;
+      std::fprintf(stderr,
+                   "swa_px4_bridge %d: WARNING: ArduPilot's attitude reads as roll %.0f deg, pitch %.0f deg: is the "
+                   "IMU message's quaternion in another field order? (--ap-quaternion, now %s)\n",
+                   id_, imu->roll_rad * 180.0 / M_PI, imu->pitch_rad * 180.0 / M_PI,
+                   ardupilot::quaternionLayoutName(options_.ap_quaternion));
     }
     msg::Imu out = wire::toMsg(*imu, static_cast<std::uint32_t>(id_), ++imu_seq_);
     imu_.write(out);
-    timings_.push_back({m.timestamp(), received, std::chrono::steady_clock::now()});
+    timings_.push_back({a.timestamp_us, received, std::chrono::steady_clock::now()});
     if (timings_.size() > kTimedSamples) timings_.pop_front();
   }
-  send(core_.tick(now));
+  vehicle_->send(core_.tick(now));
   report();
 }
 
-void BridgeNode::onStatus(std::uint8_t arming_state, std::uint8_t nav_state) {
+void BridgeNode::onStatus(bool armed, std::uint8_t mode) {
   const std::lock_guard<std::mutex> lock(mutex_);
   status_seen_ = true;
-  core_.onStatus(arming_state, nav_state);
+  core_.onStatus(armed, mode);
   report();
 }
 
-void BridgeNode::onGps(const px4::GpsReport& gps) {
+void BridgeNode::onGnss(const agent::GnssSample& g) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  gnss_forward_.onGps(gps);
-}
-
-void BridgeNode::onLocalPosition(const px4::LocalPositionReport& position) {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  const std::optional<agent::GnssSample> g = gnss_forward_.onLocalPosition(position);
-  if (!g) return;
-  if (!gnss_reported_ || g->valid != last_gnss_valid_) {
-    std::fprintf(stderr, "swa_px4_bridge %d: GNSS from PX4 %s (forwarded to %s)\n", id_,
-                 g->valid ? "valid: a 3D fix and a valid horizontal position" : "LOST: no 3D fix or no valid position",
+  if (!gnss_) return;
+  if (!gnss_reported_ || g.valid != last_gnss_valid_) {
+    std::fprintf(stderr, "swa_px4_bridge %d: GNSS from %s %s (forwarded to %s)\n", id_, core_.autopilot().name,
+                 g.valid ? "valid: a 3D fix and a valid horizontal position" : "LOST: no 3D fix or no valid position",
                  topics::gnss(id_).c_str());
     gnss_reported_ = true;
-    last_gnss_valid_ = g->valid;
+    last_gnss_valid_ = g.valid;
   }
-  msg::GnssFix m = wire::toMsg(*g, static_cast<std::uint32_t>(id_), ++gnss_seq_);
+  msg::GnssFix m = wire::toMsg(g, static_cast<std::uint32_t>(id_), ++gnss_seq_);
   gnss_.write(m);
 }
 
-void BridgeNode::onAck(px4_msgs::msg::VehicleCommandAck&& m) {
+void BridgeNode::onVehicleLog(const std::string& line) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  const char* what = m.command() == px4::kCmdComponentArmDisarm ? "arm" : m.command() == px4::kCmdDoSetMode ? "offboard"
-                                                                                                              : "?";
-  std::fprintf(stderr, "swa_px4_bridge %d: PX4 answered the %s request: result %u (0 accepted)\n", id_, what,
-               static_cast<unsigned>(m.result()));
+  std::fprintf(stderr, "swa_px4_bridge %d: %s\n", id_, line.c_str());
 }
 
 void BridgeNode::onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& writer) {
@@ -209,8 +163,8 @@ void BridgeNode::onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& wri
     return;
   }
   const auto command_in = std::chrono::steady_clock::now();
-  const px4::Outbox out = core_.onCommand(wire::fromMsg(m), nowS());
-  send(out);
+  const autopilot::Outbox out = core_.onCommand(wire::fromMsg(m), nowS());
+  vehicle_->send(out);
   if (out.setpoint) {
     const auto sent = std::chrono::steady_clock::now();
     const auto t = std::find_if(timings_.begin(), timings_.end(),
@@ -223,22 +177,6 @@ void BridgeNode::onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& wri
     }
   }
   report();
-}
-
-void BridgeNode::send(const px4::Outbox& out) {
-  if (out.setpoint) {
-    px4_msgs::msg::TrajectorySetpoint m = wire::trajectorySetpoint(*out.setpoint);
-    setpoint_.write(m);
-  }
-  if (out.heartbeat_us) {
-    px4_msgs::msg::OffboardControlMode m = wire::velocityControlMode(*out.heartbeat_us);
-    offboard_.write(m);
-  }
-  if (out.request && vehicle_command_) {
-    px4_msgs::msg::VehicleCommand m =
-        wire::vehicleCommand(*out.request, static_cast<std::uint8_t>(options_.target_system));
-    vehicle_command_.write(m);
-  }
 }
 
 void BridgeNode::report() {
@@ -257,14 +195,13 @@ void BridgeNode::report() {
 }
 
 int BridgeNode::run() {
-  std::fprintf(stderr, "swa_px4_bridge %d: PX4 %s namespace '%s' (%s, %s), agent topics %s*\n", id_,
-               px4::releaseName(options_.px4_release), ns_.c_str(), topics::px4Out(ns_, "vehicle_attitude").c_str(),
-               status_topic_.c_str(), topics::uavPrefix(id_).c_str());
+  std::fprintf(stderr, "swa_px4_bridge %d: %s, agent topics %s*\n", id_, vehicle_->description().c_str(),
+               topics::uavPrefix(id_).c_str());
   bool waiting_reported = false, status_missing_reported = false;
   while (!stop_requested_) {
     std::this_thread::sleep_for(kTickPeriod);
     // Matched-status queries outside mutex_ (a listener may hold its reader's lock while it waits for mutex_).
-    const bool reads = setpoint_.matched() > 0 && offboard_.matched() > 0;
+    const bool reads = vehicle_->readsCommands();
     const bool agent_matched = imu_.matched() > 0 && cmd_reader_.matched() > 0;
     if (participant_->mustGiveWay()) {
       const std::optional<dds::Peer> twin = participant_->twin();
@@ -275,43 +212,42 @@ int BridgeNode::run() {
       participant_.reset();
       return kExitTwin;
     }
-    // A stalled DDS Security handshake with PX4 (or the simulator) or with the agent, before anything flowed
+    // A stalled DDS Security handshake with the vehicle (or the simulator) or with the agent, before anything flowed
     // (handshake_watch.h): a new participant.
-    if (handshake_.stalled(core_.counters().attitude_in > 0, reads && agent_matched && attitude_reader_.matched() > 0,
+    if (handshake_.stalled(core_.counters().attitude_in > 0, reads && agent_matched && vehicle_->attitudeMatched(),
                            std::chrono::steady_clock::now())) {
       std::fprintf(stderr,
-                   "swa_px4_bridge %d: PX4's or the agent's endpoints not matched with DDS Security on (a stalled "
-                   "authentication handshake, see deploy/README.md): re-creating the participant (reconnection %d)\n",
+                   "swa_px4_bridge %d: the vehicle's or the agent's endpoints not matched with DDS Security on (a "
+                   "stalled authentication handshake, see deploy/README.md): re-creating the participant "
+                   "(reconnection %d)\n",
                    id_, handshake_.reconnects());
       participant_.reset();  // waits for the listeners, which take mutex_: not held here
       connect();
       const std::lock_guard<std::mutex> lock(mutex_);
-      px4_reads_ = false;  // the new writers must match PX4 again before anything is forwarded
+      vehicle_reads_ = false;  // the new writers must match the vehicle again before anything is forwarded
       continue;
     }
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (reads && !px4_reads_) {
-      px4_reads_ = true;
-      std::fprintf(stderr, "swa_px4_bridge %d: PX4 reads %s: streaming\n", id_,
-                   topics::px4In(ns_, "trajectory_setpoint").c_str());
+    if (reads && !vehicle_reads_) {
+      vehicle_reads_ = true;
+      std::fprintf(stderr, "swa_px4_bridge %d: %s reads %s: streaming\n", id_, core_.autopilot().name,
+                   vehicle_->commandTopic().c_str());
       if (pending_) forward(*std::exchange(pending_, std::nullopt), pending_at_);
-    } else if (!px4_reads_ && !waiting_reported &&
+    } else if (!vehicle_reads_ && !waiting_reported &&
                std::chrono::steady_clock::now() - started_ > std::chrono::seconds(5)) {
       waiting_reported = true;
-      std::fprintf(stderr, "swa_px4_bridge %d: no reader of %s after 5 s: is PX4's uXRCE-DDS agent on this domain, "
-                           "with namespace '%s'?\n",
-                   id_, topics::px4In(ns_, "trajectory_setpoint").c_str(), ns_.c_str());
+      std::fprintf(stderr, "swa_px4_bridge %d: no reader of %s after 5 s: %s\n", id_,
+                   vehicle_->commandTopic().c_str(), vehicle_->noReaderHint().c_str());
     }
-    // PX4 sends vehicle_status at least every second; attitude but no status is the mark of another release.
+    // PX4 sends vehicle_status at least every second, ArduPilot its status on every change (transient local: a late
+    // reader gets the newest); attitude but no status is the mark of another release.
     if (!status_seen_ && !status_missing_reported && core_.counters().attitude_in > 0 &&
         std::chrono::steady_clock::now() - started_ > std::chrono::seconds(5)) {
       status_missing_reported = true;
-      std::fprintf(stderr,
-                   "swa_px4_bridge %d: attitude from PX4 but no %s after 5 s: is the vehicle PX4 %s? (--px4-release; "
-                   "v1.15 names it vehicle_status, v1.16 and later vehicle_status_v1 with another layout)\n",
-                   id_, topics::px4Out(ns_, status_topic_).c_str(), px4::releaseName(options_.px4_release));
+      std::fprintf(stderr, "swa_px4_bridge %d: attitude from %s but after 5 s %s\n", id_, core_.autopilot().name,
+                   vehicle_->noStatusHint().c_str());
     }
-    send(core_.tick(nowS()));
+    vehicle_->send(core_.tick(nowS()));
     report();
   }
   participant_.reset();
@@ -321,7 +257,7 @@ int BridgeNode::run() {
 }
 
 void BridgeNode::logFinalCounts() const {
-  const px4::BridgeCounters& c = core_.counters();
+  const autopilot::BridgeCounters& c = core_.counters();
   std::fprintf(stderr,
                "swa_px4_bridge %d: stopping on signal %d after %llu attitude samples (%llu rejected, %llu out of "
                "order), %llu commands (%llu applied, %llu replayed, %llu not newer, %llu for unknown samples, %llu "
@@ -348,7 +284,7 @@ void BridgeNode::logFinalCounts() const {
 
 void BridgeNode::writeSummary() const {
   if (options_.summary_out.empty()) return;
-  const px4::BridgeCounters& c = core_.counters();
+  const autopilot::BridgeCounters& c = core_.counters();
   const auto us = [](const app::LogHistogram& h, double q) {
     const double v = h.quantileNs(q) * 1e-3;
     return std::isfinite(v) ? std::to_string(v) : std::string("null");

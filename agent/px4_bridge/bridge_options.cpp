@@ -12,8 +12,8 @@ namespace {
 
 constexpr int kMaxUavId = 9999;
 
-const char* const kDetails = R"(Runs on the drone beside swa_agent --id I (same domain, same SWA_SWARM / SWA_NAMING);
-PX4's uXRCE-DDS agent puts PX4's topics on the same DDS domain under the namespace NS
+const char* const kDetails = R"(Runs on the drone beside swa_agent --id I (same domain, same SWA_SWARM / SWA_NAMING).
+With --autopilot px4 (the default): PX4's uXRCE-DDS agent puts PX4's topics on the same DDS domain under the namespace NS
 (uxrce_dds_client start -n NS). --px4-release must be the vehicle's: v1.16 changed vehicle_status's layout and
 renamed its topic vehicle_status_v1, and a bridge of another release would never hear the vehicle's state.
 Reads   rt/NS/fmu/out/vehicle_attitude   -> swa/uav<I>/imu (roll, pitch, heading in SWA's convention, stamped with
@@ -35,15 +35,40 @@ PX4's clock) is replaced by zero velocity and yawspeed (the heading held); after
 or --attitude-lost-after-s without attitude from PX4, the stream stops and PX4's own offboard-loss failsafe
 (COM_OF_LOSS_T, COM_OBL_RC_ACT) takes over. Commands answering samples from before this bridge started are ignored. It never arms or changes the
 flight mode unless given --engage (bench tests, the simulator). Every state change is logged and published.
-With --no-gnss the bridge leaves swa/uav<I>/gnss alone (your own GNSS source publishes it, or none).)";
+With --no-gnss the bridge leaves swa/uav<I>/gnss alone (your own GNSS source publishes it, or none).
+With --autopilot ardupilot (AP_DDS, Copter 4.5+; its Micro XRCE-DDS agent on the same domain):
+Reads   rt/NS/imu/experimental/data  -> swa/uav<I>/imu (the orientation, FRD -> NED as PX4's, read in the field
+                                            order of --ap-quaternion; stamped with the message's time)
+        rt/NS/status                 armed, mode (logged, and for --engage; GUIDED = 4)
+        rr/NS/arm_motorsReply, rr/NS/mode_switchReply  the answers to --engage's requests (logged)
+Writes  rt/NS/cmd_vel                TwistStamped in frame "map": ENU velocity, angular.z the yaw rate (counter-
+                                            clockwise, SWA's sense), stamped with the answered sample's time
+        rq/NS/arm_motorsRequest, rq/NS/mode_switchRequest  only with --engage: arm, then GUIDED
+The same rules as for PX4, but ArduPilot has no heartbeat: when the stream stops, its GUIDED velocity timeout
+(GUID_TIMEOUT) stops the vehicle. ArduPilot accepts velocity commands only when armed and in GUIDED. GNSS from
+ArduPilot is not forwarded yet: run it with --no-gnss.)";
 
 app::Cli makeCli(BridgeOptions& o) {
   app::Cli cli("swa_px4_bridge",
-               "the autopilot bridge of one UAV: PX4 " + px4::releaseList() + " (uXRCE-DDS topics) <-> its swa_agent.");
-  cli.usage("swa_px4_bridge --id I [--px4-release R] [--px4-namespace NS] [--engage] [--domain D] [options]");
+               "the autopilot bridge of one UAV: PX4 " + px4::releaseList() +
+                   " (uXRCE-DDS topics) or ArduPilot (AP_DDS) <-> its swa_agent.");
+  cli.usage("swa_px4_bridge --id I [--autopilot px4|ardupilot] [--px4-release R] [--px4-namespace NS] [--engage] "
+            "[--domain D] [options]");
   cli.details(kDetails);
   cli.integer("--id", "I", o.id, 0, kMaxUavId, "a UAV id", "UAV index (its agent's --id); participant swa_bridge_<I>");
   cli.required("--id");
+  cli.value(
+      "--autopilot", "A",
+      [&o](const std::string& v, app::Problems& problems) {
+        if (v == "px4") {
+          o.autopilot = AutopilotKind::kPx4;
+        } else if (v == "ardupilot") {
+          o.autopilot = AutopilotKind::kArdupilot;
+        } else {
+          problems.push_back("--autopilot '" + v + "': px4 or ardupilot");
+        }
+      },
+      "the vehicle's autopilot: px4 (default; uXRCE-DDS) or ardupilot (AP_DDS, Copter 4.5+)");
   cli.value(
       "--px4-namespace", "NS",
       [&o](const std::string& v, app::Problems& problems) {
@@ -56,6 +81,7 @@ app::Cli makeCli(BridgeOptions& o) {
   cli.value(
       "--px4-release", "R",
       [&o](const std::string& v, app::Problems& problems) {
+        o.px4_release_given = true;
         if (const std::optional<px4::Release> r = px4::parseRelease(v)) {
           o.px4_release = *r;
         } else {
@@ -64,16 +90,35 @@ app::Cli makeCli(BridgeOptions& o) {
       },
       std::string("the vehicle's PX4 release: ") + px4::releaseList() + " (default " +
           px4::releaseName(px4::kNewestRelease) + "; a patch release such as 1.16.1 is its minor's)");
+  cli.value(
+      "--ap-namespace", "NS",
+      [&o](const std::string& v, app::Problems& problems) {
+        if (const auto problem = dds::rosNamespaceProblem(v)) problems.push_back("--ap-namespace " + *problem);
+        o.ap_namespace = dds::normalRosNamespace(v);
+      },
+      "ArduPilot's ROS namespace (default ap/v<I+1>: AP_DDS with DDS_USE_NS 1 and MAV_SYSID I+1, what swa_sim's "
+      "ArduPilot stand-in uses; 'ap' for a vehicle without DDS_USE_NS)");
+  cli.value(
+      "--ap-quaternion", "L",
+      [&o](const std::string& v, app::Problems& problems) {
+        if (const auto layout = ardupilot::parseQuaternionLayout(v)) {
+          o.ap_quaternion = *layout;
+        } else {
+          problems.push_back("--ap-quaternion '" + v + "': ros or wxyz");
+        }
+      },
+      "how ArduPilot fills the IMU message's orientation: ros (x, y, z, w as the message defines; default) or wxyz "
+      "(early AP_DDS wrote w, x, y, z into x, y, z, w: a level vehicle then reads as upside down)");
   cli.integer("--target-system", "N", o.target_system, 0, 255, "a MAVLink system id",
               "VehicleCommand.target_system of --engage's requests (0: whichever vehicle reads NS)");
   cli.real("--stale-after-s", "T", o.core.stale_after_s, 0.01, 10.0, "a time in seconds",
-           "a command older than this (PX4's clock) becomes zero velocity");
+           "a command older than this (the vehicle's clock) becomes zero velocity");
   cli.real("--agent-lost-after-s", "T", o.core.agent_lost_after_s, 0.02, 60.0, "a time in seconds",
-           "no command this long: the offboard stream stops");
+           "no command this long: the stream stops");
   cli.real("--attitude-lost-after-s", "T", o.core.attitude_lost_after_s, 0.02, 60.0, "a time in seconds",
-           "no attitude from PX4 this long (local clock): the offboard stream stops");
+           "no attitude from the vehicle this long (local clock): the stream stops");
   cli.real("--heartbeat-period-s", "T", o.core.heartbeat_period_s, 0.005, 0.1, "a period in seconds",
-           "offboard_control_mode at least this often while streaming (at most 0.1: at least 10 Hz)");
+           "PX4: offboard_control_mode at least this often while streaming (at most 0.1: at least 10 Hz)");
   cli.real("--max-speed-mps", "V", o.core.max_speed_mps, 0.1, 50.0, "a speed in m/s",
            "commands faster than this are clamped (and counted)");
   cli.real("--max-yaw-rate-radps", "W", o.core.max_yaw_rate_radps, 0.01, 10.0, "a rate in rad/s",
@@ -81,7 +126,7 @@ app::Cli makeCli(BridgeOptions& o) {
   cli.flag("--no-gnss", o.no_gnss,
            "do not forward PX4's GNSS fix and position validity to swa/uav<I>/gnss (another source publishes it)");
   cli.flag("--engage", o.core.engage,
-           "arm and switch PX4 to offboard once the agent's stream has run for 1 s (bench tests, simulation; "
+           "arm and switch to PX4's offboard or ArduPilot's GUIDED once the agent's stream has run for 1 s (bench tests, simulation; "
            "never on a flight without a pilot who can take over)");
   cli.domain(o.domain, dds::kMaxDomainId);
   cli.path("--summary-out", "FILE", o.summary_out,
@@ -99,6 +144,18 @@ void finish(BridgeOptions& o, const app::Cli&, app::Problems& problems) {
   if (o.core.stale_after_s >= o.core.agent_lost_after_s) {
     problems.push_back("--stale-after-s must be below --agent-lost-after-s");
   }
+  if (o.autopilot == AutopilotKind::kArdupilot) {
+    o.core.autopilot = autopilot::ardupilotAutopilot();
+    if (o.px4_namespace || o.px4_release_given || o.target_system != 0) {
+      problems.push_back("--px4-namespace, --px4-release and --target-system are PX4's: not with --autopilot ardupilot");
+    }
+    if (!o.no_gnss) {
+      problems.push_back("--autopilot ardupilot: GNSS from ArduPilot is not forwarded yet; add --no-gnss (the "
+                         "simulator or your own source publishes swa/uav<I>/gnss)");
+    }
+  } else if (o.ap_namespace) {
+    problems.push_back("--ap-namespace is ArduPilot's: add --autopilot ardupilot");
+  }
 }
 
 }  // namespace
@@ -110,5 +167,7 @@ BridgeOptions parseBridgeOptions(const std::vector<std::string>& args) {
 std::string bridgeUsage() { return app::helpText(makeCli); }
 
 std::string px4Namespace(const BridgeOptions& o) { return o.px4_namespace.value_or(dds::topics::px4Namespace(o.id)); }
+
+std::string apNamespace(const BridgeOptions& o) { return o.ap_namespace.value_or(dds::topics::apNamespace(o.id)); }
 
 }  // namespace swa::px4_bridge

@@ -5,18 +5,25 @@
 #include <optional>
 #include <string>
 
-#include "swa/px4/bridge_core.h"
+#include "swa/autopilot/ardupilot.h"
+#include "swa/autopilot/bridge_core.h"
 #include "swa/px4/release.h"
 
 namespace swa::px4_bridge {
 
+enum class AutopilotKind { kPx4, kArdupilot };
+
 struct BridgeOptions {
   int id = -1;                          // --id I (required)
+  AutopilotKind autopilot = AutopilotKind::kPx4;  // --autopilot px4|ardupilot
   std::optional<std::string> px4_namespace;  // --px4-namespace NS (default px4_<I>; "" = none)
   px4::Release px4_release = px4::kNewestRelease;  // --px4-release R
+  bool px4_release_given = false;
+  std::optional<std::string> ap_namespace;  // --ap-namespace NS (default ap/v<I+1>)
+  ardupilot::QuaternionLayout ap_quaternion = ardupilot::QuaternionLayout::kRos;  // --ap-quaternion ros|wxyz
   bool no_gnss = false;                 // --no-gnss: leave swa/uav<I>/gnss to another source
   int target_system = 0;                // --target-system N: VehicleCommand.target_system (0: any)
-  px4::BridgeConfig core;               // --stale-after-s, --agent-lost-after-s, ... and --engage
+  autopilot::BridgeConfig core;               // --stale-after-s, --agent-lost-after-s, ... and --engage
   std::optional<std::string> domain;    // --domain D (else SWA_DOMAIN, else 0)
   std::string summary_out;              // --summary-out FILE: counters and latency as JSON at exit
   bool help = false;
@@ -28,5 +35,7 @@ std::string bridgeUsage();
 
 // The PX4 namespace the bridge uses: --px4-namespace, or px4_<I>.
 std::string px4Namespace(const BridgeOptions& o);
+// ArduPilot's: --ap-namespace, or ap/v<I+1>.
+std::string apNamespace(const BridgeOptions& o);
 
 }  // namespace swa::px4_bridge

@@ -38,7 +38,7 @@ int Launch::run() {
       if (stop_) break;
       outcomes.push_back(superviseRun(o_, bin_, domain_, spec, stop_));
       const RunOutcome& r = outcomes.back();
-      const std::string bridges = spec.scenario.vehicle.interface == sim::VehicleInterface::kPx4
+      const std::string bridges = spec.scenario.vehicle.interface != sim::VehicleInterface::kDirect
                                       ? ", " + std::to_string(r.bridge_restarts) + " bridge restart(s)"
                                       : "";
       std::printf("swa_launch [%s]: %s%s; %d agent restart(s)%s; %s\n", spec.label.c_str(),

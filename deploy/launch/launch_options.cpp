@@ -12,7 +12,7 @@ const char* const kDetails = R"(What it does, per run:
   1. loads the scenario (with every --set) and stops here, exit 2, if anything is wrong with it;
   2. writes the effective scenario to DIR/scenario.yaml, the one file every child reads (no --set is passed on),
      and starts swa_monitor, the agents (swa_agent --id I --scenario DIR/scenario.yaml), with vehicle.interface =
-     px4 one swa_px4_bridge --id I --engage per agent, and swa_sim (which waits until all of them are discovered);
+     px4 or ardupilot one swa_px4_bridge --id I --engage per agent, and swa_sim (which waits until all of them are discovered);
   3. supervises: an agent (or bridge) that dies while the scenario runs is restarted after a back-off (0.5 s,
      doubling per restart of that process, at most 8 s; at most --max-restarts times), and every restart is
      appended to DIR/logs/restarts.csv, which the monitor puts into the report;
@@ -72,11 +72,12 @@ app::Cli makeCli(LaunchOptions& o) {
            "set, else a new name per launch (printed), except with --secure (the credentials keep swarms apart). "
            "'none': the default partition (for a process started by hand, a bridge or a DDS tool to join the run)",
            "a swarm name, or none");
-  const std::vector<std::string> vehicles{"direct", "px4"};
+  const std::vector<std::string> vehicles{"direct", "px4", "ardupilot"};
   cli.choice("--vehicle", "V", vehicles, [&o, vehicles](std::size_t k) { o.vehicle = vehicles[k]; },
-             "how the agents reach their UAVs: direct (the simulator reads cmd_vel) or px4 (each UAV a PX4 autopilot "
+             "how the agents reach their UAVs: direct (the simulator reads cmd_vel), px4 (each UAV a PX4 autopilot "
              "played by the simulator, one swa_px4_bridge --engage per agent, supervised like the agents; the release "
-             "is vehicle.px4_release, default the newest); the same as --set vehicle.interface=V");
+             "is vehicle.px4_release, default the newest) or ardupilot (each UAV an ArduPilot Copter, one "
+             "swa_px4_bridge --autopilot ardupilot --engage per agent); the same as --set vehicle.interface=V");
   std::vector<std::string> namings;
   for (const auto n : {dds::Naming::kSwa, dds::Naming::kRos2}) namings.emplace_back(dds::namingName(n));
   cli.choice("--naming", "N", namings, [&o, namings](std::size_t k) { o.naming = namings[k]; },

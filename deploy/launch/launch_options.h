@@ -28,7 +28,7 @@ struct LaunchOptions {
   int discovery_port = 11811;             // --discovery-port: of the server swa_launch starts on 127.0.0.1
   std::string secure_dir;                 // --secure DIR: DDS Security with the credentials in DIR
   std::string swarm;                      // --swarm NAME | none (else $SWA_SWARM, else a new name per launch)
-  std::string vehicle;                    // --vehicle direct|px4: sets vehicle.interface (px4: one bridge per agent)
+  std::string vehicle;                    // --vehicle direct|px4|ardupilot: sets vehicle.interface (one bridge per agent)
   std::string naming;                     // --naming swa|ros2 (else $SWA_NAMING, else swa)
   std::string ros_namespace;              // --ros-namespace NS (ros2 naming; else $SWA_ROS_NAMESPACE)
   bool record = false;                    // --record[=SET]: each run's monitor records it into <run dir>/run.mcap

@@ -37,12 +37,12 @@ fs::path ownDirectory() {
 }
 
 // Every executable present and runnable, or the list of what is not.
-Binaries findBinaries(const std::string& bin_dir, bool px4, std::vector<std::string>& problems) {
+Binaries findBinaries(const std::string& bin_dir, bool bridges, std::vector<std::string>& problems) {
   const fs::path dir = bin_dir.empty() ? ownDirectory() : fs::path(bin_dir);
   Binaries b{(dir / "swa_sim").string(), (dir / "swa_agent").string(), (dir / "swa_monitor").string(),
              (dir / "swa_px4_bridge").string()};
   std::vector<std::string> needed{b.sim, b.agent, b.monitor};
-  if (px4) needed.push_back(b.bridge);
+  if (bridges) needed.push_back(b.bridge);
   for (const std::string& p : needed) {
     if (::access(p.c_str(), X_OK) != 0) problems.push_back("no executable " + p + " (build first, or --bin-dir)");
   }
@@ -51,7 +51,7 @@ Binaries findBinaries(const std::string& bin_dir, bool px4, std::vector<std::str
 
 // How every child joins DDS (swa/dds/deployment.h), decided here once and passed down through the environment.
 // Returns the discovery server to start, empty if none. Throws std::invalid_argument / std::runtime_error.
-std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_count, bool px4) {
+std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_count, bool bridges) {
   if (!o.transport.empty()) ::setenv("SWA_TRANSPORT", o.transport.c_str(), 1);
   if (!o.discovery_server.empty()) ::setenv("SWA_DISCOVERY_SERVER", o.discovery_server.c_str(), 1);
   if (!o.naming.empty()) ::setenv("SWA_NAMING", o.naming.c_str(), 1);
@@ -75,7 +75,7 @@ std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_cou
     const fs::path dir = fs::absolute(o.secure_dir, ec);
     std::vector<std::string> names{"swa_sim", "swa_monitor"};
     for (int i = 0; i < max_uav_count; ++i) names.push_back("swa_agent_" + std::to_string(i));
-    for (int i = 0; px4 && i < max_uav_count; ++i) names.push_back("swa_bridge_" + std::to_string(i));
+    for (int i = 0; bridges && i < max_uav_count; ++i) names.push_back("swa_bridge_" + std::to_string(i));
     std::string missing;
     for (const std::string& n : names) {
       for (const std::string& f : dds::unreadableFiles(dds::securityFiles(dir.string(), n))) {
@@ -85,7 +85,7 @@ std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_cou
     if (!missing.empty()) {
       throw std::runtime_error("--secure " + o.secure_dir + ": missing credentials:" + missing +
                                "\n(create them with: deploy/security/make-credentials.sh " +
-                               std::string(px4 ? "--bridges " : "") + o.secure_dir + " " +
+                               std::string(bridges ? "--bridges " : "") + o.secure_dir + " " +
                                std::to_string(max_uav_count) + ")");
     }
     ::setenv("SWA_SECURITY_DIR", dir.c_str(), 1);
@@ -134,10 +134,14 @@ app::Plan prepare(const std::vector<std::string>& args) {
   } else {
     runs.push_back({first, out, base, originOf(o)});
   }
-  const bool px4 = base.vehicle.interface == sim::VehicleInterface::kPx4;
-  const std::vector<std::string> discovery_server = applyDeployment(o, base.uav_count, px4);
+  const bool bridges = base.vehicle.interface != sim::VehicleInterface::kDirect;
+  if (base.vehicle.interface == sim::VehicleInterface::kArdupilot && !o.secure_dir.empty()) {
+    throw std::invalid_argument("--secure with vehicle.interface = ardupilot: the credentials grant the bridges "
+                                "PX4's topics only so far; run ArduPilot without --secure");
+  }
+  const std::vector<std::string> discovery_server = applyDeployment(o, base.uav_count, bridges);
   std::vector<std::string> problems;
-  const Binaries bin = findBinaries(o.bin_dir, px4, problems);
+  const Binaries bin = findBinaries(o.bin_dir, bridges, problems);
   if (!problems.empty()) {
     std::string all;
     for (const std::string& p : problems) all += (all.empty() ? "" : "\n") + p;

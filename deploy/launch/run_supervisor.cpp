@@ -32,7 +32,8 @@ constexpr double kSimAfterMonitorS = 15.0;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// A process of one UAV, supervised and restarted alike: its agent, or (vehicle.interface = px4) its autopilot bridge.
+// A process of one UAV, supervised and restarted alike: its agent, or (vehicle.interface = px4, ardupilot) its
+// autopilot bridge.
 struct UavProcess {
   bool bridge = false;
   int uav = 0;
@@ -60,9 +61,9 @@ class Supervisor {
         spec_(spec),
         logs_(spec.dir / "logs"),
         policy_(options.max_restarts, options.restart_backoff_s, options.restart_backoff_max_s) {
-    const bool px4 = spec.scenario.vehicle.interface == sim::VehicleInterface::kPx4;
+    const bool autopilot = spec.scenario.vehicle.interface != sim::VehicleInterface::kDirect;
     for (const bool bridge : {false, true}) {
-      if (bridge && !px4) break;
+      if (bridge && !autopilot) break;
       for (int i = 0; i < spec.scenario.uav_count; ++i) {
         UavProcess& p = uav_processes_.emplace_back();
         p.bridge = bridge;
@@ -75,9 +76,12 @@ class Supervisor {
     prepareDirectory();
     t0_ = Clock::now();
     const char* swarm = std::getenv("SWA_SWARM");
-    const bool px4 = spec_.scenario.vehicle.interface == sim::VehicleInterface::kPx4;
+    const sim::VehicleInterface vehicle = spec_.scenario.vehicle.interface;
+    const char* bridges = vehicle == sim::VehicleInterface::kPx4         ? " + their PX4 bridges"
+                          : vehicle == sim::VehicleInterface::kArdupilot ? " + their ArduPilot bridges"
+                                                                         : "";
     std::printf("swa_launch [%s]: sim + %d agents%s + monitor on DDS domain %s, swarm %s, logs in %s\n",
-                spec_.label.c_str(), spec_.scenario.uav_count, px4 ? " + their PX4 bridges" : "", domain_.c_str(),
+                spec_.label.c_str(), spec_.scenario.uav_count, bridges, domain_.c_str(),
                 swarm != nullptr && *swarm ? swarm : "(default partition)", logs_.c_str());
     if (!o_.live.empty()) {
       // The monitor listens on ADDR (127.0.0.1 unless given); 0.0.0.0 is reached through this host's loopback too.
@@ -167,16 +171,21 @@ class Supervisor {
       std::ofstream(log, std::ios::app) << "\n==== swa_launch: restart " << p.restarts << " at " << secondsSince(t0_)
                                         << " s ====\n";
     }
-    // A bridge engages offboard itself: the simulator's PX4 stand-ins start in Hold, as a real vehicle would be
-    // handed over by its pilot. It speaks the release the stand-ins play, and forwards their GNSS only when they
-    // report it (vehicle.gnss_source = autopilot; otherwise the simulator publishes swa/uav<i>/gnss itself).
+    // A bridge engages the autopilot itself (PX4: offboard; ArduPilot: GUIDED): the simulator's stand-ins start in
+    // Hold / LOITER, as a real vehicle would be handed over by its pilot. It speaks the release the PX4 stand-ins play,
+    // and forwards their GNSS only when they report it (vehicle.gnss_source = autopilot; otherwise the simulator
+    // publishes swa/uav<i>/gnss itself).
     const std::string uav = std::to_string(p.uav);
     const sim::VehicleSetup& vehicle = spec_.scenario.vehicle;
     std::vector<std::string> argv =
         p.bridge ? std::vector<std::string>{bin_.bridge, "--id", uav, "--domain", domain_, "--engage",
-                                            "--px4-release", px4::releaseName(vehicle.px4_release),
                                             "--summary-out", (logs_ / ("bridge_" + uav + "_summary.json")).string()}
                  : std::vector<std::string>{bin_.agent, "--id", uav, "--domain", domain_, "--scenario", scenarioFile()};
+    if (p.bridge && vehicle.interface == sim::VehicleInterface::kArdupilot) {
+      argv.insert(argv.end(), {"--autopilot", "ardupilot"});
+    } else if (p.bridge) {
+      argv.insert(argv.end(), {"--px4-release", px4::releaseName(vehicle.px4_release)});
+    }
     if (p.bridge && vehicle.gnss_source != sim::GnssSource::kAutopilot) argv.emplace_back("--no-gnss");
     p.process = std::make_unique<ChildProcess>(argv, log.string());
   }
@@ -334,7 +343,7 @@ class Supervisor {
   int monitor_exit_ = 0;  // of the monitor process that is being restarted (restarts.csv)
   double monitor_backoff_s_ = 0.0;
   std::optional<Clock::time_point> monitor_restart_due_;
-  std::vector<UavProcess> uav_processes_;  // the agents, then (px4) the bridges
+  std::vector<UavProcess> uav_processes_;  // the agents, then (px4, ardupilot) the bridges
   bool stopping_ = false;
   RunOutcome outcome_;
 };

@@ -10,14 +10,14 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-msg::BridgeLink linkOf(px4::Link link) {
+msg::BridgeLink linkOf(autopilot::Link link) {
   switch (link) {
-    case px4::Link::kNoAttitude: return msg::LINK_NO_ATTITUDE;
-    case px4::Link::kNoAgent: return msg::LINK_NO_AGENT;
-    case px4::Link::kFresh: return msg::LINK_FRESH;
-    case px4::Link::kStale: return msg::LINK_STALE;
-    case px4::Link::kAgentLost: return msg::LINK_AGENT_LOST;
-    case px4::Link::kAttitudeLost: return msg::LINK_ATTITUDE_LOST;
+    case autopilot::Link::kNoAttitude: return msg::LINK_NO_ATTITUDE;
+    case autopilot::Link::kNoAgent: return msg::LINK_NO_AGENT;
+    case autopilot::Link::kFresh: return msg::LINK_FRESH;
+    case autopilot::Link::kStale: return msg::LINK_STALE;
+    case autopilot::Link::kAgentLost: return msg::LINK_AGENT_LOST;
+    case autopilot::Link::kAttitudeLost: return msg::LINK_ATTITUDE_LOST;
   }
   return msg::LINK_NO_ATTITUDE;
 }
@@ -37,7 +37,7 @@ px4_msgs::msg::VehicleAttitude vehicleAttitude(std::uint64_t timestamp_us, const
   return m;
 }
 
-px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const px4::Setpoint& s) {
+px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const autopilot::Setpoint& s) {
   px4_msgs::msg::TrajectorySetpoint m;
   m.timestamp(s.timestamp_us);
   m.position({kNaN, kNaN, kNaN});
@@ -75,10 +75,10 @@ bool isVelocityControl(const px4_msgs::msg::OffboardControlMode& m) {
   return !m.position() && m.velocity();
 }
 
-px4_msgs::msg::VehicleCommand vehicleCommand(px4::VehicleRequest request, std::uint8_t target_system) {
+px4_msgs::msg::VehicleCommand vehicleCommand(autopilot::VehicleRequest request, std::uint8_t target_system) {
   px4_msgs::msg::VehicleCommand m;
   m.timestamp(0);
-  if (request == px4::VehicleRequest::kArm) {
+  if (request == autopilot::VehicleRequest::kArm) {
     m.command(px4::kCmdComponentArmDisarm);
     m.param1(1.0f);
   } else {
@@ -94,16 +94,16 @@ px4_msgs::msg::VehicleCommand vehicleCommand(px4::VehicleRequest request, std::u
   return m;
 }
 
-msg::BridgeState bridgeState(const px4::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
+msg::BridgeState bridgeState(const autopilot::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
                              std::uint64_t commands_refused, const std::string& last_event) {
-  const px4::BridgeCounters& c = core.counters();
+  const autopilot::BridgeCounters& c = core.counters();
   msg::BridgeState m;
   m.header().seq(seq);
   if (const auto t = core.newestTimestampUs()) m.header().stamp_ns(px4::stampNsOf(*t).value_or(0));
   m.uav_id(uav_id);
   m.link(linkOf(core.link()));
   m.armed(core.armed());
-  m.nav_state(core.navState().value_or(255));
+  m.nav_state(core.mode().value_or(255));
   m.attitude_in(c.attitude_in);
   m.attitude_rejected(c.attitude_rejected + c.attitude_out_of_order);
   m.commands_applied(c.commands_applied);

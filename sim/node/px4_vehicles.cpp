@@ -25,7 +25,6 @@ namespace swa::sim_node {
 namespace {
 
 namespace topics = dds::topics;
-constexpr std::size_t kRecentSamples = 256;            // attitude samples whose seq an answer can still find
 constexpr agent::StampNs kStatusPeriodNs = 200'000'000;  // vehicle_status at 5 Hz, as PX4 sends it
 
 }  // namespace
@@ -95,8 +94,7 @@ bool Px4Vehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint3
   if (!timestamp) return false;
   const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({s.roll_rad, s.pitch_rad, s.heading_rad}));
   px4_msgs::msg::VehicleAttitude m = wire::vehicleAttitude(*timestamp, q);
-  v.published.push_back({s.stamp_ns, seq, false});
-  if (v.published.size() > kRecentSamples) v.published.pop_front();
+  v.published.add(s.stamp_ns, seq);
   v.last_attitude = m;
   return v.attitude.write(m);
 }
@@ -137,20 +135,11 @@ void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agen
     if (const auto* sp = std::get_if<px4_msgs::msg::TrajectorySetpoint>(&a.message)) {
       const px4::NedVelocity ned = wire::velocityOf(*sp);
       const agent::Vec2 stable = px4::stableOf(ned);
-      Answer answer;
-      answer.uav = a.uav;
-      answer.received = a.received;
-      answer.writer = a.writer;
-      answer.velocity_only = wire::isVelocityOnly(*sp);
-      answer.setpoint.uav_id(static_cast<std::uint32_t>(a.uav));
-      answer.setpoint.vx_mps(stable.x());
-      answer.setpoint.vy_mps(stable.y());
-      answer.setpoint.yaw_rate_radps(worldYawRate(wire::yawspeedOf(*sp)));
+      Answer answer = answerOf(a.uav, a.received, a.writer, stable, worldYawRate(wire::yawspeedOf(*sp)),
+                               wire::isVelocityOnly(*sp));
       const std::optional<agent::StampNs> answered = px4::stampNsOf(sp->timestamp());
-      const auto sample = std::find_if(v.published.begin(), v.published.end(), [&](const Vehicle::Sample& p) {
-        return answered && p.stamp_ns == *answered && !p.answered;
-      });
-      if (sample == v.published.end()) {
+      const std::optional<std::uint32_t> seq = answered ? v.published.answer(*answered) : std::nullopt;
+      if (!seq) {
         // The bridge's own setpoint (or a repeat): it answers no sample the vehicle is waiting for.
         if (admit(answer)) {
           v.standin.trajectorySetpoint(ned, answer.velocity_only);
@@ -158,10 +147,7 @@ void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agen
         }
         continue;
       }
-      sample->answered = true;
-      answer.setpoint.answered_stamp_ns(*answered);
-      answer.setpoint.header().stamp_ns(*answered);
-      answer.setpoint.answered_seq(sample->seq);
+      markAnswered(answer, *answered, *seq);
       answers.push_back(std::move(answer));
     } else if (const auto* mode = std::get_if<px4_msgs::msg::OffboardControlMode>(&a.message)) {
       v.standin.offboardControlMode(now, wire::isVelocityControl(*mode));
@@ -191,17 +177,16 @@ void Px4Vehicles::step(sim::World& world, const EventFn& event) {
     Vehicle& v = vehicles_[k];
     const int uav = static_cast<int>(k);
     const sim::Px4Standin::Decision d = v.standin.step(now);
-    agent::VelocityCommand command;
-    command.stamp_ns = now;
-    command.velocity_mps = d.velocity_mps;
-    command.yaw_rate_radps = d.following ? v.yaw_rate_radps : 0.0;  // holding: the heading too
-    command.fresh = true;
-    world.command(uav, command);
+    commandWorld(world, uav, d.velocity_mps, d.following, v.yaw_rate_radps);
     for (const std::string& text : v.standin.takeEvents()) {
       event(uav, v.standin.failsafe() ? v.standin.lostAfterS() : 0.0, "PX4 stand-in " + v.ns + ": " + text);
     }
     publishStatus(uav, v, now);
   }
+}
+
+std::string Px4Vehicles::commandTopic(int uav) const {
+  return topics::px4In(vehicles_.at(static_cast<std::size_t>(uav)).ns, "trajectory_setpoint");
 }
 
 void Px4Vehicles::publishStatus(int uav, Vehicle& v, agent::StampNs now) {

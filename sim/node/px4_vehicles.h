@@ -32,6 +32,7 @@
 #include <swa/px4/VehicleStatus_v1_16.h>
 
 #include "answer.h"
+#include "autopilot_vehicles.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/sim/px4_standin.h"
@@ -39,40 +40,35 @@
 
 namespace swa::sim_node {
 
-class Px4Vehicles {
+class Px4Vehicles : public AutopilotVehicles {
  public:
-  using Clock = std::chrono::steady_clock;
-  // Whether a setpoint comes from its UAV's one commander (command_gate.h), counted by the caller.
-  using AdmitFn = std::function<bool(const Answer&)>;
-  // A stand-in's event (offboard lost, engaged, ...): UAV, value, text.
-  using EventFn = std::function<void(int uav, double value, const std::string& text)>;
 
   // Creates every UAV's PX4 endpoints on `participant` (which must outlive this). Throws swa::dds::DdsError.
   Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup);
 
   // UAV `uav`'s PX4 endpoints the bridge has not matched yet, appended to `missing`.
-  void unmatched(int uav, std::vector<std::string>& missing) const;
+  void unmatched(int uav, std::vector<std::string>& missing) const override;
 
   // UAV `uav`'s IMU sample as PX4's vehicle_attitude. False if the middleware refused it.
-  bool publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq);
+  bool publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) override;
   // UAV `uav`'s GNSS sample as its PX4 reports it (vehicle.gnss_source = autopilot): vehicle_gps_position and
   // vehicle_local_position. False if the middleware refused either (or the source is not the autopilot).
-  bool publishGnss(int uav, const agent::GnssSample& g);
+  bool publishGnss(int uav, const agent::GnssSample& g) override;
   // The newest vehicle_attitude of `uav` once more. PX4 streams its attitude whatever happens; in lockstep the
   // simulated time stands still while the simulator waits for an answer, so the stand-in repeats the sample: a
   // best-effort sample lost on the way (or sent before the bridge's reader matched) would otherwise stall the run.
-  void repeatAttitude(int uav);
+  void repeatAttitude(int uav) override;
 
   // Waits up to `wait` for what the bridges sent, at simulation time `now`: answers are appended to `answers`; the
   // rest goes to the stand-ins (the bridges' own setpoints only if `admit`).
-  void drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now, const AdmitFn& admit);
+  void drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now, const AdmitFn& admit) override;
   // An answer the driver applies: the vehicle's newest setpoint.
-  void apply(const Answer& a);
+  void apply(const Answer& a) override;
   // Before the world steps from `now`: each vehicle's decision commanded to the world, vehicle_status when it changed
   // (and at 5 Hz), the stand-ins' events.
-  void step(sim::World& world, const EventFn& event);
+  void step(sim::World& world, const EventFn& event) override;
 
-  std::uint64_t commandsAcknowledged() const { return acks_; }
+  std::string commandTopic(int uav) const override;
 
  private:
   using Input = std::variant<px4_msgs::msg::TrajectorySetpoint, px4_msgs::msg::OffboardControlMode,
@@ -99,12 +95,7 @@ class Px4Vehicles {
     dds::Reader<px4_msgs::msg::TrajectorySetpoint> setpoint;
     dds::Reader<px4_msgs::msg::OffboardControlMode> mode;
     dds::Reader<px4_msgs::msg::VehicleCommand> command;
-    struct Sample {
-      agent::StampNs stamp_ns = 0;
-      std::uint32_t seq = 0;
-      bool answered = false;
-    };
-    std::deque<Sample> published;  // recent attitude samples
+    RecentSamples published;
     std::string ns;
     double yaw_rate_radps = 0.0;  // of the newest setpoint given to the stand-in (which knows only the velocity)
     std::uint8_t status_sent_nav = 255, status_sent_arming = 255;

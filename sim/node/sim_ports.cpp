@@ -71,9 +71,9 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
   events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
   truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
   clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
-  const bool px4 = scenario.vehicle.interface == sim::VehicleInterface::kPx4;
+  const bool autopilot = scenario.vehicle.interface != sim::VehicleInterface::kDirect;
   // With GNSS from the autopilot the bridges write swa/uav<i>/gnss; the simulator reports the fix as PX4 does.
-  const bool own_gnss = !px4 || scenario.vehicle.gnss_source == sim::GnssSource::kSwa;
+  const bool own_gnss = !autopilot || scenario.vehicle.gnss_source == sim::GnssSource::kSwa;
   for (int i = 0; i < n_; ++i) {
     switch (scenario.agent.sensor.input) {
       case agent::DetectionInput::kSwa:
@@ -92,19 +92,23 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
     gnss_.push_back(own_gnss ? participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i),
                                                                             "swa_detections_gnss_writer")
                              : dds::Writer<msg::GnssFix>());
-    if (px4) continue;
+    if (autopilot) continue;
     imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
     cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
         dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
           queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
         }));
   }
-  if (px4) px4_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle);
+  if (scenario.vehicle.interface == sim::VehicleInterface::kPx4) {
+    autopilot_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle);
+  } else if (scenario.vehicle.interface == sim::VehicleInterface::kArdupilot) {
+    autopilot_ = std::make_unique<ArdupilotVehicles>(*participant_, n_, scenario.vehicle);
+  }
 }
 
 SimPorts::~SimPorts() {
   participant_.reset();  // first: no listener runs any more
-  px4_.reset();
+  autopilot_.reset();
 }
 
 bool SimPorts::awaitDiscovery() {
@@ -125,8 +129,8 @@ bool SimPorts::awaitDiscovery() {
         missing.push_back(topic + " (no reader)");
       }
       if (gnss_[k] && gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
-      if (px4_) {
-        px4_->unmatched(i, missing);
+      if (autopilot_) {
+        autopilot_->unmatched(i, missing);
         continue;
       }
       if (imu_[k].matched() < 1) missing.push_back(dds::topics::imu(i) + " (no reader)");
@@ -191,7 +195,7 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
     if (s.imu) {
       msg::Imu m = wire::toMsg(*s.imu, id, ++imu_seq_[k]);
       const WallNs published_ns = wallNs(Clock::now());
-      if (px4_ ? px4_->publishAttitude(i, *s.imu, imu_seq_[k]) : imu_[k].write(m)) {
+      if (autopilot_ ? autopilot_->publishAttitude(i, *s.imu, imu_seq_[k]) : imu_[k].write(m)) {
         if (time_latency_) latency_.published(i, imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
         imu_stamps[k] = s.imu->stamp_ns;
       } else {
@@ -202,7 +206,7 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
     if (s.gnss && gnss_[k]) {
       msg::GnssFix m = wire::toMsg(*s.gnss, id, ++gnss_seq_[k]);
       if (!gnss_[k].write(m)) ++summary_.write_failures;
-    } else if (s.gnss && px4_ && !px4_->publishGnss(i, *s.gnss)) {
+    } else if (s.gnss && autopilot_ && !autopilot_->publishGnss(i, *s.gnss)) {
       ++summary_.write_failures;
     }
   }
@@ -253,8 +257,8 @@ const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
   batch_.clear();
   admitted_.clear();
   for (const dds::PeerKey& gone : participant_->takePeersGone()) gate_.participantGone(gone);
-  if (px4_) {
-    px4_->drain(batch_, wait, world_.time_ns(), [this](const Answer& a) { return fromCommander(a); });
+  if (autopilot_) {
+    autopilot_->drain(batch_, wait, world_.time_ns(), [this](const Answer& a) { return fromCommander(a); });
   } else {
     queue_.drain(batch_, wait);
   }
@@ -273,8 +277,8 @@ const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
 }
 
 void SimPorts::apply(const Answer& a) {
-  if (px4_) {
-    px4_->apply(a);
+  if (autopilot_) {
+    autopilot_->apply(a);
   } else if (const std::optional<agent::VelocityCommand> command = worldCommand(a.setpoint)) {
     world_.command(a.uav, *command);
   } else {
@@ -285,13 +289,13 @@ void SimPorts::apply(const Answer& a) {
 }
 
 void SimPorts::repeatWhileWaiting(const std::vector<int>& uavs) {
-  if (!px4_) return;
-  for (const int uav : uavs) px4_->repeatAttitude(uav);
+  if (!autopilot_) return;
+  for (const int uav : uavs) autopilot_->repeatAttitude(uav);
 }
 
 void SimPorts::vehiclesStep() {
-  if (!px4_) return;
-  px4_->step(world_, [this](int uav, double value, const std::string& text) {
+  if (!autopilot_) return;
+  autopilot_->step(world_, [this](int uav, double value, const std::string& text) {
     std::fprintf(stderr, "swa_sim: t = %.2f s: UAV %d: %s\n", sim::stampSeconds(world_.time_ns()), uav, text.c_str());
     publishEvent(record::event_kind::kFailsafe, uav, value, text);
   });
@@ -338,7 +342,7 @@ bool SimPorts::gnssAcknowledged(int uav, double wait_s) {
 }
 
 std::string SimPorts::commandTopic(int uav) const {
-  return px4_ ? dds::topics::px4In(dds::topics::px4Namespace(uav), "trajectory_setpoint") : dds::topics::cmdVel(uav);
+  return autopilot_ ? autopilot_->commandTopic(uav) : dds::topics::cmdVel(uav);
 }
 
 bool SimPorts::fromCommander(const Answer& a) {

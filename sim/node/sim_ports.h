@@ -1,7 +1,7 @@
 #pragma once
 // The simulator's DDS side, shared by its lockstep and realtime drivers: publishes each UAV's sensor samples on its
-// own topics (with vehicle.interface = px4 the attitude as PX4's, px4_vehicles.h) and the world's truth, events and
-// clock, and collects the agents' setpoints (one commander per UAV, swa/dds/command_gate.h; their loop latency,
+// own topics (with vehicle.interface = px4 or ardupilot the attitude as the autopilot's, autopilot_vehicles.h) and the
+// world's truth, events and clock, and collects the agents' setpoints (one commander per UAV, swa/dds/command_gate.h; their loop latency,
 // latency_stats.h). Owns the participant and every endpoint. Message contents come from the wire bridge (idl/wire);
 // which step to publish and when is the driver's.
 
@@ -28,6 +28,7 @@
 #include "swa/dds/command_gate.h"
 #include "answer.h"
 #include "latency_stats.h"
+#include "ardupilot_vehicles.h"
 #include "px4_vehicles.h"
 #include "sim_options.h"
 #include "sim_summary.h"
@@ -68,10 +69,10 @@ class SimPorts {
   // Setpoints received within `wait` that come from their UAV's commander and name their UAV; the others are counted
   // (refused, ignored) and dropped. Their loop latency is recorded while timing is on.
   const std::vector<Answer>& drain(Clock::duration wait);
-  void apply(const Answer& a);  // to the world (px4: to the UAV's autopilot)
-  // Before the world steps: with vehicle.interface = px4, what each autopilot flies (px4_vehicles.h); else nothing.
+  void apply(const Answer& a);  // to the world (an autopilot interface: to the UAV's autopilot)
+  // Before the world steps: with an autopilot interface, what each autopilot flies (autopilot_vehicles.h); else nothing.
   void vehiclesStep();
-  // Lockstep, while waiting for `uavs`' answers: with vehicle.interface = px4 their attitude once more (PX4 streams
+  // Lockstep, while waiting for `uavs`' answers: with an autopilot interface their attitude once more (PX4 streams
   // it; best effort may have lost it); else nothing (the sensors are reliable).
   void repeatWhileWaiting(const std::vector<int>& uavs);
   void timeLatency(bool on) { time_latency_ = on; }
@@ -120,7 +121,7 @@ class SimPorts {
   dds::SampleQueue<Answer> queue_;
   std::unique_ptr<dds::Participant> participant_;
   std::vector<int> deaf_ports_;  // shared-memory ports found deaf (noteDeafness), each said once
-  std::unique_ptr<Px4Vehicles> px4_;  // vehicle.interface = px4: instead of imu_ and cmd_
+  std::unique_ptr<AutopilotVehicles> autopilot_;  // vehicle.interface = px4 or ardupilot: instead of imu_ and cmd_
   std::vector<dds::Writer<msg::Imu>> imu_;
   // The detections in the message the agents read (agent sensor.input): one of these three per UAV.
   std::vector<dds::Writer<msg::Detections>> det_;

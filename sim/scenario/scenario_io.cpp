@@ -220,12 +220,15 @@ params::Table<Scenario> makeTable() {
 
   SWA_PARAM(t, choice, vehicle.interface,
             std::vector<std::pair<VehicleInterface, std::string>>{{VehicleInterface::kDirect, "direct"},
-                                                                  {VehicleInterface::kPx4, "px4"}},
-            "swa_sim: direct (agents' cmd_vel and imu) or px4 (each UAV a PX4 autopilot on rt/px4_<i>/fmu/..., "
-            "reached through one swa_px4_bridge per agent; swa_launch starts them); swa_batch closes the loop "
-            "directly");
+                                                                  {VehicleInterface::kPx4, "px4"},
+                                                                  {VehicleInterface::kArdupilot, "ardupilot"}},
+            "swa_sim: direct (agents' cmd_vel and imu), px4 (each UAV a PX4 autopilot on rt/px4_<i>/fmu/...) or "
+            "ardupilot (each UAV an ArduPilot Copter on rt/ap/v<i+1>/...), reached through one swa_px4_bridge per "
+            "agent (swa_launch starts them); swa_batch closes the loop directly");
   SWA_PARAM(t, number, vehicle.com_of_loss_t_s, "s", openClosed(0, 60),
             "px4: PX4's COM_OF_LOSS_T, offboard signal silent this long -> failsafe Hold");
+  SWA_PARAM(t, number, vehicle.guid_timeout_s, "s", openClosed(0, 60),
+            "ardupilot: ArduPilot's GUID_TIMEOUT, no cmd_vel this long in GUIDED -> the vehicle stops and holds");
   SWA_PARAM(t, choice, vehicle.px4_release,
             std::vector<std::pair<px4::Release, std::string>>{{px4::Release::kV1_15, "v1.15"},
                                                               {px4::Release::kV1_16, "v1.16"},
@@ -253,6 +256,7 @@ params::Table<Scenario> makeTable() {
       {"vehicle.com_of_loss_t_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.px4_release", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.gnss_source", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.guid_timeout_s", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
   });
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"},

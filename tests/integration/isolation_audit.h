@@ -160,18 +160,70 @@ inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>&
   return problems;
 }
 
-// The autopilot bridges (swa_px4_bridge, participants swa_bridge_<I>) of a run through PX4: bridge I reads only PX4's
-// rt/<ns_I>/fmu/out/... and swa/uav<I>/cmd_vel, writes only rt/<ns_I>/fmu/in/... and swa/uav<I>/{imu,bridge_state},
-// where ns_I = px4Namespace(I); exactly one participant per bridge 0..bridge_count-1; and no agent reads or writes any
-// PX4 topic. Every breach and every gap, one line each.
+// What an autopilot's topics look like to the bridge audit: which of them bridge I may read and write, which it must
+// have, and which belong to any vehicle (no agent may touch those).
+struct VehicleTopics {
+  std::string name;                                            // "PX4", "ArduPilot"
+  std::function<std::string(int)> ns;                          // vehicle I's namespace
+  std::function<bool(const std::string& ns, EndpointKind, const std::string& topic)> allowed;
+  std::function<std::vector<std::pair<EndpointKind, std::string>>(const std::string& ns)> required;
+  std::function<bool(const std::string& topic)> anyVehicle;
+};
+
+// PX4: bridge I reads rt/<ns_I>/fmu/out/..., writes rt/<ns_I>/fmu/in/...
+inline VehicleTopics px4Topics(std::function<std::string(int)> ns) {
+  return VehicleTopics{
+      "PX4", std::move(ns),
+      [](const std::string& n, EndpointKind kind, const std::string& topic) {
+        return detail::startsWith(topic, kind == EndpointKind::kReader ? dds::topics::px4Out(n, "")
+                                                                      : dds::topics::px4In(n, ""));
+      },
+      [](const std::string& n) {
+        return std::vector<std::pair<EndpointKind, std::string>>{
+            {EndpointKind::kReader, dds::topics::px4Out(n, "vehicle_attitude")},
+            {EndpointKind::kWriter, dds::topics::px4In(n, "trajectory_setpoint")},
+            {EndpointKind::kWriter, dds::topics::px4In(n, "offboard_control_mode")}};
+      },
+      [](const std::string& topic) {
+        return detail::startsWith(topic, "rt/") && topic.find("/fmu/") != std::string::npos;
+      }};
+}
+
+// ArduPilot: bridge I reads rt/<ns_I>/... but cmd_vel and its services' replies rr/<ns_I>/..., writes rt/<ns_I>/cmd_vel
+// and the requests rq/<ns_I>/...
+inline VehicleTopics ardupilotTopics(std::function<std::string(int)> ns) {
+  return VehicleTopics{
+      "ArduPilot", std::move(ns),
+      [](const std::string& n, EndpointKind kind, const std::string& topic) {
+        const std::string cmd_vel = dds::topics::apTopic(n, "cmd_vel");
+        if (kind == EndpointKind::kWriter) return topic == cmd_vel || detail::startsWith(topic, "rq/" + n + "/");
+        return (detail::startsWith(topic, "rt/" + n + "/") && topic != cmd_vel) ||
+               detail::startsWith(topic, "rr/" + n + "/");
+      },
+      [](const std::string& n) {
+        return std::vector<std::pair<EndpointKind, std::string>>{
+            {EndpointKind::kReader, dds::topics::apTopic(n, "imu/experimental/data")},
+            {EndpointKind::kReader, dds::topics::apTopic(n, "status")},
+            {EndpointKind::kWriter, dds::topics::apTopic(n, "cmd_vel")}};
+      },
+      [](const std::string& topic) {
+        return detail::startsWith(topic, "rt/ap/") || detail::startsWith(topic, "rq/ap/") ||
+               detail::startsWith(topic, "rr/ap/");
+      }};
+}
+
+// The autopilot bridges (swa_px4_bridge, participants swa_bridge_<I>) of a run through an autopilot: bridge I reads
+// only its vehicle's topics (`vehicle`) and swa/uav<I>/cmd_vel, writes only its vehicle's and swa/uav<I>/{imu,
+// bridge_state}; exactly one participant per bridge 0..bridge_count-1; and no agent reads or writes any vehicle's
+// topic. Every breach and every gap, one line each.
 inline std::vector<std::string> auditBridges(const std::vector<Endpoint>& endpoints, int bridge_count,
-                                             const std::function<std::string(int)>& px4Namespace) {
+                                             const VehicleTopics& vehicle) {
   std::vector<std::string> problems;
   std::map<int, std::set<std::string>> guids;
   std::map<int, std::set<std::pair<EndpointKind, std::string>>> seen;
   for (const Endpoint& e : endpoints) {
-    if (agentIndex(e.participant) && detail::startsWith(e.topic, "rt/") && e.topic.find("/fmu/") != std::string::npos) {
-      problems.push_back(detail::who(e) + " touches PX4's " + e.topic + ": only its bridge may");
+    if (agentIndex(e.participant) && vehicle.anyVehicle(e.topic)) {
+      problems.push_back(detail::who(e) + " touches " + vehicle.name + "'s " + e.topic + ": only its bridge may");
     }
     if (detail::startsWith(e.participant, kBridgeNamePrefix) && !bridgeIndex(e.participant)) {
       problems.push_back(detail::who(e) + " is named like a bridge but not swa_bridge_<I>");
@@ -180,16 +232,12 @@ inline std::vector<std::string> auditBridges(const std::vector<Endpoint>& endpoi
     if (!id) continue;
     guids[*id].insert(e.participant_guid);
     seen[*id].insert({e.kind, e.topic});
-    const std::string out = dds::topics::px4Out(px4Namespace(*id), "");
-    const std::string in = dds::topics::px4In(px4Namespace(*id), "");
-    const bool allowed =
-        e.kind == EndpointKind::kReader
-            ? detail::startsWith(e.topic, out) || e.topic == dds::topics::cmdVel(*id)
-            : detail::startsWith(e.topic, in) || e.topic == dds::topics::imu(*id) ||
-                  e.topic == dds::topics::bridgeState(*id);
-    if (!allowed) {
+    const bool own_uav = e.kind == EndpointKind::kReader
+                             ? e.topic == dds::topics::cmdVel(*id)
+                             : e.topic == dds::topics::imu(*id) || e.topic == dds::topics::bridgeState(*id);
+    if (!own_uav && !vehicle.allowed(vehicle.ns(*id), e.kind, e.topic)) {
       problems.push_back(detail::who(e) + (e.kind == EndpointKind::kReader ? " reads " : " writes ") + e.topic +
-                         ", which is not its vehicle's (" + px4Namespace(*id) + ") nor UAV " + std::to_string(*id) +
+                         ", which is not its vehicle's (" + vehicle.ns(*id) + ") nor UAV " + std::to_string(*id) +
                          "'s");
     }
   }
@@ -199,13 +247,10 @@ inline std::vector<std::string> auditBridges(const std::vector<Endpoint>& endpoi
       problems.push_back(std::to_string(guids[id].size()) + " participants are named " + name);
       continue;
     }
-    const std::string ns = px4Namespace(id);
-    for (const auto& [kind, topic] : std::vector<std::pair<EndpointKind, std::string>>{
-             {EndpointKind::kReader, dds::topics::px4Out(ns, "vehicle_attitude")},
-             {EndpointKind::kReader, dds::topics::cmdVel(id)},
-             {EndpointKind::kWriter, dds::topics::px4In(ns, "trajectory_setpoint")},
-             {EndpointKind::kWriter, dds::topics::px4In(ns, "offboard_control_mode")},
-             {EndpointKind::kWriter, dds::topics::imu(id)}}) {
+    std::vector<std::pair<EndpointKind, std::string>> required = vehicle.required(vehicle.ns(id));
+    required.emplace_back(EndpointKind::kReader, dds::topics::cmdVel(id));
+    required.emplace_back(EndpointKind::kWriter, dds::topics::imu(id));
+    for (const auto& [kind, topic] : required) {
       if (seen[id].count({kind, topic}) == 0) {
         problems.push_back(name + " has no " + (kind == EndpointKind::kReader ? "reader" : "writer") + " on " + topic);
       }

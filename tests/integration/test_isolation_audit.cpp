@@ -204,7 +204,7 @@ std::vector<Endpoint> px4Swarm(int n) {
 TEST(IsolationAudit, BridgesTouchOnlyTheirOwnVehicleAndUav) {
   // GIVEN what a run through PX4 creates THEN the bridges pass, and the agents' rules still hold
   const std::vector<Endpoint> clean = px4Swarm(3);
-  const std::vector<std::string> none = auditBridges(clean, 3, topics::px4Namespace);
+  const std::vector<std::string> none = auditBridges(clean, 3, px4Topics(topics::px4Namespace));
   EXPECT_TRUE(none.empty()) << joined(none);
   EXPECT_TRUE(auditIsolation(clean).empty()) << joined(auditIsolation(clean));
   // WHEN bridge 1 reads vehicle 2's attitude and writes UAV 2's IMU, agent 0 reads its vehicle's attitude itself,
@@ -220,7 +220,7 @@ TEST(IsolationAudit, BridgesTouchOnlyTheirOwnVehicleAndUav) {
                          }),
           e.end());
   e.push_back(Endpoint{kR, "swa_bridge_0", "guid-twin", topics::cmdVel(0), "T"});
-  const std::vector<std::string> v = auditBridges(e, 3, topics::px4Namespace);
+  const std::vector<std::string> v = auditBridges(e, 3, px4Topics(topics::px4Namespace));
   // THEN each is named
   EXPECT_TRUE(mentions(v, {"swa_bridge_1", "reads rt/px4_2/fmu/out/vehicle_attitude"})) << joined(v);
   EXPECT_TRUE(mentions(v, {"swa_bridge_1", "writes swa/uav2/imu"})) << joined(v);
@@ -228,6 +228,50 @@ TEST(IsolationAudit, BridgesTouchOnlyTheirOwnVehicleAndUav) {
   EXPECT_TRUE(mentions(v, {"swa_bridge_2 has no writer on rt/px4_2/fmu/in/trajectory_setpoint"})) << joined(v);
   EXPECT_TRUE(mentions(v, {"2 participants are named swa_bridge_0"})) << joined(v);
   EXPECT_EQ(v.size(), 5u) << joined(v);
+}
+
+// What a run through ArduPilot creates beside the agents: the stand-in (in swa_sim) and bridge I on ap/v<I+1>.
+std::vector<Endpoint> ardupilotSwarm(int n) {
+  std::vector<Endpoint> e = cleanSwarm(n);
+  for (int i = 0; i < n; ++i) {
+    const std::string bridge = "swa_bridge_" + std::to_string(i);
+    const std::string ns = topics::apNamespace(i);
+    for (const char* t : {"imu/experimental/data", "status"}) {
+      e.push_back(ep(kW, "swa_sim", topics::apTopic(ns, t)));
+      e.push_back(ep(kR, bridge, topics::apTopic(ns, t)));
+    }
+    e.push_back(ep(kW, bridge, topics::apTopic(ns, "cmd_vel")));
+    e.push_back(ep(kR, "swa_sim", topics::apTopic(ns, "cmd_vel")));
+    for (const char* service : {"arm_motors", "mode_switch"}) {
+      e.push_back(ep(kW, bridge, topics::apRequest(ns, service)));
+      e.push_back(ep(kR, bridge, topics::apReply(ns, service)));
+    }
+    e.push_back(ep(kW, bridge, topics::imu(i)));
+    e.push_back(ep(kR, bridge, topics::cmdVel(i)));
+    e.push_back(ep(kW, bridge, topics::bridgeState(i)));
+  }
+  return e;
+}
+
+TEST(IsolationAudit, ArdupilotBridgesTouchOnlyTheirOwnVehicleAndUav) {
+  // GIVEN what a run through ArduPilot creates THEN the bridges pass
+  const std::vector<Endpoint> clean = ardupilotSwarm(3);
+  const std::vector<std::string> none = auditBridges(clean, 3, ardupilotTopics(topics::apNamespace));
+  EXPECT_TRUE(none.empty()) << joined(none);
+  // WHEN bridge 1 commands vehicle 2, reads its own cmd_vel back, bridge 0 asks vehicle 1 to arm, and agent 2 reads
+  // its vehicle's status itself
+  std::vector<Endpoint> e = clean;
+  e.push_back(ep(kW, "swa_bridge_1", topics::apTopic(topics::apNamespace(2), "cmd_vel")));
+  e.push_back(ep(kR, "swa_bridge_1", topics::apTopic(topics::apNamespace(1), "cmd_vel")));
+  e.push_back(ep(kW, "swa_bridge_0", topics::apRequest(topics::apNamespace(1), "arm_motors")));
+  e.push_back(ep(kR, "swa_agent_2", topics::apTopic(topics::apNamespace(2), "status")));
+  const std::vector<std::string> v = auditBridges(e, 3, ardupilotTopics(topics::apNamespace));
+  // THEN each is named
+  EXPECT_TRUE(mentions(v, {"swa_bridge_1", "writes rt/ap/v3/cmd_vel"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_bridge_1", "reads rt/ap/v2/cmd_vel"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_bridge_0", "writes rq/ap/v2/arm_motorsRequest"})) << joined(v);
+  EXPECT_TRUE(mentions(v, {"swa_agent_2", "touches ArduPilot's rt/ap/v3/status"})) << joined(v);
+  EXPECT_EQ(v.size(), 4u) << joined(v);
 }
 
 TEST(IsolationAudit, TableListsEveryEndpointSorted) {

@@ -8,12 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "swa/px4/bridge_core.h"
+#include "swa/autopilot/bridge_core.h"
 #include "swa/px4/vehicle.h"
 #include "swa/wire/px4.h"
 
-namespace swa::px4 {
+namespace swa::autopilot {
 namespace {
+
+using namespace swa::px4;  // PX4's attitudes, states and the vehicle constants the rules are tested with
 
 constexpr std::uint64_t kStepUs = 10'000;  // 100 Hz attitude
 constexpr std::uint64_t kBootUs = 5'000'000;
@@ -232,7 +234,7 @@ TEST_F(BridgeCoreTest, PX4sClockRestartStartsANewTimeline) {
 
 TEST_F(BridgeCoreTest, WithoutEngageTheBridgeNeverArmsOrSwitchesModes) {
   // GIVEN a disarmed vehicle in hold and the agent streaming for 3 s
-  bridge_.onStatus(kArmingStateDisarmed, kNavStateAutoLoiter);
+  bridge_.onStatus(false, kNavStateAutoLoiter);
   for (int k = 0; k < 300; ++k) {
     attitude(k);
     EXPECT_FALSE(last_tick_.request) << k;
@@ -253,28 +255,28 @@ class EngagingBridge : public BridgeCoreTest {
 
 TEST_F(EngagingBridge, ArmsThenRequestsOffboardOnceTheStreamRuns) {
   // GIVEN --engage, a disarmed vehicle in hold, and the agent answering every sample
-  bridge_.onStatus(kArmingStateDisarmed, kNavStateAutoLoiter);
+  bridge_.onStatus(false, kNavStateAutoLoiter);
   std::vector<std::pair<int, VehicleRequest>> requests;
   for (int k = 0; k < 400; ++k) {
     attitude(k);
     if (last_tick_.request) requests.emplace_back(k, *last_tick_.request);
     command(k);
     // The vehicle obeys the first arm request, and the first offboard request a second later.
-    if (!requests.empty() && k == requests.front().first + 1) bridge_.onStatus(kArmingStateArmed, kNavStateAutoLoiter);
-    if (requests.size() == 2 && k == requests.back().first + 1) bridge_.onStatus(kArmingStateArmed, kNavStateOffboard);
+    if (!requests.empty() && k == requests.front().first + 1) bridge_.onStatus(true, kNavStateAutoLoiter);
+    if (requests.size() == 2 && k == requests.back().first + 1) bridge_.onStatus(true, kNavStateOffboard);
   }
   // THEN it asks to arm after 1 s of streaming (the stream starts at step 1, after the first answer), then for
   // offboard (at most once a second), then nothing more
   ASSERT_EQ(requests.size(), 2u);
   EXPECT_EQ(requests[0].second, VehicleRequest::kArm);
   EXPECT_EQ(requests[0].first, 101);
-  EXPECT_EQ(requests[1].second, VehicleRequest::kOffboard);
+  EXPECT_EQ(requests[1].second, VehicleRequest::kControlMode);
   EXPECT_EQ(requests[1].first, 201);
 }
 
 TEST_F(EngagingBridge, NeverEngagesOnAStaleStream) {
   // GIVEN --engage and an agent that answered only at the start
-  bridge_.onStatus(kArmingStateArmed, kNavStateAutoLoiter);
+  bridge_.onStatus(true, kNavStateAutoLoiter);
   flyAnswered(0, 2);
   // WHEN only the bridge's own zero-velocity stream runs THEN no mode switch is requested
   for (int k = 2; k < 150; ++k) {
@@ -284,4 +286,4 @@ TEST_F(EngagingBridge, NeverEngagesOnAStaleStream) {
 }
 
 }  // namespace
-}  // namespace swa::px4
+}  // namespace swa::autopilot

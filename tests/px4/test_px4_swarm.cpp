@@ -1,6 +1,7 @@
-// The swarm through PX4 (issues #13, #27), end to end with swa_launch: the simulator plays each UAV's PX4 autopilot of
-// a release (vehicle.interface = px4, vehicle.px4_release), one swa_px4_bridge per agent. Checked from the outside: the run's summary.json,
-// events.csv, trajectories.csv, restarts.csv and the endpoints DDS discovery reports.
+// The swarm through an autopilot (issues #13, #27), end to end with swa_launch: the simulator plays each UAV's PX4
+// autopilot of a release (vehicle.interface = px4, vehicle.px4_release) or its ArduPilot Copter (vehicle.interface =
+// ardupilot), one swa_px4_bridge per agent. Checked from the outside: the run's summary.json, events.csv,
+// trajectories.csv, restarts.csv and the endpoints DDS discovery reports.
 
 #include <signal.h>
 
@@ -80,6 +81,8 @@ class Px4SwarmTest : public ::testing::Test {
   }
 
   void expectAsCohesiveAsDirect(const std::string& scenario, const std::vector<px4::Release>& releases);
+  // Through ArduPilot; with `observer`, the bridges' endpoints are audited too.
+  void expectThroughArdupilotAsCohesiveAsDirect(const std::string& scenario, DiscoveryObserver* observer);
 
   ShmJanitor janitor_;  // first: sees /dev/shm before anything of ours exists
   fs::path dir_;
@@ -133,6 +136,60 @@ void Px4SwarmTest::expectAsCohesiveAsDirect(const std::string& scenario, const s
     EXPECT_NE(bridge_log.find("PX4 " + name), std::string::npos) << bridge_log;
   }
   expectNothingLeft();
+}
+
+// The same through the ArduPilot stand-ins: cmd_vel in ENU, GUIDED through the mode_switch service.
+void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& scenario,
+                                                            DiscoveryObserver* observer) {
+  SCOPED_TRACE(scenario + " through ArduPilot");
+  const double d_direct =
+      batch::runClosedLoop(sim::loadScenario(kScenarioDir + scenario, {"duration_s=60"})).summary.mean_neighbor_distance_m;
+  const LaunchedRun ap = launch(scenario, "ardupilot", {"duration_s=60"});
+  ASSERT_NE(ap.status, -1) << "still running after " << kRunBoundS << " s";
+  const double d_ap = jsonNumber(ap.summary, "mean_neighbor_distance_m");
+  RecordProperty(scenario + "_d_nb_ardupilot_m", std::to_string(d_ap));
+  std::cout << scenario << ": d_NB direct " << d_direct << " m, through ArduPilot " << d_ap << " m\n";
+  // THEN it passes as cohesively as the direct loop, every agent answering throughout
+  EXPECT_EQ(ap.status, 0) << ap.summary << logs(ap.dir);
+  EXPECT_NEAR(d_ap, d_direct, kDnbToleranceM);
+  EXPECT_EQ(jsonNumber(ap.summary, "collisions"), 0.0);
+  EXPECT_EQ(jsonNumber(ap.summary, "groups"), 1.0);
+  EXPECT_EQ(jsonNumber(ap.summary, "bridge_restarts"), 0.0);
+  const std::string sim_summary = readFile(ap.dir / "sim_summary.json");
+  EXPECT_EQ(jsonNumber(sim_summary, "agent_dead_events"), 0.0) << sim_summary;
+  // AND every vehicle went to GUIDED once, on its bridge's mode_switch request (answered: the bridge logs the reply)
+  const std::string events = readFile(ap.dir / "events.csv");
+  std::size_t engaged = 0;
+  for (std::size_t at = events.find("GUIDED on request"); at != std::string::npos;
+       at = events.find("GUIDED on request", at + 1)) {
+    ++engaged;
+  }
+  const int n = static_cast<int>(jsonNumber(ap.summary, "uav_count"));
+  EXPECT_EQ(engaged, static_cast<std::size_t>(n)) << events;
+  const std::string bridge_log = readFile(ap.dir / "logs" / "bridge_0.log");
+  EXPECT_NE(bridge_log.find("ArduPilot namespace 'ap/v1'"), std::string::npos) << bridge_log;
+  EXPECT_NE(bridge_log.find("ArduPilot answered the GUIDED request: switched"), std::string::npos) << bridge_log;
+  if (observer != nullptr) {
+    // AND bridge I touched only vehicle I's topics and services and UAV I's, and no agent touched ArduPilot's
+    const VehicleTopics vehicle = ardupilotTopics([](int i) { return dds::topics::apNamespace(i); });
+    const std::vector<Endpoint> endpoints = observer->log().endpoints();
+    const std::string table = endpointTable(endpoints);
+    const std::vector<std::string> bridges = auditBridges(endpoints, n, vehicle);
+    EXPECT_TRUE(bridges.empty()) << bridges.front() << "\n" << table;
+    const std::vector<std::string> agents = auditIsolation(endpoints);
+    EXPECT_TRUE(agents.empty()) << agents.front() << "\n" << table;
+  }
+  expectNothingLeft();
+}
+
+TEST_F(Px4SwarmTest, FourUavsFlyThroughArdupilotAsCohesivelyAsDirectEachBridgeOnItsOwnVehicle) {
+  std::unique_ptr<DiscoveryObserver> observer = observeQuietDomain(domain_, "swa_test_ardupilot_observer");
+  ASSERT_TRUE(observer) << "no quiet DDS domain found";
+  expectThroughArdupilotAsCohesiveAsDirect("dropout_4.yaml", observer.get());
+}
+
+TEST_F(Px4SwarmTest, EightUavsFlyThroughArdupilotAsCohesivelyAsDirect) {
+  expectThroughArdupilotAsCohesiveAsDirect("dropout_8.yaml", nullptr);
 }
 
 TEST_F(Px4SwarmTest, FourUavsFlyThroughEveryPx4ReleaseAsCohesivelyAsDirect) {
@@ -268,6 +325,59 @@ TEST_F(Px4SwarmTest, AKilledBridgeLetsPx4FailSafeThenItIsRestartedAndTheUavRejoi
   expectNothingLeft(&since_watch);
 }
 
+TEST_F(Px4SwarmTest, AKilledArdupilotBridgeLetsItsVehicleStopAfterGuidTimeoutThenItRejoins) {
+  ASSERT_EQ(usePrivateShm(), "");  // it SIGKILLs a process: its files are nobody else's to see (private_shm.h)
+  constexpr int kVictim = 1;
+  constexpr double kGuidTimeoutS = 1.0;
+  const fs::path out = dir_ / "kill_ap";
+  // GIVEN a 4-UAV run through ArduPilot in realtime (30 s), GUID_TIMEOUT 1 s, the launcher restarting a bridge after
+  // 4 s (so that the vehicle times out and holds for a while), no gusts (a held vehicle in the simulator's wind
+  // drifts at ~0.25 m/s: its hold is a zero-velocity setpoint, not a position hold), and a watch on UAV 1's agent
+  auto watch = std::make_unique<StateStampWatch>(domain_, kVictim);
+  const ShmJanitor since_watch;
+  std::vector<std::string> args =
+      launchArgs("dropout_4.yaml", "ardupilot", out,
+                 {"duration_s=30", "clock.mode=realtime", "wind.gust_std=0",
+                  "vehicle.guid_timeout_s=" + std::to_string(kGuidTimeoutS)});
+  args.insert(args.end(), {"--restart-backoff-s", "4"});
+  Child launch(args, dir_ / "kill_ap.log");
+  // WHEN its bridge is SIGKILLed once the agent has published its state for t = 12 s
+  ASSERT_GT(watch->killWhenReached(12'000'000'000LL, launch,
+                                   [&] { return uavProcessPid(domain_, "swa_px4_bridge", kVictim); }),
+            0)
+      << readFile(dir_ / "kill_ap.log");
+  const std::optional<int> status = launch.wait(kRunBoundS);
+  watch.reset();
+  ASSERT_TRUE(status) << "swa_launch still running";
+  const std::string summary = readFile(out / "summary.json");
+  // THEN ArduPilot (the stand-in) stopped the vehicle once cmd_vel was silent for GUID_TIMEOUT, that UAV alone
+  const auto stopped = eventsOf(out, kVictim, "GUID_TIMEOUT");
+  ASSERT_EQ(stopped.size(), 1u) << readFile(out / "events.csv") << logs(out);
+  EXPECT_GT(stopped[0].first, 12.0);
+  EXPECT_GT(stopped[0].second, kGuidTimeoutS);
+  EXPECT_LE(stopped[0].second, kGuidTimeoutS + 0.0101);  // detected at the first step past GUID_TIMEOUT
+  for (int i = 0; i < 4; ++i) {
+    if (i == kVictim) continue;
+    EXPECT_TRUE(eventsOf(out, i, "GUID_TIMEOUT").empty()) << "UAV " << i;
+  }
+  // AND the launcher restarted the bridge, whose commands moved the vehicle again (still in GUIDED: no new request)
+  EXPECT_EQ(jsonNumber(summary, "bridge_restarts"), 1.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0) << summary;
+  EXPECT_NE(readFile(out / "logs" / "restarts.csv").find(",bridge_1,"), std::string::npos);
+  const auto back = eventsOf(out, kVictim, "cmd_vel again");
+  ASSERT_EQ(back.size(), 1u) << readFile(out / "events.csv");
+  EXPECT_GT(back[0].first, stopped[0].first);
+  EXPECT_EQ(eventsOf(out, kVictim, "GUIDED on request").size(), 1u);
+  // AND in between it held: from 2 s after the stop (the velocity responds with a 1 s lag) it barely moved
+  ASSERT_GT(back[0].first - stopped[0].first, 3.0);  // the restart back-off alone is 4 s
+  const double held = meanSpeed(out, kVictim, stopped[0].first + 2.0, back[0].first);
+  EXPECT_LT(held, 0.1) << "mean speed " << held << " m/s while holding";
+  // AND the swarm stayed cohesive without a collision
+  EXPECT_EQ(*status, 0) << summary << logs(out);
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
+  expectNothingLeft(&since_watch);
+}
+
 TEST_F(Px4SwarmTest, EachBridgeTouchesOnlyItsVehicleAndItsUav) {
   // GIVEN an observer of every endpoint on a quiet domain
   std::unique_ptr<DiscoveryObserver> observer = observeQuietDomain(domain_, "swa_test_px4_observer");
@@ -275,13 +385,13 @@ TEST_F(Px4SwarmTest, EachBridgeTouchesOnlyItsVehicleAndItsUav) {
   // WHEN a 4-UAV run goes through PX4
   const LaunchedRun run = launch("dropout_4.yaml", "px4", {"duration_s=10"});
   const auto px4Namespace = [](int i) { return dds::topics::px4Namespace(i); };
-  waitFor([&] { return auditBridges(observer->log().endpoints(), 4, px4Namespace).empty(); }, 10.0);
+  waitFor([&] { return auditBridges(observer->log().endpoints(), 4, px4Topics(px4Namespace)).empty(); }, 10.0);
   const std::vector<Endpoint> endpoints = observer->log().endpoints();
   const std::string table = endpointTable(endpoints);
   ASSERT_EQ(run.status, 0) << run.summary;
   // THEN bridge I reads and writes only UAV I's PX4 namespace and SWA topics, every bridge is there, no agent touches
   // PX4, and the agents' isolation holds as in a direct run
-  const std::vector<std::string> bridges = auditBridges(endpoints, 4, px4Namespace);
+  const std::vector<std::string> bridges = auditBridges(endpoints, 4, px4Topics(px4Namespace));
   EXPECT_TRUE(bridges.empty()) << bridges.front() << "\n" << table;
   const std::vector<std::string> agents = auditIsolation(endpoints);
   EXPECT_TRUE(agents.empty()) << agents.front() << "\n" << table;

@@ -1,14 +1,24 @@
-#include "swa/px4/bridge_core.h"
+#include "swa/autopilot/bridge_core.h"
 
 #include <cmath>
 #include <utility>
 
+#include "swa/autopilot/ardupilot.h"
 #include "swa/px4/vehicle.h"
 
-namespace swa::px4 {
+namespace swa::autopilot {
 namespace {
 
-constexpr std::uint64_t kClockRestartUs = 1'000'000;  // a timestamp this far behind the newest: PX4 restarted
+using px4::eulerOf;
+using px4::isAttitude;
+using px4::nedOf;
+using px4::stampNsOf;
+using px4::SwaAttitude;
+using px4::swaAttitude;
+using px4::timestampUsOf;
+using px4::yawspeedOf;
+
+constexpr std::uint64_t kClockRestartUs = 1'000'000;  // a timestamp this far behind the newest: the vehicle restarted
 
 // Durations compared in whole microseconds, on the vehicle's clock: exact at the thresholds.
 std::uint64_t microseconds(double seconds) { return static_cast<std::uint64_t>(std::llround(seconds * 1e6)); }
@@ -17,14 +27,20 @@ std::uint64_t elapsedUs(std::uint64_t from_us, std::uint64_t to_us) { return to_
 
 }  // namespace
 
+Autopilot px4Autopilot() { return Autopilot{"PX4", px4::kNavStateOffboard, "offboard", px4::navStateName}; }
+
+Autopilot ardupilotAutopilot() {
+  return Autopilot{"ArduPilot", ardupilot::kModeGuided, "GUIDED", ardupilot::copterModeName};
+}
+
 const char* linkName(Link link) {
   switch (link) {
-    case Link::kNoAttitude: return "no attitude from PX4 yet";
+    case Link::kNoAttitude: return "no attitude from the vehicle yet";
     case Link::kNoAgent: return "waiting for the agent's first command";
     case Link::kFresh: return "streaming the agent's commands";
     case Link::kStale: return "command stale: streaming zero velocity";
-    case Link::kAgentLost: return "agent lost: offboard stream stopped (PX4's offboard-loss failsafe takes over)";
-    case Link::kAttitudeLost: return "PX4 silent: offboard stream stopped";
+    case Link::kAgentLost: return "agent lost: stream stopped (the autopilot's own failsafe takes over)";
+    case Link::kAttitudeLost: return "vehicle silent: stream stopped";
   }
   return "?";
 }
@@ -45,7 +61,7 @@ std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_u
       return std::nullopt;
     }
     ++counters_.clock_restarts;
-    note("PX4's clock restarted (attitude stamp " + std::to_string(timestamp_us) + " us after " +
+    note(std::string(config_.autopilot.name) + "'s clock restarted (attitude stamp " + std::to_string(timestamp_us) + " us after " +
          std::to_string(*newest_us_) + " us): the old timeline's commands are forgotten");
     first_us_.reset();
     applied_us_.reset();
@@ -94,17 +110,16 @@ Outbox BridgeCore::onCommand(const agent::VelocityCommand& command, double now_s
   return out;
 }
 
-void BridgeCore::onStatus(std::uint8_t arming_state, std::uint8_t nav_state) {
-  if (arming_state_ != arming_state) {
-    note(arming_state == kArmingStateArmed ? "PX4: armed" : "PX4: not armed (arming_state " +
-                                                                std::to_string(arming_state) + ")");
+void BridgeCore::onStatus(bool armed, std::uint8_t mode) {
+  const Autopilot& a = config_.autopilot;
+  if (armed_ != armed) note(std::string(a.name) + (armed ? ": armed" : ": not armed"));
+  if (mode_ != mode) {
+    const auto name = [&](std::uint8_t m) { return a.mode_name ? a.mode_name(m) : "?"; };
+    note(std::string(a.name) + ": mode " + (mode_ ? name(*mode_) : "unknown") + " -> " + name(mode) + " (" +
+         std::to_string(mode) + ")");
   }
-  if (nav_state_ != nav_state) {
-    note(std::string("PX4: nav_state ") + (nav_state_ ? navStateName(*nav_state_) : "unknown") + " -> " +
-         navStateName(nav_state) + " (" + std::to_string(nav_state) + ")");
-  }
-  arming_state_ = arming_state;
-  nav_state_ = nav_state;
+  armed_ = armed;
+  mode_ = mode;
 }
 
 Link BridgeCore::evaluate(double now_s) const {
@@ -139,19 +154,21 @@ Outbox BridgeCore::tick(double now_s) {
     sent(out, now_s);
   }
   // Engage only on the agent's own commands, with the stream established in vehicle time and the state known.
-  if (!config_.engage || now != Link::kFresh || !arming_state_ || !nav_state_) return out;
+  if (!config_.engage || now != Link::kFresh || !armed_ || !mode_) return out;
   if (elapsedUs(*streaming_since_us_, *newest_us_) < microseconds(config_.engage_after_s)) return out;
   if (last_request_us_ && elapsedUs(*last_request_us_, *newest_us_) < microseconds(config_.engage_retry_s)) return out;
-  if (*arming_state_ != kArmingStateArmed) {
+  if (!*armed_) {
     out.request = VehicleRequest::kArm;
-  } else if (*nav_state_ != kNavStateOffboard) {
-    out.request = VehicleRequest::kOffboard;
+  } else if (*mode_ != config_.autopilot.control_mode) {
+    out.request = VehicleRequest::kControlMode;
   } else {
     return out;
   }
   last_request_us_ = *newest_us_;
   ++counters_.requests_out;
-  note(out.request == VehicleRequest::kArm ? "engage: requesting arm" : "engage: requesting offboard mode");
+  note(out.request == VehicleRequest::kArm ? std::string("engage: requesting arm")
+                                           : std::string("engage: requesting ") + config_.autopilot.control_mode_name +
+                                                 " mode");
   return out;
 }
 
@@ -165,4 +182,4 @@ void BridgeCore::sent(Outbox& out, double now_s) {
 
 std::vector<std::string> BridgeCore::takeEvents() { return std::exchange(events_, {}); }
 
-}  // namespace swa::px4
+}  // namespace swa::autopilot

@@ -16,9 +16,9 @@ enum class ClockMode { kLockstep, kRealtime };
 enum class HeadingMode { kRandom, kZero };
 enum class MpsNoiseModel { kIsotropic, kRangeBearing };
 // How the agents reach their vehicles in swa_sim: directly (the simulator reads cmd_vel and publishes imu), or through
-// PX4's uXRCE-DDS topics (vehicle.px4_release), with the simulator playing each UAV's PX4 and one swa_px4_bridge per
-// agent.
-enum class VehicleInterface { kDirect, kPx4 };
+// PX4's uXRCE-DDS topics (vehicle.px4_release) or ArduPilot's AP_DDS ones, with the simulator playing each UAV's
+// autopilot and one swa_px4_bridge per agent.
+enum class VehicleInterface { kDirect, kPx4, kArdupilot };
 // Where the agents' GNSS comes from with vehicle.interface = px4: the simulator's own swa/uav<i>/gnss (swa), or each
 // UAV's PX4 stand-in as a real PX4 reports it (vehicle_gps_position, vehicle_local_position), forwarded by the bridge
 // (autopilot).
@@ -90,6 +90,7 @@ struct GnssSetup {
 struct VehicleSetup {
   VehicleInterface interface = VehicleInterface::kDirect;
   double com_of_loss_t_s = 1.0;    // PX4's COM_OF_LOSS_T (default 1 s in v1.15-v1.17): offboard lost -> Hold
+  double guid_timeout_s = 3.0;     // ArduPilot's GUID_TIMEOUT (Copter default 3 s): no cmd_vel this long -> stop
   px4::Release px4_release = px4::kNewestRelease;  // the layouts and topic names the PX4 stand-in speaks
   GnssSource gnss_source = GnssSource::kSwa;
 };

@@ -59,11 +59,50 @@ constexpr double kShutdownAckWaitS = 6.0;
 
 // The GUID of the writer a sample came from (its DDS publication handle).
 using WriterGuid = std::array<std::uint8_t, 16>;
+// An endpoint's GUID (a reader's too).
+using Guid = WriterGuid;
+
+// A sample's identity: its writer's GUID and its sequence number. A ROS 2 service over DDS pairs a reply with its
+// request by it: the reply carries the request's identity as its "related" one.
+struct SampleId {
+  Guid writer{};
+  std::int64_t seq = 0;
+  bool operator==(const SampleId& o) const { return writer == o.writer && seq == o.seq; }
+};
+struct SampleIds {
+  SampleId self, related;  // related: zero unless the writer named one (a reply names its request)
+};
 
 namespace detail {
 int publicationMatched(eprosima::fastdds::dds::DataWriter* writer);
 int subscriptionMatched(eprosima::fastdds::dds::DataReader* reader);
 bool waitForAcknowledgments(eprosima::fastdds::dds::DataWriter* writer, double seconds);
+// write() with the related sample identity set to `related` (a reply), or with only its writer GUID set to
+// `reply_reader` (a request, as rmw_fastrtps sends one); the written sample's identity in `written`.
+bool writeRelated(eprosima::fastdds::dds::DataWriter* writer, void* data, const SampleId* related,
+                  const Guid* reply_reader, SampleId* written);
+Guid readerGuid(const eprosima::fastdds::dds::DataReader* reader);
+SampleIds sampleIdsOf(const eprosima::fastdds::dds::SampleInfo& info);
+
+// A listener that also hands over the sample's identities (a service's request or reply).
+template <class Msg>
+class IdentityListener : public eprosima::fastdds::dds::DataReaderListener {
+ public:
+  explicit IdentityListener(std::function<void(Msg&&, const SampleIds&)> on_sample)
+      : on_sample_(std::move(on_sample)) {}
+
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
+    eprosima::fastdds::dds::SampleInfo info;
+    Msg msg;
+    while (reader->take_next_sample(&msg, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data) on_sample_(std::move(msg), sampleIdsOf(info));
+      msg = Msg();
+    }
+  }
+
+ private:
+  std::function<void(Msg&&, const SampleIds&)> on_sample_;
+};
 
 template <class Msg>
 class CallbackListener : public eprosima::fastdds::dds::DataReaderListener {
@@ -114,6 +153,17 @@ class Writer {
   bool write(Msg& msg) { return writer_->write(&msg); }
   // Readers currently matched (discovery done both ways as seen from this writer).
   int matched() const { return detail::publicationMatched(writer_); }
+  // A ROS 2 service request: written with the GUID of the reader that takes the replies; its identity, which the reply
+  // will name, or nullopt if refused.
+  std::optional<SampleId> writeRequest(Msg& msg, const Guid& reply_reader) {
+    SampleId written;
+    if (!detail::writeRelated(writer_, &msg, nullptr, &reply_reader, &written)) return std::nullopt;
+    return written;
+  }
+  // A ROS 2 service reply to the request `request`.
+  bool writeReply(Msg& msg, const SampleId& request) {
+    return detail::writeRelated(writer_, &msg, &request, nullptr, nullptr);
+  }
   // Blocks until every matched reliable reader acknowledged everything written, at most `seconds`.
   bool waitForAcknowledgments(double seconds) { return detail::waitForAcknowledgments(writer_, seconds); }
   explicit operator bool() const { return writer_ != nullptr; }
@@ -129,6 +179,7 @@ class Reader {
  public:
   Reader() = default;
   int matched() const { return detail::subscriptionMatched(reader_); }
+  Guid guid() const { return detail::readerGuid(reader_); }
   explicit operator bool() const { return reader_ != nullptr; }
 
  private:
@@ -172,6 +223,18 @@ class Participant {
       std::function<void(typename PubSubType::type&&, const WriterGuid&)> on_sample) {
     using Msg = typename PubSubType::type;
     auto listener = std::make_unique<detail::CallbackListener<Msg>>(std::move(on_sample));
+    eprosima::fastdds::dds::DataReader* r = createReader(topic(topic_name, new PubSubType()), profile, listener.get());
+    listeners_.push_back(std::move(listener));
+    return Reader<Msg>(r);
+  }
+
+  // The same, with each sample's identities (a ROS 2 service's requests or replies).
+  template <class PubSubType>
+  Reader<typename PubSubType::type> readerWithIds(
+      const std::string& topic_name, const std::string& profile,
+      std::function<void(typename PubSubType::type&&, const SampleIds&)> on_sample) {
+    using Msg = typename PubSubType::type;
+    auto listener = std::make_unique<detail::IdentityListener<Msg>>(std::move(on_sample));
     eprosima::fastdds::dds::DataReader* r = createReader(topic(topic_name, new PubSubType()), profile, listener.get());
     listeners_.push_back(std::move(listener));
     return Reader<Msg>(r);

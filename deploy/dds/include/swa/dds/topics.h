@@ -41,4 +41,15 @@ inline std::string px4Out(const std::string& ns, const std::string& name) {
 // The namespace swa_sim's PX4 stand-in gives UAV <i>, and swa_px4_bridge --id <i> assumes unless told: px4_<i>.
 inline std::string px4Namespace(int uav) { return "px4_" + std::to_string(uav); }
 
+// ArduPilot's (AP_DDS) topics rt/<ns>/<name> and its services as ROS 2 puts them on DDS: requests on
+// rq/<ns>/<name>Request, replies on rr/<ns>/<name>Reply.
+inline std::string apTopic(const std::string& ns, const std::string& name) { return "rt/" + ns + "/" + name; }
+inline std::string apRequest(const std::string& ns, const std::string& name) {
+  return "rq/" + ns + "/" + name + "Request";
+}
+inline std::string apReply(const std::string& ns, const std::string& name) { return "rr/" + ns + "/" + name + "Reply"; }
+// The namespace swa_sim's ArduPilot stand-in gives UAV <i>, and swa_px4_bridge --autopilot ardupilot --id <i> assumes
+// unless told: ap/v<i+1>, where AP_DDS puts a vehicle's topics with DDS_USE_NS = 1 and MAV_SYSID = i + 1.
+inline std::string apNamespace(int uav) { return "ap/v" + std::to_string(uav + 1); }
+
 }  // namespace swa::dds::topics

@@ -15,7 +15,7 @@
 #include <swa/px4/VehicleStatus_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_16.h>
 
-#include "swa/px4/bridge_core.h"
+#include "swa/autopilot/bridge_core.h"
 #include "swa/px4/frames.h"
 #include "swa/px4/gnss.h"
 
@@ -26,7 +26,7 @@ px4_msgs::msg::VehicleAttitude vehicleAttitude(std::uint64_t timestamp_us, const
 
 // A velocity-only setpoint: position, acceleration, jerk and yaw NaN (not controlled), as PX4's offboard velocity
 // control wants them; yawspeed the setpoint's (yaw NaN: PX4 follows the rate, 0 holds the heading).
-px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const px4::Setpoint& s);
+px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const autopilot::Setpoint& s);
 // The setpoint's NED velocity and yawspeed, and whether it is velocity-only (position NaN, velocity finite).
 px4::NedVelocity velocityOf(const px4_msgs::msg::TrajectorySetpoint& m);
 double yawspeedOf(const px4_msgs::msg::TrajectorySetpoint& m);
@@ -38,7 +38,7 @@ bool isVelocityControl(const px4_msgs::msg::OffboardControlMode& m);
 
 // Arm, or switch to offboard (DO_SET_MODE, custom main mode OFFBOARD), for the vehicle `target_system` (0: whichever
 // vehicle reads this namespace), from an external component. Stamped 0: PX4 stamps it on receipt.
-px4_msgs::msg::VehicleCommand vehicleCommand(px4::VehicleRequest request, std::uint8_t target_system);
+px4_msgs::msg::VehicleCommand vehicleCommand(autopilot::VehicleRequest request, std::uint8_t target_system);
 
 // vehicle_status as the simulator's stand-in sends it, in the layout of v1.15 (px4_msgs::msg::VehicleStatus) or
 // v1.16+ (px4_v1_16::px4_msgs::msg::VehicleStatus): what SWA reads and what a healthy multirotor's PX4 fills in.
@@ -96,7 +96,7 @@ px4::LocalPositionReport localPositionOf(const Position& m) {
   return {m.timestamp(), m.xy_valid(), m.dead_reckoning(), m.x(), m.y(), m.eph()};
 }
 
-msg::BridgeState bridgeState(const px4::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
+msg::BridgeState bridgeState(const autopilot::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
                              std::uint64_t commands_refused, const std::string& last_event);
 
 }  // namespace swa::wire

@@ -1,0 +1,144 @@
+// ArduPilot's side of the bridge (AP_DDS, Copter 4.5+) under the namespace NS (vehicle_link.h, swa/autopilot/
+// ardupilot.h): its IMU message's orientation in, its status in, the core's setpoints out as cmd_vel in frame "map"
+// (ENU), and with --engage its arm_motors and mode_switch services.
+// ArduPilot has no offboard heartbeat: its liveness is the command stream itself, and when that stops its GUIDED
+// velocity timeout (GUID_TIMEOUT) stops the vehicle. So the core's heartbeats send nothing here.
+
+#include <array>
+#include <atomic>
+#include <cstdio>
+#include <mutex>
+#include <optional>
+#include <utility>
+
+#include <swa/ros/ArdupilotServicesPubSubTypes.h>
+#include <swa/ros/ArdupilotStatusPubSubTypes.h>
+#include <swa/ros/ImuPubSubTypes.h>
+#include <swa/ros/TwistStampedPubSubTypes.h>
+
+#include "swa/autopilot/ardupilot.h"
+#include "swa/dds/topics.h"
+#include "swa/wire/ardupilot.h"
+#include "vehicle_link.h"
+
+namespace swa::px4_bridge {
+namespace {
+
+namespace topics = dds::topics;
+namespace srv = ardupilot_msgs::srv;
+
+class ArdupilotLink : public VehicleLink {
+ public:
+  ArdupilotLink(const BridgeOptions& options, VehicleEvents events)
+      : options_(options), ns_(apNamespace(options)), events_(std::move(events)) {}
+
+  void connect(dds::Participant& p) override {
+    cmd_vel_ = p.writer<geometry_msgs::msg::TwistStampedPubSubType>(topics::apTopic(ns_, "cmd_vel"), "ap_in_writer");
+    if (options_.core.engage) {
+      arm_request_ = p.writer<srv::ArmMotors_RequestPubSubType>(topics::apRequest(ns_, "arm_motors"),
+                                                                "ap_service_writer");
+      mode_request_ = p.writer<srv::ModeSwitch_RequestPubSubType>(topics::apRequest(ns_, "mode_switch"),
+                                                                  "ap_service_writer");
+      arm_reply_ = p.readerWithIds<srv::ArmMotors_ResponsePubSubType>(
+          topics::apReply(ns_, "arm_motors"), "ap_service_reader",
+          [this](srv::ArmMotors_Response&& m, const dds::SampleIds& ids) {
+            if (isOurs(ids)) events_.log(std::string("ArduPilot answered the arm request: ") +
+                                         (m.result() ? "armed" : "refused"));
+          });
+      mode_reply_ = p.readerWithIds<srv::ModeSwitch_ResponsePubSubType>(
+          topics::apReply(ns_, "mode_switch"), "ap_service_reader",
+          [this](srv::ModeSwitch_Response&& m, const dds::SampleIds& ids) {
+            if (isOurs(ids)) {
+              events_.log(std::string("ArduPilot answered the GUIDED request: ") + (m.status() ? "switched" : "refused") +
+                          ", mode now " + ardupilot::copterModeName(m.curr_mode()) + " (" +
+                          std::to_string(m.curr_mode()) + ")");
+            }
+          });
+    }
+    status_reader_ = p.reader<ardupilot_msgs::msg::StatusPubSubType>(
+        topics::apTopic(ns_, "status"), "ap_status_reader",
+        [this](ardupilot_msgs::msg::Status&& m) { events_.status(m.armed(), m.mode()); });
+    imu_reader_ = p.reader<sensor_msgs::msg::ImuPubSubType>(
+        topics::apTopic(ns_, "imu/experimental/data"), "ap_out_reader", [this](sensor_msgs::msg::Imu&& m) {
+          const std::optional<std::uint64_t> t = wire::timestampUsOf(m.header().stamp());
+          if (!t) {  // a negative time or nanosec >= 1e9: no instant to stamp the sample with
+            if (bad_stamps_++ == 0) events_.log("dropping IMU messages with an invalid stamp (negative, or nanosec >= 1e9)");
+            return;
+          }
+          events_.attitude(*t, wire::attitudeOf(m, options_.ap_quaternion));
+        });
+  }
+
+  bool readsCommands() const override { return cmd_vel_.matched() > 0; }
+  bool attitudeMatched() const override { return imu_reader_.matched() > 0; }
+
+  void send(const autopilot::Outbox& out) override {
+    if (out.setpoint) {
+      geometry_msgs::msg::TwistStamped m = wire::cmdVel(*out.setpoint);
+      cmd_vel_.write(m);
+    }
+    if (out.request == autopilot::VehicleRequest::kArm && arm_request_) {
+      srv::ArmMotors_Request m;
+      m.arm(true);
+      remember(arm_request_.writeRequest(m, arm_reply_.guid()));
+    } else if (out.request == autopilot::VehicleRequest::kControlMode && mode_request_) {
+      srv::ModeSwitch_Request m;
+      m.mode(ardupilot::kModeGuided);
+      remember(mode_request_.writeRequest(m, mode_reply_.guid()));
+    }
+  }
+
+  std::string description() const override {
+    return "ArduPilot namespace '" + ns_ + "' (" + topics::apTopic(ns_, "imu/experimental/data") + " read as " +
+           ardupilot::quaternionLayoutName(options_.ap_quaternion) + ", " + topics::apTopic(ns_, "status") + ")";
+  }
+  std::string commandTopic() const override { return topics::apTopic(ns_, "cmd_vel"); }
+  std::string noReaderHint() const override {
+    return "is ArduPilot's DDS client (DDS_ENABLE 1) connected to a Micro XRCE-DDS agent on this domain, with its "
+           "topics under '" + ns_ + "' (DDS_USE_NS 1 puts them under ap/v<MAV_SYSID>; without it, --ap-namespace ap)?";
+  }
+  std::string noStatusHint() const override {
+    return "no " + topics::apTopic(ns_, "status") + ": ArduPilot releases before the status message (Copter 4.6) "
+           "do not send it; --engage needs it";
+  }
+
+ private:
+  // Replies name their request; another client's requests on the same service get replies too.
+  bool isOurs(const dds::SampleIds& ids) {
+    const std::lock_guard<std::mutex> lock(requests_mutex_);
+    for (const dds::SampleId& r : requests_) {
+      if (r == ids.related) return true;
+    }
+    return false;
+  }
+  void remember(const std::optional<dds::SampleId>& id) {
+    if (!id) return;
+    const std::lock_guard<std::mutex> lock(requests_mutex_);
+    requests_[next_++ % requests_.size()] = *id;
+  }
+
+  const BridgeOptions options_;
+  const std::string ns_;
+  const VehicleEvents events_;
+
+  std::atomic<std::uint64_t> bad_stamps_{0};
+  std::mutex requests_mutex_;
+  std::array<dds::SampleId, 8> requests_{};  // the newest requests sent
+  std::size_t next_ = 0;
+
+  dds::Writer<geometry_msgs::msg::TwistStamped> cmd_vel_;
+  dds::Writer<srv::ArmMotors_Request> arm_request_;    // --engage only
+  dds::Writer<srv::ModeSwitch_Request> mode_request_;  // --engage only
+  dds::Reader<srv::ArmMotors_Response> arm_reply_;
+  dds::Reader<srv::ModeSwitch_Response> mode_reply_;
+  dds::Reader<ardupilot_msgs::msg::Status> status_reader_;
+  dds::Reader<sensor_msgs::msg::Imu> imu_reader_;
+};
+
+}  // namespace
+
+std::unique_ptr<VehicleLink> makeArdupilotLink(const BridgeOptions& options, VehicleEvents events) {
+  return std::make_unique<ArdupilotLink>(options, std::move(events));
+}
+
+}  // namespace swa::px4_bridge

@@ -1,0 +1,48 @@
+#pragma once
+// The autopilot's side of swa_px4_bridge over DDS, one implementation per autopilot (px4_link.cpp,
+// ardupilot_link.cpp): its endpoints, what arrives on them turned into the bridge core's terms (swa/autopilot/
+// bridge_core.h), and the core's outbox turned into the autopilot's messages. The node (bridge_node.h) owns the core,
+// the agent's side and the rules; a link keeps no state of the control loop.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "bridge_options.h"
+#include "swa/agent/samples.h"
+#include "swa/autopilot/bridge_core.h"
+#include "swa/dds/participant.h"
+
+namespace swa::px4_bridge {
+
+// What a link reports, on the middleware's threads (the node serialises them).
+struct VehicleEvents {
+  std::function<void(std::uint64_t timestamp_us, const px4::Quaternion& attitude)> attitude;
+  std::function<void(bool armed, std::uint8_t mode)> status;
+  std::function<void(const agent::GnssSample& gnss)> gnss;  // the vehicle's fix, in SWA's terms (PX4 only so far)
+  std::function<void(const std::string& line)> log;          // an answer to a request, for the log
+};
+
+class VehicleLink {
+ public:
+  virtual ~VehicleLink() = default;
+  // Creates the vehicle's endpoints on `p`; their callbacks call the events given at construction. Throws DdsError.
+  virtual void connect(dds::Participant& p) = 0;
+  // The vehicle reads what the bridge writes (every reader of the command stream matched).
+  virtual bool readsCommands() const = 0;
+  // The bridge hears the vehicle's attitude (its writer matched).
+  virtual bool attitudeMatched() const = 0;
+  virtual void send(const autopilot::Outbox& out) = 0;
+
+  // For the log.
+  virtual std::string description() const = 0;    // the autopilot, its namespace and topics
+  virtual std::string commandTopic() const = 0;   // where the stream goes
+  virtual std::string noReaderHint() const = 0;   // nothing reads the stream after 5 s
+  virtual std::string noStatusHint() const = 0;   // attitude but no state after 5 s
+};
+
+std::unique_ptr<VehicleLink> makePx4Link(const BridgeOptions& options, VehicleEvents events);
+std::unique_ptr<VehicleLink> makeArdupilotLink(const BridgeOptions& options, VehicleEvents events);
+
+}  // namespace swa::px4_bridge

@@ -1,0 +1,74 @@
+#include "swa/wire/ardupilot.h"
+
+namespace swa::wire {
+
+std::optional<std::uint64_t> timestampUsOf(const builtin_interfaces::msg::Time& t) {
+  return ardupilot::timestampUsOf(t.sec(), t.nanosec());
+}
+
+namespace {
+
+builtin_interfaces::msg::Time timeOf(std::uint64_t timestamp_us) {
+  builtin_interfaces::msg::Time t;
+  if (const std::optional<ardupilot::RosTime> r = ardupilot::rosTimeOf(timestamp_us)) {
+    t.sec(r->sec);
+    t.nanosec(r->nanosec);
+  }
+  return t;
+}
+
+}  // namespace
+
+px4::Quaternion attitudeOf(const sensor_msgs::msg::Imu& m, ardupilot::QuaternionLayout layout) {
+  const geometry_msgs::msg::Quaternion& q = m.orientation();
+  return ardupilot::attitudeOf(q.x(), q.y(), q.z(), q.w(), layout);
+}
+
+sensor_msgs::msg::Imu imuMessage(std::uint64_t timestamp_us, const px4::Quaternion& q) {
+  sensor_msgs::msg::Imu m;
+  m.header().stamp(timeOf(timestamp_us));
+  m.header().frame_id(ardupilot::kImuFrame);
+  const ardupilot::OrientationFields f = ardupilot::orientationFieldsOf(q);
+  m.orientation().x(f.x);
+  m.orientation().y(f.y);
+  m.orientation().z(f.z);
+  m.orientation().w(f.w);
+  m.angular_velocity_covariance()[0] = -1.0;
+  m.linear_acceleration_covariance()[0] = -1.0;
+  return m;
+}
+
+ardupilot_msgs::msg::Status statusMessage(std::uint64_t timestamp_us, bool armed, std::uint8_t mode,
+                                          bool failsafe_ekf) {
+  ardupilot_msgs::msg::Status m;
+  m.header().stamp(timeOf(timestamp_us));
+  m.vehicle_type(ardupilot::kVehicleTypeCopter);
+  m.armed(armed);
+  m.mode(mode);
+  m.flying(armed);
+  if (failsafe_ekf) m.failsafe().push_back(ardupilot::kFailsafeEkf);
+  return m;
+}
+
+geometry_msgs::msg::TwistStamped cmdVel(const autopilot::Setpoint& s) {
+  const ardupilot::EnuTwist t = ardupilot::enuTwistOf(s.velocity, s.yawspeed_radps);
+  geometry_msgs::msg::TwistStamped m;
+  m.header().stamp(timeOf(s.timestamp_us));
+  m.header().frame_id(ardupilot::kMapFrame);
+  m.twist().linear().x(t.east_mps);
+  m.twist().linear().y(t.north_mps);
+  m.twist().linear().z(t.up_mps);
+  m.twist().angular().z(t.yaw_rate_radps);
+  return m;
+}
+
+CmdVel cmdVelOf(const geometry_msgs::msg::TwistStamped& m) {
+  CmdVel c;
+  c.map_frame = m.header().frame_id() == ardupilot::kMapFrame;
+  c.timestamp_us = timestampUsOf(m.header().stamp());
+  c.twist = ardupilot::EnuTwist{m.twist().linear().x(), m.twist().linear().y(), m.twist().linear().z(),
+                                m.twist().angular().z()};
+  return c;
+}
+
+}  // namespace swa::wire

@@ -1,0 +1,36 @@
+#pragma once
+// ArduPilot's DDS messages (sensor_msgs/Imu, ardupilot_msgs/Status, geometry_msgs/TwistStamped as its cmd_vel) <->
+// the autopilot library's types (swa/autopilot/ardupilot.h has the conventions). For the bridge and the simulator's
+// ArduPilot stand-in.
+
+#include <cstdint>
+#include <optional>
+
+#include <swa/ros/ArdupilotStatus.h>
+#include <swa/ros/Imu.h>
+#include <swa/ros/TwistStamped.h>
+
+#include "swa/autopilot/ardupilot.h"
+#include "swa/autopilot/bridge_core.h"
+
+namespace swa::wire {
+
+std::optional<std::uint64_t> timestampUsOf(const builtin_interfaces::msg::Time& t);
+
+// The attitude in an IMU message, read in `layout`; and an IMU message of an attitude (orientation only: the other
+// covariances say "no estimate", as SWA's stand-in measures nothing else).
+px4::Quaternion attitudeOf(const sensor_msgs::msg::Imu& m, ardupilot::QuaternionLayout layout);
+sensor_msgs::msg::Imu imuMessage(std::uint64_t timestamp_us, const px4::Quaternion& q);
+
+ardupilot_msgs::msg::Status statusMessage(std::uint64_t timestamp_us, bool armed, std::uint8_t mode, bool failsafe_ekf);
+
+// The core's setpoint as cmd_vel: frame "map", stamped with the answered sample's time; and what a cmd_vel commands.
+geometry_msgs::msg::TwistStamped cmdVel(const autopilot::Setpoint& s);
+struct CmdVel {
+  bool map_frame = false;  // ArduPilot ignores any other frame id but base_link (body FLU), which SWA never sends
+  std::optional<std::uint64_t> timestamp_us;
+  ardupilot::EnuTwist twist;
+};
+CmdVel cmdVelOf(const geometry_msgs::msg::TwistStamped& m);
+
+}  // namespace swa::wire

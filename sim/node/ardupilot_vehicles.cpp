@@ -1,0 +1,155 @@
+#include "ardupilot_vehicles.h"
+
+#include <algorithm>
+
+#include <swa/ros/ArdupilotServicesPubSubTypes.h>
+#include <swa/ros/ArdupilotStatusPubSubTypes.h>
+#include <swa/ros/ImuPubSubTypes.h>
+#include <swa/ros/TwistStampedPubSubTypes.h>
+
+#include "swa/dds/topics.h"
+#include "swa/px4/frames.h"
+#include "swa/wire/ardupilot.h"
+#include "world_command.h"
+
+namespace swa::sim_node {
+namespace {
+
+namespace topics = dds::topics;
+namespace srv = ardupilot_msgs::srv;
+
+}  // namespace
+
+ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup) {
+  vehicles_.reserve(static_cast<std::size_t>(uav_count));
+  for (int i = 0; i < uav_count; ++i) {
+    Vehicle& v = vehicles_.emplace_back(setup.guid_timeout_s);
+    v.ns = topics::apNamespace(i);
+    v.imu = participant.writer<sensor_msgs::msg::ImuPubSubType>(topics::apTopic(v.ns, "imu/experimental/data"),
+                                                                 "ap_out_writer");
+    v.status = participant.writer<ardupilot_msgs::msg::StatusPubSubType>(topics::apTopic(v.ns, "status"),
+                                                                          "ap_status_writer");
+    v.arm_reply = participant.writer<srv::ArmMotors_ResponsePubSubType>(topics::apReply(v.ns, "arm_motors"),
+                                                                         "ap_service_writer");
+    v.mode_reply = participant.writer<srv::ModeSwitch_ResponsePubSubType>(topics::apReply(v.ns, "mode_switch"),
+                                                                           "ap_service_writer");
+    v.cmd_vel = participant.readerWithOrigin<geometry_msgs::msg::TwistStampedPubSubType>(
+        topics::apTopic(v.ns, "cmd_vel"), "ap_in_reader",
+        [this, i](geometry_msgs::msg::TwistStamped&& m, const dds::WriterGuid& w) {
+          queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
+        });
+    v.arm_request = participant.readerWithIds<srv::ArmMotors_RequestPubSubType>(
+        topics::apRequest(v.ns, "arm_motors"), "ap_service_reader",
+        [this, i](srv::ArmMotors_Request&& m, const dds::SampleIds& ids) {
+          queue_.push(Arrival{i, Input(ArmRequest{std::move(m), ids.self}), Clock::now(), ids.self.writer});
+        });
+    v.mode_request = participant.readerWithIds<srv::ModeSwitch_RequestPubSubType>(
+        topics::apRequest(v.ns, "mode_switch"), "ap_service_reader",
+        [this, i](srv::ModeSwitch_Request&& m, const dds::SampleIds& ids) {
+          queue_.push(Arrival{i, Input(ModeRequest{std::move(m), ids.self}), Clock::now(), ids.self.writer});
+        });
+    publishStatus(v, 0);  // TRANSIENT_LOCAL: a bridge that starts later learns the state at once
+  }
+}
+
+void ArdupilotVehicles::unmatched(int uav, std::vector<std::string>& missing) const {
+  const Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  if (v.imu.matched() < 1) missing.push_back(topics::apTopic(v.ns, "imu/experimental/data") + " (no bridge reading)");
+  if (v.cmd_vel.matched() < 1) missing.push_back(topics::apTopic(v.ns, "cmd_vel") + " (no bridge writing)");
+}
+
+bool ArdupilotVehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) {
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(s.stamp_ns);
+  if (!timestamp) return false;
+  const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({s.roll_rad, s.pitch_rad, s.heading_rad}));
+  sensor_msgs::msg::Imu m = wire::imuMessage(*timestamp, q);
+  v.published.add(s.stamp_ns, seq);
+  v.last_imu = m;
+  return v.imu.write(m);
+}
+
+void ArdupilotVehicles::repeatAttitude(int uav) {
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  if (v.last_imu) v.imu.write(*v.last_imu);
+}
+
+void ArdupilotVehicles::toStandin(Vehicle& v, agent::StampNs now, const geometry_msgs::msg::TwistStamped& m) {
+  const wire::CmdVel c = wire::cmdVelOf(m);
+  v.standin.cmdVel(now, c.map_frame, c.twist);
+  if (c.map_frame) v.yaw_rate_radps = worldYawRate(px4::yawspeedOf(c.twist.yaw_rate_radps));
+}
+
+void ArdupilotVehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now,
+                              const AdmitFn& admit) {
+  arrived_.clear();
+  queue_.drain(arrived_, wait);
+  for (Arrival& a : arrived_) {
+    Vehicle& v = vehicles_[static_cast<std::size_t>(a.uav)];
+    if (const auto* cmd = std::get_if<geometry_msgs::msg::TwistStamped>(&a.message)) {
+      const wire::CmdVel c = wire::cmdVelOf(*cmd);
+      const agent::Vec2 stable = ardupilot::stableVelocityOf(c.twist);
+      // Another frame than "map" is not simulated (the stand-in drops it), and answers nothing.
+      Answer answer = answerOf(a.uav, a.received, a.writer, stable,
+                               worldYawRate(px4::yawspeedOf(c.twist.yaw_rate_radps)), c.map_frame);
+      const std::optional<agent::StampNs> answered =
+          c.timestamp_us && c.map_frame ? px4::stampNsOf(*c.timestamp_us) : std::nullopt;
+      const std::optional<std::uint32_t> seq = answered ? v.published.answer(*answered) : std::nullopt;
+      if (!seq) {
+        // The bridge's own command (or a repeat): it answers no sample the vehicle is waiting for.
+        if (admit(answer)) toStandin(v, now, *cmd);
+        continue;
+      }
+      markAnswered(answer, *answered, *seq);
+      answers.push_back(std::move(answer));
+    } else if (const auto* arm = std::get_if<ArmRequest>(&a.message)) {
+      srv::ArmMotors_Response reply;
+      reply.result(v.standin.armMotors(arm->request.arm()));
+      v.arm_reply.writeReply(reply, arm->id);
+    } else if (const auto* mode = std::get_if<ModeRequest>(&a.message)) {
+      const sim::ArdupilotStandin::ModeReply r = v.standin.modeSwitch(mode->request.mode());
+      srv::ModeSwitch_Response reply;
+      reply.status(r.status);
+      reply.curr_mode(r.curr_mode);
+      v.mode_reply.writeReply(reply, mode->id);
+    }
+  }
+}
+
+void ArdupilotVehicles::apply(const Answer& a) {
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(a.uav));
+  const ardupilot::EnuTwist twist{a.setpoint.vx_mps(), a.setpoint.vy_mps(), 0.0, a.setpoint.yaw_rate_radps()};
+  v.standin.cmdVel(a.setpoint.answered_stamp_ns(), true, twist);
+  v.yaw_rate_radps = a.setpoint.yaw_rate_radps();
+}
+
+void ArdupilotVehicles::step(sim::World& world, const EventFn& event) {
+  const agent::StampNs now = world.time_ns();
+  for (std::size_t k = 0; k < vehicles_.size(); ++k) {
+    Vehicle& v = vehicles_[k];
+    const int uav = static_cast<int>(k);
+    const sim::ArdupilotStandin::Decision d = v.standin.step(now);
+    commandWorld(world, uav, d.velocity_mps, d.following, v.yaw_rate_radps);
+    for (const std::string& text : v.standin.takeEvents()) {
+      event(uav, v.standin.timedOut() ? v.standin.silentForS() : 0.0, "ArduPilot stand-in " + v.ns + ": " + text);
+    }
+    publishStatus(v, now);
+  }
+}
+
+std::string ArdupilotVehicles::commandTopic(int uav) const {
+  return topics::apTopic(vehicles_.at(static_cast<std::size_t>(uav)).ns, "cmd_vel");
+}
+
+void ArdupilotVehicles::publishStatus(Vehicle& v, agent::StampNs now) {
+  const sim::ArdupilotStandin& s = v.standin;
+  if (v.status_sent && s.armed() == v.status_armed && s.mode() == v.status_mode) return;
+  const std::uint64_t timestamp = px4::timestampUsOf(now).value_or(0);
+  ardupilot_msgs::msg::Status m = wire::statusMessage(timestamp, s.armed(), s.mode(), false);
+  v.status.write(m);
+  v.status_sent = true;
+  v.status_armed = s.armed();
+  v.status_mode = s.mode();
+}
+
+}  // namespace swa::sim_node

@@ -1,0 +1,169 @@
+// ArduPilot's conventions (swa/autopilot/ardupilot.h, swa/wire/ardupilot.h) and the simulator's ArduPilot stand-in
+// (swa/sim/ardupilot_standin.h), on simulation time (10 ms steps).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "swa/autopilot/ardupilot.h"
+#include "swa/autopilot/bridge_core.h"
+#include "swa/sim/ardupilot_standin.h"
+#include "swa/wire/ardupilot.h"
+
+namespace swa::ardupilot {
+namespace {
+
+TEST(Ardupilot, StampsAreWholeMicrosecondsOfTheMessagesTime) {
+  EXPECT_EQ(timestampUsOf(12, 345'678'000u), std::optional<std::uint64_t>(12'345'678u));
+  EXPECT_EQ(timestampUsOf(1, 999u), std::optional<std::uint64_t>(1'000'000u));  // below a microsecond: dropped
+  EXPECT_FALSE(timestampUsOf(-1, 0u));
+  EXPECT_FALSE(timestampUsOf(0, 1'000'000'000u));
+  const std::optional<RosTime> t = rosTimeOf(12'345'678u);
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->sec, 12);
+  EXPECT_EQ(t->nanosec, 345'678'000u);
+  EXPECT_FALSE(rosTimeOf(std::uint64_t{1} << 60));
+}
+
+TEST(Ardupilot, TheImuOrientationIsReadInEitherFieldOrder) {
+  // GIVEN an attitude heading 30 deg east of north, 5 deg nose up (FRD -> NED, as ArduPilot's AHRS has it)
+  const px4::Quaternion q = px4::quaternionOf(px4::Euler{0.0, 5.0 * M_PI / 180.0, 30.0 * M_PI / 180.0});
+  // WHEN the stand-in writes it and the bridge reads it the ROS way THEN it is the same attitude
+  const sensor_msgs::msg::Imu m = wire::imuMessage(7'000'000u, q);
+  const px4::Quaternion back = wire::attitudeOf(m, QuaternionLayout::kRos);
+  EXPECT_NEAR(back.w, q.w, 1e-15);
+  EXPECT_NEAR(back.z, q.z, 1e-15);
+  EXPECT_EQ(m.header().frame_id(), "base_link_ned");
+  EXPECT_EQ(wire::timestampUsOf(m.header().stamp()), std::optional<std::uint64_t>(7'000'000u));
+  // AND an early AP_DDS message, with w, x, y, z in the fields x, y, z, w, reads the same with the wxyz layout
+  sensor_msgs::msg::Imu early;
+  early.orientation().x(q.w);
+  early.orientation().y(q.x);
+  early.orientation().z(q.y);
+  early.orientation().w(q.z);
+  const px4::Quaternion fixed = wire::attitudeOf(early, QuaternionLayout::kWxyzInXyzw);
+  EXPECT_NEAR(fixed.w, q.w, 1e-15);
+  EXPECT_NEAR(fixed.x, q.x, 1e-15);
+  EXPECT_NEAR(fixed.y, q.y, 1e-15);
+  EXPECT_NEAR(fixed.z, q.z, 1e-15);
+  // AND read the ROS way it is no level flight: what the bridge's warning looks for
+  const px4::Euler wrong = px4::eulerOf(wire::attitudeOf(early, QuaternionLayout::kRos));
+  EXPECT_GT(std::max(std::abs(wrong.roll), std::abs(wrong.pitch)), 1.2);
+}
+
+TEST(Ardupilot, TheCoresSetpointIsAnEnuCmdVelInTheMapFrame) {
+  // GIVEN the bridge core configured for ArduPilot, one attitude sample and the agent's answer: 1 m/s east, 0.5 m/s
+  // north, turning left (counter-clockwise) at 0.3 rad/s
+  autopilot::BridgeConfig config;
+  config.autopilot = autopilot::ardupilotAutopilot();
+  autopilot::BridgeCore core(config);
+  ASSERT_TRUE(core.onAttitude(5'000'000u, px4::Quaternion{}, 0.0));
+  agent::VelocityCommand c;
+  c.answered_stamp_ns = 5'000'000'000;
+  c.stamp_ns = c.answered_stamp_ns;
+  c.velocity_mps = agent::Vec2(1.0, 0.5);
+  c.yaw_rate_radps = 0.3;
+  const autopilot::Outbox out = core.onCommand(c, 0.0);
+  ASSERT_TRUE(out.setpoint);
+  // WHEN it goes out as cmd_vel THEN ENU, the same yaw rate (ROS's sense is SWA's), stamped with the sample's time
+  const geometry_msgs::msg::TwistStamped m = wire::cmdVel(*out.setpoint);
+  EXPECT_EQ(m.header().frame_id(), "map");
+  EXPECT_EQ(m.header().stamp().sec(), 5);
+  EXPECT_EQ(m.header().stamp().nanosec(), 0u);
+  EXPECT_DOUBLE_EQ(m.twist().linear().x(), 1.0);
+  EXPECT_DOUBLE_EQ(m.twist().linear().y(), 0.5);
+  EXPECT_DOUBLE_EQ(m.twist().linear().z(), 0.0);
+  EXPECT_DOUBLE_EQ(m.twist().angular().z(), 0.3);
+  // AND the stand-in reads back what was sent
+  const wire::CmdVel back = wire::cmdVelOf(m);
+  EXPECT_TRUE(back.map_frame);
+  EXPECT_EQ(back.timestamp_us, std::optional<std::uint64_t>(5'000'000u));
+  EXPECT_EQ(stableVelocityOf(back.twist), agent::Vec2(1.0, 0.5));
+  // AND the core names ArduPilot's GUIDED in its requests
+  EXPECT_STREQ(core.autopilot().control_mode_name, "GUIDED");
+  EXPECT_STREQ(copterModeName(kModeGuided), "GUIDED");
+}
+
+}  // namespace
+}  // namespace swa::ardupilot
+
+namespace swa::sim {
+namespace {
+
+constexpr agent::StampNs kStepNs = 10'000'000;
+const ardupilot::EnuTwist kEast{1.0, 0.0, 0.0, 0.2};
+
+TEST(ArdupilotStandin, FliesCmdVelOnlyInGuidedAndArmed) {
+  ArdupilotStandin s(3.0);
+  // GIVEN the vehicle as the scenario starts it: armed, LOITER
+  EXPECT_TRUE(s.armed());
+  EXPECT_EQ(s.mode(), ardupilot::kModeLoiter);
+  // WHEN cmd_vel arrives in LOITER THEN it is dropped: the vehicle holds
+  s.cmdVel(0, true, kEast);
+  EXPECT_FALSE(s.step(kStepNs).following);
+  // WHEN GUIDED is requested THEN it switches, and the next cmd_vel is flown, yaw rate included
+  const ArdupilotStandin::ModeReply r = s.modeSwitch(ardupilot::kModeGuided);
+  EXPECT_TRUE(r.status);
+  EXPECT_EQ(r.curr_mode, ardupilot::kModeGuided);
+  EXPECT_FALSE(s.step(2 * kStepNs).following);  // GUIDED starts from a stop
+  s.cmdVel(2 * kStepNs, true, kEast);
+  const ArdupilotStandin::Decision d = s.step(3 * kStepNs);
+  EXPECT_TRUE(d.following);
+  EXPECT_EQ(d.velocity_mps, agent::Vec2(1.0, 0.0));
+  EXPECT_DOUBLE_EQ(d.yaw_rate_radps, 0.2);
+  // WHEN it is disarmed THEN it no longer follows; a mode it does not simulate is refused and the mode kept
+  EXPECT_TRUE(s.armMotors(false));
+  EXPECT_FALSE(s.step(4 * kStepNs).following);
+  const ArdupilotStandin::ModeReply refused = s.modeSwitch(ardupilot::kModeRtl);
+  EXPECT_FALSE(refused.status);
+  EXPECT_EQ(refused.curr_mode, ardupilot::kModeGuided);
+  const std::vector<std::string> events = s.takeEvents();
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0], "GUIDED on request");
+  EXPECT_EQ(events[1], "disarmed on request");
+}
+
+TEST(ArdupilotStandin, StopsAfterGuidTimeoutAndMovesAgainOnTheNextCmdVel) {
+  ArdupilotStandin s(1.0);
+  s.modeSwitch(ardupilot::kModeGuided);
+  s.cmdVel(0, true, kEast);
+  s.takeEvents();
+  // GIVEN cmd_vel silent: it follows the last one up to GUID_TIMEOUT, then stops once, holding in GUIDED
+  EXPECT_TRUE(s.step(100 * kStepNs).following);
+  EXPECT_FALSE(s.step(101 * kStepNs).following);
+  EXPECT_TRUE(s.timedOut());
+  EXPECT_NEAR(s.silentForS(), 1.01, 1e-9);
+  EXPECT_EQ(s.mode(), ardupilot::kModeGuided);
+  std::vector<std::string> events = s.takeEvents();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_NE(events[0].find("no cmd_vel for 1.01 s (GUID_TIMEOUT)"), std::string::npos) << events[0];
+  EXPECT_FALSE(s.step(150 * kStepNs).following);
+  EXPECT_TRUE(s.takeEvents().empty());
+  // WHEN cmd_vel comes again THEN it follows at once
+  s.cmdVel(200 * kStepNs, true, kEast);
+  EXPECT_TRUE(s.step(201 * kStepNs).following);
+  events = s.takeEvents();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0], "cmd_vel again: following it");
+}
+
+TEST(ArdupilotStandin, OtherFramesAndNonFiniteCommandsAreNotFlown) {
+  ArdupilotStandin s(3.0);
+  s.modeSwitch(ardupilot::kModeGuided);
+  s.takeEvents();
+  // GIVEN cmd_vel in base_link (body frame), twice THEN dropped, said once
+  s.cmdVel(0, false, kEast);
+  s.cmdVel(kStepNs, false, kEast);
+  EXPECT_FALSE(s.step(2 * kStepNs).following);
+  EXPECT_EQ(s.takeEvents().size(), 1u);
+  // GIVEN a NaN velocity THEN the vehicle holds instead of flying it
+  s.cmdVel(3 * kStepNs, true, ardupilot::EnuTwist{std::nan(""), 0.0, 0.0, 0.0});
+  const ArdupilotStandin::Decision d = s.step(4 * kStepNs);
+  EXPECT_FALSE(d.following);
+  EXPECT_EQ(d.velocity_mps, agent::Vec2::Zero());
+}
+
+}  // namespace
+}  // namespace swa::sim
