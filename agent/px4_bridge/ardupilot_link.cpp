@@ -2,7 +2,7 @@
 // ardupilot.h): its IMU message's orientation in, its status in, the core's setpoints out as cmd_vel in frame "map"
 // (ENU), and with --engage its arm_motors and mode_switch services.
 // ArduPilot has no offboard heartbeat: its liveness is the command stream itself, and when that stops its GUIDED
-// velocity timeout (GUID_TIMEOUT) stops the vehicle. So the core's heartbeats send nothing here.
+// velocity timeout (GUID_TIMEOUT) stops the vehicle (the core, told so, puts no heartbeat in the outbox).
 
 #include <array>
 #include <atomic>
@@ -49,8 +49,8 @@ class ArdupilotLink : public VehicleLink {
           topics::apReply(ns_, "mode_switch"), "ap_service_reader",
           [this](srv::ModeSwitch_Response&& m, const dds::SampleIds& ids) {
             if (isOurs(ids)) {
-              events_.log(std::string("ArduPilot answered the GUIDED request: ") + (m.status() ? "switched" : "refused") +
-                          ", mode now " + ardupilot::copterModeName(m.curr_mode()) + " (" +
+              events_.log(std::string("ArduPilot answered the GUIDED request: ") +
+                          (m.status() ? "switched" : "refused") + ", mode now " + ardupilot::copterModeName(m.curr_mode()) + " (" +
                           std::to_string(m.curr_mode()) + ")");
             }
           });
@@ -62,7 +62,9 @@ class ArdupilotLink : public VehicleLink {
         topics::apTopic(ns_, "imu/experimental/data"), "ap_out_reader", [this](sensor_msgs::msg::Imu&& m) {
           const std::optional<std::uint64_t> t = wire::timestampUsOf(m.header().stamp());
           if (!t) {  // a negative time or nanosec >= 1e9: no instant to stamp the sample with
-            if (bad_stamps_++ == 0) events_.log("dropping IMU messages with an invalid stamp (negative, or nanosec >= 1e9)");
+            if (bad_stamps_++ == 0) {
+              events_.log("dropping IMU messages with an invalid stamp (negative, or nanosec >= 1e9)");
+            }
             return;
           }
           events_.attitude(*t, wire::attitudeOf(m, options_.ap_quaternion));

@@ -154,8 +154,29 @@ struct Column {
 
 }  // namespace
 
+// The scenario of one cell of the table: the rule's settings first, so a --set of the user's wins over them.
+swa::sim::Scenario cellScenario(const Options& o, double fov, int n, const std::string& rule) {
+  std::vector<std::string> sets = {"uav_count=" + std::to_string(n), "duration_s=" + std::to_string(o.duration_s),
+                                   "mps.fov_deg=" + std::to_string(fov)};
+  const std::vector<std::string>& r = kRules.at(rule);
+  sets.insert(sets.end(), r.begin(), r.end());
+  sets.insert(sets.end(), o.sets.begin(), o.sets.end());
+  return swa::sim::loadScenario(o.scenario, sets);
+}
+
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
+  // Every cell's scenario before the first run: a --set one rule refuses stops the study now, not an hour in.
+  try {
+    for (const double fov : o.fovs) {
+      for (const int n : o.sizes) {
+        for (const std::string& rule : o.rules) cellScenario(o, fov, n, rule);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "study_formation: %s\n", e.what());
+    return 2;
+  }
   std::printf("study_formation: %s, %d seeds, %.0f s, GNSS lost as in the scenario; extra:", o.scenario.c_str(),
               o.seeds, o.duration_s);
   for (const std::string& s : o.sets) std::printf(" %s", s.c_str());
@@ -166,14 +187,7 @@ int main(int argc, char** argv) {
   for (const double fov : o.fovs) {
     for (const int n : o.sizes) {
       for (const std::string& rule : o.rules) {
-        // The rule's settings first, so a --set of the user's wins over them.
-        std::vector<std::string> sets = {"uav_count=" + std::to_string(n),
-                                         "duration_s=" + std::to_string(o.duration_s),
-                                         "mps.fov_deg=" + std::to_string(fov)};
-        const std::vector<std::string>& r = kRules.at(rule);
-        sets.insert(sets.end(), r.begin(), r.end());
-        sets.insert(sets.end(), o.sets.begin(), o.sets.end());
-        const swa::sim::Scenario scenario = swa::sim::loadScenario(o.scenario, sets);
+        const swa::sim::Scenario scenario = cellScenario(o, fov, n, rule);
         const std::vector<RunResult> runs = swa::batch::runSeeds(scenario, o.seeds, o.jobs, nullptr);
         Column d120, dend, edge, drift, disp, anees, in_band;
         int split = 0, collided = 0;

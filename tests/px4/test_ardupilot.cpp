@@ -81,6 +81,10 @@ TEST(Ardupilot, TheCoresSetpointIsAnEnuCmdVelInTheMapFrame) {
   EXPECT_TRUE(back.map_frame);
   EXPECT_EQ(back.timestamp_us, std::optional<std::uint64_t>(5'000'000u));
   EXPECT_EQ(stableVelocityOf(back.twist), agent::Vec2(1.0, 0.5));
+  // AND no heartbeat goes with it, nor later: ArduPilot has none
+  EXPECT_FALSE(out.heartbeat_us);
+  EXPECT_FALSE(core.tick(0.2).heartbeat_us);
+  EXPECT_EQ(core.counters().heartbeats_out, 0u);
   // AND the core names ArduPilot's GUIDED in its requests
   EXPECT_STREQ(core.autopilot().control_mode_name, "GUIDED");
   EXPECT_STREQ(copterModeName(kModeGuided), "GUIDED");

@@ -1,4 +1,4 @@
-// The autopilot bridge's rules (swa/px4/bridge_core.h) on a synthetic vehicle: PX4 attitude samples every 10 ms of
+// The autopilot bridge's rules (swa/autopilot/bridge_core.h) on a synthetic vehicle: PX4 attitude samples every 10 ms of
 // vehicle time, agent commands, and a local clock the test advances (no sleeps).
 
 #include <gtest/gtest.h>

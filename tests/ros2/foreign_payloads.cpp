@@ -4,11 +4,15 @@
 //   foreign_payloads check FILE   payloads the independent implementation serialised, deserialised here and compared
 // Types: vision_msgs/Detection3DArray and mrs_msgs/PoseWithCovarianceArrayStamped (as the simulator writes them and
 // the agent reads them), PX4's VehicleStatus, SensorGps and VehicleLocalPosition in every release's layout (as the
-// stand-in writes them and the bridge reads them). Exit 0 when everything matched, 1 otherwise, 2 on bad usage.
+// stand-in writes them and the bridge reads them), and ArduPilot's sensor_msgs/Imu, ardupilot_msgs/Status, cmd_vel
+// (geometry_msgs/TwistStamped) and the arm_motors / mode_switch requests and responses (both ways: the stand-in and
+// the bridge each write some and read the others). Exit 0 when everything matched, 1 otherwise, 2 on bad usage.
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,9 +24,14 @@
 #include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
+#include <swa/ros/ArdupilotServicesPubSubTypes.h>
+#include <swa/ros/ArdupilotStatusPubSubTypes.h>
 #include <swa/ros/Detection3DArrayPubSubTypes.h>
+#include <swa/ros/ImuPubSubTypes.h>
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
+#include <swa/ros/TwistStampedPubSubTypes.h>
 
+#include "swa/wire/ardupilot.h"
 #include "swa/wire/px4.h"
 #include "swa/wire/ros_detections.h"
 
@@ -141,6 +150,49 @@ json uvdarExpected() {
   return {{"header", header("uav3/fcu")}, {"poses", poses}};
 }
 
+// ArduPilot: an attitude heading 30 deg east of north, 5 deg nose up, at 12.345678 s; the agent's command 1.5 m/s east,
+// -0.5 m/s north, turning at 0.25 rad/s, answering that sample.
+namespace ap {
+
+constexpr std::uint64_t kStampUs = 12'345'678;
+const swa::px4::Quaternion kAttitude =
+    swa::px4::quaternionOf(swa::px4::Euler{0.0, 5.0 * M_PI / 180.0, 30.0 * M_PI / 180.0});
+
+swa::autopilot::Setpoint setpoint() {
+  return swa::autopilot::Setpoint{kStampUs, swa::px4::nedOf(swa::agent::Vec2(1.5, -0.5)), swa::px4::yawspeedOf(0.25)};
+}
+
+json time() { return {{"sec", 12}, {"nanosec", 345678000}}; }
+json vector3(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
+json nine(double first) {
+  json a = json::array({first});
+  for (int k = 1; k < 9; ++k) a.push_back(0.0);
+  return a;
+}
+
+json imuExpected() {
+  const swa::ardupilot::OrientationFields q = swa::ardupilot::orientationFieldsOf(kAttitude);
+  return {{"header", {{"stamp", time()}, {"frame_id", "base_link_ned"}}},
+          {"orientation", {{"x", q.x}, {"y", q.y}, {"z", q.z}, {"w", q.w}}},
+          {"orientation_covariance", nine(0.0)},
+          {"angular_velocity", vector3(0, 0, 0)},
+          {"angular_velocity_covariance", nine(-1.0)},
+          {"linear_acceleration", vector3(0, 0, 0)},
+          {"linear_acceleration_covariance", nine(-1.0)}};
+}
+
+json statusExpected() {
+  return {{"header", {{"stamp", time()}, {"frame_id", ""}}}, {"vehicle_type", 2}, {"armed", true}, {"mode", 4},
+          {"flying", true}, {"failsafe", json::array({24})}};
+}
+
+json cmdVelExpected() {
+  return {{"header", {{"stamp", time()}, {"frame_id", "map"}}},
+          {"twist", {{"linear", vector3(1.5, -0.5, 0.0)}, {"angular", vector3(0.0, 0.0, 0.25)}}}};
+}
+
+}  // namespace ap
+
 int write(const std::string& path) {
   namespace px4 = px4_msgs::msg;
   namespace px4_16 = px4_v1_16::px4_msgs::msg;
@@ -188,9 +240,75 @@ int write(const std::string& path) {
                swa::wire::vehicleLocalPosition<px4_16::VehicleLocalPosition>(t, g)),
            position);
   }
+  // ArduPilot's, complete: the decoder must give exactly these.
+  namespace srv = ardupilot_msgs::srv;
+  out.push_back({{"ros_type", "sensor_msgs/msg/Imu"},
+                 {"cdr_hex",
+                  serialise<sensor_msgs::msg::ImuPubSubType>(swa::wire::imuMessage(ap::kStampUs, ap::kAttitude))},
+                 {"expected", ap::imuExpected()}});
+  out.push_back({{"ros_type", "ardupilot_msgs/msg/Status"},
+                 {"cdr_hex", serialise<ardupilot_msgs::msg::StatusPubSubType>(
+                                 swa::wire::statusMessage(ap::kStampUs, true, 4, true))},
+                 {"expected", ap::statusExpected()}});
+  out.push_back({{"ros_type", "geometry_msgs/msg/TwistStamped"},
+                 {"cdr_hex", serialise<geometry_msgs::msg::TwistStampedPubSubType>(swa::wire::cmdVel(ap::setpoint()))},
+                 {"expected", ap::cmdVelExpected()}});
+  srv::ArmMotors_Request arm;
+  arm.arm(true);
+  out.push_back({{"ros_type", "ardupilot_msgs/srv/ArmMotors_Request"},
+                 {"cdr_hex", serialise<srv::ArmMotors_RequestPubSubType>(arm)}, {"expected", {{"arm", true}}}});
+  srv::ArmMotors_Response armed;
+  armed.result(true);
+  out.push_back({{"ros_type", "ardupilot_msgs/srv/ArmMotors_Response"},
+                 {"cdr_hex", serialise<srv::ArmMotors_ResponsePubSubType>(armed)}, {"expected", {{"result", true}}}});
+  srv::ModeSwitch_Request mode;
+  mode.mode(4);
+  out.push_back({{"ros_type", "ardupilot_msgs/srv/ModeSwitch_Request"},
+                 {"cdr_hex", serialise<srv::ModeSwitch_RequestPubSubType>(mode)}, {"expected", {{"mode", 4}}}});
+  srv::ModeSwitch_Response switched;
+  switched.status(true);
+  switched.curr_mode(4);
+  out.push_back({{"ros_type", "ardupilot_msgs/srv/ModeSwitch_Response"},
+                 {"cdr_hex", serialise<srv::ModeSwitch_ResponsePubSubType>(switched)},
+                 {"expected", {{"status", true}, {"curr_mode", 4}}}});
   std::ofstream(path) << out.dump(1) << "\n";
   std::cout << "foreign_payloads: wrote " << out.size() << " payloads to " << path << "\n";
   return 0;
+}
+
+// An ArduPilot payload the independent implementation serialised, read as the bridge (Imu, Status, the responses) or
+// the stand-in (cmd_vel, the requests) reads it: whether it holds the values written. nullopt: not ArduPilot's.
+std::optional<bool> checkArdupilot(const std::string& type, const std::string& hex) {
+  namespace srv = ardupilot_msgs::srv;
+  if (type == "sensor_msgs/msg/Imu") {
+    const sensor_msgs::msg::Imu m = deserialise<sensor_msgs::msg::ImuPubSubType>(hex);
+    const swa::px4::Quaternion q = swa::wire::attitudeOf(m, swa::ardupilot::QuaternionLayout::kRos);
+    return swa::wire::timestampUsOf(m.header().stamp()) == ap::kStampUs && q.w == ap::kAttitude.w &&
+           q.x == ap::kAttitude.x && q.y == ap::kAttitude.y && q.z == ap::kAttitude.z &&
+           m.header().frame_id() == "base_link_ned";
+  }
+  if (type == "ardupilot_msgs/msg/Status") {
+    const ardupilot_msgs::msg::Status m = deserialise<ardupilot_msgs::msg::StatusPubSubType>(hex);
+    return m.armed() && m.mode() == 4 && m.vehicle_type() == 2 && m.flying() &&
+           m.failsafe() == std::vector<std::uint8_t>{24};
+  }
+  if (type == "geometry_msgs/msg/TwistStamped") {
+    const swa::wire::CmdVel c = swa::wire::cmdVelOf(deserialise<geometry_msgs::msg::TwistStampedPubSubType>(hex));
+    return c.map_frame && c.timestamp_us == ap::kStampUs && c.twist.east_mps == 1.5 && c.twist.north_mps == -0.5 &&
+           c.twist.up_mps == 0.0 && c.twist.yaw_rate_radps == 0.25;
+  }
+  if (type == "ardupilot_msgs/srv/ArmMotors_Request") return deserialise<srv::ArmMotors_RequestPubSubType>(hex).arm();
+  if (type == "ardupilot_msgs/srv/ArmMotors_Response") {
+    return deserialise<srv::ArmMotors_ResponsePubSubType>(hex).result();
+  }
+  if (type == "ardupilot_msgs/srv/ModeSwitch_Request") {
+    return deserialise<srv::ModeSwitch_RequestPubSubType>(hex).mode() == 4;
+  }
+  if (type == "ardupilot_msgs/srv/ModeSwitch_Response") {
+    const srv::ModeSwitch_Response m = deserialise<srv::ModeSwitch_ResponsePubSubType>(hex);
+    return m.status() && m.curr_mode() == 4;
+  }
+  return std::nullopt;
 }
 
 // Payloads the independent implementation serialised from the same values: read back as the agent reads them.
@@ -227,6 +345,12 @@ int check(const std::string& path) {
         }
       } else if (type == "mrs_msgs/msg/PoseWithCovarianceArrayStamped") {
         expectSet(swa::wire::foreignOf(deserialise<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(hex)), type);
+      } else if (const std::optional<bool> ok = checkArdupilot(type, hex)) {
+        if (!*ok) {
+          std::cerr << "MISMATCH: " << type << " serialised by the independent implementation reads differently\n";
+          ++failures;
+        }
+        ++checked;
       } else {
         std::cerr << "foreign_payloads: unexpected type " << type << "\n";
         ++failures;
@@ -238,7 +362,7 @@ int check(const std::string& path) {
   }
   std::cout << "foreign_payloads: " << checked - failures << " of " << checked
             << " payloads serialised independently read as written\n";
-  return failures == 0 && checked >= 2 ? 0 : 1;
+  return failures == 0 && checked >= 9 ? 0 : 1;
 }
 
 }  // namespace

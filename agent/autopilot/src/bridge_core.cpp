@@ -27,10 +27,10 @@ std::uint64_t elapsedUs(std::uint64_t from_us, std::uint64_t to_us) { return to_
 
 }  // namespace
 
-Autopilot px4Autopilot() { return Autopilot{"PX4", px4::kNavStateOffboard, "offboard", px4::navStateName}; }
+Autopilot px4Autopilot() { return Autopilot{"PX4", px4::kNavStateOffboard, "offboard", px4::navStateName, true}; }
 
 Autopilot ardupilotAutopilot() {
-  return Autopilot{"ArduPilot", ardupilot::kModeGuided, "GUIDED", ardupilot::copterModeName};
+  return Autopilot{"ArduPilot", ardupilot::kModeGuided, "GUIDED", ardupilot::copterModeName, false};
 }
 
 const char* linkName(Link link) {
@@ -61,8 +61,8 @@ std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_u
       return std::nullopt;
     }
     ++counters_.clock_restarts;
-    note(std::string(config_.autopilot.name) + "'s clock restarted (attitude stamp " + std::to_string(timestamp_us) + " us after " +
-         std::to_string(*newest_us_) + " us): the old timeline's commands are forgotten");
+    note(std::string(config_.autopilot.name) + "'s clock restarted (attitude stamp " + std::to_string(timestamp_us) +
+         " us after " + std::to_string(*newest_us_) + " us): the old timeline's commands are forgotten");
     first_us_.reset();
     applied_us_.reset();
     streaming_since_us_.reset();
@@ -105,7 +105,7 @@ Outbox BridgeCore::onCommand(const agent::VelocityCommand& command, double now_s
   ++counters_.commands_applied;
   applied_us_ = *answered;
   out.setpoint = Setpoint{*answered, nedOf(v), yawspeedOf(yaw_rate)};
-  out.heartbeat_us = *answered;
+  if (config_.autopilot.heartbeat) out.heartbeat_us = *answered;
   sent(out, now_s);
   return out;
 }
@@ -149,10 +149,10 @@ Outbox BridgeCore::tick(double now_s) {
     return out;
   }
   if (!streaming_since_us_) streaming_since_us_ = *newest_us_;
-  if (out.setpoint || now_s - last_heartbeat_s_ >= config_.heartbeat_period_s) {
+  if (config_.autopilot.heartbeat && (out.setpoint || now_s - last_heartbeat_s_ >= config_.heartbeat_period_s)) {
     out.heartbeat_us = 0;
-    sent(out, now_s);
   }
+  if (out.setpoint || out.heartbeat_us) sent(out, now_s);
   // Engage only on the agent's own commands, with the stream established in vehicle time and the state known.
   if (!config_.engage || now != Link::kFresh || !armed_ || !mode_) return out;
   if (elapsedUs(*streaming_since_us_, *newest_us_) < microseconds(config_.engage_after_s)) return out;

@@ -2,10 +2,11 @@
 // @foxglove/rosmsg2-serialization, no code of SWA's) against the official definitions (issue #27):
 //   node foreign_check.mjs CAPTURE.json PX4_MSG_DIR OUT.json
 // 1. decodes every payload SWA serialised (tests/ros2/foreign_payloads.cpp write) and compares it field for field
-//    with the values SWA set: vision_msgs and mrs_msgs completely, PX4's messages on the fields the stand-in sets and
-//    zero everywhere else, each against the release's own .msg file (PX4_MSG_DIR/<tag>/<Name>.msg);
-// 2. serialises the same values of the vision_msgs and mrs_msgs payloads itself and writes them to OUT.json, for
-//    foreign_payloads check to read as the agent does.
+//    with the values SWA set: vision_msgs, mrs_msgs and ArduPilot's messages completely, PX4's messages on the fields
+//    the stand-in sets and zero everywhere else, each against the release's own .msg file
+//    (PX4_MSG_DIR/<tag>/<Name>.msg);
+// 2. serialises the same values of every payload but PX4's itself and writes them to OUT.json, for foreign_payloads
+//    check to read as the agent, the bridge or the stand-in does.
 // It first checks that it can fail: a Point definition with x and y swapped must not match.
 // Exit 0: everything matched; 1: a difference (each printed); 2: bad usage.
 
@@ -39,6 +40,21 @@ const STANDARD = {
   "vision_msgs/BoundingBox3D": "geometry_msgs/Pose center\ngeometry_msgs/Vector3 size\n",
   "mrs_msgs/PoseWithCovarianceArrayStamped": "std_msgs/Header header\nPoseWithCovarianceIdentified[] poses\n",
   "mrs_msgs/PoseWithCovarianceIdentified": "uint32 id\ngeometry_msgs/Pose pose\nfloat64[36] covariance\n",
+  // ArduPilot's DDS interface: sensor_msgs/Imu and geometry_msgs/Twist(Stamped) of common_interfaces, and
+  // ardupilot_msgs (ArduPilot's Tools/ros2/ardupilot_msgs: msg/Status.msg, srv/ArmMotors.srv, srv/ModeSwitch.srv;
+  // constants left out, they are not on the wire).
+  "sensor_msgs/Imu":
+    "std_msgs/Header header\ngeometry_msgs/Quaternion orientation\nfloat64[9] orientation_covariance\n" +
+    "geometry_msgs/Vector3 angular_velocity\nfloat64[9] angular_velocity_covariance\n" +
+    "geometry_msgs/Vector3 linear_acceleration\nfloat64[9] linear_acceleration_covariance\n",
+  "geometry_msgs/TwistStamped": "std_msgs/Header header\nTwist twist\n",
+  "geometry_msgs/Twist": "Vector3 linear\nVector3 angular\n",
+  "ardupilot_msgs/Status":
+    "std_msgs/Header header\nuint8 vehicle_type\nbool armed\nuint8 mode\nbool flying\nuint8[] failsafe\n",
+  "ardupilot_msgs/srv/ArmMotors_Request": "bool arm\n",
+  "ardupilot_msgs/srv/ArmMotors_Response": "bool result\n",
+  "ardupilot_msgs/srv/ModeSwitch_Request": "uint8 mode\n",
+  "ardupilot_msgs/srv/ModeSwitch_Response": "bool status\nuint8 curr_mode\n",
 };
 function definitionText(full, tag, overrides) {
   if (overrides && overrides[full] !== undefined) return overrides[full];

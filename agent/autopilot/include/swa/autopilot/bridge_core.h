@@ -17,7 +17,7 @@
 //     the autopilot's own failsafe takes over (PX4: offboard loss, COM_OF_LOSS_T and COM_OBL_RC_ACT; ArduPilot: the
 //     GUIDED velocity timeout, GUID_TIMEOUT). The bridge never decides a failsafe itself;
 //   - otherwise the heartbeat is repeated every heartbeat_period_s, stamped 0 (PX4 stamps it on receipt; ArduPilot has
-//     no heartbeat, its adapter sends nothing for one).
+//     no heartbeat, and its outbox has none).
 // Commands are accepted only if they answer a sample this bridge forwarded (not one from before it started: a
 // restarted bridge is sent its writer's last command again) and are newer than the last one applied.
 // It arms and requests the external-control mode (PX4: OFFBOARD; ArduPilot: GUIDED) only with `engage` (bench tests,
@@ -43,6 +43,7 @@ struct Autopilot {
   std::uint8_t control_mode = 14;                    // PX4: nav_state OFFBOARD; ArduPilot Copter: mode GUIDED (4)
   const char* control_mode_name = "offboard";
   const char* (*mode_name)(std::uint8_t mode) = nullptr;  // the mode's name in the logs
+  bool heartbeat = true;  // PX4's offboard_control_mode; ArduPilot has none (the commands are its liveness)
 };
 Autopilot px4Autopilot();
 Autopilot ardupilotAutopilot();
@@ -98,9 +99,9 @@ class BridgeCore {
   explicit BridgeCore(const BridgeConfig& config);
 
   // The vehicle's attitude (PX4: vehicle_attitude; ArduPilot: the IMU message's orientation): the IMU sample for the
-  // agent, or nullopt if rejected (not a unit quaternion, not newer than the last one; counted). A timestamp more than a
-  // second behind the newest is the vehicle's clock restarted: accepted, and the commands of the old timeline are
-  // forgotten.
+  // agent, or nullopt if rejected (not a unit quaternion, not newer than the last one; counted). A timestamp more
+  // than a second behind the newest is the vehicle's clock restarted: accepted, and the commands of the old timeline
+  // are forgotten.
   std::optional<agent::ImuSample> onAttitude(std::uint64_t timestamp_us, const Quaternion& q, double now_s);
   // The agent's command (cmd_vel): its setpoint and heartbeat to send at once, or nothing if it is not accepted.
   Outbox onCommand(const agent::VelocityCommand& command, double now_s);
