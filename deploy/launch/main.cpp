@@ -135,10 +135,6 @@ app::Plan prepare(const std::vector<std::string>& args) {
     runs.push_back({first, out, base, originOf(o)});
   }
   const bool bridges = base.vehicle.interface != sim::VehicleInterface::kDirect;
-  if (base.vehicle.interface == sim::VehicleInterface::kArdupilot && !o.secure_dir.empty()) {
-    throw std::invalid_argument("--secure with vehicle.interface = ardupilot: the credentials grant the bridges "
-                                "PX4's topics only so far; run ArduPilot without --secure");
-  }
   const std::vector<std::string> discovery_server = applyDeployment(o, base.uav_count, bridges);
   std::vector<std::string> problems;
   const Binaries bin = findBinaries(o.bin_dir, bridges, problems);

@@ -35,14 +35,20 @@ Permissions (default DENY, nothing else is allowed):
                  reads swa/uav*/cmd_vel; as every UAV's PX4 stand-in (vehicle.interface=px4) writes
                  rt/<P>*/fmu/out/vehicle_attitude, vehicle_status(_v1), vehicle_command_ack,
                  vehicle_gps_position, vehicle_local_position(_v1) and reads
-                 rt/<P>*/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command
+                 rt/<P>*/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command; as every UAV's
+                 ArduPilot stand-in (vehicle.interface=ardupilot) writes rt/ap/v*/imu/experimental/data,
+                 status, navsat and the replies rr/ap/v*/arm_motorsReply, mode_switchReply, and reads
+                 rt/ap/v*/cmd_vel and the requests rq/ap/v*/arm_motorsRequest, mode_switchRequest
   swa_monitor    reads swa/truth, swa/events, swa/uav*/state, and to record them (swa_monitor --record) swa/clock,
                  swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/cmd_vel, swa/uav*/bridge_state
   swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I (swa_px4_bridge, or a bridge of your own):
                  writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and
                  rt/<P><I>/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command;
                  reads swa/uav<I>/cmd_vel and rt/<P><I>/fmu/out/vehicle_attitude, vehicle_status(_v1),
-                 vehicle_command_ack, vehicle_gps_position, vehicle_local_position(_v1)
+                 vehicle_command_ack, vehicle_gps_position, vehicle_local_position(_v1); for an ArduPilot
+                 vehicle (namespace ap/v<I+1>) writes rt/ap/v<I+1>/cmd_vel and the requests
+                 rq/ap/v<I+1>/arm_motorsRequest, mode_switchRequest, and reads rt/ap/v<I+1>/imu/experimental/data,
+                 status, navsat and the replies rr/ap/v<I+1>/arm_motorsReply, mode_switchReply
 <P> is the PX4 namespace prefix (--px4-prefix, default px4_: UAV I's PX4 runs uxrce_dds_client with -n px4_<I>).
 (_v1): both names, so the same credentials serve every PX4 release (v1.16 and v1.17 version these topics).
 With --naming ros2 every swa/... topic above is rt/[<NS>/]swa/... (SWA_NAMING=ros2, SWA_ROS_NAMESPACE=<NS>).
@@ -345,6 +351,12 @@ px4_out() {
        "rt/$1/fmu/out/vehicle_local_position_v1"
 }
 px4_in() { echo "rt/$1/fmu/in/trajectory_setpoint rt/$1/fmu/in/offboard_control_mode rt/$1/fmu/in/vehicle_command"; }
+# ArduPilot (AP_DDS): UAV I's vehicle is ap/v<I+1> (DDS_USE_NS 1, MAV_SYSID I+1); its services' requests and replies
+# are topics of their own (rq/, rr/).
+ap_out() {
+  echo "rt/$1/imu/experimental/data rt/$1/status rt/$1/navsat rr/$1/arm_motorsReply rr/$1/mode_switchReply"
+}
+ap_in() { echo "rt/$1/cmd_vel rq/$1/arm_motorsRequest rq/$1/mode_switchRequest"; }
 # Detections as real detectors publish them (agent sensor.input vision_msgs / uvdar), ROS names already.
 detector_topics() { echo "rt/uav$1/detections rt/uav$1/uvdar/measuredPoses"; }
 
@@ -353,7 +365,7 @@ publishes() {
   case $1 in
     swa_sim)
       echo "${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss ${r}truth ${r}events ${r}clock $(px4_out "$PX4_PREFIX*")" \
-        "$(detector_topics '*')"
+        "$(detector_topics '*') $(ap_out 'ap/v*')"
       ;;
     swa_monitor) echo '' ;;
     swa_agent_*)
@@ -362,7 +374,8 @@ publishes() {
       ;;
     swa_bridge_*)
       local i=${1#swa_bridge_}
-      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}uav$i/bridge_state $(px4_in "$PX4_PREFIX$i")"
+      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}uav$i/bridge_state $(px4_in "$PX4_PREFIX$i")" \
+        "$(ap_in "ap/v$((i + 1))")"
       ;;
   esac
 }
@@ -370,7 +383,7 @@ publishes() {
 subscribes() {
   local r=$SWA_ROOT
   case $1 in
-    swa_sim) echo "${r}uav*/cmd_vel $(px4_in "$PX4_PREFIX*")" ;;
+    swa_sim) echo "${r}uav*/cmd_vel $(px4_in "$PX4_PREFIX*") $(ap_in 'ap/v*')" ;;
     # The monitor reads every topic of the run: the UAVs' inputs and commands only to record them (--record).
     swa_monitor)
       echo "${r}truth ${r}events ${r}clock ${r}uav*/state ${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss" \
@@ -382,7 +395,7 @@ subscribes() {
       ;;
     swa_bridge_*)
       local i=${1#swa_bridge_}
-      echo "${r}uav$i/cmd_vel $(px4_out "$PX4_PREFIX$i")"
+      echo "${r}uav$i/cmd_vel $(px4_out "$PX4_PREFIX$i") $(ap_out "ap/v$((i + 1))")"
       ;;
   esac
 }

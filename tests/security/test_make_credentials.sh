@@ -125,15 +125,20 @@ test_layout_and_documents() {
   check "agent 1 subscribes only its sensors and the clock" \
     test "$(granted "$d/swa_agent_1/permissions.xml" subscribe)" = \
     "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/clock rt/uav1/detections rt/uav1/uvdar/measuredPoses)"
-  check "sim publishes sensors, truth, events, clock, and PX4's outputs as every UAV's PX4" \
+  check "sim publishes sensors, truth, events, clock, and the outputs of every UAV's PX4 and ArduPilot" \
     test "$(granted "$d/swa_sim/permissions.xml" publish)" = \
     "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' swa/truth swa/events swa/clock \
-      'rt/uav*/detections' 'rt/uav*/uvdar/measuredPoses' 'rt/px4_*/fmu/out/vehicle_attitude' 'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_status_v1' \
+      'rt/uav*/detections' 'rt/uav*/uvdar/measuredPoses' 'rt/px4_*/fmu/out/vehicle_attitude' \
+      'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_status_v1' \
       'rt/px4_*/fmu/out/vehicle_command_ack' 'rt/px4_*/fmu/out/vehicle_gps_position' \
-      'rt/px4_*/fmu/out/vehicle_local_position' 'rt/px4_*/fmu/out/vehicle_local_position_v1')"
-  check "sim subscribes commands and PX4's inputs only" test "$(granted "$d/swa_sim/permissions.xml" subscribe)" = \
+      'rt/px4_*/fmu/out/vehicle_local_position' 'rt/px4_*/fmu/out/vehicle_local_position_v1' \
+      'rt/ap/v*/imu/experimental/data' 'rt/ap/v*/status' 'rt/ap/v*/navsat' 'rr/ap/v*/arm_motorsReply' \
+      'rr/ap/v*/mode_switchReply')"
+  check "sim subscribes commands and the inputs of PX4 and ArduPilot only" \
+    test "$(granted "$d/swa_sim/permissions.xml" subscribe)" = \
     "$(sorted 'swa/uav*/cmd_vel' 'rt/px4_*/fmu/in/trajectory_setpoint' 'rt/px4_*/fmu/in/offboard_control_mode' \
-      'rt/px4_*/fmu/in/vehicle_command')"
+      'rt/px4_*/fmu/in/vehicle_command' 'rt/ap/v*/cmd_vel' 'rq/ap/v*/arm_motorsRequest' \
+      'rq/ap/v*/mode_switchRequest')"
   check "monitor publishes nothing" test -z "$(granted "$d/swa_monitor/permissions.xml" publish)"
   check "monitor subscribes every topic (to record it)" \
     test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = "$(sorted swa/truth swa/events swa/clock \
@@ -184,16 +189,18 @@ test_overwrite_rules() {
 test_bridges_and_naming() {
   local d=$WORK/bridges
   expect_status 0 "--bridges --px4-prefix drone_" bash "$SCRIPT" --bridges --px4-prefix drone_ "$d" 2
-  check "bridge 1 publishes UAV 1's sensors, its diagnostics and its own vehicle's PX4 inputs" \
+  check "bridge 1 publishes UAV 1's sensors, its diagnostics and its own vehicle's inputs (PX4, ArduPilot ap/v2)" \
     test "$(granted "$d/swa_bridge_1/permissions.xml" publish)" = \
     "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/uav1/bridge_state \
-      rt/drone_1/fmu/in/trajectory_setpoint rt/drone_1/fmu/in/offboard_control_mode rt/drone_1/fmu/in/vehicle_command)"
-  check "bridge 1 subscribes UAV 1's commands and its own vehicle's PX4 outputs" \
+      rt/drone_1/fmu/in/trajectory_setpoint rt/drone_1/fmu/in/offboard_control_mode rt/drone_1/fmu/in/vehicle_command \
+      rt/ap/v2/cmd_vel rq/ap/v2/arm_motorsRequest rq/ap/v2/mode_switchRequest)"
+  check "bridge 1 subscribes UAV 1's commands and its own vehicle's outputs (PX4, ArduPilot ap/v2)" \
     test "$(granted "$d/swa_bridge_1/permissions.xml" subscribe)" = \
     "$(sorted swa/uav1/cmd_vel rt/drone_1/fmu/out/vehicle_attitude rt/drone_1/fmu/out/vehicle_status \
       rt/drone_1/fmu/out/vehicle_status_v1 rt/drone_1/fmu/out/vehicle_command_ack \
       rt/drone_1/fmu/out/vehicle_gps_position rt/drone_1/fmu/out/vehicle_local_position \
-      rt/drone_1/fmu/out/vehicle_local_position_v1)"
+      rt/drone_1/fmu/out/vehicle_local_position_v1 rt/ap/v2/imu/experimental/data rt/ap/v2/status \
+      rt/ap/v2/navsat rr/ap/v2/arm_motorsReply rr/ap/v2/mode_switchReply)"
   check "the simulator plays every drone_<I>" grep -q "<topic>rt/drone_\*/fmu/out/vehicle_attitude</topic>" \
     "$d/swa_sim/permissions.xml"
 

@@ -36,6 +36,10 @@
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
+#include <swa/ros/ArdupilotServicesPubSubTypes.h>
+#include <swa/ros/ArdupilotStatusPubSubTypes.h>
+#include <swa/ros/ImuPubSubTypes.h>
+#include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "../integration/process_test.h"
 #include "swa/dds/options.h"
@@ -120,6 +124,32 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 // One endpoint on `topic` with the message type and QoS profile the SWA nodes use for it. Throws DdsError when the
 // middleware refuses it.
 void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
+  // ArduPilot's topics and services (the bridge's and the simulator's ArduPilot stand-in's), with AP_DDS's QoS.
+  if (topic.rfind("rt/ap/", 0) == 0 || topic.rfind("rq/ap/", 0) == 0 || topic.rfind("rr/ap/", 0) == 0) {
+    namespace srv = ardupilot_msgs::srv;
+    if (endsWith(topic, "/imu/experimental/data")) {
+      return createWith<sensor_msgs::msg::ImuPubSubType>(p, kind, topic, "ap_out_writer", "ap_out_reader");
+    }
+    if (endsWith(topic, "/status")) {
+      return createWith<ardupilot_msgs::msg::StatusPubSubType>(p, kind, topic, "ap_status_writer", "ap_status_reader");
+    }
+    if (endsWith(topic, "/cmd_vel")) {
+      return createWith<geometry_msgs::msg::TwistStampedPubSubType>(p, kind, topic, "ap_in_writer", "ap_in_reader");
+    }
+    if (endsWith(topic, "/arm_motorsRequest")) {
+      return createWith<srv::ArmMotors_RequestPubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
+    }
+    if (endsWith(topic, "/arm_motorsReply")) {
+      return createWith<srv::ArmMotors_ResponsePubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
+    }
+    if (endsWith(topic, "/mode_switchRequest")) {
+      return createWith<srv::ModeSwitch_RequestPubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
+    }
+    if (endsWith(topic, "/mode_switchReply")) {
+      return createWith<srv::ModeSwitch_ResponsePubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
+    }
+    throw std::logic_error("test bug: no type for topic " + topic);
+  }
   if (endsWith(topic, "/imu")) {
     return createWith<msg::ImuPubSubType>(p, kind, topic, "swa_sensor_writer", "swa_sensor_reader");
   }
@@ -322,6 +352,10 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
   using dds::topics::px4In;
   using dds::topics::px4Namespace;
   using dds::topics::px4Out;
+  using dds::topics::apNamespace;
+  using dds::topics::apReply;
+  using dds::topics::apRequest;
+  using dds::topics::apTopic;
   struct Endpoint {
     Kind kind;
     std::string topic;
@@ -340,7 +374,10 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
       {"swa_sim",
        {{W, imu(0)}, {W, detections(3)}, {W, gnss(12)}, {W, truth}, {W, events}, {W, clock}, {R, cmdVel(1)},
         {W, px4Out(px4Namespace(3), "vehicle_attitude")}, {W, px4Out(px4Namespace(0), "vehicle_status")},
-        {W, px4Out(px4Namespace(2), "vehicle_status_v1")}, {R, px4In(px4Namespace(2), "trajectory_setpoint")}, {R, px4In(px4Namespace(1), "offboard_control_mode")}},
+        {W, px4Out(px4Namespace(2), "vehicle_status_v1")}, {R, px4In(px4Namespace(2), "trajectory_setpoint")},
+        {R, px4In(px4Namespace(1), "offboard_control_mode")}, {W, apTopic(apNamespace(3), "imu/experimental/data")},
+        {W, apTopic(apNamespace(0), "status")}, {R, apTopic(apNamespace(2), "cmd_vel")},
+        {R, apRequest(apNamespace(1), "mode_switch")}, {W, apReply(apNamespace(1), "mode_switch")}},
        {{R, imu(0)}, {R, detections(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth}, {R, clock},
         {R, px4Out(px4Namespace(0), "vehicle_attitude")}, {W, px4In(px4Namespace(0), "trajectory_setpoint")}}},
       // The autopilot bridge of UAV 1: its sensors out, its commands in, its own PX4's topics, nothing of another UAV
@@ -349,11 +386,16 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
        {{W, imu(1)}, {W, detections(1)}, {W, gnss(1)}, {R, cmdVel(1)}, {W, bridgeState(1)},
         {R, px4Out(px4Namespace(1), "vehicle_attitude")}, {R, px4Out(px4Namespace(1), "vehicle_status")},
         {R, px4Out(px4Namespace(1), "vehicle_status_v1")}, {W, px4In(px4Namespace(1), "trajectory_setpoint")},
-        {W, px4In(px4Namespace(1), "offboard_control_mode")}},
+        {W, px4In(px4Namespace(1), "offboard_control_mode")}, {R, apTopic(apNamespace(1), "imu/experimental/data")},
+        {R, apTopic(apNamespace(1), "status")}, {W, apTopic(apNamespace(1), "cmd_vel")},
+        {W, apRequest(apNamespace(1), "arm_motors")}, {R, apReply(apNamespace(1), "arm_motors")}},
        {{W, imu(2)}, {W, detections(0)}, {R, imu(1)}, {R, cmdVel(2)}, {W, cmdVel(1)}, {R, state(1)}, {W, state(1)},
         {R, truth}, {W, truth}, {W, clock}, {W, bridgeState(2)}, {R, px4Out(px4Namespace(2), "vehicle_attitude")},
         {W, px4In(px4Namespace(0), "trajectory_setpoint")}, {W, px4Out(px4Namespace(1), "vehicle_attitude")},
-        {R, px4In(px4Namespace(1), "trajectory_setpoint")}, {R, px4Out(px4Namespace(2), "vehicle_status_v1")}}},
+        {R, px4In(px4Namespace(1), "trajectory_setpoint")}, {R, px4Out(px4Namespace(2), "vehicle_status_v1")},
+        {R, apTopic(apNamespace(2), "imu/experimental/data")}, {W, apTopic(apNamespace(0), "cmd_vel")},
+        {W, apTopic(apNamespace(1), "status")}, {R, apTopic(apNamespace(1), "cmd_vel")},
+        {W, apRequest(apNamespace(2), "mode_switch")}, {R, apRequest(apNamespace(1), "arm_motors")}}},
       {"swa_monitor",
        {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}, {R, imu(0)}, {R, detections(2)}, {R, cmdVel(1)},
         {R, clock}},
