@@ -1,6 +1,7 @@
 // ArduPilot's side of the bridge (AP_DDS, Copter 4.5+) under the namespace NS (vehicle_link.h, swa/autopilot/
-// ardupilot.h): its IMU message's orientation in, its status in, the core's setpoints out as cmd_vel in frame "map"
-// (ENU), and with --engage its arm_motors and mode_switch services.
+// ardupilot.h): its IMU message's orientation in, its status in, its GNSS fix in (navsat, swa/autopilot/navsat.h;
+// not with --no-gnss), the core's setpoints out as cmd_vel in frame "map" (ENU), and with --engage its arm_motors and
+// mode_switch services.
 // ArduPilot has no offboard heartbeat: its liveness is the command stream itself, and when that stops its GUIDED
 // velocity timeout (GUID_TIMEOUT) stops the vehicle (the core, told so, puts no heartbeat in the outbox).
 
@@ -14,9 +15,11 @@
 #include <swa/ros/ArdupilotServicesPubSubTypes.h>
 #include <swa/ros/ArdupilotStatusPubSubTypes.h>
 #include <swa/ros/ImuPubSubTypes.h>
+#include <swa/ros/NavSatFixPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/autopilot/ardupilot.h"
+#include "swa/autopilot/navsat.h"
 #include "swa/dds/topics.h"
 #include "swa/wire/ardupilot.h"
 #include "vehicle_link.h"
@@ -55,6 +58,13 @@ class ArdupilotLink : public VehicleLink {
             }
           });
     }
+    if (!options_.no_gnss) {
+      navsat_reader_ = p.reader<sensor_msgs::msg::NavSatFixPubSubType>(
+          topics::apTopic(ns_, "navsat"), "ap_out_reader", [this](sensor_msgs::msg::NavSatFix&& m) {
+            const std::lock_guard<std::mutex> lock(gnss_mutex_);
+            if (const auto g = navsat_.onNavSat(wire::navSatReportOf(m))) events_.gnss(*g);
+          });
+    }
     status_reader_ = p.reader<ardupilot_msgs::msg::StatusPubSubType>(
         topics::apTopic(ns_, "status"), "ap_status_reader",
         [this](ardupilot_msgs::msg::Status&& m) { events_.status(m.armed(), m.mode()); });
@@ -68,6 +78,10 @@ class ArdupilotLink : public VehicleLink {
             return;
           }
           events_.attitude(*t, wire::attitudeOf(m, options_.ap_quaternion));
+          if (!options_.no_gnss) {  // ArduPilot goes silent when its GPS does: the IMU's time tells how long
+            const std::lock_guard<std::mutex> lock(gnss_mutex_);
+            if (const auto g = navsat_.onVehicleTime(*t)) events_.gnss(*g);
+          }
         });
   }
 
@@ -124,6 +138,8 @@ class ArdupilotLink : public VehicleLink {
   const VehicleEvents events_;
 
   std::atomic<std::uint64_t> bad_stamps_{0};
+  std::mutex gnss_mutex_;  // the fixes and the IMU's time arrive on two readers (two threads)
+  ardupilot::NavSatForward navsat_;
   std::mutex requests_mutex_;
   std::array<dds::SampleId, 8> requests_{};  // the newest requests sent
   std::size_t next_ = 0;
@@ -135,6 +151,7 @@ class ArdupilotLink : public VehicleLink {
   dds::Reader<srv::ModeSwitch_Response> mode_reply_;
   dds::Reader<ardupilot_msgs::msg::Status> status_reader_;
   dds::Reader<sensor_msgs::msg::Imu> imu_reader_;
+  dds::Reader<sensor_msgs::msg::NavSatFix> navsat_reader_;  // not with --no-gnss
 };
 
 }  // namespace

@@ -132,7 +132,7 @@ void BridgeNode::onGnss(const agent::GnssSample& g) {
   if (!gnss_) return;
   if (!gnss_reported_ || g.valid != last_gnss_valid_) {
     std::fprintf(stderr, "swa_px4_bridge %d: GNSS from %s %s (forwarded to %s)\n", id_, core_.autopilot().name,
-                 g.valid ? "valid: a 3D fix and a valid horizontal position" : "LOST: no 3D fix or no valid position",
+                 g.valid ? "valid: a fix and a position" : "LOST: no fix, no valid position, or no report for too long",
                  topics::gnss(id_).c_str());
     gnss_reported_ = true;
     last_gnss_valid_ = g.valid;

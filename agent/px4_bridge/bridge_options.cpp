@@ -41,12 +41,15 @@ Reads   rt/NS/imu/experimental/data  -> swa/uav<I>/imu (the orientation, FRD -> 
                                             order of --ap-quaternion; stamped with the message's time)
         rt/NS/status                 armed, mode (logged, and for --engage; GUIDED = 4)
         rr/NS/arm_motorsReply, rr/NS/mode_switchReply  the answers to --engage's requests (logged)
+        rt/NS/navsat                 -> swa/uav<I>/gnss (not with --no-gnss): valid while ArduPilot reports a fix
+                                            (status >= 0); lost when it reports none or sends no fix for 0.5 s of
+                                            its IMU's time (it goes silent when its GPS is unhealthy); position =
+                                            latitude and longitude in metres east and north of the first fix
 Writes  rt/NS/cmd_vel                TwistStamped in frame "map": ENU velocity, angular.z the yaw rate (counter-
                                             clockwise, SWA's sense), stamped with the answered sample's time
         rq/NS/arm_motorsRequest, rq/NS/mode_switchRequest  only with --engage: arm, then GUIDED
 The same rules as for PX4, but ArduPilot has no heartbeat: when the stream stops, its GUIDED velocity timeout
-(GUID_TIMEOUT) stops the vehicle. ArduPilot accepts velocity commands only when armed and in GUIDED. GNSS from
-ArduPilot is not forwarded yet: run it with --no-gnss.)";
+(GUID_TIMEOUT) stops the vehicle. ArduPilot accepts velocity commands only when armed and in GUIDED.)";
 
 app::Cli makeCli(BridgeOptions& o) {
   app::Cli cli("swa_px4_bridge",
@@ -124,7 +127,7 @@ app::Cli makeCli(BridgeOptions& o) {
   cli.real("--max-yaw-rate-radps", "W", o.core.max_yaw_rate_radps, 0.01, 10.0, "a rate in rad/s",
            "commanded yaw rates beyond this are clamped (and counted)");
   cli.flag("--no-gnss", o.no_gnss,
-           "do not forward PX4's GNSS fix and position validity to swa/uav<I>/gnss (another source publishes it)");
+           "do not forward the autopilot's GNSS fix and its loss to swa/uav<I>/gnss (another source publishes it)");
   cli.flag("--engage", o.core.engage,
            "arm and switch to PX4's offboard or ArduPilot's GUIDED once the agent's stream has run for 1 s (bench tests, simulation; "
            "never on a flight without a pilot who can take over)");
@@ -148,10 +151,6 @@ void finish(BridgeOptions& o, const app::Cli&, app::Problems& problems) {
     o.core.autopilot = autopilot::ardupilotAutopilot();
     if (o.px4_namespace || o.px4_release_given || o.target_system != 0) {
       problems.push_back("--px4-namespace, --px4-release and --target-system are PX4's: not with --autopilot ardupilot");
-    }
-    if (!o.no_gnss) {
-      problems.push_back("--autopilot ardupilot: GNSS from ArduPilot is not forwarded yet; add --no-gnss (the "
-                         "simulator or your own source publishes swa/uav<I>/gnss)");
     }
   } else if (o.ap_namespace) {
     problems.push_back("--ap-namespace is ArduPilot's: add --autopilot ardupilot");

@@ -50,6 +50,35 @@ ardupilot_msgs::msg::Status statusMessage(std::uint64_t timestamp_us, bool armed
   return m;
 }
 
+ardupilot::NavSatReport navSatReportOf(const sensor_msgs::msg::NavSatFix& m) {
+  ardupilot::NavSatReport r;
+  r.timestamp_us = timestampUsOf(m.header().stamp()).value_or(0);
+  r.status = m.status().status();
+  r.latitude_deg = m.latitude();
+  r.longitude_deg = m.longitude();
+  r.covariance_type = m.position_covariance_type();
+  r.variance_east_m2 = m.position_covariance()[0];
+  r.variance_north_m2 = m.position_covariance()[4];
+  return r;
+}
+
+sensor_msgs::msg::NavSatFix navSatFix(std::uint64_t timestamp_us, double lat_deg, double lon_deg, double std_m) {
+  sensor_msgs::msg::NavSatFix m;
+  m.header().stamp(timeOf(timestamp_us));
+  m.header().frame_id("0");  // ArduPilot names the fix by its GPS instance
+  m.status().status(0);
+  m.status().service(1);  // SERVICE_GPS
+  m.latitude(lat_deg);
+  m.longitude(lon_deg);
+  m.altitude(0.0);
+  const double variance = std_m * std_m;
+  m.position_covariance()[0] = variance;
+  m.position_covariance()[4] = variance;
+  m.position_covariance()[8] = 4.0 * variance;
+  m.position_covariance_type(2);  // COVARIANCE_TYPE_DIAGONAL_KNOWN
+  return m;
+}
+
 geometry_msgs::msg::TwistStamped cmdVel(const autopilot::Setpoint& s) {
   const ardupilot::EnuTwist t = ardupilot::enuTwistOf(s.velocity, s.yawspeed_radps);
   geometry_msgs::msg::TwistStamped m;

@@ -5,6 +5,7 @@
 #include <swa/ros/ArdupilotServicesPubSubTypes.h>
 #include <swa/ros/ArdupilotStatusPubSubTypes.h>
 #include <swa/ros/ImuPubSubTypes.h>
+#include <swa/ros/NavSatFixPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/dds/topics.h"
@@ -17,6 +18,8 @@ namespace {
 
 namespace topics = dds::topics;
 namespace srv = ardupilot_msgs::srv;
+// Where every simulated ArduPilot's fixes are measured from (the world's origin): an airfield, any would do.
+const ardupilot::LocalTangent kHome{47.397742, 8.545594};
 
 }  // namespace
 
@@ -29,6 +32,10 @@ ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_coun
                                                                  "ap_out_writer");
     v.status = participant.writer<ardupilot_msgs::msg::StatusPubSubType>(topics::apTopic(v.ns, "status"),
                                                                           "ap_status_writer");
+    if (setup.gnss_source == sim::GnssSource::kAutopilot) {
+      v.navsat = participant.writer<sensor_msgs::msg::NavSatFixPubSubType>(topics::apTopic(v.ns, "navsat"),
+                                                                            "ap_out_writer");
+    }
     v.arm_reply = participant.writer<srv::ArmMotors_ResponsePubSubType>(topics::apReply(v.ns, "arm_motors"),
                                                                          "ap_service_writer");
     v.mode_reply = participant.writer<srv::ModeSwitch_ResponsePubSubType>(topics::apReply(v.ns, "mode_switch"),
@@ -56,6 +63,8 @@ void ArdupilotVehicles::unmatched(int uav, std::vector<std::string>& missing) co
   const Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
   if (v.imu.matched() < 1) missing.push_back(topics::apTopic(v.ns, "imu/experimental/data") + " (no bridge reading)");
   if (v.cmd_vel.matched() < 1) missing.push_back(topics::apTopic(v.ns, "cmd_vel") + " (no bridge writing)");
+  // GNSS from the autopilot (best effort, as ArduPilot sends it): a fix sent before the bridge reads would be lost.
+  if (v.navsat && v.navsat.matched() < 1) missing.push_back(topics::apTopic(v.ns, "navsat") + " (no bridge reading)");
 }
 
 bool ArdupilotVehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) {
@@ -67,6 +76,17 @@ bool ArdupilotVehicles::publishAttitude(int uav, const agent::ImuSample& s, std:
   v.published.add(s.stamp_ns, seq);
   v.last_imu = m;
   return v.imu.write(m);
+}
+
+bool ArdupilotVehicles::publishGnss(int uav, const agent::GnssSample& g) {
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(g.stamp_ns);
+  if (!v.navsat || !timestamp) return false;
+  if (!g.valid) return true;  // ArduPilot's silence
+  double lat = 0.0, lon = 0.0;
+  kHome.latLonOf(g.position_m, lat, lon);
+  sensor_msgs::msg::NavSatFix m = wire::navSatFix(*timestamp, lat, lon, g.std_m);
+  return v.navsat.write(m);
 }
 
 void ArdupilotVehicles::repeatAttitude(int uav) {

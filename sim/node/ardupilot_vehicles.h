@@ -3,7 +3,8 @@
 // AP_DDS's topics of the namespace ap/v<i+1>, the simulator publishes imu/experimental/data (its IMU sample's
 // attitude as ArduPilot's quaternion, stamped on the vehicle's clock = simulation time) and status (on every change,
 // TRANSIENT_LOCAL as ArduPilot sends it), reads cmd_vel, answers the arm_motors and mode_switch services, and lets a
-// stand-in (swa/sim/ardupilot_standin.h) decide what the vehicle flies. GNSS goes to the agents on their own topics.
+// stand-in (swa/sim/ardupilot_standin.h) decide what the vehicle flies. GNSS goes to the agents on their own topics,
+// or with vehicle.gnss_source = autopilot as each vehicle's navsat, forwarded by the bridges.
 
 #include <cstdint>
 #include <deque>
@@ -15,6 +16,7 @@
 #include <swa/ros/ArdupilotServices.h>
 #include <swa/ros/ArdupilotStatus.h>
 #include <swa/ros/Imu.h>
+#include <swa/ros/NavSatFix.h>
 #include <swa/ros/TwistStamped.h>
 
 #include "autopilot_vehicles.h"
@@ -32,7 +34,9 @@ class ArdupilotVehicles : public AutopilotVehicles {
 
   void unmatched(int uav, std::vector<std::string>& missing) const override;
   bool publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) override;
-  bool publishGnss(int, const agent::GnssSample&) override { return false; }  // not from ArduPilot yet
+  // vehicle.gnss_source = autopilot: a valid sample as ArduPilot's navsat (latitude and longitude around a fixed home);
+  // nothing while the scenario's GNSS is lost, as ArduPilot sends nothing while its GPS is unhealthy.
+  bool publishGnss(int uav, const agent::GnssSample& g) override;
   void repeatAttitude(int uav) override;
   void drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now, const AdmitFn& admit) override;
   void apply(const Answer& a) override;
@@ -62,6 +66,7 @@ class ArdupilotVehicles : public AutopilotVehicles {
     dds::Writer<sensor_msgs::msg::Imu> imu;
     std::optional<sensor_msgs::msg::Imu> last_imu;
     dds::Writer<ardupilot_msgs::msg::Status> status;
+    dds::Writer<sensor_msgs::msg::NavSatFix> navsat;  // vehicle.gnss_source = autopilot only
     dds::Writer<ardupilot_msgs::srv::ArmMotors_Response> arm_reply;
     dds::Writer<ardupilot_msgs::srv::ModeSwitch_Response> mode_reply;
     dds::Reader<geometry_msgs::msg::TwistStamped> cmd_vel;

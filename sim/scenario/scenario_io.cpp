@@ -238,9 +238,10 @@ params::Table<Scenario> makeTable() {
   SWA_PARAM(t, choice, vehicle.gnss_source,
             std::vector<std::pair<GnssSource, std::string>>{{GnssSource::kSwa, "swa"},
                                                             {GnssSource::kAutopilot, "autopilot"}},
-            "px4: swa (the simulator publishes swa/uav<i>/gnss) or autopilot (each PX4 stand-in reports its fix on "
-            "vehicle_gps_position and vehicle_local_position, losing both when the scenario drops GNSS; the bridges "
-            "forward them as swa/uav<i>/gnss)");
+            "px4, ardupilot: swa (the simulator publishes swa/uav<i>/gnss) or autopilot (each PX4 stand-in reports "
+            "its fix on vehicle_gps_position and vehicle_local_position, losing both when the scenario drops GNSS; "
+            "each ArduPilot stand-in on navsat, silent while GNSS is dropped; the bridges forward them as "
+            "swa/uav<i>/gnss)");
 
   t.mount(
       "agent", agent::configTable(), [](auto& s) -> auto& { return s.agent; },
@@ -255,7 +256,7 @@ params::Table<Scenario> makeTable() {
       {"mps.bearing_std_rad", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
       {"vehicle.com_of_loss_t_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.px4_release", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
-      {"vehicle.gnss_source", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.gnss_source", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
       {"vehicle.guid_timeout_s", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
   });
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};

@@ -9,6 +9,7 @@
 
 #include "swa/autopilot/ardupilot.h"
 #include "swa/autopilot/bridge_core.h"
+#include "swa/autopilot/navsat.h"
 #include "swa/sim/ardupilot_standin.h"
 #include "swa/wire/ardupilot.h"
 
@@ -88,6 +89,69 @@ TEST(Ardupilot, TheCoresSetpointIsAnEnuCmdVelInTheMapFrame) {
   // AND the core names ArduPilot's GUIDED in its requests
   EXPECT_STREQ(core.autopilot().control_mode_name, "GUIDED");
   EXPECT_STREQ(copterModeName(kModeGuided), "GUIDED");
+}
+
+TEST(NavSat, FixesAreMetresEastAndNorthOfTheFirstOneAndBackWithinAMillimetre) {
+  // GIVEN a local frame at a mid-latitude airfield
+  const LocalTangent home{47.397742, 8.545594};
+  // WHEN a position 1 km east and 2 km north is turned into latitude and longitude and back THEN it is the same
+  double lat = 0.0, lon = 0.0;
+  home.latLonOf(agent::Vec2(1000.0, 2000.0), lat, lon);
+  EXPECT_GT(lat, home.origin_lat_deg);
+  EXPECT_GT(lon, home.origin_lon_deg);
+  EXPECT_NEAR((home.enuOf(lat, lon) - agent::Vec2(1000.0, 2000.0)).norm(), 0.0, 1e-3);
+  // AND a degree of latitude there is WGS 84's 111.2 km, a degree of longitude 75.4 km
+  EXPECT_NEAR(home.enuOf(home.origin_lat_deg + 1.0, home.origin_lon_deg).y(), 111'200.0, 100.0);
+  EXPECT_NEAR(home.enuOf(home.origin_lat_deg, home.origin_lon_deg + 1.0).x(), 75'400.0, 100.0);
+}
+
+TEST(NavSat, AFixIsValidTheLossComesAsNoFixOrAsSilenceAndOnlyOnce) {
+  NavSatForward f;
+  const LocalTangent home{47.4, 8.5};
+  double lat = 0.0, lon = 0.0;
+  const auto fixAt = [&](std::uint64_t t_us, const agent::Vec2& enu, std::int8_t status = 0) {
+    home.latLonOf(enu, lat, lon);
+    NavSatReport r;
+    r.timestamp_us = t_us;
+    r.status = status;
+    r.latitude_deg = lat;
+    r.longitude_deg = lon;
+    r.covariance_type = 2;
+    r.variance_east_m2 = 0.64;
+    r.variance_north_m2 = 0.36;
+    return f.onNavSat(r);
+  };
+  // GIVEN a first fix and one 3 m east of it THEN both valid, positions relative to the first, std from the covariance
+  const auto first = fixAt(1'000'000, agent::Vec2(10.0, 20.0));
+  ASSERT_TRUE(first && first->valid);
+  EXPECT_NEAR(first->position_m.norm(), 0.0, 1e-9);
+  EXPECT_EQ(first->stamp_ns, 1'000'000'000);
+  EXPECT_NEAR(first->std_m, std::sqrt(0.5), 1e-12);
+  const auto second = fixAt(1'100'000, agent::Vec2(13.0, 20.0));
+  ASSERT_TRUE(second && second->valid);
+  EXPECT_NEAR(second->position_m.x(), 3.0, 1e-3);
+  EXPECT_NEAR(second->position_m.y(), 0.0, 1e-3);
+  // WHEN the vehicle's time goes on for 0.5 s without a fix THEN nothing; past it, one loss, once
+  EXPECT_FALSE(f.onVehicleTime(1'600'000));
+  const auto lost = f.onVehicleTime(1'610'000);
+  ASSERT_TRUE(lost);
+  EXPECT_FALSE(lost->valid);
+  EXPECT_EQ(lost->stamp_ns, 1'610'000'000);
+  EXPECT_FALSE(f.onVehicleTime(3'000'000));
+  // WHEN fixes come again THEN valid at once; a report of no fix is a loss at once; an older report is dropped
+  ASSERT_TRUE(fixAt(3'100'000, agent::Vec2(13.0, 21.0))->valid);
+  const auto none = fixAt(3'200'000, agent::Vec2(13.0, 21.0), -1);
+  ASSERT_TRUE(none);
+  EXPECT_FALSE(none->valid);
+  EXPECT_FALSE(fixAt(3'150'000, agent::Vec2(13.0, 21.0)));
+  // AND a fix with a non-finite or impossible latitude is no fix
+  NavSatReport bad;
+  bad.timestamp_us = 3'300'000;
+  bad.status = 0;
+  bad.latitude_deg = std::nan("");
+  EXPECT_FALSE(f.onNavSat(bad)->valid);
+  bad.latitude_deg = 95.0;
+  EXPECT_FALSE(f.onNavSat(bad)->valid);
 }
 
 }  // namespace

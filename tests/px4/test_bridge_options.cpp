@@ -78,10 +78,10 @@ TEST(BridgeOptions, ArdupilotHasItsOwnNamespaceAndQuaternionLayoutAndNoneOfPx4s)
                           "--ap-quaternion", "wxyz"});
   EXPECT_EQ(apNamespace(single), "ap");
   EXPECT_EQ(single.ap_quaternion, ardupilot::QuaternionLayout::kWxyzInXyzw);
-  // AND PX4's options, GNSS forwarding (not there yet) and an unknown autopilot are refused, all at once
+  // AND PX4's options and an unknown autopilot are refused
   const std::string p = problemsOf({"--id", "0", "--autopilot", "ardupilot", "--px4-release", "1.16"});
   EXPECT_NE(p.find("are PX4's: not with --autopilot ardupilot"), std::string::npos) << p;
-  EXPECT_NE(p.find("add --no-gnss"), std::string::npos) << p;
+  EXPECT_FALSE(parseBridgeOptions({"--id", "0", "--autopilot", "ardupilot"}).no_gnss);  // GNSS forwarded by default
   EXPECT_NE(problemsOf({"--id", "0", "--autopilot", "apm"}).find("--autopilot 'apm': px4 or ardupilot"),
             std::string::npos);
   EXPECT_NE(problemsOf({"--id", "0", "--ap-namespace", "ap"}).find("add --autopilot ardupilot"), std::string::npos);

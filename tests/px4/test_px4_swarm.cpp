@@ -232,6 +232,36 @@ TEST_F(Px4SwarmTest, GnssLostAndRegainedByTheVehiclesReachesTheAgentsThroughTheB
   expectNothingLeft();
 }
 
+TEST_F(Px4SwarmTest, GnssLostAndRegainedByArdupilotReachesTheAgentsThroughTheBridges) {
+  // GIVEN 4 anchored agents whose GNSS comes from their (simulated) ArduPilots, lost from 10 s to 20 s of 30: the
+  // stand-ins then send no fix at all, as ArduPilot does while its GPS is unhealthy
+  const std::vector<std::string> sets = {"duration_s=30", "gnss.dropout_start_s=10", "gnss.dropout_end_s=20",
+                                         "agent.mode=anchored"};
+  std::vector<std::string> ap_sets = sets;
+  ap_sets.emplace_back("vehicle.gnss_source=autopilot");
+  const LaunchedRun ap = launch("dropout_4.yaml", "ardupilot", ap_sets, "gnss");
+  ASSERT_NE(ap.status, -1) << "still running after " << kRunBoundS << " s";
+  // THEN the run passes, and as cohesively as the in-process loop with the simulator's own GNSS
+  EXPECT_EQ(ap.status, 0) << ap.summary << logs(ap.dir);
+  const double d_direct =
+      batch::runClosedLoop(sim::loadScenario(kScenarioDir + "dropout_4.yaml", sets)).summary.mean_neighbor_distance_m;
+  EXPECT_NEAR(jsonNumber(ap.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
+  EXPECT_EQ(jsonNumber(ap.summary, "collisions"), 0.0);
+  // AND every bridge forwarded a valid fix, then the loss (by silence), then the regain, each once
+  for (int i = 0; i < 4; ++i) {
+    const std::string log = readFile(ap.dir / "logs" / ("bridge_" + std::to_string(i) + ".log"));
+    const std::size_t valid = log.find("GNSS from ArduPilot valid");
+    const std::size_t lost = log.find("GNSS from ArduPilot LOST");
+    const std::size_t regained = valid == std::string::npos ? valid : log.find("GNSS from ArduPilot valid", valid + 1);
+    EXPECT_NE(valid, std::string::npos) << log;
+    EXPECT_NE(lost, std::string::npos) << log;
+    EXPECT_NE(regained, std::string::npos) << log;
+    EXPECT_TRUE(valid < lost && lost < regained) << log;
+    EXPECT_EQ(log.find("GNSS from ArduPilot LOST", lost + 1), std::string::npos) << log;
+  }
+  expectNothingLeft();
+}
+
 // events.csv rows of one UAV whose text contains `what`: their times [s] and values.
 std::vector<std::pair<double, double>> eventsOf(const fs::path& run, int uav, const std::string& what) {
   std::vector<std::pair<double, double>> out;

@@ -19,9 +19,9 @@ enum class MpsNoiseModel { kIsotropic, kRangeBearing };
 // PX4's uXRCE-DDS topics (vehicle.px4_release) or ArduPilot's AP_DDS ones, with the simulator playing each UAV's
 // autopilot and one swa_px4_bridge per agent.
 enum class VehicleInterface { kDirect, kPx4, kArdupilot };
-// Where the agents' GNSS comes from with vehicle.interface = px4: the simulator's own swa/uav<i>/gnss (swa), or each
-// UAV's PX4 stand-in as a real PX4 reports it (vehicle_gps_position, vehicle_local_position), forwarded by the bridge
-// (autopilot).
+// Where the agents' GNSS comes from with vehicle.interface = px4 or ardupilot: the simulator's own swa/uav<i>/gnss
+// (swa), or each UAV's autopilot stand-in as a real one reports it (PX4: vehicle_gps_position, vehicle_local_position;
+// ArduPilot: navsat), forwarded by the bridge (autopilot).
 enum class GnssSource { kSwa, kAutopilot };
 
 struct FormationSetup {

@@ -8,10 +8,12 @@
 
 #include <swa/ros/ArdupilotStatus.h>
 #include <swa/ros/Imu.h>
+#include <swa/ros/NavSatFix.h>
 #include <swa/ros/TwistStamped.h>
 
 #include "swa/autopilot/ardupilot.h"
 #include "swa/autopilot/bridge_core.h"
+#include "swa/autopilot/navsat.h"
 
 namespace swa::wire {
 
@@ -23,6 +25,11 @@ px4::Quaternion attitudeOf(const sensor_msgs::msg::Imu& m, ardupilot::Quaternion
 sensor_msgs::msg::Imu imuMessage(std::uint64_t timestamp_us, const px4::Quaternion& q);
 
 ardupilot_msgs::msg::Status statusMessage(std::uint64_t timestamp_us, bool armed, std::uint8_t mode, bool failsafe_ekf);
+
+// ArduPilot's GNSS fix: what the bridge needs of it (a time it cannot read is 0, older than any), and a fix of a
+// position (a valid one; the stand-in sends nothing while its GNSS is lost, as ArduPilot does).
+ardupilot::NavSatReport navSatReportOf(const sensor_msgs::msg::NavSatFix& m);
+sensor_msgs::msg::NavSatFix navSatFix(std::uint64_t timestamp_us, double lat_deg, double lon_deg, double std_m);
 
 // The core's setpoint as cmd_vel: frame "map", stamped with the answered sample's time; and what a cmd_vel commands.
 geometry_msgs::msg::TwistStamped cmdVel(const autopilot::Setpoint& s);
