@@ -4,9 +4,9 @@
 //   foreign_payloads check FILE   payloads the independent implementation serialised, deserialised here and compared
 // Types: vision_msgs/Detection3DArray and mrs_msgs/PoseWithCovarianceArrayStamped (as the simulator writes them and
 // the agent reads them), PX4's VehicleStatus, SensorGps and VehicleLocalPosition in every release's layout (as the
-// stand-in writes them and the bridge reads them), and ArduPilot's sensor_msgs/Imu, ardupilot_msgs/Status, cmd_vel
-// (geometry_msgs/TwistStamped) and the arm_motors / mode_switch requests and responses (both ways: the stand-in and
-// the bridge each write some and read the others). Exit 0 when everything matched, 1 otherwise, 2 on bad usage.
+// stand-in writes them and the bridge reads them), and ArduPilot's sensor_msgs/Imu and NavSatFix,
+// ardupilot_msgs/Status, cmd_vel (geometry_msgs/TwistStamped) and the arm_motors / mode_switch requests and responses
+// (both ways: the stand-in and the bridge each write some and read the others). Exit 0 when everything matched, 1 otherwise, 2 on bad usage.
 
 #include <cmath>
 #include <cstdio>
@@ -28,6 +28,7 @@
 #include <swa/ros/ArdupilotStatusPubSubTypes.h>
 #include <swa/ros/Detection3DArrayPubSubTypes.h>
 #include <swa/ros/ImuPubSubTypes.h>
+#include <swa/ros/NavSatFixPubSubTypes.h>
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
@@ -186,6 +187,13 @@ json statusExpected() {
           {"flying", true}, {"failsafe", json::array({24})}};
 }
 
+json navSatExpected() {
+  json cov = json::array({0.5625, 0.0, 0.0, 0.0, 0.5625, 0.0, 0.0, 0.0, 2.25});
+  return {{"header", {{"stamp", time()}, {"frame_id", "0"}}}, {"status", {{"status", 0}, {"service", 1}}},
+          {"latitude", 47.397742}, {"longitude", 8.545594}, {"altitude", 0.0}, {"position_covariance", cov},
+          {"position_covariance_type", 2}};
+}
+
 json cmdVelExpected() {
   return {{"header", {{"stamp", time()}, {"frame_id", "map"}}},
           {"twist", {{"linear", vector3(1.5, -0.5, 0.0)}, {"angular", vector3(0.0, 0.0, 0.25)}}}};
@@ -250,6 +258,10 @@ int write(const std::string& path) {
                  {"cdr_hex", serialise<ardupilot_msgs::msg::StatusPubSubType>(
                                  swa::wire::statusMessage(ap::kStampUs, true, 4, true))},
                  {"expected", ap::statusExpected()}});
+  out.push_back({{"ros_type", "sensor_msgs/msg/NavSatFix"},
+                 {"cdr_hex", serialise<sensor_msgs::msg::NavSatFixPubSubType>(
+                                 swa::wire::navSatFix(ap::kStampUs, 47.397742, 8.545594, 0.75))},
+                 {"expected", ap::navSatExpected()}});
   out.push_back({{"ros_type", "geometry_msgs/msg/TwistStamped"},
                  {"cdr_hex", serialise<geometry_msgs::msg::TwistStampedPubSubType>(swa::wire::cmdVel(ap::setpoint()))},
                  {"expected", ap::cmdVelExpected()}});
@@ -291,6 +303,13 @@ std::optional<bool> checkArdupilot(const std::string& type, const std::string& h
     const ardupilot_msgs::msg::Status m = deserialise<ardupilot_msgs::msg::StatusPubSubType>(hex);
     return m.armed() && m.mode() == 4 && m.vehicle_type() == 2 && m.flying() &&
            m.failsafe() == std::vector<std::uint8_t>{24};
+  }
+  if (type == "sensor_msgs/msg/NavSatFix") {
+    const swa::ardupilot::NavSatReport r =
+        swa::wire::navSatReportOf(deserialise<sensor_msgs::msg::NavSatFixPubSubType>(hex));
+    return r.timestamp_us == ap::kStampUs && r.status == 0 && r.latitude_deg == 47.397742 &&
+           r.longitude_deg == 8.545594 && r.covariance_type == 2 && r.variance_east_m2 == 0.5625 &&
+           r.variance_north_m2 == 0.5625;
   }
   if (type == "geometry_msgs/msg/TwistStamped") {
     const swa::wire::CmdVel c = swa::wire::cmdVelOf(deserialise<geometry_msgs::msg::TwistStampedPubSubType>(hex));
@@ -362,7 +381,7 @@ int check(const std::string& path) {
   }
   std::cout << "foreign_payloads: " << checked - failures << " of " << checked
             << " payloads serialised independently read as written\n";
-  return failures == 0 && checked >= 9 ? 0 : 1;
+  return failures == 0 && checked >= 10 ? 0 : 1;
 }
 
 }  // namespace

@@ -47,6 +47,10 @@ const STANDARD = {
     "std_msgs/Header header\ngeometry_msgs/Quaternion orientation\nfloat64[9] orientation_covariance\n" +
     "geometry_msgs/Vector3 angular_velocity\nfloat64[9] angular_velocity_covariance\n" +
     "geometry_msgs/Vector3 linear_acceleration\nfloat64[9] linear_acceleration_covariance\n",
+  "sensor_msgs/NavSatFix":
+    "std_msgs/Header header\nNavSatStatus status\nfloat64 latitude\nfloat64 longitude\nfloat64 altitude\n" +
+    "float64[9] position_covariance\nuint8 position_covariance_type\n",
+  "sensor_msgs/NavSatStatus": "int8 status\nuint16 service\n",
   "geometry_msgs/TwistStamped": "std_msgs/Header header\nTwist twist\n",
   "geometry_msgs/Twist": "Vector3 linear\nVector3 angular\n",
   "ardupilot_msgs/Status":
