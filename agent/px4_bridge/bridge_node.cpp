@@ -71,10 +71,12 @@ void BridgeNode::connect() {
   imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), "swa_sensor_writer");
   state_ = p.writer<msg::BridgeStatePubSubType>(topics::bridgeState(id_), "swa_state_writer");
   if (!options_.no_gnss) gnss_ = p.writer<msg::GnssFixPubSubType>(topics::gnss(id_), "swa_detections_gnss_writer");
+  // The vehicle's endpoints before the command reader: a command arriving at once is sent through the new
+  // participant's writers, never through those of a participant deleted by a reconnection.
+  vehicle_->connect(p);
   cmd_reader_ = p.readerWithOrigin<msg::VelocitySetpointPubSubType>(
       topics::cmdVel(id_), "swa_command_reader",
       [this](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) { onCommand(std::move(m), w); });
-  vehicle_->connect(p);
 }
 
 BridgeNode::~BridgeNode() { participant_.reset(); }

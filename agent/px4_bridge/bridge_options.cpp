@@ -111,7 +111,7 @@ app::Cli makeCli(BridgeOptions& o) {
         }
       },
       "how ArduPilot fills the IMU message's orientation: ros (x, y, z, w as the message defines; default) or wxyz "
-      "(early AP_DDS wrote w, x, y, z into x, y, z, w: a level vehicle then reads as upside down)");
+      "(AP_DDS of 2024 writes w, x, y, z into x, y, z, w; check which your firmware does, deploy/README.md)");
   cli.integer("--target-system", "N", o.target_system, 0, 255, "a MAVLink system id",
               "VehicleCommand.target_system of --engage's requests (0: whichever vehicle reads NS)");
   cli.real("--stale-after-s", "T", o.core.stale_after_s, 0.01, 10.0, "a time in seconds",

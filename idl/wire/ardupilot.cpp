@@ -46,6 +46,7 @@ ardupilot_msgs::msg::Status statusMessage(std::uint64_t timestamp_us, bool armed
   m.armed(armed);
   m.mode(mode);
   m.flying(armed);
+  m.external_control(true);  // as ArduPilot sets it (AP_DDS_Client.cpp: "always true for now")
   if (failsafe_ekf) m.failsafe().push_back(ardupilot::kFailsafeEkf);
   return m;
 }

@@ -91,6 +91,41 @@ TEST(Ardupilot, TheCoresSetpointIsAnEnuCmdVelInTheMapFrame) {
   EXPECT_STREQ(copterModeName(kModeGuided), "GUIDED");
 }
 
+TEST(Ardupilot, AStaleCommandBecomesZeroVelocityRepeatedAtTheHeartbeatsPeriod) {
+  // GIVEN the core for ArduPilot, attitude every 10 ms and one command answering the first sample
+  autopilot::BridgeConfig config;
+  config.autopilot = autopilot::ardupilotAutopilot();
+  autopilot::BridgeCore core(config);
+  ASSERT_TRUE(core.onAttitude(1'000'000u, px4::Quaternion{}, 0.0));
+  agent::VelocityCommand c;
+  c.answered_stamp_ns = 1'000'000'000;
+  c.stamp_ns = c.answered_stamp_ns;
+  c.velocity_mps = agent::Vec2(2.0, 0.0);
+  c.fresh = true;
+  ASSERT_TRUE(core.onCommand(c, 0.0).setpoint);
+  // WHEN no further command comes while the vehicle's samples go on for 0.9 s
+  int zeros = 0;
+  for (int k = 1; k <= 90; ++k) {
+    const double now = 0.01 * k;
+    core.onAttitude(1'000'000u + 10'000u * static_cast<std::uint64_t>(k), px4::Quaternion{}, now);
+    const autopilot::Outbox out = core.tick(now);
+    EXPECT_FALSE(out.heartbeat_us);
+    if (out.setpoint) {
+      // THEN every setpoint is zero velocity, holding the heading, stamped like the last command's sample
+      EXPECT_EQ(out.setpoint->timestamp_us, 1'000'000u);
+      EXPECT_EQ(out.setpoint->velocity.north, 0.0);
+      EXPECT_EQ(out.setpoint->velocity.east, 0.0);
+      EXPECT_EQ(out.setpoint->yawspeed_radps, 0.0);
+      ++zeros;
+    }
+  }
+  // AND from the stale point (0.3 s) to 0.9 s it is repeated every 50 ms, not sent once: ArduPilot has no heartbeat
+  // to keep a lost one from letting the vehicle fly the old command until GUID_TIMEOUT
+  EXPECT_EQ(core.link(), autopilot::Link::kStale);
+  EXPECT_GE(zeros, 11);
+  EXPECT_LE(zeros, 13);
+}
+
 TEST(NavSat, FixesAreMetresEastAndNorthOfTheFirstOneAndBackWithinAMillimetre) {
   // GIVEN a local frame at a mid-latitude airfield
   const LocalTangent home{47.397742, 8.545594};

@@ -184,7 +184,7 @@ json imuExpected() {
 
 json statusExpected() {
   return {{"header", {{"stamp", time()}, {"frame_id", ""}}}, {"vehicle_type", 2}, {"armed", true}, {"mode", 4},
-          {"flying", true}, {"failsafe", json::array({24})}};
+          {"flying", true}, {"external_control", true}, {"failsafe", json::array({24})}};
 }
 
 json navSatExpected() {
@@ -301,7 +301,7 @@ std::optional<bool> checkArdupilot(const std::string& type, const std::string& h
   }
   if (type == "ardupilot_msgs/msg/Status") {
     const ardupilot_msgs::msg::Status m = deserialise<ardupilot_msgs::msg::StatusPubSubType>(hex);
-    return m.armed() && m.mode() == 4 && m.vehicle_type() == 2 && m.flying() &&
+    return m.armed() && m.mode() == 4 && m.vehicle_type() == 2 && m.flying() && m.external_control() &&
            m.failsafe() == std::vector<std::uint8_t>{24};
   }
   if (type == "sensor_msgs/msg/NavSatFix") {

@@ -149,8 +149,13 @@ Outbox BridgeCore::tick(double now_s) {
     return out;
   }
   if (!streaming_since_us_) streaming_since_us_ = *newest_us_;
-  if (config_.autopilot.heartbeat && (out.setpoint || now_s - last_heartbeat_s_ >= config_.heartbeat_period_s)) {
+  const bool keep_alive_due = now_s - last_heartbeat_s_ >= config_.heartbeat_period_s;
+  if (config_.autopilot.heartbeat && (out.setpoint || keep_alive_due)) {
     out.heartbeat_us = 0;
+  } else if (!config_.autopilot.heartbeat && now == Link::kStale && !out.setpoint && keep_alive_due) {
+    // No heartbeat keeps a lone zero setpoint alive (a best-effort sample may be lost, and ArduPilot would fly the
+    // last command until GUID_TIMEOUT): repeat it at the heartbeat's period while stale.
+    out.setpoint = Setpoint{*applied_us_, NedVelocity{}, 0.0};
   }
   if (out.setpoint || out.heartbeat_us) sent(out, now_s);
   // Engage only on the agent's own commands, with the stream established in vehicle time and the state known.
@@ -174,10 +179,9 @@ Outbox BridgeCore::tick(double now_s) {
 
 void BridgeCore::sent(Outbox& out, double now_s) {
   if (out.setpoint) ++counters_.setpoints_out;
-  if (out.heartbeat_us) {
-    ++counters_.heartbeats_out;
-    last_heartbeat_s_ = now_s;
-  }
+  if (out.heartbeat_us) ++counters_.heartbeats_out;
+  // What keeps the stream alive: PX4's heartbeat, or without one the setpoint itself.
+  if (out.heartbeat_us || (out.setpoint && !config_.autopilot.heartbeat)) last_heartbeat_s_ = now_s;
 }
 
 std::vector<std::string> BridgeCore::takeEvents() { return std::exchange(events_, {}); }

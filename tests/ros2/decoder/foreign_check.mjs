@@ -54,7 +54,8 @@ const STANDARD = {
   "geometry_msgs/TwistStamped": "std_msgs/Header header\nTwist twist\n",
   "geometry_msgs/Twist": "Vector3 linear\nVector3 angular\n",
   "ardupilot_msgs/Status":
-    "std_msgs/Header header\nuint8 vehicle_type\nbool armed\nuint8 mode\nbool flying\nuint8[] failsafe\n",
+    "std_msgs/Header header\nuint8 vehicle_type\nbool armed\nuint8 mode\nbool flying\nbool external_control\n" +
+    "uint8[] failsafe\n",
   "ardupilot_msgs/srv/ArmMotors_Request": "bool arm\n",
   "ardupilot_msgs/srv/ArmMotors_Response": "bool result\n",
   "ardupilot_msgs/srv/ModeSwitch_Request": "uint8 mode\n",

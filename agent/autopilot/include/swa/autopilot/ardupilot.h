@@ -4,9 +4,10 @@
 // conventions meet SWA's; the bridge's adapter and the simulator's stand-in both use it.
 //
 //   IMU   rt/<ns>/imu/experimental/data, sensor_msgs/Imu, frame "base_link_ned": orientation is the AHRS quaternion
-//         FRD body -> NED earth, the same attitude PX4 sends (swa/px4/frames.h converts it). Releases of AP_DDS before
-//         the fix wrote its (w, x, y, z) into the message's (x, y, z, w) fields: QuaternionLayout::kWxyzInXyzw reads
-//         those. Stamps: builtin_interfaces/Time of the vehicle (UTC when its clock is set, else time since boot),
+//         FRD body -> NED earth, the same attitude PX4 sends (swa/px4/frames.h converts it). AP_DDS releases of 2024
+//         (and perhaps later: not confirmed) write its (w, x, y, z) into the message's (x, y, z, w) fields, a fork
+//         fixes it: QuaternionLayout::kWxyzInXyzw reads the former. Read in the wrong order, a level vehicle with
+//         true heading psi (from north) reads as rolled by pi - psi and heading north. Stamps: builtin_interfaces/Time of the vehicle (UTC when its clock is set, else time since boot),
 //         in whole microseconds.
 //   cmd   rt/<ns>/cmd_vel, geometry_msgs/TwistStamped in frame "map": linear = ENU velocity (x east, y north, z up),
 //         angular.z = yaw rate counter-clockwise from above (ArduPilot negates it for NED). SWA's stable frame is
@@ -41,8 +42,8 @@ inline const char* const kMapFrame = "map";
 inline const char* const kImuFrame = "base_link_ned";
 
 enum class QuaternionLayout {
-  kRos,         // x, y, z, w as sensor_msgs/Imu defines them (current AP_DDS)
-  kWxyzInXyzw,  // early AP_DDS: the message's x holds w, y holds x, z holds y, w holds z
+  kRos,         // x, y, z, w as sensor_msgs/Imu defines them
+  kWxyzInXyzw,  // AP_DDS as of 2024: the message's x holds w, y holds x, z holds y, w holds z
 };
 std::optional<QuaternionLayout> parseQuaternionLayout(const std::string& text);  // "ros" | "wxyz"
 const char* quaternionLayoutName(QuaternionLayout layout);

@@ -16,8 +16,8 @@
 //   - no command for agent_lost_after_s, or no attitude from the vehicle for attitude_lost_after_s, stops the stream:
 //     the autopilot's own failsafe takes over (PX4: offboard loss, COM_OF_LOSS_T and COM_OBL_RC_ACT; ArduPilot: the
 //     GUIDED velocity timeout, GUID_TIMEOUT). The bridge never decides a failsafe itself;
-//   - otherwise the heartbeat is repeated every heartbeat_period_s, stamped 0 (PX4 stamps it on receipt; ArduPilot has
-//     no heartbeat, and its outbox has none).
+//   - otherwise the heartbeat is repeated every heartbeat_period_s, stamped 0 (PX4 stamps it on receipt). ArduPilot has
+//     no heartbeat, so its outbox has none, and while stale the zero setpoint itself is repeated at that period.
 // Commands are accepted only if they answer a sample this bridge forwarded (not one from before it started: a
 // restarted bridge is sent its writer's last command again) and are newer than the last one applied.
 // It arms and requests the external-control mode (PX4: OFFBOARD; ArduPilot: GUIDED) only with `engage` (bench tests,
