@@ -94,12 +94,6 @@ void ArdupilotVehicles::repeatAttitude(int uav) {
   if (v.last_imu) v.imu.write(*v.last_imu);
 }
 
-void ArdupilotVehicles::toStandin(Vehicle& v, agent::StampNs now, const geometry_msgs::msg::TwistStamped& m) {
-  const wire::CmdVel c = wire::cmdVelOf(m);
-  v.standin.cmdVel(now, c.map_frame, c.twist);
-  if (c.map_frame) v.yaw_rate_radps = worldYawRate(px4::yawspeedOf(c.twist.yaw_rate_radps));
-}
-
 void ArdupilotVehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now,
                               const AdmitFn& admit) {
   arrived_.clear();
@@ -117,7 +111,10 @@ void ArdupilotVehicles::drain(std::vector<Answer>& answers, Clock::duration wait
       const std::optional<std::uint32_t> seq = answered ? v.published.answer(*answered) : std::nullopt;
       if (!seq) {
         // The bridge's own command (or a repeat): it answers no sample the vehicle is waiting for.
-        if (admit(answer)) toStandin(v, now, *cmd);
+        if (admit(answer)) {
+          v.standin.cmdVel(now, c.map_frame, c.twist);
+          if (c.map_frame) v.yaw_rate_radps = answer.setpoint.yaw_rate_radps();
+        }
         continue;
       }
       markAnswered(answer, *answered, *seq);

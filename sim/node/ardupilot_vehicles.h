@@ -79,7 +79,6 @@ class ArdupilotVehicles : public AutopilotVehicles {
   };
 
   void publishStatus(Vehicle& v, agent::StampNs now);
-  void toStandin(Vehicle& v, agent::StampNs now, const geometry_msgs::msg::TwistStamped& m);
 
   dds::SampleQueue<Arrival> queue_;  // declared before the vehicles' readers are made, outlives their listeners' use
   std::vector<Vehicle> vehicles_;

@@ -54,19 +54,30 @@ TEST(Ardupilot, TheImuOrientationIsReadInEitherFieldOrder) {
   EXPECT_GT(std::max(std::abs(wrong.roll), std::abs(wrong.pitch)), 1.2);
 }
 
+autopilot::BridgeCore ardupilotCore() {
+  autopilot::BridgeConfig config;
+  config.autopilot = autopilot::ardupilotAutopilot();
+  return autopilot::BridgeCore(config);
+}
+
+// The agent's answer to the sample stamped `timestamp_us`, at local time 0.
+autopilot::Outbox answer(autopilot::BridgeCore& core, std::uint64_t timestamp_us, const agent::Vec2& v,
+                         double yaw_rate_radps) {
+  agent::VelocityCommand c;
+  c.answered_stamp_ns = static_cast<agent::StampNs>(timestamp_us) * 1000;
+  c.stamp_ns = c.answered_stamp_ns;
+  c.velocity_mps = v;
+  c.yaw_rate_radps = yaw_rate_radps;
+  c.fresh = true;
+  return core.onCommand(c, 0.0);
+}
+
 TEST(Ardupilot, TheCoresSetpointIsAnEnuCmdVelInTheMapFrame) {
   // GIVEN the bridge core configured for ArduPilot, one attitude sample and the agent's answer: 1 m/s east, 0.5 m/s
   // north, turning left (counter-clockwise) at 0.3 rad/s
-  autopilot::BridgeConfig config;
-  config.autopilot = autopilot::ardupilotAutopilot();
-  autopilot::BridgeCore core(config);
+  autopilot::BridgeCore core = ardupilotCore();
   ASSERT_TRUE(core.onAttitude(5'000'000u, px4::Quaternion{}, 0.0));
-  agent::VelocityCommand c;
-  c.answered_stamp_ns = 5'000'000'000;
-  c.stamp_ns = c.answered_stamp_ns;
-  c.velocity_mps = agent::Vec2(1.0, 0.5);
-  c.yaw_rate_radps = 0.3;
-  const autopilot::Outbox out = core.onCommand(c, 0.0);
+  const autopilot::Outbox out = answer(core, 5'000'000u, agent::Vec2(1.0, 0.5), 0.3);
   ASSERT_TRUE(out.setpoint);
   // WHEN it goes out as cmd_vel THEN ENU, the same yaw rate (ROS's sense is SWA's), stamped with the sample's time
   const geometry_msgs::msg::TwistStamped m = wire::cmdVel(*out.setpoint);
@@ -93,16 +104,9 @@ TEST(Ardupilot, TheCoresSetpointIsAnEnuCmdVelInTheMapFrame) {
 
 TEST(Ardupilot, AStaleCommandBecomesZeroVelocityRepeatedAtTheHeartbeatsPeriod) {
   // GIVEN the core for ArduPilot, attitude every 10 ms and one command answering the first sample
-  autopilot::BridgeConfig config;
-  config.autopilot = autopilot::ardupilotAutopilot();
-  autopilot::BridgeCore core(config);
+  autopilot::BridgeCore core = ardupilotCore();
   ASSERT_TRUE(core.onAttitude(1'000'000u, px4::Quaternion{}, 0.0));
-  agent::VelocityCommand c;
-  c.answered_stamp_ns = 1'000'000'000;
-  c.stamp_ns = c.answered_stamp_ns;
-  c.velocity_mps = agent::Vec2(2.0, 0.0);
-  c.fresh = true;
-  ASSERT_TRUE(core.onCommand(c, 0.0).setpoint);
+  ASSERT_TRUE(answer(core, 1'000'000u, agent::Vec2(2.0, 0.0), 0.0).setpoint);
   // WHEN no further command comes while the vehicle's samples go on for 0.9 s
   int zeros = 0;
   for (int k = 1; k <= 90; ++k) {

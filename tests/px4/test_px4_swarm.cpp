@@ -83,6 +83,7 @@ class Px4SwarmTest : public ::testing::Test {
   void expectAsCohesiveAsDirect(const std::string& scenario, const std::vector<px4::Release>& releases);
   // Through ArduPilot; with `observer`, the bridges' endpoints are audited too.
   void expectThroughArdupilotAsCohesiveAsDirect(const std::string& scenario, DiscoveryObserver* observer);
+  void expectGnssLostAndRegainedThroughTheBridges(const std::string& vehicle, const std::string& name);
 
   ShmJanitor janitor_;  // first: sees /dev/shm before anything of ours exists
   fs::path dir_;
@@ -203,63 +204,45 @@ TEST_F(Px4SwarmTest, EightUavsFlyThroughPx4V116AndV117AsCohesivelyAsDirect) {
   expectAsCohesiveAsDirect("dropout_8.yaml", {px4::Release::kV1_16, px4::Release::kV1_17});
 }
 
-TEST_F(Px4SwarmTest, GnssLostAndRegainedByTheVehiclesReachesTheAgentsThroughTheBridges) {
-  // GIVEN 4 anchored agents whose GNSS comes from their (simulated) PX4s, lost from 10 s to 20 s of 30
+// 4 anchored agents whose GNSS comes from their (simulated) autopilots (`vehicle`, named `name` in the bridges' logs),
+// lost from 10 s to 20 s of 30.
+void Px4SwarmTest::expectGnssLostAndRegainedThroughTheBridges(const std::string& vehicle, const std::string& name) {
   const std::vector<std::string> sets = {"duration_s=30", "gnss.dropout_start_s=10", "gnss.dropout_end_s=20",
                                          "agent.mode=anchored"};
-  std::vector<std::string> px4_sets = sets;
-  px4_sets.emplace_back("vehicle.gnss_source=autopilot");
-  const LaunchedRun px4 = launch("dropout_4.yaml", "px4", px4_sets, "gnss");
-  ASSERT_NE(px4.status, -1) << "still running after " << kRunBoundS << " s";
+  std::vector<std::string> autopilot_sets = sets;
+  autopilot_sets.emplace_back("vehicle.gnss_source=autopilot");
+  const LaunchedRun run = launch("dropout_4.yaml", vehicle, autopilot_sets, "gnss");
+  ASSERT_NE(run.status, -1) << "still running after " << kRunBoundS << " s";
   // THEN the run passes as cohesively as the in-process loop with the simulator's own GNSS
-  EXPECT_EQ(px4.status, 0) << px4.summary << logs(px4.dir);
+  EXPECT_EQ(run.status, 0) << run.summary << logs(run.dir);
   const double d_direct =
       batch::runClosedLoop(sim::loadScenario(kScenarioDir + "dropout_4.yaml", sets)).summary.mean_neighbor_distance_m;
-  EXPECT_NEAR(jsonNumber(px4.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
-  EXPECT_EQ(jsonNumber(px4.summary, "collisions"), 0.0);
+  EXPECT_NEAR(jsonNumber(run.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
+  EXPECT_EQ(jsonNumber(run.summary, "collisions"), 0.0);
   // AND every bridge forwarded a valid fix, then the loss, then the regain, each once
+  const std::string valid_text = "GNSS from " + name + " valid", lost_text = "GNSS from " + name + " LOST";
   for (int i = 0; i < 4; ++i) {
-    const std::string log = readFile(px4.dir / "logs" / ("bridge_" + std::to_string(i) + ".log"));
-    const std::size_t valid = log.find("GNSS from PX4 valid");
-    const std::size_t lost = log.find("GNSS from PX4 LOST");
-    const std::size_t regained = valid == std::string::npos ? valid : log.find("GNSS from PX4 valid", valid + 1);
+    const std::string log = readFile(run.dir / "logs" / ("bridge_" + std::to_string(i) + ".log"));
+    const std::size_t valid = log.find(valid_text);
+    const std::size_t lost = log.find(lost_text);
+    const std::size_t regained = valid == std::string::npos ? valid : log.find(valid_text, valid + 1);
     EXPECT_NE(valid, std::string::npos) << log;
     EXPECT_NE(lost, std::string::npos) << log;
     EXPECT_NE(regained, std::string::npos) << log;
     EXPECT_TRUE(valid < lost && lost < regained) << log;
-    EXPECT_EQ(log.find("GNSS from PX4 LOST", lost + 1), std::string::npos) << log;
+    EXPECT_EQ(log.find(lost_text, lost + 1), std::string::npos) << log;
   }
   expectNothingLeft();
 }
 
+TEST_F(Px4SwarmTest, GnssLostAndRegainedByTheVehiclesReachesTheAgentsThroughTheBridges) {
+  expectGnssLostAndRegainedThroughTheBridges("px4", "PX4");
+}
+
+// ArduPilot's stand-ins send no fix at all while GNSS is lost, as ArduPilot does while its GPS is unhealthy: the
+// bridges tell the loss from the silence.
 TEST_F(Px4SwarmTest, GnssLostAndRegainedByArdupilotReachesTheAgentsThroughTheBridges) {
-  // GIVEN 4 anchored agents whose GNSS comes from their (simulated) ArduPilots, lost from 10 s to 20 s of 30: the
-  // stand-ins then send no fix at all, as ArduPilot does while its GPS is unhealthy
-  const std::vector<std::string> sets = {"duration_s=30", "gnss.dropout_start_s=10", "gnss.dropout_end_s=20",
-                                         "agent.mode=anchored"};
-  std::vector<std::string> ap_sets = sets;
-  ap_sets.emplace_back("vehicle.gnss_source=autopilot");
-  const LaunchedRun ap = launch("dropout_4.yaml", "ardupilot", ap_sets, "gnss");
-  ASSERT_NE(ap.status, -1) << "still running after " << kRunBoundS << " s";
-  // THEN the run passes, and as cohesively as the in-process loop with the simulator's own GNSS
-  EXPECT_EQ(ap.status, 0) << ap.summary << logs(ap.dir);
-  const double d_direct =
-      batch::runClosedLoop(sim::loadScenario(kScenarioDir + "dropout_4.yaml", sets)).summary.mean_neighbor_distance_m;
-  EXPECT_NEAR(jsonNumber(ap.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
-  EXPECT_EQ(jsonNumber(ap.summary, "collisions"), 0.0);
-  // AND every bridge forwarded a valid fix, then the loss (by silence), then the regain, each once
-  for (int i = 0; i < 4; ++i) {
-    const std::string log = readFile(ap.dir / "logs" / ("bridge_" + std::to_string(i) + ".log"));
-    const std::size_t valid = log.find("GNSS from ArduPilot valid");
-    const std::size_t lost = log.find("GNSS from ArduPilot LOST");
-    const std::size_t regained = valid == std::string::npos ? valid : log.find("GNSS from ArduPilot valid", valid + 1);
-    EXPECT_NE(valid, std::string::npos) << log;
-    EXPECT_NE(lost, std::string::npos) << log;
-    EXPECT_NE(regained, std::string::npos) << log;
-    EXPECT_TRUE(valid < lost && lost < regained) << log;
-    EXPECT_EQ(log.find("GNSS from ArduPilot LOST", lost + 1), std::string::npos) << log;
-  }
-  expectNothingLeft();
+  expectGnssLostAndRegainedThroughTheBridges("ardupilot", "ArduPilot");
 }
 
 // events.csv rows of one UAV whose text contains `what`: their times [s] and values.
