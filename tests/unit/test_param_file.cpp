@@ -1,7 +1,6 @@
 // Issue #11: parameter files are bounded before they are parsed (devices, size, binary garbage, thousands of keys)
 // and a list of problems stays one screen long.
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -43,9 +42,8 @@ TEST_F(ParamFile, DevicesArePlainErrorsNotHangsOrGigabytes) {
   // Before issue #11: --scenario /dev/zero grew to 6 GB, --config /dev/urandom hung.
   EXPECT_EQ(problemOf("/dev/zero"), "is a device, pipe or socket, not a configuration file");
   EXPECT_EQ(problemOf("/dev/urandom"), "is a device, pipe or socket, not a configuration file");
-  const auto t0 = std::chrono::steady_clock::now();
+  // A hang would meet the test's timeout; how fast it returns is BM_RefuseDevice's bar in bench_agent_core
   EXPECT_THROW(loadAgentConfig("/dev/urandom"), ConfigError);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
 }
 
 TEST_F(ParamFile, SizeIsCappedAtOneMebibyte) {
@@ -68,7 +66,6 @@ TEST_F(ParamFile, ThousandsOfKeysAreRefusedUpFront) {
   std::string text;
   for (int i = 0; i < 45000; ++i) text += "bogus_key_" + std::to_string(i) + ": 1\n";
   const fs::path many = write("many.yaml", text);
-  const auto t0 = std::chrono::steady_clock::now();
   try {
     loadAgentConfig(many.string());
     FAIL() << "accepted";
@@ -77,7 +74,7 @@ TEST_F(ParamFile, ThousandsOfKeysAreRefusedUpFront) {
     ASSERT_EQ(e.problems().size(), 1u);
     EXPECT_EQ(e.problems()[0], "has more than 2000 keys: not a configuration file");
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+  // How fast the refusal is (it was 16 s) is a timing, so its bar is in bench_agent_core (BM_RefuseManyKeys)
 }
 
 TEST(ParamProblems, RepeatsAreMergedLongOnesCutAndTheListCapped) {
