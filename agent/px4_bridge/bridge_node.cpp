@@ -65,7 +65,12 @@ BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::s
 }
 
 void BridgeNode::connect() {
-  participant_ = std::make_unique<dds::Participant>("swa_bridge_" + std::to_string(id_), domain_id_, profiles_file_);
+  auto participant =
+      std::make_unique<dds::Participant>("swa_bridge_" + std::to_string(id_), domain_id_, profiles_file_);
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    participant_ = std::move(participant);
+  }
   handshake_.connected(std::chrono::steady_clock::now());
   dds::Participant& p = *participant_;
   imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), "swa_sensor_writer");
@@ -79,7 +84,17 @@ void BridgeNode::connect() {
       [this](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) { onCommand(std::move(m), w); });
 }
 
-BridgeNode::~BridgeNode() { participant_.reset(); }
+BridgeNode::~BridgeNode() { closeParticipant(); }
+
+void BridgeNode::closeParticipant() {
+  std::unique_ptr<dds::Participant> closing;
+  {
+    // Listeners test participant_ under mutex_: from here on they return at once, and none is still inside.
+    const std::lock_guard<std::mutex> lock(mutex_);
+    closing = std::move(participant_);
+  }
+  closing.reset();  // waits for the listeners to return, which take mutex_: not held here
+}
 
 double BridgeNode::nowS() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
@@ -88,6 +103,7 @@ double BridgeNode::nowS() const {
 void BridgeNode::onAttitude(const Attitude& a) {
   const auto received = std::chrono::steady_clock::now();
   const std::lock_guard<std::mutex> lock(mutex_);
+  if (!participant_) return;  // closing (closeParticipant)
   if (!vehicle_reads_) {
     pending_ = a;
     pending_at_ = received;
@@ -124,6 +140,7 @@ void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_poin
 
 void BridgeNode::onStatus(bool armed, std::uint8_t mode) {
   const std::lock_guard<std::mutex> lock(mutex_);
+  if (!participant_) return;
   status_seen_ = true;
   core_.onStatus(armed, mode);
   report();
@@ -131,7 +148,7 @@ void BridgeNode::onStatus(bool armed, std::uint8_t mode) {
 
 void BridgeNode::onGnss(const agent::GnssSample& g) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (!gnss_) return;
+  if (!participant_ || !gnss_) return;
   if (!gnss_reported_ || g.valid != last_gnss_valid_) {
     std::fprintf(stderr, "swa_px4_bridge %d: GNSS from %s %s (forwarded to %s)\n", id_, core_.autopilot().name,
                  g.valid ? "valid: a fix and a position" : "LOST: no fix, no valid position, or no report for too long",
@@ -150,6 +167,7 @@ void BridgeNode::onVehicleLog(const std::string& line) {
 
 void BridgeNode::onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& writer) {
   const std::lock_guard<std::mutex> lock(mutex_);
+  if (!participant_) return;
   for (const dds::PeerKey& gone : participant_->takePeersGone()) gate_.participantGone(gone);
   if (gate_.admit(0, writer, std::chrono::steady_clock::now()) == dds::Admission::kRefused) {
     if (gate_.firstRefusal(0, writer)) {
@@ -211,7 +229,7 @@ int BridgeNode::run() {
                    "swa_px4_bridge %d: REFUSING to run: another swa_px4_bridge %d (pid %ld on host %s) already runs "
                    "in this swarm; two bridges would both command the vehicle\n",
                    id_, id_, twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?");
-      participant_.reset();
+      closeParticipant();
       return kExitTwin;
     }
     // A stalled DDS Security handshake with the vehicle (or the simulator) or with the agent, before anything flowed
@@ -223,7 +241,7 @@ int BridgeNode::run() {
                    "stalled authentication handshake, see deploy/README.md): re-creating the participant "
                    "(reconnection %d)\n",
                    id_, handshake_.reconnects());
-      participant_.reset();  // waits for the listeners, which take mutex_: not held here
+      closeParticipant();
       connect();
       const std::lock_guard<std::mutex> lock(mutex_);
       vehicle_reads_ = false;  // the new writers must match the vehicle again before anything is forwarded
@@ -252,7 +270,7 @@ int BridgeNode::run() {
     vehicle_->send(core_.tick(nowS()));
     report();
   }
-  participant_.reset();
+  closeParticipant();
   logFinalCounts();
   writeSummary();
   return 0;

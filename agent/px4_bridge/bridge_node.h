@@ -51,6 +51,9 @@ class BridgeNode : public app::Role {
   };
 
   void connect();  // creates the participant, the agent's endpoints and the vehicle's
+  // Deletes the participant. Listeners still running on it (they call participant_, imu_, ...) see it gone under
+  // mutex_ and return; a plain participant_.reset() would null the pointer while they still ran.
+  void closeParticipant();
   double nowS() const;
   // From the vehicle link's listeners.
   void onAttitude(const Attitude& a);
@@ -98,7 +101,7 @@ class BridgeNode : public app::Role {
   std::atomic<bool> stop_requested_{false};
   dds::HandshakeWatch handshake_;
 
-  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Participant> participant_;  // written by the main thread under mutex_; null while closing
   dds::Writer<msg::Imu> imu_;
   dds::Writer<msg::BridgeState> state_;
   dds::Writer<msg::GnssFix> gnss_;  // not with --no-gnss

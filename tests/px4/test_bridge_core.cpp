@@ -232,6 +232,33 @@ TEST_F(BridgeCoreTest, PX4sClockRestartStartsANewTimeline) {
   EXPECT_FALSE(bridge_.onCommand(old, now_s_).setpoint);
 }
 
+TEST_F(BridgeCoreTest, AClockSetAheadStartsANewTimelineAndKeepsTheAgent) {
+  flyAnswered(100, 110);
+  // WHEN the vehicle's stamps jump from time since boot to UTC 10 ms later (ArduPilot once its clock is set)
+  constexpr std::uint64_t kUtcUs = 1'795'000'000'000'000;
+  now_s_ += 0.01;
+  ASSERT_TRUE(bridge_.onAttitude(kUtcUs, {}, now_s_));
+  // THEN it is a new timeline, not a lifetime without commands: the stream is not stopped as "agent lost"
+  EXPECT_EQ(bridge_.counters().clock_restarts, 1u);
+  bridge_.tick(now_s_);
+  EXPECT_NE(bridge_.link(), Link::kAgentLost);
+  // AND the agent's answer to the new sample is applied, one to the old timeline is not
+  agent::VelocityCommand c;
+  c.answered_stamp_ns = static_cast<agent::StampNs>(stamp(109)) * 1000;
+  c.velocity_mps = {1.0, 0.0};
+  EXPECT_FALSE(bridge_.onCommand(c, now_s_).setpoint);
+  c.answered_stamp_ns = static_cast<agent::StampNs>(kUtcUs) * 1000;
+  EXPECT_TRUE(bridge_.onCommand(c, now_s_).setpoint);
+}
+
+TEST_F(BridgeCoreTest, AGapTheLocalClockAlsoSawIsNoClockJump) {
+  flyAnswered(100, 110);
+  // WHEN the vehicle is silent for 3 s and then goes on where its clock and ours agree
+  attitude(410);
+  // THEN the samples are one timeline
+  EXPECT_EQ(bridge_.counters().clock_restarts, 0u);
+}
+
 TEST_F(BridgeCoreTest, WithoutEngageTheBridgeNeverArmsOrSwitchesModes) {
   // GIVEN a disarmed vehicle in hold and the agent streaming for 3 s
   bridge_.onStatus(false, kNavStateAutoLoiter);

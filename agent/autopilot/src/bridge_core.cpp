@@ -1,5 +1,6 @@
 #include "swa/autopilot/bridge_core.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -18,7 +19,9 @@ using px4::swaAttitude;
 using px4::timestampUsOf;
 using px4::yawspeedOf;
 
-constexpr std::uint64_t kClockRestartUs = 1'000'000;  // a timestamp this far behind the newest: the vehicle restarted
+// A timestamp this far behind the newest (or ahead of it, beyond the time that passed): the vehicle's clock restarted
+// or was set.
+constexpr std::uint64_t kClockRestartUs = 1'000'000;
 
 // Durations compared in whole microseconds, on the vehicle's clock: exact at the thresholds.
 std::uint64_t microseconds(double seconds) { return static_cast<std::uint64_t>(std::llround(seconds * 1e6)); }
@@ -55,14 +58,21 @@ std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_u
     ++counters_.attitude_rejected;
     return std::nullopt;
   }
-  if (newest_us_ && timestamp_us <= *newest_us_) {
-    if (*newest_us_ - timestamp_us < kClockRestartUs) {
+  // A jump ahead by more than the local clock saw pass (plus the restart margin): ArduPilot's stamps go from
+  // time-since-boot to UTC when its clock is set. Kept, the commands of the old timeline would look a lifetime old
+  // and stop the stream (agent lost) until the agent answered a new sample.
+  const bool jumped_ahead =
+      newest_us_ && timestamp_us > *newest_us_ &&
+      timestamp_us - *newest_us_ > microseconds(std::max(now_s - newest_at_s_, 0.0)) + kClockRestartUs;
+  if (newest_us_ && (timestamp_us <= *newest_us_ || jumped_ahead)) {
+    if (!jumped_ahead && *newest_us_ - timestamp_us < kClockRestartUs) {
       ++counters_.attitude_out_of_order;
       return std::nullopt;
     }
     ++counters_.clock_restarts;
-    note(std::string(config_.autopilot.name) + "'s clock restarted (attitude stamp " + std::to_string(timestamp_us) +
-         " us after " + std::to_string(*newest_us_) + " us): the old timeline's commands are forgotten");
+    note(std::string(config_.autopilot.name) + "'s clock " + (jumped_ahead ? "jumped ahead" : "restarted") +
+         " (attitude stamp " + std::to_string(timestamp_us) + " us after " + std::to_string(*newest_us_) +
+         " us): the old timeline's commands are forgotten");
     first_us_.reset();
     applied_us_.reset();
     streaming_since_us_.reset();
