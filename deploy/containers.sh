@@ -34,8 +34,8 @@ Commands:
             podman-compose (root; apt is not contacted when nothing is missing)
   build     install, then the Debian base image (debootstrap + import, once; --rebuild-base to redo it), then the
             images localhost/swa-{agent,sim,monitor,bridge,batch}:latest with the binaries of --bin-dir
-  compose N print the compose file for N UAVs (deploy/containers/compose.yaml is N = 4; with --vehicle px4 the
-            PX4 variant, deploy/containers/compose-px4.yaml for N = 4)
+  compose N print the compose file for N UAVs (deploy/containers/compose.yaml is N = 4; with --vehicle px4 or
+            ardupilot that variant, deploy/containers/compose-px4.yaml or compose-ardupilot.yaml for N = 4)
   up        start the swarm in the background (images must be built): writes RUN/agent.yaml for the scenario,
             then compose up
   wait      wait for the monitor's verdict (at most --timeout-s), stop the swarm, save every container's log
@@ -52,9 +52,10 @@ Options:
   --bin-dir DIR     where swa_agent, swa_sim, swa_monitor, swa_px4_bridge and swa_batch are (build; default
                     build/bin)
   --uavs N          number of agent containers (up, run, test; default 4); sets the scenario's uav_count to N
-  --vehicle V       direct (default) or px4: one swa_px4_bridge container per UAV too, the simulator playing each
-                    UAV's PX4 (vehicle.interface=px4); test then compares d_NB with swa_batch's direct loop
-                    (within 0.05 m) instead of every summary key
+  --vehicle V       direct (default), px4 or ardupilot: one swa_px4_bridge container per UAV too (with
+                    --autopilot ardupilot for ArduPilot), the simulator playing each UAV's autopilot
+                    (vehicle.interface=V); test then compares d_NB with swa_batch's direct loop (within
+                    0.05 m) instead of every summary key
   --scenario FILE   scenario YAML (default deploy/scenarios/dropout_4.yaml), copied into RUN
   --set key=value   scenario override for the simulator and the monitor alike (repeatable; no spaces)
   --run-dir DIR     run directory RUN (default out/containers): agent.yaml, scenario.yaml, compose.yaml,
@@ -73,6 +74,7 @@ Examples:
   bash deploy/containers.sh up && bash deploy/containers.sh wait  # the same in two steps
   bash deploy/containers.sh test --bin-dir build/bin              # what ctest -L containers runs
   bash deploy/containers.sh run --vehicle px4                     # the same swarm through PX4 bridges
+  bash deploy/containers.sh run --vehicle ardupilot               # ... through ArduPilot bridges
 EOF
 }
 
@@ -196,19 +198,19 @@ down() {
   fi
 }
 
-# "uav_count=N" first, so the scenario runs exactly as many UAVs as there are agent containers; with --vehicle px4
-# the interface too, so that a --set of a PX4-only key (vehicle.com_of_loss_t_s) is judged against it everywhere
-# (the agents' exported configuration, swa_batch's reference run), not only in the simulator's container.
+# "uav_count=N" first, so the scenario runs exactly as many UAVs as there are agent containers; through an
+# autopilot the interface too, so that a --set of an autopilot's key (vehicle.com_of_loss_t_s) is judged against it
+# everywhere (the agents' exported configuration, swa_batch's reference run), not only in the simulator's container.
 swa_set() {
   local all=("uav_count=$uavs")
-  if [ "$vehicle" = px4 ]; then all+=("vehicle.interface=px4"); fi
+  if [ "$vehicle" != direct ]; then all+=("vehicle.interface=$vehicle"); fi
   all+=(${sets[@]+"${sets[@]}"})
   echo "${all[*]}"
 }
 
 compose_file() {
   if [ "$uavs" -eq 4 ]; then
-    if [ "$vehicle" = px4 ]; then echo "$here/compose-px4.yaml"; else echo "$here/compose.yaml"; fi
+    if [ "$vehicle" = direct ]; then echo "$here/compose.yaml"; else echo "$here/compose-$vehicle.yaml"; fi
   else
     bash "$here/gen-compose.sh" "$uavs" --vehicle "$vehicle" > "$run_dir/compose.yaml"
     echo "$run_dir/compose.yaml"
@@ -216,7 +218,7 @@ compose_file() {
 }
 
 # The images a run needs.
-needed_images() { if [ "$vehicle" = px4 ]; then echo agent sim monitor bridge; else echo agent sim monitor; fi; }
+needed_images() { if [ "$vehicle" = direct ]; then echo agent sim monitor; else echo agent sim monitor bridge; fi; }
 
 up() {
   install_packages
@@ -410,7 +412,7 @@ check(len(agents) == uavs, f"{uavs} agent containers ran, got {len(agents)}")
 check(codes.get("sim") == 0, f"simulator container exit code 0, got {codes.get('sim')}")
 bad = {k: codes[k] for k in agents if codes[k] != 0}
 check(not bad, f"every agent exited 0 on SIGTERM (clean DDS shutdown), not: {bad}")
-if vehicle == "px4":
+if vehicle != "direct":
     bridges = sorted(k for k in codes if k.startswith("bridge"))
     check(len(bridges) == uavs, f"{uavs} bridge containers ran, got {len(bridges)}")
     bad = {k: codes[k] for k in bridges if codes[k] != 0}
@@ -433,13 +435,14 @@ batch_path = os.path.join(run_dir, "batch", "summary.json")
 if s is not None and sim is not None and os.path.exists(batch_path):
     if sim.get("clock_mode") != "lockstep":
         print(f"skip   comparison with swa_batch: {sim.get('clock_mode')} runs are not deterministic")
-    elif vehicle == "px4":
-        # Through PX4 the float32 of PX4's messages and the Hold before offboard engages make it another run.
+    elif vehicle != "direct":
+        # Through an autopilot its messages' float32 (PX4), the mode before the bridge engages it and the quaternion
+        # for the attitude make it another run.
         b = load(batch_path)
         d_batch = b["runs"][0]["seeds"][0].get("mean_neighbor_distance_m") if b else None
         d = s.get("mean_neighbor_distance_m")
         ok = isinstance(d, (int, float)) and isinstance(d_batch, (int, float)) and abs(d - d_batch) <= 0.05
-        check(ok, f"through PX4 in containers, d_NB {d} m within 0.05 m of swa_batch's direct loop ({d_batch} m)")
+        check(ok, f"through {vehicle} in containers, d_NB {d} m within 0.05 m of swa_batch's direct loop ({d_batch} m)")
     else:
         b = load(batch_path)
         entry = b["runs"][0]["seeds"][0] if b else {}
@@ -452,7 +455,8 @@ else:
     check(False, f"swa_batch's summary for comparison ({batch_path})")
 
 if uavs == 4:
-    for name, extra in (("compose.yaml", []), ("compose-px4.yaml", ["--vehicle", "px4"])):
+    for name, extra in (("compose.yaml", []), ("compose-px4.yaml", ["--vehicle", "px4"]),
+                        ("compose-ardupilot.yaml", ["--vehicle", "ardupilot"])):
         gen = subprocess.run(["bash", os.path.join(root, "deploy/containers/gen-compose.sh"), "4"] + extra,
                              capture_output=True, text=True, check=True).stdout
         with open(os.path.join(root, "deploy/containers", name)) as f:
@@ -507,7 +511,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 [[ $uavs =~ ^[1-9][0-9]*$ ]] || die "--uavs must be a positive integer, got '$uavs'"
-[[ $vehicle =~ ^(direct|px4)$ ]] || die "--vehicle must be direct or px4, got '$vehicle'"
+[[ $vehicle =~ ^(direct|px4|ardupilot)$ ]] || die "--vehicle must be direct, px4 or ardupilot, got '$vehicle'"
 [[ $timeout_s =~ ^[1-9][0-9]*$ ]] || die "--timeout-s must be a positive integer, got '$timeout_s'"
 [[ $project =~ ^[a-z0-9][a-z0-9_-]*$ ]] || die "--project must match [a-z0-9][a-z0-9_-]*, got '$project'"
 for kv in ${sets[@]+"${sets[@]}"}; do

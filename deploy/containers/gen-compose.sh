@@ -1,24 +1,25 @@
 #!/usr/bin/env bash
 # Writes the compose file for a swarm of N UAVs to stdout: the simulator, N agents (one container per UAV, its id
-# in SWA_UAV_ID) and the monitor on one bridge network; with --vehicle px4 also one swa_px4_bridge container per UAV
-# (the simulator plays each UAV's PX4: vehicle.interface=px4 goes in front of SWA_SET). compose.yaml next to this
-# script is `gen-compose.sh 4`, compose-px4.yaml `gen-compose.sh 4 --vehicle px4` (tests/containers checks both).
+# in SWA_UAV_ID) and the monitor on one bridge network; with --vehicle px4 or ardupilot also one swa_px4_bridge
+# container per UAV (the simulator plays each UAV's autopilot: vehicle.interface=V goes in front of SWA_SET).
+# compose.yaml next to this script is `gen-compose.sh 4`, compose-px4.yaml `gen-compose.sh 4 --vehicle px4` and
+# compose-ardupilot.yaml `gen-compose.sh 4 --vehicle ardupilot` (tests/containers checks all three).
 #
-#   gen-compose.sh N [--vehicle px4] > compose.yaml
+#   gen-compose.sh N [--vehicle direct|px4|ardupilot] > compose.yaml
 set -euo pipefail
 
 usage() {
-  sed -n '2,8p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+  sed -n '2,9p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
 }
 
 case ${1:-} in
   -h|--help) usage; exit 0 ;;
 esac
 vehicle=direct
-if [ $# -eq 3 ] && [ "$2" = --vehicle ] && [[ $3 =~ ^(direct|px4)$ ]]; then
+if [ $# -eq 3 ] && [ "$2" = --vehicle ] && [[ $3 =~ ^(direct|px4|ardupilot)$ ]]; then
   vehicle=$3
 elif [ $# -ne 1 ]; then
-  echo "gen-compose: expected N [--vehicle direct|px4], got '${*:-}'" >&2
+  echo "gen-compose: expected N [--vehicle direct|px4|ardupilot], got '${*:-}'" >&2
   usage >&2
   exit 2
 fi
@@ -30,14 +31,15 @@ fi
 n=$1
 through=""
 generated="gen-compose.sh $n"
-if [ "$vehicle" = px4 ]; then
-  through=" and $n PX4 bridges (the simulator plays each UAV's PX4)"
-  generated="gen-compose.sh $n --vehicle px4"
-fi
+case $vehicle in
+  px4) through=" and $n PX4 bridges (the simulator plays each UAV's PX4)" ;;
+  ardupilot) through=" and $n ArduPilot bridges (the simulator plays each UAV's ArduPilot Copter)" ;;
+esac
+[ "$vehicle" = direct ] || generated="gen-compose.sh $n --vehicle $vehicle"
 
-# The simulator and the monitor read the same overrides; through PX4 the simulator plays each UAV's autopilot.
+# The simulator and the monitor read the same overrides; through an autopilot the simulator plays each UAV's.
 set_expr='${SWA_SET}'
-[ "$vehicle" = direct ] || set_expr='"vehicle.interface=px4 ${SWA_SET}"'
+[ "$vehicle" = direct ] || set_expr="\"vehicle.interface=$vehicle \${SWA_SET}\""
 
 cat <<EOF
 # SWA swarm of $n UAVs: simulator, $n agents (one container per UAV)$through and monitor on one bridge
@@ -117,6 +119,25 @@ EOF
       # The simulator's PX4 stand-ins start in Hold; on a real drone leave it 0 and let the pilot switch to offboard.
       SWA_BRIDGE_ENGAGE: "1"
       # The simulator publishes GNSS itself (vehicle.gnss_source=swa); on a real drone leave it 1 (PX4's fix).
+      SWA_BRIDGE_GNSS: "0"
+    networks: [swa]
+    stop_grace_period: 10s
+EOF
+  elif [ "$vehicle" = ardupilot ]; then
+    cat <<EOF
+
+  bridge$i:
+    image: localhost/swa-bridge:latest
+    environment:
+      SWA_DOMAIN: "42"
+      SWA_TRANSPORT: network
+      SWA_UAV_ID: "$i"
+      # ArduPilot's topics under ap/v$((i + 1)) (DDS_USE_NS 1 with MAV_SYSID $((i + 1))), as the simulator's stand-in
+      # names them; SWA_AP_NAMESPACE for another.
+      SWA_AUTOPILOT: ardupilot
+      # The stand-ins start armed in LOITER; on a real drone leave it 0 and let the pilot switch to GUIDED.
+      SWA_BRIDGE_ENGAGE: "1"
+      # The simulator publishes GNSS itself (vehicle.gnss_source=swa); on a real drone leave it 1 (ArduPilot's navsat).
       SWA_BRIDGE_GNSS: "0"
     networks: [swa]
     stop_grace_period: 10s

@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# ctest containers_swarm_4[_px4]: builds the images from the binaries in BIN_DIR, runs dropout_4.yaml for 60 s of
-# simulated time (lockstep) as 4 agent containers + simulator + monitor (with VEHICLE px4 also 4 bridge containers,
-# the simulator playing each UAV's PX4), and checks cohesion in the monitor's summary.json (deploy/containers.sh
-# test). Leaves no container or network behind, also on failure or timeout.
+# ctest containers_swarm_4[_px4|_ardupilot]: builds the images from the binaries in BIN_DIR, runs dropout_4.yaml for
+# 60 s of simulated time (lockstep) as 4 agent containers + simulator + monitor (with VEHICLE px4 or ardupilot also 4
+# bridge containers, the simulator playing each UAV's autopilot), and checks cohesion in the monitor's summary.json
+# (deploy/containers.sh test). Leaves no container or network behind, also on failure or timeout.
 #
 #   test_containers.sh BIN_DIR WORK_DIR [VEHICLE]
 set -euo pipefail
 
 if [ $# -ne 2 ] && [ $# -ne 3 ]; then
-  echo "usage: test_containers.sh BIN_DIR WORK_DIR [direct|px4]" >&2
+  echo "usage: test_containers.sh BIN_DIR WORK_DIR [direct|px4|ardupilot]" >&2
   exit 2
 fi
 bin_dir=$1
