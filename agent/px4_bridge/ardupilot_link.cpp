@@ -1,5 +1,6 @@
 // ArduPilot's side of the bridge (AP_DDS, Copter 4.5+) under the namespace NS (vehicle_link.h, swa/autopilot/
-// ardupilot.h): its IMU message's orientation in, its status in, its GNSS fix in (navsat, swa/autopilot/navsat.h;
+// ardupilot.h): its IMU message's orientation in (in the field order --ap-quaternion gives or gravity tells,
+// swa/autopilot/quaternion_order.h), its status in, its GNSS fix in (navsat, swa/autopilot/navsat.h;
 // not with --no-gnss), the core's setpoints out as cmd_vel in frame "map" (ENU), and with --engage its arm_motors and
 // mode_switch services.
 // ArduPilot has no offboard heartbeat: its liveness is the command stream itself, and when that stops its GUIDED
@@ -20,6 +21,7 @@
 
 #include "swa/autopilot/ardupilot.h"
 #include "swa/autopilot/navsat.h"
+#include "swa/autopilot/quaternion_order.h"
 #include "swa/dds/topics.h"
 #include "swa/wire/ardupilot.h"
 #include "vehicle_link.h"
@@ -33,7 +35,7 @@ namespace srv = ardupilot_msgs::srv;
 class ArdupilotLink : public VehicleLink {
  public:
   ArdupilotLink(const BridgeOptions& options, VehicleEvents events)
-      : options_(options), ns_(apNamespace(options)), events_(std::move(events)) {}
+      : options_(options), ns_(apNamespace(options)), events_(std::move(events)), navsat_(options.navsat) {}
 
   void connect(dds::Participant& p) override {
     cmd_vel_ = p.writer<geometry_msgs::msg::TwistStampedPubSubType>(topics::apTopic(ns_, "cmd_vel"), "ap_in_writer");
@@ -77,7 +79,9 @@ class ArdupilotLink : public VehicleLink {
             }
             return;
           }
-          events_.attitude(*t, wire::attitudeOf(m, options_.ap_quaternion));
+          if (const std::optional<ardupilot::QuaternionLayout> layout = layoutOf(m)) {
+            events_.attitude(*t, wire::attitudeOf(m, *layout));
+          }
           if (!options_.no_gnss) {  // ArduPilot goes silent when its GPS does: the IMU's time tells how long
             const std::lock_guard<std::mutex> lock(gnss_mutex_);
             if (const auto g = navsat_.onVehicleTime(*t)) events_.gnss(*g);
@@ -105,8 +109,10 @@ class ArdupilotLink : public VehicleLink {
   }
 
   std::string description() const override {
+    const std::string order = options_.ap_quaternion ? ardupilot::quaternionLayoutName(*options_.ap_quaternion)
+                                                     : "the quaternion order gravity tells";
     return "ArduPilot namespace '" + ns_ + "' (" + topics::apTopic(ns_, "imu/experimental/data") + " read as " +
-           ardupilot::quaternionLayoutName(options_.ap_quaternion) + ", " + topics::apTopic(ns_, "status") + ")";
+           order + ", " + topics::apTopic(ns_, "status") + ")";
   }
   std::string commandTopic() const override { return topics::apTopic(ns_, "cmd_vel"); }
   std::string noReaderHint() const override {
@@ -119,6 +125,29 @@ class ArdupilotLink : public VehicleLink {
   }
 
  private:
+  // The IMU quaternion's field order: --ap-quaternion, or once gravity has told it (auto); nothing is forwarded before.
+  // On the IMU reader's thread only.
+  std::optional<ardupilot::QuaternionLayout> layoutOf(const sensor_msgs::msg::Imu& m) {
+    if (options_.ap_quaternion) return options_.ap_quaternion;
+    const bool was_decided = order_.decided().has_value();
+    const std::optional<ardupilot::QuaternionLayout> layout =
+        order_.onSample(wire::orientationFieldsOf(m), wire::specificForceOf(m));
+    if (layout && !was_decided) {
+      events_.log(std::string("the IMU quaternion is in ") +
+                  (*layout == ardupilot::QuaternionLayout::kRos ? "the ROS order (x, y, z, w)"
+                                                                : "the order w, x, y, z (AP_DDS of 2024)") +
+                  ": gravity agreed on " + std::to_string(order_.votes()) + " samples of " +
+                  std::to_string(order_.samples()) + "; forwarding the attitude (--ap-quaternion " +
+                  ardupilot::quaternionLayoutName(*layout) + " fixes it)");
+    } else if (!layout && order_.samples() == kOrderHintSamples) {
+      events_.log("the IMU quaternion's field order is not decided after " + std::to_string(kOrderHintSamples) +
+                  " samples, so no attitude is forwarded: hold the vehicle still and level, and turn it if it faces "
+                  "north or south (there both orders look level), or pass --ap-quaternion ros|wxyz");
+    }
+    return layout;
+  }
+  static constexpr std::uint64_t kOrderHintSamples = 500;  // 5 s of ArduPilot's IMU stream
+
   // Replies name their request; another client's requests on the same service get replies too.
   bool isOurs(const dds::SampleIds& ids) {
     const std::lock_guard<std::mutex> lock(requests_mutex_);
@@ -138,6 +167,7 @@ class ArdupilotLink : public VehicleLink {
   const VehicleEvents events_;
 
   std::atomic<std::uint64_t> bad_stamps_{0};
+  ardupilot::QuaternionOrderFinder order_;  // --ap-quaternion auto
   std::mutex gnss_mutex_;  // the fixes and the IMU's time arrive on two readers (two threads)
   ardupilot::NavSatForward navsat_;
   std::mutex requests_mutex_;

@@ -120,14 +120,15 @@ void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_poin
                    core_.autopilot().name, static_cast<unsigned long long>(a.timestamp_us),
                    topics::imu(id_).c_str());
     }
-    if (!upside_down_reported_ && options_.autopilot == AutopilotKind::kArdupilot &&
+    // With an order given by hand (auto decides it from gravity, which a wrong order contradicts).
+    if (!upside_down_reported_ && options_.autopilot == AutopilotKind::kArdupilot && options_.ap_quaternion &&
         (std::abs(imu->roll_rad) > kImplausibleTiltRad || std::abs(imu->pitch_rad) > kImplausibleTiltRad)) {
       upside_down_reported_ = true;
       std::fprintf(stderr,
                    "swa_px4_bridge %d: WARNING: ArduPilot's attitude reads as roll %.0f deg, pitch %.0f deg: is the "
                    "IMU message's quaternion in another field order? (--ap-quaternion, now %s)\n",
                    id_, imu->roll_rad * 180.0 / M_PI, imu->pitch_rad * 180.0 / M_PI,
-                   ardupilot::quaternionLayoutName(options_.ap_quaternion));
+                   ardupilot::quaternionLayoutName(*options_.ap_quaternion));
     }
     msg::Imu out = wire::toMsg(*imu, static_cast<std::uint32_t>(id_), ++imu_seq_);
     imu_.write(out);

@@ -42,8 +42,9 @@ Reads   rt/NS/imu/experimental/data  -> swa/uav<I>/imu (the orientation, FRD -> 
         rt/NS/status                 armed, mode (logged, and for --engage; GUIDED = 4)
         rr/NS/arm_motorsReply, rr/NS/mode_switchReply  the answers to --engage's requests (logged)
         rt/NS/navsat                 -> swa/uav<I>/gnss (not with --no-gnss): valid while ArduPilot reports a fix
-                                            (status >= 0); lost when it reports none or sends no fix for 0.5 s of
-                                            its IMU's time (it goes silent when its GPS is unhealthy); position =
+                                            (status >= 0); lost when it reports none or sends no fix for
+                                            --gnss-silence-s of its IMU's time (it goes silent when its GPS is
+                                            unhealthy or has no new fix); position =
                                             latitude and longitude in metres east and north of the first fix
 Writes  rt/NS/cmd_vel                TwistStamped in frame "map": ENU velocity, angular.z the yaw rate (counter-
                                             clockwise, SWA's sense), stamped with the answered sample's time
@@ -104,14 +105,18 @@ app::Cli makeCli(BridgeOptions& o) {
   cli.value(
       "--ap-quaternion", "L",
       [&o](const std::string& v, app::Problems& problems) {
-        if (const auto layout = ardupilot::parseQuaternionLayout(v)) {
+        if (v == "auto") {
+          o.ap_quaternion.reset();
+        } else if (const auto layout = ardupilot::parseQuaternionLayout(v)) {
           o.ap_quaternion = *layout;
         } else {
-          problems.push_back("--ap-quaternion '" + v + "': ros or wxyz");
+          problems.push_back("--ap-quaternion '" + v + "': auto, ros or wxyz");
         }
       },
-      "how ArduPilot fills the IMU message's orientation: ros (x, y, z, w as the message defines; default) or wxyz "
-      "(AP_DDS of 2024 writes w, x, y, z into x, y, z, w; check which your firmware does, deploy/README.md)");
+      "how ArduPilot fills the IMU message's orientation: ros (x, y, z, w as the message defines), wxyz (AP_DDS of "
+      "2024 writes w, x, y, z into x, y, z, w) or auto (default): decided from the message's gravity while the "
+      "vehicle is still, nothing forwarded until then; a level vehicle facing north or south cannot tell "
+      "(deploy/README.md, \"Flying ArduPilot\")");
   cli.integer("--target-system", "N", o.target_system, 0, 255, "a MAVLink system id",
               "VehicleCommand.target_system of --engage's requests (0: whichever vehicle reads NS)");
   cli.real("--stale-after-s", "T", o.core.stale_after_s, 0.01, 10.0, "a time in seconds",
@@ -128,6 +133,20 @@ app::Cli makeCli(BridgeOptions& o) {
            "commanded yaw rates beyond this are clamped (and counted)");
   cli.flag("--no-gnss", o.no_gnss,
            "do not forward the autopilot's GNSS fix and its loss to swa/uav<I>/gnss (another source publishes it)");
+  cli.value(
+      "--gnss-silence-s", "T",
+      [&o](const std::string& v, app::Problems& problems) {
+        o.gnss_silence_given = true;
+        char* end = nullptr;
+        const double t = std::strtod(v.c_str(), &end);
+        if (v.empty() || *end != '\0' || !(t >= 0.05 && t <= 10.0)) {
+          problems.push_back("--gnss-silence-s '" + v + "': a time in seconds in [0.05, 10]");
+        } else {
+          o.navsat.silence_s = t;
+        }
+      },
+      "ArduPilot: no fix on navsat for this long (its IMU's time) is a GNSS loss (default 0.5: a GPS at 5 Hz or "
+      "more; above 1 for firmware that sends navsat at 1 Hz)");
   cli.flag("--engage", o.core.engage,
            "arm and switch to PX4's offboard or ArduPilot's GUIDED once the agent's stream has run for 1 s (bench tests, simulation; "
            "never on a flight without a pilot who can take over)");
@@ -152,8 +171,8 @@ void finish(BridgeOptions& o, const app::Cli&, app::Problems& problems) {
     if (o.px4_namespace || o.px4_release_given || o.target_system != 0) {
       problems.push_back("--px4-namespace, --px4-release and --target-system are PX4's: not with --autopilot ardupilot");
     }
-  } else if (o.ap_namespace) {
-    problems.push_back("--ap-namespace is ArduPilot's: add --autopilot ardupilot");
+  } else if (o.ap_namespace || o.gnss_silence_given) {
+    problems.push_back("--ap-namespace and --gnss-silence-s are ArduPilot's: add --autopilot ardupilot");
   }
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "swa/autopilot/ardupilot.h"
+#include "swa/autopilot/navsat.h"
 #include "swa/autopilot/bridge_core.h"
 #include "swa/px4/release.h"
 
@@ -20,8 +21,11 @@ struct BridgeOptions {
   px4::Release px4_release = px4::kNewestRelease;  // --px4-release R
   bool px4_release_given = false;
   std::optional<std::string> ap_namespace;  // --ap-namespace NS (default ap/v<I+1>)
-  ardupilot::QuaternionLayout ap_quaternion = ardupilot::QuaternionLayout::kRos;  // --ap-quaternion ros|wxyz
+  // --ap-quaternion auto|ros|wxyz; nullopt: auto (decided from gravity, quaternion_order.h)
+  std::optional<ardupilot::QuaternionLayout> ap_quaternion;
   bool no_gnss = false;                 // --no-gnss: leave swa/uav<I>/gnss to another source
+  ardupilot::NavSatForwardConfig navsat;  // --gnss-silence-s (ArduPilot)
+  bool gnss_silence_given = false;
   int target_system = 0;                // --target-system N: VehicleCommand.target_system (0: any)
   autopilot::BridgeConfig core;               // --stale-after-s, --agent-lost-after-s, ... and --engage
   std::optional<std::string> domain;    // --domain D (else SWA_DOMAIN, else 0)

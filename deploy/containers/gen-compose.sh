@@ -135,6 +135,8 @@ EOF
       # ArduPilot's topics under ap/v$((i + 1)) (DDS_USE_NS 1 with MAV_SYSID $((i + 1))), as the simulator's stand-in
       # names them; SWA_AP_NAMESPACE for another.
       SWA_AUTOPILOT: ardupilot
+      # The stand-ins write the IMU quaternion in the ROS order; on a real drone leave it out (auto: told by gravity).
+      SWA_AP_QUATERNION: ros
       # The stand-ins start armed in LOITER; on a real drone leave it 0 and let the pilot switch to GUIDED.
       SWA_BRIDGE_ENGAGE: "1"
       # The simulator publishes GNSS itself (vehicle.gnss_source=swa); on a real drone leave it 1 (ArduPilot's navsat).

@@ -182,7 +182,9 @@ class Supervisor {
                                             "--summary-out", (logs_ / ("bridge_" + uav + "_summary.json")).string()}
                  : std::vector<std::string>{bin_.agent, "--id", uav, "--domain", domain_, "--scenario", scenarioFile()};
     if (p.bridge && vehicle.interface == sim::VehicleInterface::kArdupilot) {
-      argv.insert(argv.end(), {"--autopilot", "ardupilot"});
+      // The stand-ins write the ROS order. Told, not found out: a stand-in facing north looks level in either order,
+      // and in the simulator nobody turns it by hand (--ap-quaternion auto would wait).
+      argv.insert(argv.end(), {"--autopilot", "ardupilot", "--ap-quaternion", "ros"});
     } else if (p.bridge) {
       argv.insert(argv.end(), {"--px4-release", px4::releaseName(vehicle.px4_release)});
     }

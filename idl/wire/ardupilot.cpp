@@ -24,17 +24,31 @@ px4::Quaternion attitudeOf(const sensor_msgs::msg::Imu& m, ardupilot::Quaternion
   return ardupilot::attitudeOf(q.x(), q.y(), q.z(), q.w(), layout);
 }
 
-sensor_msgs::msg::Imu imuMessage(std::uint64_t timestamp_us, const px4::Quaternion& q) {
+ardupilot::OrientationFields orientationFieldsOf(const sensor_msgs::msg::Imu& m) {
+  const geometry_msgs::msg::Quaternion& q = m.orientation();
+  return ardupilot::OrientationFields{q.x(), q.y(), q.z(), q.w()};
+}
+
+ardupilot::SpecificForce specificForceOf(const sensor_msgs::msg::Imu& m) {
+  const geometry_msgs::msg::Vector3& a = m.linear_acceleration();
+  return ardupilot::SpecificForce{a.x(), a.y(), a.z()};
+}
+
+sensor_msgs::msg::Imu imuMessage(std::uint64_t timestamp_us, const px4::Quaternion& q,
+                                 ardupilot::QuaternionLayout layout) {
   sensor_msgs::msg::Imu m;
   m.header().stamp(timeOf(timestamp_us));
   m.header().frame_id(ardupilot::kImuFrame);
-  const ardupilot::OrientationFields f = ardupilot::orientationFieldsOf(q);
+  const ardupilot::OrientationFields f = ardupilot::orientationFieldsOf(q, layout);
   m.orientation().x(f.x);
   m.orientation().y(f.y);
   m.orientation().z(f.z);
   m.orientation().w(f.w);
+  const ardupilot::SpecificForce a = ardupilot::restingForceOf(q);
+  m.linear_acceleration().x(a.x);
+  m.linear_acceleration().y(a.y);
+  m.linear_acceleration().z(a.z);
   m.angular_velocity_covariance()[0] = -1.0;
-  m.linear_acceleration_covariance()[0] = -1.0;
   return m;
 }
 

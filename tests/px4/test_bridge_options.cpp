@@ -70,7 +70,7 @@ TEST(BridgeOptions, ArdupilotHasItsOwnNamespaceAndQuaternionLayoutAndNoneOfPx4s)
   const BridgeOptions o = parseBridgeOptions({"--id", "2", "--autopilot", "ardupilot", "--no-gnss"});
   EXPECT_EQ(o.autopilot, AutopilotKind::kArdupilot);
   EXPECT_EQ(apNamespace(o), "ap/v3");
-  EXPECT_EQ(o.ap_quaternion, ardupilot::QuaternionLayout::kRos);
+  EXPECT_FALSE(o.ap_quaternion.has_value());  // auto: decided from gravity
   EXPECT_STREQ(o.core.autopilot.name, "ArduPilot");
   EXPECT_EQ(o.core.autopilot.control_mode, ardupilot::kModeGuided);
   const BridgeOptions single =
@@ -78,15 +78,26 @@ TEST(BridgeOptions, ArdupilotHasItsOwnNamespaceAndQuaternionLayoutAndNoneOfPx4s)
                           "--ap-quaternion", "wxyz"});
   EXPECT_EQ(apNamespace(single), "ap");
   EXPECT_EQ(single.ap_quaternion, ardupilot::QuaternionLayout::kWxyzInXyzw);
+  EXPECT_EQ(parseBridgeOptions({"--id", "0", "--autopilot", "ardupilot", "--ap-quaternion", "ros"}).ap_quaternion,
+            ardupilot::QuaternionLayout::kRos);
   // AND PX4's options and an unknown autopilot are refused
   const std::string p = problemsOf({"--id", "0", "--autopilot", "ardupilot", "--px4-release", "1.16"});
   EXPECT_NE(p.find("are PX4's: not with --autopilot ardupilot"), std::string::npos) << p;
   EXPECT_FALSE(parseBridgeOptions({"--id", "0", "--autopilot", "ardupilot"}).no_gnss);  // GNSS forwarded by default
+  // AND how long navsat may be silent is set for firmware that sends it at 1 Hz; a bad value or PX4 is refused
+  EXPECT_EQ(parseBridgeOptions({"--id", "0", "--autopilot", "ardupilot"}).navsat.silence_s, 0.5);
+  EXPECT_EQ(parseBridgeOptions({"--id", "0", "--autopilot", "ardupilot", "--gnss-silence-s", "1.5"}).navsat.silence_s,
+            1.5);
+  EXPECT_NE(problemsOf({"--id", "0", "--autopilot", "ardupilot", "--gnss-silence-s", "nan"})
+                .find("--gnss-silence-s 'nan': a time in seconds in [0.05, 10]"),
+            std::string::npos);
+  EXPECT_NE(problemsOf({"--id", "0", "--gnss-silence-s", "1"}).find("are ArduPilot's: add --autopilot ardupilot"),
+            std::string::npos);
   EXPECT_NE(problemsOf({"--id", "0", "--autopilot", "apm"}).find("--autopilot 'apm': px4 or ardupilot"),
             std::string::npos);
   EXPECT_NE(problemsOf({"--id", "0", "--ap-namespace", "ap"}).find("add --autopilot ardupilot"), std::string::npos);
   EXPECT_NE(problemsOf({"--id", "0", "--autopilot", "ardupilot", "--no-gnss", "--ap-quaternion", "xyz"})
-                .find("--ap-quaternion 'xyz': ros or wxyz"),
+                .find("--ap-quaternion 'xyz': auto, ros or wxyz"),
             std::string::npos);
   // AND the default stays PX4
   EXPECT_STREQ(parseBridgeOptions({"--id", "0"}).core.autopilot.name, "PX4");

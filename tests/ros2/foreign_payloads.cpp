@@ -173,13 +173,14 @@ json nine(double first) {
 
 json imuExpected() {
   const swa::ardupilot::OrientationFields q = swa::ardupilot::orientationFieldsOf(kAttitude);
+  const swa::ardupilot::SpecificForce f = swa::ardupilot::restingForceOf(kAttitude);
   return {{"header", {{"stamp", time()}, {"frame_id", "base_link_ned"}}},
           {"orientation", {{"x", q.x}, {"y", q.y}, {"z", q.z}, {"w", q.w}}},
           {"orientation_covariance", nine(0.0)},
           {"angular_velocity", vector3(0, 0, 0)},
           {"angular_velocity_covariance", nine(-1.0)},
-          {"linear_acceleration", vector3(0, 0, 0)},
-          {"linear_acceleration_covariance", nine(-1.0)}};
+          {"linear_acceleration", vector3(f.x, f.y, f.z)},
+          {"linear_acceleration_covariance", nine(0.0)}};
 }
 
 json statusExpected() {

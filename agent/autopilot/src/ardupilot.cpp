@@ -38,7 +38,10 @@ px4::Quaternion attitudeOf(double x, double y, double z, double w, QuaternionLay
   return px4::Quaternion{w, x, y, z};
 }
 
-OrientationFields orientationFieldsOf(const px4::Quaternion& q) { return OrientationFields{q.x, q.y, q.z, q.w}; }
+OrientationFields orientationFieldsOf(const px4::Quaternion& q, QuaternionLayout layout) {
+  if (layout == QuaternionLayout::kWxyzInXyzw) return OrientationFields{q.w, q.x, q.y, q.z};
+  return OrientationFields{q.x, q.y, q.z, q.w};
+}
 
 std::optional<std::uint64_t> timestampUsOf(std::int32_t sec, std::uint32_t nanosec) {
   if (sec < 0 || nanosec >= 1'000'000'000u) return std::nullopt;

@@ -7,8 +7,10 @@
 //         FRD body -> NED earth, the same attitude PX4 sends (swa/px4/frames.h converts it). AP_DDS releases of 2024
 //         (and perhaps later: not confirmed) write its (w, x, y, z) into the message's (x, y, z, w) fields, a fork
 //         fixes it: QuaternionLayout::kWxyzInXyzw reads the former. Read in the wrong order, a level vehicle with
-//         true heading psi (from north) reads as rolled by pi - psi and heading north. Stamps: builtin_interfaces/Time of the vehicle (UTC when its clock is set, else time since boot),
-//         in whole microseconds.
+//         true heading psi (from north) reads as rolled by pi - psi and heading north; quaternion_order.h decides
+//         the order from gravity. linear_acceleration is the specific force in FRD body axes. Stamps:
+//         builtin_interfaces/Time of the vehicle (UTC when its clock is set, else time since boot), in whole
+//         microseconds.
 //   cmd   rt/<ns>/cmd_vel, geometry_msgs/TwistStamped in frame "map": linear = ENU velocity (x east, y north, z up),
 //         angular.z = yaw rate counter-clockwise from above (ArduPilot negates it for NED). SWA's stable frame is
 //         x east, y north and its yaw rate counter-clockwise: the same numbers. Any other frame id is ignored by
@@ -46,15 +48,16 @@ enum class QuaternionLayout {
   kWxyzInXyzw,  // AP_DDS as of 2024: the message's x holds w, y holds x, z holds y, w holds z
 };
 std::optional<QuaternionLayout> parseQuaternionLayout(const std::string& text);  // "ros" | "wxyz"
+// (the bridge's "auto" decides between them from the messages: quaternion_order.h)
 const char* quaternionLayoutName(QuaternionLayout layout);
 
 // The attitude (FRD -> NED) in an IMU message's orientation fields, read in `layout`.
 px4::Quaternion attitudeOf(double x, double y, double z, double w, QuaternionLayout layout);
-// And the fields to write for an attitude (the stand-in writes the current layout).
+// And the fields to write for an attitude in `layout` (the stand-in writes the ROS order).
 struct OrientationFields {
   double x = 0.0, y = 0.0, z = 0.0, w = 1.0;
 };
-OrientationFields orientationFieldsOf(const px4::Quaternion& q);
+OrientationFields orientationFieldsOf(const px4::Quaternion& q, QuaternionLayout layout = QuaternionLayout::kRos);
 
 // builtin_interfaces/Time <-> the vehicle's microseconds. nullopt: a negative time, nanosec >= 1e9, or beyond
 // uint64 microseconds. Sub-microsecond parts are dropped (ArduPilot stamps in whole microseconds).
