@@ -91,6 +91,10 @@ class ArdupilotLink : public VehicleLink {
 
   bool readsCommands() const override { return cmd_vel_.matched() > 0; }
   bool attitudeMatched() const override { return imu_reader_.matched() > 0; }
+  bool requestsMatched() const override {
+    return arm_request_.matched() > 0 && mode_request_.matched() > 0 && arm_reply_.matched() > 0 &&
+           mode_reply_.matched() > 0;
+  }
 
   void send(const autopilot::Outbox& out) override {
     if (out.setpoint) {

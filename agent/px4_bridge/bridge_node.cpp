@@ -60,7 +60,8 @@ BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::s
                                       [this](const std::string& line) { onVehicleLog(line); }})),
       core_(options.core),
       gate_(1, kCommandHandover),
-      handshake_(isSecure()) {
+      handshake_(isSecure()),
+      requests_handshake_(isSecure() && options.core.engage) {
   connect();
 }
 
@@ -72,6 +73,7 @@ void BridgeNode::connect() {
     participant_ = std::move(participant);
   }
   handshake_.connected(std::chrono::steady_clock::now());
+  requests_handshake_.connected(std::chrono::steady_clock::now());
   dds::Participant& p = *participant_;
   imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), "swa_sensor_writer");
   state_ = p.writer<msg::BridgeStatePubSubType>(topics::bridgeState(id_), "swa_state_writer");
@@ -144,6 +146,7 @@ void BridgeNode::onStatus(bool armed, std::uint8_t mode) {
   if (!participant_) return;
   status_seen_ = true;
   core_.onStatus(armed, mode);
+  engaged_ = armed && mode == core_.autopilot().control_mode;
   report();
 }
 
@@ -246,6 +249,17 @@ int BridgeNode::run() {
       connect();
       const std::lock_guard<std::mutex> lock(mutex_);
       vehicle_reads_ = false;  // the new writers must match the vehicle again before anything is forwarded
+      continue;
+    }
+    if (requests_handshake_.stalled(engaged_, vehicle_->requestsMatched(), std::chrono::steady_clock::now())) {
+      std::fprintf(stderr,
+                   "swa_px4_bridge %d: --engage's requests to %s (arm, mode) not matched with DDS Security on, and the "
+                   "vehicle not engaged yet: re-creating the participant (reconnection %d)\n",
+                   id_, core_.autopilot().name, requests_handshake_.reconnects());
+      closeParticipant();
+      connect();
+      const std::lock_guard<std::mutex> lock(mutex_);
+      vehicle_reads_ = false;
       continue;
     }
     const std::lock_guard<std::mutex> lock(mutex_);
