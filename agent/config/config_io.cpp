@@ -105,7 +105,20 @@ params::Table<AgentConfig> makeTable() {
   SWA_PARAM(t, choice, sensor.input, named(kDetectionInputNames),
             "the detections' message: swa (swa/uav<I>/detections), vision_msgs (vision_msgs/Detection3DArray on "
             "/uav<I>/detections) or uvdar (mrs_msgs/PoseWithCovarianceArrayStamped on /uav<I>/uvdar/measuredPoses), "
-            "in the frame uav<I>/fcu or base_link (x forward, y left); swa_sim publishes the one chosen");
+            "in the frame uav<I>/fcu or base_link (x forward, y left), or sensor.detector_frame; swa_sim publishes the "
+            "one chosen");
+  SWA_PARAM(t, text, sensor.detector_frame,
+            "a real detector's own frame id, placed on the body by the three keys below ('' = the detector publishes "
+            "in the body frame)",
+            "a frame id of letters, digits and _ . / - (or '')");
+  SWA_PARAM(t, number, sensor.detector_yaw_deg, "deg", closed(-360, 360),
+            "sensor.detector_frame's x axis in the body, counter-clockwise from body x");
+  SWA_PARAM(t, number, sensor.detector_x_m, "m", closed(-10, 10), "sensor.detector_frame's origin, body x (forward)");
+  SWA_PARAM(t, number, sensor.detector_y_m, "m", closed(-10, 10), "sensor.detector_frame's origin, body y (left)");
+  SWA_PARAM(t, text, sensor.detector_classes,
+            "vision_msgs only: the class ids (of each detection's best hypothesis) taken for UAVs, comma-separated; "
+            "others are dropped and counted ('' = every detection)",
+            "class ids separated by commas, e.g. uav,drone (or '')");
 
   SWA_PARAM(t, number, anchor.gain, "", closed(0, 10),
             "weight of the absolute (GNSS) hold added to the relative command in anchored mode");

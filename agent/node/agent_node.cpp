@@ -58,11 +58,16 @@ bool isSecure() {
   return dir != nullptr && *dir != '\0';
 }
 
-// The detection adapter of UAV `id`: the body frame the simulator names (uav<I>/fcu) or base_link, the sensor at the
-// body's origin and axes.
+// The detection adapter of UAV `id`: the body frame the simulator names (uav<I>/fcu) or base_link, and the detector's
+// own frame where the configuration places it.
 agent::DetectionAdapterConfig adapterConfig(int id, const agent::AgentConfig& config) {
   agent::DetectionAdapterConfig c;
   c.frame_ids = {wire::bodyFrameId(static_cast<std::uint32_t>(id)), "base_link"};
+  const agent::SensorConfig& s = config.sensor;
+  c.sensor_frame_id = s.detector_frame;
+  c.sensor_yaw_rad = s.detector_yaw_deg * M_PI / 180.0;
+  c.sensor_offset_m = agent::Vec2(s.detector_x_m, s.detector_y_m);
+  c.classes = agent::splitClasses(s.detector_classes);
   c.max_detections = config.limits.max_detections;
   return c;
 }
@@ -299,11 +304,11 @@ void AgentNode::logFinalCounts() const {
   const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
   std::fprintf(stderr,
                "swa_agent %d: %s detections: %llu set(s) in, %llu passed on; dropped %llu in a frame it cannot place, "
-               "%llu with a bad stamp, %llu oversize, %llu detection(s) with a non-finite position; covariance "
-               "repaired %llu, unknown %llu (the configured noise used); %llu anonymous\n",
+               "%llu with a bad stamp, %llu oversize, %llu detection(s) with a non-finite position, %llu of another "
+               "class; covariance repaired %llu, unknown %llu (the configured noise used); %llu anonymous\n",
                id_, agent::toString(agent_.config().sensor.input).c_str(), u(a.sets_in), u(a.sets_out),
-               u(a.unknown_frame), u(a.bad_stamp), u(a.oversize), u(a.nonfinite_position), u(a.covariance_repaired),
-               u(a.covariance_missing), u(a.anonymous));
+               u(a.unknown_frame), u(a.bad_stamp), u(a.oversize), u(a.nonfinite_position), u(a.other_class),
+               u(a.covariance_repaired), u(a.covariance_missing), u(a.anonymous));
 }
 
 void AgentNode::refuseAsTwin() {

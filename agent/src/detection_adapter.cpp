@@ -18,7 +18,18 @@ std::optional<long long> numericId(const std::string& id) {
   return std::stoll(id);
 }
 
-std::optional<Mat2> DetectionAdapter::bodyCovariance(const std::array<double, 36>& c) {
+std::vector<std::string> splitClasses(const std::string& list) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    if (comma > start) out.push_back(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::optional<Mat2> DetectionAdapter::bodyCovariance(const std::array<double, 36>& c, double yaw_rad) {
   const double xx = c[0], xy = c[1], yx = c[6], yy = c[7];
   const bool finite = std::isfinite(xx) && std::isfinite(xy) && std::isfinite(yx) && std::isfinite(yy);
   const double scale = std::max(std::abs(xx), std::abs(yy));
@@ -33,7 +44,7 @@ std::optional<Mat2> DetectionAdapter::bodyCovariance(const std::array<double, 36
   if (!positive) return std::nullopt;
   Mat2 s;
   s << xx, off, off, yy;
-  const double cy = std::cos(config_.sensor_yaw_rad), sy = std::sin(config_.sensor_yaw_rad);
+  const double cy = std::cos(yaw_rad), sy = std::sin(yaw_rad);
   Mat2 r;
   r << cy, -sy, sy, cy;
   Mat2 body = r * s * r.transpose();
@@ -43,7 +54,9 @@ std::optional<Mat2> DetectionAdapter::bodyCovariance(const std::array<double, 36
 
 std::optional<DetectionSet> DetectionAdapter::convert(const ForeignDetectionSet& in) {
   ++counters_.sets_in;
-  if (std::find(config_.frame_ids.begin(), config_.frame_ids.end(), in.frame_id) == config_.frame_ids.end()) {
+  const bool sensor_frame = !config_.sensor_frame_id.empty() && in.frame_id == config_.sensor_frame_id;
+  if (!sensor_frame &&
+      std::find(config_.frame_ids.begin(), config_.frame_ids.end(), in.frame_id) == config_.frame_ids.end()) {
     ++counters_.unknown_frame;
     return std::nullopt;
   }
@@ -58,14 +71,22 @@ std::optional<DetectionSet> DetectionAdapter::convert(const ForeignDetectionSet&
   DetectionSet out;
   out.stamp_ns = in.sec * 1'000'000'000LL + static_cast<StampNs>(in.nanosec);
   out.detections.reserve(in.detections.size());
-  const double cy = std::cos(config_.sensor_yaw_rad), sy = std::sin(config_.sensor_yaw_rad);
+  // A body frame is the body; the sensor frame sits where the configuration says.
+  const double yaw = sensor_frame ? config_.sensor_yaw_rad : 0.0;
+  const Vec2 offset = sensor_frame ? config_.sensor_offset_m : Vec2::Zero();
+  const double cy = std::cos(yaw), sy = std::sin(yaw);
   for (const ForeignDetection& d : in.detections) {
+    if (!config_.classes.empty() && d.class_id &&
+        std::find(config_.classes.begin(), config_.classes.end(), *d.class_id) == config_.classes.end()) {
+      ++counters_.other_class;
+      continue;
+    }
     if (!std::isfinite(d.x_m) || !std::isfinite(d.y_m)) {
       ++counters_.nonfinite_position;
       continue;
     }
     Detection det;
-    det.position_body_m = config_.sensor_offset_m + Vec2(cy * d.x_m - sy * d.y_m, sy * d.x_m + cy * d.y_m);
+    det.position_body_m = offset + Vec2(cy * d.x_m - sy * d.y_m, sy * d.x_m + cy * d.y_m);
     if (!det.position_body_m.allFinite()) {  // finite but near the largest double: the rotation overflowed
       ++counters_.nonfinite_position;
       continue;
@@ -74,7 +95,7 @@ std::optional<DetectionSet> DetectionAdapter::convert(const ForeignDetectionSet&
                                            (*d.covariance)[6] == 0.0 && (*d.covariance)[7] == 0.0);
     if (unknown) {
       ++counters_.covariance_missing;
-    } else if (const std::optional<Mat2> c = bodyCovariance(*d.covariance)) {
+    } else if (const std::optional<Mat2> c = bodyCovariance(*d.covariance, yaw)) {
       det.covariance_m2 = *c;
     } else {
       ++counters_.covariance_repaired;

@@ -62,6 +62,7 @@ agent::ForeignDetectionSet foreignOf(const vision_msgs::msg::Detection3DArray& m
     agent::ForeignDetection f =
         foreignAt(best != nullptr ? best->pose().pose().position() : d.bbox().center().position());
     if (best != nullptr) f.covariance = best->pose().covariance();
+    f.class_id = best != nullptr ? best->hypothesis().class_id() : std::string();
     f.id = agent::numericId(d.id());
     out.detections.push_back(f);
   }

@@ -61,6 +61,14 @@ void expectSameConfig(const AgentConfig& a, const AgentConfig& b) {
   EXPECT_EQ(a.limits.max_target_id, b.limits.max_target_id);
   EXPECT_EQ(a.limits.max_tilt_rad, b.limits.max_tilt_rad);
   EXPECT_EQ(a.limits.max_abs_position_m, b.limits.max_abs_position_m);
+  EXPECT_EQ(a.sensor.fov_deg, b.sensor.fov_deg);
+  EXPECT_EQ(a.sensor.mount_deg, b.sensor.mount_deg);
+  EXPECT_EQ(a.sensor.input, b.sensor.input);
+  EXPECT_EQ(a.sensor.detector_frame, b.sensor.detector_frame);
+  EXPECT_EQ(a.sensor.detector_yaw_deg, b.sensor.detector_yaw_deg);
+  EXPECT_EQ(a.sensor.detector_x_m, b.sensor.detector_x_m);
+  EXPECT_EQ(a.sensor.detector_y_m, b.sensor.detector_y_m);
+  EXPECT_EQ(a.sensor.detector_classes, b.sensor.detector_classes);
 }
 
 // Every field different from its default and valid; awkward binary fractions test exact round trips.
@@ -97,6 +105,12 @@ AgentConfig everyFieldChanged() {
   c.control.k_v = 0.9;
   c.control.v_max_mps = 3.0;
   c.anchor.gain = 0.5;
+  c.sensor.input = DetectionInput::kVisionMsgs;
+  c.sensor.detector_frame = "uav1/front_lidar";
+  c.sensor.detector_yaw_deg = 90.5;
+  c.sensor.detector_x_m = 0.25;
+  c.sensor.detector_y_m = -0.125;
+  c.sensor.detector_classes = "uav,drone";
   c.anchor.gnss_min_std_m = 0.1;
   c.limits.max_detections = 128;
   c.limits.max_target_id = 5000;
@@ -444,7 +458,7 @@ TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEvery
   std::ifstream file(path);
   const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
-  EXPECT_EQ(keysOf(text).size(), 48u);
+  EXPECT_EQ(keysOf(text).size(), 53u);
   EXPECT_TRUE(contains(text, "  # k: 3 ")) << text;
   EXPECT_TRUE(contains(text, "#   gain: 0.2 ")) << text;
   EXPECT_TRUE(contains(text, "#   gnss_min_std_m: 0.05 ")) << text;
@@ -525,11 +539,32 @@ TEST(AgentConfigYaml, GivenAConfigWithEveryFieldChanged_WhenDumpedAndParsed_Then
   EXPECT_TRUE(contains(yaml, "  circle_fit: algebraic")) << yaml;
   EXPECT_TRUE(contains(yaml, "  q_acc_m2ps4: 2.0e-07")) << yaml;
   EXPECT_TRUE(contains(yaml, "  max_detections: 128")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  detector_frame: \"uav1/front_lidar\"")) << yaml;
+}
+
+TEST(AgentConfigParse, GivenADetectorFrameOrClassListThatIsNoName_ThenItIsRefused) {
+  // GIVEN text keys with characters no frame id or class id has, or far too long
+  const ConfigError error = expectConfigError([&] {
+    parseAgentConfig("sensor:\n  detector_frame: \"uav1/lidar; rm -rf\"\n  detector_classes: [uav, drone]\n");
+  });
+  // THEN each is a problem that says what is expected
+  ASSERT_EQ(error.problems().size(), 2u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "detector_frame"), "expected a frame id of letters, digits and _ . / -"));
+  EXPECT_TRUE(contains(problemAbout(error, "detector_classes"), "must be class ids separated by commas"))
+      << error.what();
+  const ConfigError long_one =
+      expectConfigError([&] { applyOverride(*std::make_unique<AgentConfig>(), "sensor.detector_frame",
+                                            std::string(300, 'a')); });
+  EXPECT_EQ(long_one.problems().size(), 1u);
+  // AND a good one, and the empty text, are read as written
+  const AgentConfig c = parseAgentConfig("sensor: {detector_frame: uav2/lidar, detector_classes: \"\"}\n");
+  EXPECT_EQ(c.sensor.detector_frame, "uav2/lidar");
+  EXPECT_EQ(c.sensor.detector_classes, "");
 }
 
 TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
   const std::string yaml = toYaml(AgentConfig{});
-  EXPECT_EQ(keysOf(yaml).size(), 48u);
+  EXPECT_EQ(keysOf(yaml).size(), 53u);
   EXPECT_TRUE(contains(yaml, "k_p: 0.7")) << yaml;
   // AND the three keys the defaults ignore are written as comments that say so
   EXPECT_TRUE(contains(yaml, "  # k: 3")) << yaml;

@@ -23,6 +23,7 @@ std::string expectation(const Spec& s) {
       return "true or false";
     case Kind::kChoice:
       return "one of: " + join(s.choices, ", ");
+    case Kind::kText:
     case Kind::kIntList:
     case Kind::kRecordList:
       return s.expected;
@@ -41,6 +42,8 @@ std::string rangeText(const Spec& s) {
       return "list of integers in " + formatRange(s.range, true);
     case Kind::kRecordList:
       return s.range_text;
+    case Kind::kText:
+      return "text";
     case Kind::kReal:
     case Kind::kInteger:
       break;
@@ -72,6 +75,8 @@ std::string plainValue(const Spec& s, const Value& v) {
       return std::get<bool>(v) ? "true" : "false";
     case Kind::kChoice:
       return std::get<std::string>(v).empty() ? "<invalid>" : std::get<std::string>(v);
+    case Kind::kText:
+      return "\"" + std::get<std::string>(v) + "\"";  // kTextChars need no escape
     case Kind::kIntList: {
       std::vector<std::string> items;
       for (const long long i : std::get<std::vector<long long>>(v)) items.push_back(std::to_string(i));
@@ -104,6 +109,8 @@ std::string dumpComment(const Spec& s) {
     case Kind::kIntList:
     case Kind::kRecordList:
       return s.comment;
+    case Kind::kText:
+      return s.expected;
     case Kind::kReal:
     case Kind::kInteger:
     case Kind::kSeed:
@@ -124,6 +131,8 @@ const char* typeName(const Spec& s) {
       return "bool";
     case Kind::kChoice:
       return "choice";
+    case Kind::kText:
+      return "text";
     case Kind::kIntList:
       return "int list";
     case Kind::kRecordList:

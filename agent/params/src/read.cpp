@@ -28,6 +28,10 @@ constexpr std::size_t kMaxKeys = 2000;  // a parameter file has about a hundred;
 // A quoted scalar ("10") or an explicit !!str: a string, never a number.
 bool isQuoted(const YAML::Node& scalar) { return scalar.Tag() == "!" || scalar.Tag() == "tag:yaml.org,2002:str"; }
 
+bool isText(const std::string& text) {
+  return text.size() <= kMaxTextChars && text.find_first_not_of(kTextChars) == std::string::npos;
+}
+
 // Map keys in the document, counted up to `limit` + 1.
 std::size_t countKeys(const YAML::Node& node, std::size_t limit) {
   std::size_t n = 0;
@@ -183,6 +187,8 @@ class Reader {
       const Value& v = values_.at(s.key);
       if (s.kind == Kind::kChoice && std::get<std::string>(v).empty()) {
         bad(s.key, s.key + " holds a value that is not one of: " + join(s.choices, ", "));
+      } else if (s.kind == Kind::kText && !isText(std::get<std::string>(v))) {
+        bad(s.key, s.key + " holds '" + std::get<std::string>(v) + "'; expected " + expectation(s));
       } else if (s.kind == Kind::kReal || s.kind == Kind::kInteger) {
         if (auto p = numberProblem(s, std::get<double>(v), s.key, plainValue(s, v))) bad(s.key, *p);
       }
@@ -356,6 +362,9 @@ class Reader {
       case Kind::kChoice:
         if (std::find(s.choices.begin(), s.choices.end(), text) != s.choices.end()) return Value(text);
         return fail(name + " = '" + text + "' is not valid; expected " + expectation(s));
+      case Kind::kText:
+        if (isText(text)) return Value(text);
+        return fail(name + " = '" + text.substr(0, 80) + "' is not valid; expected " + expectation(s));
       case Kind::kBool:
         if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected true or false");
         if (text == "true" || text == "True" || text == "TRUE") return Value(true);

@@ -125,6 +125,13 @@ struct SensorConfig {
   double mount_deg = 0.0;   // the centre of the field of view, counter-clockwise from body x
   DetectionInput input = DetectionInput::kSwa;  // the message type (and topic) the detections come in; the simulator
                                                 // publishes that one
+  // A real detector (vision_msgs, uvdar) may publish in its own sensor frame: its frame id, and where that frame sits
+  // on the body (x forward, y left; yaw counter-clockwise from body x). Empty: only the body frames are accepted.
+  std::string detector_frame;
+  double detector_yaw_deg = 0.0;
+  double detector_x_m = 0.0, detector_y_m = 0.0;
+  // vision_msgs' class ids taken for UAVs, comma-separated; empty: every detection. UVDAR's carry no class.
+  std::string detector_classes;
 };
 
 struct AnchorConfig {

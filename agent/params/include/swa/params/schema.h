@@ -15,10 +15,15 @@
 
 namespace swa::params {
 
-enum class Kind { kReal, kInteger, kSeed, kBool, kChoice, kIntList, kRecordList };
+enum class Kind { kReal, kInteger, kSeed, kBool, kChoice, kText, kIntList, kRecordList };
+// kText: a name such as a ROS frame id, or a comma-separated list of them: up to kMaxTextChars of kTextChars, or empty.
+inline constexpr std::size_t kMaxTextChars = 256;
+inline constexpr const char* kTextChars =
+    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./,-";
 
 using Record = std::vector<double>;  // one kRecordList element: a value per Spec::fields entry, in that order
-// kReal and kInteger hold a double (integers up to 2^53 are exact), kSeed a uint64, kChoice the chosen name.
+// kReal and kInteger hold a double (integers up to 2^53 are exact), kSeed a uint64, kChoice the chosen name, kText
+// the text.
 using Value = std::variant<double, std::uint64_t, bool, std::string, std::vector<long long>, std::vector<Record>>;
 using Values = std::map<std::string, Value>;  // by dotted key
 

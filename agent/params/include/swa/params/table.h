@@ -79,6 +79,16 @@ class Table {
         });
   }
 
+  // Free text within kTextChars (a frame id, a list of class names); `expected` words it in messages.
+  template <class Access>
+  void text(std::string key, Access access, std::string meaning, std::string expected) {
+    Spec s = makeSpec(std::move(key), Kind::kText);
+    s.meaning = std::move(meaning);
+    s.expected = std::move(expected);
+    add(std::move(s), [access](const T& t) { return Value(std::string(access(t))); },
+        [access](T& t, const Value& v) { access(t) = std::get<std::string>(v); });
+  }
+
   template <class Access>
   void flag(std::string key, Access access, std::string meaning) {
     Spec s = makeSpec(std::move(key), Kind::kBool);
