@@ -157,6 +157,11 @@ params::Table<AgentConfig> makeTable() {
       {"anchor.gnss_min_std_m", "mode", {"standalone", "anchored"}, "the modes that use GNSS"},
       {"focal.bias_freeze_speed_mps", "focal.bias_window_s", {}, "IMU-bias removal"},
       {"focal.bias_freeze_hold_s", "focal.bias_window_s", {}, "IMU-bias removal"},
+      {"sensor.detector_frame", "sensor.input", {"vision_msgs", "uvdar"}, "a real detector's messages"},
+      {"sensor.detector_yaw_deg", "sensor.detector_frame", {}, "a detector in its own frame"},
+      {"sensor.detector_x_m", "sensor.detector_frame", {}, "a detector in its own frame"},
+      {"sensor.detector_y_m", "sensor.detector_frame", {}, "a detector in its own frame"},
+      {"sensor.detector_classes", "sensor.input", {"vision_msgs"}, "vision_msgs detections"},
   });
   t.schema().relations = {
       {"surroundings.tentative_timeout_s", false, "surroundings.track_timeout_s",

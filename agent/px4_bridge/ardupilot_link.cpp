@@ -69,7 +69,10 @@ class ArdupilotLink : public VehicleLink {
     }
     status_reader_ = p.reader<ardupilot_msgs::msg::StatusPubSubType>(
         topics::apTopic(ns_, "status"), "ap_status_reader",
-        [this](ardupilot_msgs::msg::Status&& m) { events_.status(m.armed(), m.mode()); });
+        [this](ardupilot_msgs::msg::Status&& m) {
+          disarmed_ = !m.armed();
+          events_.status(m.armed(), m.mode());
+        });
     imu_reader_ = p.reader<sensor_msgs::msg::ImuPubSubType>(
         topics::apTopic(ns_, "imu/experimental/data"), "ap_out_reader", [this](sensor_msgs::msg::Imu&& m) {
           const std::optional<std::uint64_t> t = wire::timestampUsOf(m.header().stamp());
@@ -135,7 +138,7 @@ class ArdupilotLink : public VehicleLink {
     if (options_.ap_quaternion) return options_.ap_quaternion;
     const bool was_decided = order_.decided().has_value();
     const std::optional<ardupilot::QuaternionLayout> layout =
-        order_.onSample(wire::orientationFieldsOf(m), wire::specificForceOf(m));
+        order_.onSample(wire::orientationFieldsOf(m), wire::specificForceOf(m), disarmed_);
     if (layout && !was_decided) {
       events_.log(std::string("the IMU quaternion is in ") +
                   (*layout == ardupilot::QuaternionLayout::kRos ? "the ROS order (x, y, z, w)"
@@ -145,12 +148,13 @@ class ArdupilotLink : public VehicleLink {
                   ardupilot::quaternionLayoutName(*layout) + " fixes it)");
     } else if (!layout && order_.samples() == kOrderHintSamples) {
       events_.log("the IMU quaternion's field order is not decided after " + std::to_string(kOrderHintSamples) +
-                  " samples, so no attitude is forwarded: hold the vehicle still and level, and turn it if it faces "
-                  "north or south (there both orders look level), or pass --ap-quaternion ros|wxyz");
+                  " samples, so no attitude is forwarded: it is told only while the vehicle reports itself disarmed "
+                  "(ArduPilot's status) and still; turn it if it faces north or south (there both orders look "
+                  "level); in flight, or without a status, pass --ap-quaternion ros|wxyz");
     }
     return layout;
   }
-  static constexpr std::uint64_t kOrderHintSamples = 500;  // 5 s of ArduPilot's IMU stream
+  static constexpr std::uint64_t kOrderHintSamples = 500;  // 2.5 to 5 s of ArduPilot's IMU stream
 
   // Replies name their request; another client's requests on the same service get replies too.
   bool isOurs(const dds::SampleIds& ids) {
@@ -172,6 +176,7 @@ class ArdupilotLink : public VehicleLink {
 
   std::atomic<std::uint64_t> bad_stamps_{0};
   ardupilot::QuaternionOrderFinder order_;  // --ap-quaternion auto
+  std::atomic<bool> disarmed_{false};       // the status says so (no status yet: not known to be on the ground)
   std::mutex gnss_mutex_;  // the fixes and the IMU's time arrive on two readers (two threads)
   ardupilot::NavSatForward navsat_;
   std::mutex requests_mutex_;

@@ -71,6 +71,7 @@ void BridgeNode::connect() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     participant_ = std::move(participant);
+    applied_at_connect_ = core_.counters().commands_applied;
   }
   handshake_.connected(std::chrono::steady_clock::now());
   requests_handshake_.connected(std::chrono::steady_clock::now());
@@ -146,7 +147,7 @@ void BridgeNode::onStatus(bool armed, std::uint8_t mode) {
   if (!participant_) return;
   status_seen_ = true;
   core_.onStatus(armed, mode);
-  engaged_ = armed && mode == core_.autopilot().control_mode;
+  if (armed && mode == core_.autopilot().control_mode) engaged_ = true;
   report();
 }
 
@@ -227,6 +228,14 @@ int BridgeNode::run() {
     // Matched-status queries outside mutex_ (a listener may hold its reader's lock while it waits for mutex_).
     const bool reads = vehicle_->readsCommands();
     const bool agent_matched = imu_.matched() > 0 && cmd_reader_.matched() > 0;
+    bool started = false, attitude_seen = false;
+    {
+      // Started = the agent's commands applied through this participant: after a reconnection the new handshakes
+      // are watched again, whatever flowed through the old participant.
+      const std::lock_guard<std::mutex> lock(mutex_);
+      started = core_.counters().commands_applied > applied_at_connect_;
+      attitude_seen = core_.counters().attitude_in > 0;
+    }
     if (participant_->mustGiveWay()) {
       const std::optional<dds::Peer> twin = participant_->twin();
       std::fprintf(stderr,
@@ -236,9 +245,9 @@ int BridgeNode::run() {
       closeParticipant();
       return kExitTwin;
     }
-    // A stalled DDS Security handshake with the vehicle (or the simulator) or with the agent, before anything flowed
-    // (handshake_watch.h): a new participant.
-    if (handshake_.stalled(core_.counters().attitude_in > 0, reads && agent_matched && vehicle_->attitudeMatched(),
+    // A stalled DDS Security handshake with the vehicle (or the simulator) or with the agent, before the loop ran
+    // through this participant (handshake_watch.h): a new participant.
+    if (handshake_.stalled(started, reads && agent_matched && vehicle_->attitudeMatched(),
                            std::chrono::steady_clock::now())) {
       std::fprintf(stderr,
                    "swa_px4_bridge %d: the vehicle's or the agent's endpoints not matched with DDS Security on (a "
@@ -276,7 +285,7 @@ int BridgeNode::run() {
     }
     // PX4 sends vehicle_status at least every second, ArduPilot its status on every change (transient local: a late
     // reader gets the newest); attitude but no status is the mark of another release.
-    if (!status_seen_ && !status_missing_reported && core_.counters().attitude_in > 0 &&
+    if (!status_seen_ && !status_missing_reported && attitude_seen &&
         std::chrono::steady_clock::now() - started_ > std::chrono::seconds(5)) {
       status_missing_reported = true;
       std::fprintf(stderr, "swa_px4_bridge %d: attitude from %s but after 5 s %s\n", id_, core_.autopilot().name,

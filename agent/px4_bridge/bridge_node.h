@@ -104,7 +104,10 @@ class BridgeNode : public app::Role {
   // to 17 s late in 2 of 5 secure launches through ArduPilot). Until the vehicle is engaged a new participant costs
   // nothing (the vehicle does not follow the stream yet), so the same policy applies to them up to then.
   dds::HandshakeWatch requests_handshake_;
-  std::atomic<bool> engaged_{false};  // armed and in the control mode (PX4: offboard; ArduPilot: GUIDED)
+  // Once armed and in the control mode (PX4: offboard; ArduPilot: GUIDED): a pilot taking over later is no reason to
+  // re-create the participant in flight.
+  std::atomic<bool> engaged_{false};
+  std::uint64_t applied_at_connect_ = 0;  // the core's commands_applied when the participant was created (mutex_)
 
   std::unique_ptr<dds::Participant> participant_;  // written by the main thread under mutex_; null while closing
   dds::Writer<msg::Imu> imu_;

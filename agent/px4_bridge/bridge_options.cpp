@@ -115,8 +115,8 @@ app::Cli makeCli(BridgeOptions& o) {
       },
       "how ArduPilot fills the IMU message's orientation: ros (x, y, z, w as the message defines), wxyz (AP_DDS of "
       "2024 writes w, x, y, z into x, y, z, w) or auto (default): decided from the message's gravity while the "
-      "vehicle is still, nothing forwarded until then; a level vehicle facing north or south cannot tell "
-      "(deploy/README.md, \"Flying ArduPilot\")");
+      "vehicle reports itself disarmed, nothing forwarded until then; a level vehicle facing north or south cannot "
+      "tell, and a bridge started in flight needs ros or wxyz (deploy/README.md, \"Flying ArduPilot\")");
   cli.integer("--target-system", "N", o.target_system, 0, 255, "a MAVLink system id",
               "VehicleCommand.target_system of --engage's requests (0: whichever vehicle reads NS)");
   cli.real("--stale-after-s", "T", o.core.stale_after_s, 0.01, 10.0, "a time in seconds",

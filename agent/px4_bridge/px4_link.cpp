@@ -70,7 +70,8 @@ class Px4Link : public VehicleLink {
 
   bool readsCommands() const override { return setpoint_.matched() > 0 && offboard_.matched() > 0; }
   bool attitudeMatched() const override { return attitude_reader_.matched() > 0; }
-  bool requestsMatched() const override { return vehicle_command_.matched() > 0 && ack_reader_.matched() > 0; }
+  // The acknowledgement is only logged, and not every PX4 build sends it: the command writer alone.
+  bool requestsMatched() const override { return vehicle_command_.matched() > 0; }
 
   void send(const autopilot::Outbox& out) override {
     if (out.setpoint) {

@@ -33,7 +33,7 @@ class VehicleLink {
   virtual bool readsCommands() const = 0;
   // The bridge hears the vehicle's attitude (its writer matched).
   virtual bool attitudeMatched() const = 0;
-  // With --engage: the requests (arm, mode) and their answers are matched both ways.
+  // With --engage: the requests (arm, mode) reach the vehicle (ArduPilot: and its answers come back).
   virtual bool requestsMatched() const = 0;
   virtual void send(const autopilot::Outbox& out) = 0;
 

@@ -458,7 +458,7 @@ TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEvery
   std::ifstream file(path);
   const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
-  EXPECT_EQ(keysOf(text).size(), 53u);
+  EXPECT_EQ(keysOf(text).size(), 48u);
   EXPECT_TRUE(contains(text, "  # k: 3 ")) << text;
   EXPECT_TRUE(contains(text, "#   gain: 0.2 ")) << text;
   EXPECT_TRUE(contains(text, "#   gnss_min_std_m: 0.05 ")) << text;
@@ -545,7 +545,8 @@ TEST(AgentConfigYaml, GivenAConfigWithEveryFieldChanged_WhenDumpedAndParsed_Then
 TEST(AgentConfigParse, GivenADetectorFrameOrClassListThatIsNoName_ThenItIsRefused) {
   // GIVEN text keys with characters no frame id or class id has, or far too long
   const ConfigError error = expectConfigError([&] {
-    parseAgentConfig("sensor:\n  detector_frame: \"uav1/lidar; rm -rf\"\n  detector_classes: [uav, drone]\n");
+    parseAgentConfig("sensor:\n  input: vision_msgs\n  detector_frame: \"uav1/lidar; rm -rf\"\n"
+                     "  detector_classes: [uav, drone]\n");
   });
   // THEN each is a problem that says what is expected
   ASSERT_EQ(error.problems().size(), 2u) << error.what();
@@ -553,24 +554,40 @@ TEST(AgentConfigParse, GivenADetectorFrameOrClassListThatIsNoName_ThenItIsRefuse
   EXPECT_TRUE(contains(problemAbout(error, "detector_classes"), "must be class ids separated by commas"))
       << error.what();
   const ConfigError long_one =
-      expectConfigError([&] { applyOverride(*std::make_unique<AgentConfig>(), "sensor.detector_frame",
-                                            std::string(300, 'a')); });
-  EXPECT_EQ(long_one.problems().size(), 1u);
+      expectConfigError([&] { applyOverrides(AgentConfig{}, {"sensor.input=uvdar",
+                                                             "sensor.detector_frame=" + std::string(300, 'a')}); });
+  EXPECT_EQ(long_one.problems().size(), 1u) << long_one.what();
   // AND a good one, and the empty text, are read as written
-  const AgentConfig c = parseAgentConfig("sensor: {detector_frame: uav2/lidar, detector_classes: \"\"}\n");
+  const AgentConfig c =
+      parseAgentConfig("sensor: {input: vision_msgs, detector_frame: uav2/lidar, detector_classes: \"\"}\n");
   EXPECT_EQ(c.sensor.detector_frame, "uav2/lidar");
   EXPECT_EQ(c.sensor.detector_classes, "");
 }
 
+TEST(AgentConfigApplies, GivenDetectorKeysThatChangeNothing_ThenEachIsAnErrorThatSaysWhy) {
+  // GIVEN a mount without a detector frame, a class list for UVDAR, and a detector frame with SWA's own detections
+  const ConfigError error = expectConfigError([&] {
+    parseAgentConfig("sensor:\n  input: uvdar\n  detector_yaw_deg: 90\n  detector_classes: uav\n");
+  });
+  const ConfigError swa = expectConfigError([&] { parseAgentConfig("sensor: {detector_frame: lidar}\n"); });
+  // THEN each is refused, naming the case it applies to
+  ASSERT_EQ(error.problems().size(), 2u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "detector_yaw_deg"), "applies to a detector in its own frame only"));
+  EXPECT_TRUE(contains(problemAbout(error, "detector_classes"), "applies to vision_msgs detections only"));
+  ASSERT_EQ(swa.problems().size(), 1u) << swa.what();
+  EXPECT_TRUE(contains(swa.problems()[0], "applies to a real detector's messages only")) << swa.what();
+}
+
 TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
   const std::string yaml = toYaml(AgentConfig{});
-  EXPECT_EQ(keysOf(yaml).size(), 53u);
+  EXPECT_EQ(keysOf(yaml).size(), 48u);
   EXPECT_TRUE(contains(yaml, "k_p: 0.7")) << yaml;
   // AND the three keys the defaults ignore are written as comments that say so
   EXPECT_TRUE(contains(yaml, "  # k: 3")) << yaml;
   EXPECT_TRUE(contains(yaml, "not used: the k_nearest rule only")) << yaml;
   EXPECT_TRUE(contains(yaml, "  # gain: 0.2")) << yaml;
   EXPECT_TRUE(contains(yaml, "  # gnss_min_std_m: 0.05")) << yaml;
+  EXPECT_TRUE(contains(yaml, "  # detector_frame: \"\"")) << yaml;
   EXPECT_TRUE(contains(yaml, "# 1/s")) << yaml;
   expectSameConfig(parseAgentConfig(yaml), AgentConfig{});
 }

@@ -19,9 +19,10 @@ using px4::swaAttitude;
 using px4::timestampUsOf;
 using px4::yawspeedOf;
 
-// A timestamp this far behind the newest (or ahead of it, beyond the time that passed): the vehicle's clock restarted
-// or was set.
-constexpr std::uint64_t kClockRestartUs = 1'000'000;
+constexpr std::uint64_t kClockRestartUs = 1'000'000;  // a timestamp this far behind the newest: the vehicle restarted
+// One this far ahead of the newest, beyond the time that passed: its clock was set (boot time -> UTC is decades). A
+// day, not a second: a simulator running faster than real time (ArduPilot SITL --speedup) jumps by seconds in a pause.
+constexpr std::uint64_t kClockSetUs = 86'400'000'000;
 
 // Durations compared in whole microseconds, on the vehicle's clock: exact at the thresholds.
 std::uint64_t microseconds(double seconds) { return static_cast<std::uint64_t>(std::llround(seconds * 1e6)); }
@@ -58,12 +59,12 @@ std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_u
     ++counters_.attitude_rejected;
     return std::nullopt;
   }
-  // A jump ahead by more than the local clock saw pass (plus the restart margin): ArduPilot's stamps go from
-  // time-since-boot to UTC when its clock is set. Kept, the commands of the old timeline would look a lifetime old
-  // and stop the stream (agent lost) until the agent answered a new sample.
+  // A jump ahead by more than the local clock saw pass plus a day: ArduPilot's stamps go from time-since-boot to UTC
+  // when its clock is set. Kept, the commands of the old timeline would look a lifetime old and stop the stream
+  // (agent lost) until the agent answered a new sample.
   const bool jumped_ahead =
       newest_us_ && timestamp_us > *newest_us_ &&
-      timestamp_us - *newest_us_ > microseconds(std::max(now_s - newest_at_s_, 0.0)) + kClockRestartUs;
+      timestamp_us - *newest_us_ > microseconds(std::max(now_s - newest_at_s_, 0.0)) + kClockSetUs;
   if (newest_us_ && (timestamp_us <= *newest_us_ || jumped_ahead)) {
     if (!jumped_ahead && *newest_us_ - timestamp_us < kClockRestartUs) {
       ++counters_.attitude_out_of_order;

@@ -37,9 +37,10 @@ SpecificForce restingForceOf(const px4::Quaternion& attitude) {
 }
 
 std::optional<QuaternionLayout> QuaternionOrderFinder::onSample(const OrientationFields& fields,
-                                                                const SpecificForce& force) {
+                                                                const SpecificForce& force, bool disarmed) {
   ++samples_;
   if (decided_) return decided_;
+  if (!disarmed) return std::nullopt;
   if (!(std::abs(norm(force) - kGravityMps2) <= kStillToleranceMps2)) return std::nullopt;  // NaN too
   const double ros = gravityMismatchDeg(attitudeOf(fields.x, fields.y, fields.z, fields.w, QuaternionLayout::kRos),
                                         force);

@@ -202,7 +202,9 @@ std::string describe(const Schema& schema, const Values& defaults) {
   // Keys used only in some modes, grouped by the case they apply to.
   std::vector<std::pair<std::string, std::vector<std::string>>> cases;  // "what (when: values)" -> keys
   for (const Applies& a : schema.applies) {
-    const std::string when = a.values.empty() ? a.when + " not 0" : a.when + ": " + join(a.values, ", ");
+    const Spec* when_spec = schema.find(a.when);
+    const std::string off = when_spec != nullptr && when_spec->kind == Kind::kText ? " not empty" : " not 0";
+    const std::string when = a.values.empty() ? a.when + off : a.when + ": " + join(a.values, ", ");
     const std::string name = a.what + " (" + when + ")";
     auto it = std::find_if(cases.begin(), cases.end(), [&](const auto& c) { return c.first == name; });
     if (it == cases.end()) it = cases.insert(cases.end(), {name, {}});

@@ -34,6 +34,7 @@ const Spec* Schema::find(const std::string& key) const {
 bool turnsOff(const Applies& a, const Values& values) {
   const Value& when = values.at(a.when);
   if (const auto* chosen = std::get_if<std::string>(&when)) {
+    if (a.values.empty()) return chosen->empty();  // a text: off while empty
     return std::find(a.values.begin(), a.values.end(), *chosen) == a.values.end();
   }
   const auto* number = std::get_if<double>(&when);

@@ -101,7 +101,7 @@ class BridgeCore {
   // The vehicle's attitude (PX4: vehicle_attitude; ArduPilot: the IMU message's orientation): the IMU sample for the
   // agent, or nullopt if rejected (not a unit quaternion, not newer than the last one; counted). A timestamp more
   // than a second behind the newest is the vehicle's clock restarted, and one ahead of it by more than now_s saw pass
-  // plus a second is the clock set (ArduPilot: boot time -> UTC): both accepted, and the commands of the old timeline
+  // plus a day is the clock set (ArduPilot: boot time -> UTC): both accepted, and the commands of the old timeline
   // are forgotten.
   std::optional<agent::ImuSample> onAttitude(std::uint64_t timestamp_us, const Quaternion& q, double now_s);
   // The agent's command (cmd_vel): its setpoint and heartbeat to send at once, or nothing if it is not accepted.

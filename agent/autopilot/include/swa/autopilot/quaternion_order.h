@@ -6,12 +6,12 @@
 // FRD body axes; on a vehicle that is not accelerating it points along R^T (0, 0, -g), R the attitude in the right
 // order.
 //
-// A sample votes when its specific force is within kStillToleranceMps2 of g (no acceleration worth a tilt of more
-// than about 10 degrees) and one order's gravity agrees within kAgreeDeg while the other's is off by more than
-// kDisagreeDeg. kVotesNeeded votes in a row decide, once and for good; a vote the other way starts the count again.
-// A multicopter's specific force follows its thrust axis, so an accelerating one tilts the right order's gravity
-// away by the tilt: a tilt above kDisagreeDeg needs over 2.6 m/s^2 of acceleration, which the tolerance keeps out, so
-// a wrong vote cannot come from flight either.
+// A sample votes only while the vehicle is disarmed (on the ground: its specific force is gravity's), when that force
+// is within kStillToleranceMps2 of g and one order's gravity agrees within kAgreeDeg while the other's is off by more
+// than kDisagreeDeg. kVotesNeeded votes in a row decide, once and for good; a vote the other way starts the count
+// again. Not in flight: a multicopter's specific force follows its thrust axis, and one tilted by 20 degrees while
+// sinking at 0.6 m/s^2 measures exactly g along its own z, which the wrong order can read as level. A bridge started
+// in flight therefore decides nothing; it needs the order given.
 //
 // Blind spots, where the wrong order also looks level: a level vehicle heading within about kDisagreeDeg of north
 // (when ArduPilot writes the ROS order) or of south (when it writes w, x, y, z). There nothing is decided until the
@@ -34,10 +34,11 @@ class QuaternionOrderFinder {
   static constexpr double kStillToleranceMps2 = 0.15;
   static constexpr double kAgreeDeg = 5.0;
   static constexpr double kDisagreeDeg = 15.0;
-  static constexpr int kVotesNeeded = 20;  // 0.2 s of ArduPilot's IMU stream
+  static constexpr int kVotesNeeded = 20;  // 0.1 to 0.2 s of ArduPilot's IMU stream
 
-  // One message's orientation fields as they came and its linear acceleration: the order, once decided.
-  std::optional<QuaternionLayout> onSample(const OrientationFields& fields, const SpecificForce& force);
+  // One message's orientation fields as they came and its linear acceleration, and whether the vehicle reports itself
+  // disarmed: the order, once decided.
+  std::optional<QuaternionLayout> onSample(const OrientationFields& fields, const SpecificForce& force, bool disarmed);
   std::optional<QuaternionLayout> decided() const { return decided_; }
 
   std::uint64_t samples() const { return samples_; }

@@ -72,7 +72,7 @@ struct Check {
 };
 
 // `key` is used only while the choice parameter `when` holds one of `values` or, with no `values`, while the number
-// `when` is not 0 (0 = off); `what` names that case in messages ("the k_nearest rule"). Giving `key` while it
+// `when` is not 0 (0 = off) or the text `when` is not empty; `what` names that case in messages ("the k_nearest rule"). Giving `key` while it
 // changes nothing is an error, unless the file gave it and a --set of `when` turned it off (a study's sweep over
 // the rule); the dump writes such a key as a comment.
 struct Applies {
