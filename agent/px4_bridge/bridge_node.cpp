@@ -71,7 +71,6 @@ void BridgeNode::connect() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     participant_ = std::move(participant);
-    applied_at_connect_ = core_.counters().commands_applied;
   }
   handshake_.connected(std::chrono::steady_clock::now());
   requests_handshake_.connected(std::chrono::steady_clock::now());
@@ -228,12 +227,11 @@ int BridgeNode::run() {
     // Matched-status queries outside mutex_ (a listener may hold its reader's lock while it waits for mutex_).
     const bool reads = vehicle_->readsCommands();
     const bool agent_matched = imu_.matched() > 0 && cmd_reader_.matched() > 0;
-    bool started = false, attitude_seen = false;
+    bool running = false, agent_lost = false, attitude_seen = false;
     {
-      // Started = the agent's commands applied through this participant: after a reconnection the new handshakes
-      // are watched again, whatever flowed through the old participant.
       const std::lock_guard<std::mutex> lock(mutex_);
-      started = core_.counters().commands_applied > applied_at_connect_;
+      running = core_.link() == autopilot::Link::kFresh || core_.link() == autopilot::Link::kStale;
+      agent_lost = core_.link() == autopilot::Link::kAgentLost;
       attitude_seen = core_.counters().attitude_in > 0;
     }
     if (participant_->mustGiveWay()) {
@@ -245,14 +243,17 @@ int BridgeNode::run() {
       closeParticipant();
       return kExitTwin;
     }
-    // A stalled DDS Security handshake with the vehicle (or the simulator) or with the agent, before the loop ran
-    // through this participant (handshake_watch.h): a new participant.
-    if (handshake_.stalled(started, reads && agent_matched && vehicle_->attitudeMatched(),
+    // A stalled DDS Security handshake with the vehicle (or the simulator) or with the agent while the loop does not
+    // run (handshake_watch.h): a new participant. "Agent lost" with every endpoint matched counts as stalled too: with
+    // security on, a channel can break with both sides still matched (measured: two agents of a secure 4-UAV launch
+    // through ArduPilot got no IMU sample after the first, and re-creating their own participants five times did not
+    // mend it).
+    if (handshake_.stalled(running, reads && agent_matched && vehicle_->attitudeMatched() && !agent_lost,
                            std::chrono::steady_clock::now())) {
       std::fprintf(stderr,
-                   "swa_px4_bridge %d: the vehicle's or the agent's endpoints not matched with DDS Security on (a "
-                   "stalled authentication handshake, see deploy/README.md): re-creating the participant "
-                   "(reconnection %d)\n",
+                   "swa_px4_bridge %d: the vehicle's or the agent's endpoints not matched, or the agent lost while they "
+                   "are, with DDS Security on (a stalled handshake or a broken channel, see deploy/README.md): "
+                   "re-creating the participant (reconnection %d)\n",
                    id_, handshake_.reconnects());
       closeParticipant();
       connect();

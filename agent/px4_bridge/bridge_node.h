@@ -107,7 +107,6 @@ class BridgeNode : public app::Role {
   // Once armed and in the control mode (PX4: offboard; ArduPilot: GUIDED): a pilot taking over later is no reason to
   // re-create the participant in flight.
   std::atomic<bool> engaged_{false};
-  std::uint64_t applied_at_connect_ = 0;  // the core's commands_applied when the participant was created (mutex_)
 
   std::unique_ptr<dds::Participant> participant_;  // written by the main thread under mutex_; null while closing
   dds::Writer<msg::Imu> imu_;

@@ -19,6 +19,7 @@
 #include "../integration/private_shm.h"
 #include "../integration/process_test.h"
 #include "closed_loop.h"
+#include "replay_check.h"
 #include "swa/dds/topics.h"
 #include "swa/px4/release.h"
 #include "swa/sim/scenario_io.h"
@@ -61,20 +62,21 @@ class Px4SwarmTest : public ::testing::Test {
   }
 
   std::vector<std::string> launchArgs(const std::string& scenario, const std::string& vehicle, const fs::path& out,
-                                      const std::vector<std::string>& sets = {}) const {
+                                      const std::vector<std::string>& sets = {}, bool record = false) const {
     std::vector<std::string> argv{SWA_LAUNCH_BINARY, "--scenario", kScenarioDir + scenario, "--vehicle", vehicle,
                                   "--domain",        std::to_string(domain_), "--out", out.string()};
     for (const std::string& s : sets) argv.insert(argv.end(), {"--set", s});
+    if (record) argv.emplace_back("--record");
     return argv;
   }
 
-  // `tag` tells apart runs of one scenario and vehicle (their directories and logs).
+  // `tag` tells apart runs of one scenario and vehicle (their directories and logs); `record`: into run.mcap.
   LaunchedRun launch(const std::string& scenario, const std::string& vehicle, const std::vector<std::string>& sets = {},
-                     const std::string& tag = "") {
+                     const std::string& tag = "", bool record = false) {
     LaunchedRun r;
     const std::string name = scenario + "_" + vehicle + (tag.empty() ? "" : "_" + tag);
     r.dir = dir_ / name;
-    Child child(launchArgs(scenario, vehicle, r.dir, sets), dir_ / (name + ".log"));
+    Child child(launchArgs(scenario, vehicle, r.dir, sets, record), dir_ / (name + ".log"));
     r.status = child.wait(kRunBoundS).value_or(-1);
     r.summary = readFile(r.dir / "summary.json");
     return r;
@@ -145,7 +147,8 @@ void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& s
   SCOPED_TRACE(scenario + " through ArduPilot");
   const double d_direct =
       batch::runClosedLoop(sim::loadScenario(kScenarioDir + scenario, {"duration_s=60"})).summary.mean_neighbor_distance_m;
-  const LaunchedRun ap = launch(scenario, "ardupilot", {"duration_s=60"});
+  // With the observer (the 4-UAV run) it is recorded too.
+  const LaunchedRun ap = launch(scenario, "ardupilot", {"duration_s=60"}, "", observer != nullptr);
   ASSERT_NE(ap.status, -1) << "still running after " << kRunBoundS << " s";
   const double d_ap = jsonNumber(ap.summary, "mean_neighbor_distance_m");
   RecordProperty(scenario + "_d_nb_ardupilot_m", std::to_string(d_ap));
@@ -179,6 +182,14 @@ void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& s
     EXPECT_TRUE(bridges.empty()) << bridges.front() << "\n" << table;
     const std::vector<std::string> agents = auditIsolation(endpoints);
     EXPECT_TRUE(agents.empty()) << agents.front() << "\n" << table;
+    // AND the recording holds what the agents read from their bridges: re-run in-process on it, every agent sends
+    // the same commands, byte for byte (swa_replay --check)
+    const replay::RecordedRun recorded = replay::readRecordedRun((ap.dir / "run.mcap").string(), std::nullopt, false);
+    ASSERT_TRUE(recorded.scenario_yaml);
+    const std::vector<replay::UavCheck> checks = replay::checkRun(
+        recorded, sim::parseRecordedScenario(*recorded.scenario_yaml, "run.mcap", {}).agent);
+    ASSERT_EQ(checks.size(), static_cast<std::size_t>(n)) << replay::formatChecks(checks);
+    for (const replay::UavCheck& c : checks) EXPECT_TRUE(c.identicalRun()) << replay::formatChecks(checks);
   }
   expectNothingLeft();
 }

@@ -329,8 +329,9 @@ TEST_F(SecurityTest, SecureLaunchThroughPx4StaysCohesive) {
 // (a'') And through ArduPilot: the simulator as every UAV's ArduPilot, the bridges' permissions covering its topics and
 // its arm / mode services both ways; every vehicle switched to GUIDED through mode_switch. 3 UAVs: fewer participants,
 // fewer handshakes that Fast DDS 2.9 may stall (deploy/README.md). By hand on 2026-11-28: 3 UAVs 5 of 5 (GUIDED 10
-// and 17 s late in two, before the bridge watched its requests' endpoints too), then 6 of 6 by ctest; 4 UAVs 6 of 6
-// with that watch, 4 of 6 before it.
+// and 17 s late in two, before the bridge watched its requests' endpoints too), then 6 of 6 by ctest; 4 UAVs 4 of 6
+// before that watch, then 6 of 6, then 1 of 8 failed (a broken bridge-to-agent channel), then 8 of 8 once the bridge
+// re-creates its participant when its agent is lost with everything matched.
 TEST_F(SecurityTest, SecureLaunchThroughArdupilotStaysCohesive) {
   secureLaunchThroughAutopilot("ardupilot", 3, [](int i) {
     return "ArduPilot stand-in " + dds::topics::apNamespace(i) + ": GUIDED on request";
