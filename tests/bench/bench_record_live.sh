@@ -32,10 +32,9 @@ trap cleanup EXIT
 for b in swa_launch swa_sim swa_agent swa_monitor bench_record_reader; do
   [ -x "$bin/$b" ] || { echo "bench_record_live: no $bin/$b (bash deploy/build.sh)" >&2; exit 2; }
 done
-mkdir -p "$work/client"
-cp "$root/tests/live/live_client/package.json" "$root/tests/live/live_client/package-lock.json" \
-  "$root/tests/live/live_client/live_check.mjs" "$work/client/"
-(cd "$work/client" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
+source "$root/tests/node_tools.sh"
+install_npm_folder "$root/tests/live/live_client" "$work/client" live_check.mjs
 
 run() {  # run WITH(0|1) ROUND
   local out=$work/run_$1_$2 extra=() domain=$((160 + $2)) swarm=benchrec$$r$1x$2

@@ -17,10 +17,8 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 bin=$1
 work=$2
-fail() {
-  echo "test_live_view: FAIL: $*" >&2
-  exit 1
-}
+# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
+source "$root/tests/node_tools.sh"
 launch=""
 cleanup() {
   if [ -n "$launch" ]; then
@@ -30,24 +28,9 @@ cleanup() {
 }
 trap cleanup EXIT
 
-need=()
-command -v node >/dev/null || need+=(nodejs)
-command -v npm >/dev/null || need+=(npm)
-command -v chromium >/dev/null || need+=(chromium)
-if [ ${#need[@]} -gt 0 ]; then
-  echo "test_live_view: installing ${need[*]} (Debian packages)"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get install -y -qq --no-install-recommends "${need[@]}" || {
-    apt-get update -qq
-    apt-get install -y -qq --no-install-recommends "${need[@]}"
-  }
-fi
-
+ensure_packages nodejs npm chromium
 rm -rf "$work"
-mkdir -p "$work/client"
-cp "$here/live_client/package.json" "$here/live_client/package-lock.json" "$here/live_client/live_check.mjs" \
-  "$work/client/"
-(cd "$work/client" && npm ci --no-audit --no-fund --loglevel=error)
+install_npm_folder "$here/live_client" "$work/client" live_check.mjs
 client() { node "$work/client/live_check.mjs" "$@"; }
 
 source "$root/tests/test_domain.sh"

@@ -14,22 +14,11 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 bin=$1
 work=$2
-fail() {
-  echo "test_record_monitor_set: FAIL: $*" >&2
-  exit 1
-}
-
-if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-  echo "test_record_monitor_set: installing nodejs and npm (Debian packages)"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends nodejs npm
-fi
+# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
+source "$root/tests/node_tools.sh"
+ensure_packages nodejs npm
 rm -rf "$work"
-mkdir -p "$work/reader"
-cp "$here/mcap_reader/package.json" "$here/mcap_reader/package-lock.json" "$here/mcap_reader/mcap_check.mjs" \
-  "$work/reader/"
-(cd "$work/reader" && npm ci --no-audit --no-fund --loglevel=error)
+install_npm_folder "$here/mcap_reader" "$work/reader" mcap_check.mjs
 
 source "$root/tests/test_domain.sh"
 reserve_test_domain $((120 + RANDOM % 100))

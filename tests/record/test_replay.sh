@@ -13,10 +13,8 @@ root=$(cd "$here/../.." && pwd)
 bin=$1
 work=$2
 scenario=$root/deploy/scenarios/dropout_4.yaml
-fail() {
-  echo "test_replay: FAIL: $*" >&2
-  exit 1
-}
+# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
+source "$root/tests/node_tools.sh"
 pids=()
 cleanup() {
   for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
