@@ -79,6 +79,7 @@ AgentNode::AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id
       domain_id_(domain_id),
       profiles_file_(profiles_file),
       agent_(config),
+      feed_(agent_, static_cast<std::uint32_t>(uav_id)),
       adapter_(adapterConfig(uav_id, config)),
       order_(kHoldLimitNs),
       started_(std::chrono::steady_clock::now()),
@@ -362,9 +363,8 @@ void AgentNode::onInput(Input&& in) {
 }
 
 void AgentNode::handle(Input& in) {
-  const auto self = static_cast<std::uint32_t>(id_);
   const auto foreign = [&](std::uint32_t named) {
-    if (named == self) return false;
+    if (feed_.isFor(named)) return false;
     if (stats_.foreign++ == 0) {
       std::fprintf(stderr, "swa_agent %d: dropping a sample addressed to UAV %u (further ones counted silently)\n",
                    id_, named);
@@ -385,7 +385,7 @@ void AgentNode::handle(Input& in) {
       pending_state_ns_.reset();
     }
     const std::uint64_t resyncs = agent_.diagnostics().stamp_resyncs;
-    const agent::VelocityCommand cmd = agent_.onImu(wire::fromMsg(*imu));
+    const std::optional<msg::VelocitySetpoint> answer = feed_.onImu(*imu);
     if (agent_.diagnostics().stamp_resyncs != resyncs) {
       std::fprintf(stderr,
                    "swa_agent %d: the IMU clock restarted (now at stamp %lld ns): estimates restarted on the new "
@@ -395,10 +395,10 @@ void AgentNode::handle(Input& in) {
     // A rejected sample (counted in the state's reject counters) is not answered: a flood of bad samples must not
     // turn into a flood of commands. A UAV whose valid samples stop gets no commands, and its autopilot's own
     // offboard timeout takes over (the simulator's failsafe: hover after failsafe_timeout_s).
-    if (!cmd.fresh) return;
+    if (!answer) return;
     had_fresh_imu_ = true;
     last_fresh_imu_ = std::chrono::steady_clock::now();
-    msg::VelocitySetpoint out = wire::toMsg(cmd, self, ++cmd_seq_, imu->header().seq());
+    msg::VelocitySetpoint out = *answer;
     if (cmd_writer_.write(out)) {
       ++stats_.commands;
     } else {
@@ -420,11 +420,11 @@ void AgentNode::handle(Input& in) {
   } else if (const auto* det = std::get_if<msg::Detections>(&in)) {
     if (foreign(det->observer_id())) return;
     ++stats_.detections;
-    agent_.onDetections(wire::fromMsg(*det));
+    feed_.onDetections(*det);
   } else if (const auto* gnss = std::get_if<msg::GnssFix>(&in)) {
     if (foreign(gnss->uav_id())) return;
     ++stats_.gnss;
-    agent_.onGnss(wire::fromMsg(*gnss));
+    feed_.onGnss(*gnss);
   }
 }
 

@@ -40,6 +40,7 @@
 #include "swa/app/stall_watch.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
+#include "swa/wire/agent_feed.h"
 
 namespace swa::agent_node {
 
@@ -99,12 +100,13 @@ class AgentNode : public app::Role {
   const int domain_id_;
   const std::string profiles_file_;
   agent::Agent agent_;
+  wire::AgentFeed feed_;             // agent_ fed the messages (guarded by mutex_)
   agent::DetectionAdapter adapter_;  // guarded by mutex_
   std::uint32_t foreign_seq_ = 0;    // guarded by mutex_
   StampOrderer<Input> order_;
   std::chrono::steady_clock::time_point started_;
   AgentNodeStats stats_;
-  std::uint32_t cmd_seq_ = 0, state_seq_ = 0;
+  std::uint32_t state_seq_ = 0;
   bool state_due_set_ = false;
   agent::StampNs next_state_ns_ = 0;
   // The state of a 100 ms boundary step is published once every sample of that step has been processed (before the

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "swa/agent/agent.h"
+#include "swa/agent/feed.h"
 #include "swa/monitor/swarm_metrics.h"
 #include "swa/record/scoring.h"
 #include "swa/sim/world.h"
@@ -32,12 +33,8 @@ RunResult runClosedLoop(const sim::Scenario& scenario, const LoopOptions& option
     for (int i = 0; i < n; ++i) {
       agent::Agent& a = agents[static_cast<std::size_t>(i)];
       const sim::UavSensors& s = sensors[static_cast<std::size_t>(i)];
-      // Samples with equal stamps go IMU first: the command answers the IMU sample at once (as the DDS agent does,
-      // for the lowest loop latency) and detections/GNSS of this step shape the next command, 10 ms later. It also
-      // gives the agent its heading before the first detection set.
-      if (s.imu) world.command(i, a.onImu(*s.imu));
-      if (s.detections) a.onDetections(*s.detections);
-      if (s.gnss) a.onGnss(*s.gnss);
+      // One instant in the order of swa/agent/feed.h, as the DDS agent processes it.
+      if (const auto command = agent::feedInstant(a, s.imu, s.detections, s.gnss)) world.command(i, *command);
     }
     if (world.step_index() % options.metrics_every_steps == 0 || world.finished()) {
       input.stamp_ns = world.time_ns();

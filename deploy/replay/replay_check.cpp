@@ -12,6 +12,7 @@
 
 #include "swa/agent/agent.h"
 #include "swa/dds/raw_type.h"
+#include "swa/wire/agent_feed.h"
 #include "swa/wire/samples.h"
 
 namespace swa::replay {
@@ -41,19 +42,18 @@ UavCheck checkUav(int uav, const UavRecording& recording, const agent::AgentConf
   std::map<std::int64_t, bool> answered;
 
   agent::Agent core(config);
-  std::uint32_t cmd_seq = 0;
+  wire::AgentFeed feed(core, self);  // as swa_agent feeds its agent (agent/node/agent_node.cpp)
   for (const InputSample& in : recording.inputs) {
     ++c.inputs;
-    // What AgentNode::handle does with each ordered sample (agent/node/agent_node.cpp), minus DDS and logging.
     if (in.input == Input::kImu) {
       msg::Imu imu;
-      if (!dds::decodePayload<msg::ImuPubSubType>(in.payload, imu) || imu.uav_id() != self) {
+      if (!dds::decodePayload<msg::ImuPubSubType>(in.payload, imu) || !feed.isFor(imu.uav_id())) {
         ++c.undecodable;
         continue;
       }
-      const agent::VelocityCommand cmd = core.onImu(wire::fromMsg(imu));
-      if (!cmd.fresh) continue;  // a rejected sample is not answered
-      const msg::VelocitySetpoint out = wire::toMsg(cmd, self, ++cmd_seq, imu.header().seq());
+      const std::optional<msg::VelocitySetpoint> answer = feed.onImu(imu);
+      if (!answer) continue;  // a rejected sample is not answered
+      const msg::VelocitySetpoint& out = *answer;
       ++c.replayed;
       const auto it = recorded.find(out.header().stamp_ns());
       if (it == recorded.end()) {
@@ -79,18 +79,16 @@ UavCheck checkUav(int uav, const UavRecording& recording, const agent::AgentConf
       }
     } else if (in.input == Input::kDetections) {
       msg::Detections det;
-      if (!dds::decodePayload<msg::DetectionsPubSubType>(in.payload, det) || det.observer_id() != self) {
+      if (!dds::decodePayload<msg::DetectionsPubSubType>(in.payload, det) || !feed.onDetections(det)) {
         ++c.undecodable;
         continue;
       }
-      core.onDetections(wire::fromMsg(det));
     } else {
       msg::GnssFix gnss;
-      if (!dds::decodePayload<msg::GnssFixPubSubType>(in.payload, gnss) || gnss.uav_id() != self) {
+      if (!dds::decodePayload<msg::GnssFixPubSubType>(in.payload, gnss) || !feed.onGnss(gnss)) {
         ++c.undecodable;
         continue;
       }
-      core.onGnss(wire::fromMsg(gnss));
     }
   }
   c.not_replayed = c.recorded - std::min<std::uint64_t>(c.recorded, answered.size());

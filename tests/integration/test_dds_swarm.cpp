@@ -28,6 +28,7 @@
 #include "private_shm.h"
 #include "process_test.h"
 #include "swa/agent/agent.h"
+#include "swa/agent/feed.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
@@ -126,9 +127,7 @@ std::vector<sim::UavTruth> inProcessFinalTruth(const sim::Scenario& scenario) {
     for (int i = 0; i < world.uav_count(); ++i) {
       agent::Agent& a = agents[static_cast<std::size_t>(i)];
       const sim::UavSensors& s = world.sensors()[static_cast<std::size_t>(i)];
-      if (s.imu) world.command(i, a.onImu(*s.imu));
-      if (s.detections) a.onDetections(*s.detections);
-      if (s.gnss) a.onGnss(*s.gnss);
+      if (const auto command = agent::feedInstant(a, s.imu, s.detections, s.gnss)) world.command(i, *command);
     }
     if (world.finished()) break;
     world.step();

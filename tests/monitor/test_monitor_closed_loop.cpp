@@ -16,6 +16,7 @@
 #include "live_run.h"
 #include "msg_convert.h"
 #include "swa/agent/agent.h"
+#include "swa/agent/feed.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/sim/world.h"
 #include "swa/wire/agent_state.h"
@@ -51,9 +52,7 @@ std::unique_ptr<LiveRun> monitorLoop(const sim::Scenario& s, int dead_agent = -1
     for (int i = 0; i < n; ++i) {
       agent::Agent& a = agents[static_cast<std::size_t>(i)];
       const sim::UavSensors& in = sensors[static_cast<std::size_t>(i)];
-      if (in.imu) world.command(i, a.onImu(*in.imu));
-      if (in.detections) a.onDetections(*in.detections);
-      if (in.gnss) a.onGnss(*in.gnss);
+      if (const auto command = agent::feedInstant(a, in.imu, in.detections, in.gnss)) world.command(i, *command);
     }
     if (world.step_index() % 10 == 0 || world.finished()) {
       const bool dead_now = world.time_ns() >= static_cast<agent::StampNs>(dead_from_s * 1e9);
