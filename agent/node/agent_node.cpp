@@ -47,7 +47,7 @@ constexpr auto kRematchWait = std::chrono::milliseconds(500);
 // An IMU sample this recent counts as the samples arriving (100 Hz when the loop runs).
 constexpr auto kArrivingWindow = std::chrono::milliseconds(250);
 // Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (deploy/dds/profiles.xml): the most a
-// re-created participant's readers can be sent again (replay_filter.h).
+// re-created participant's readers can be sent again (redelivery_filter.h).
 constexpr std::size_t kImuHistory = 1000;
 constexpr std::size_t kDetectionsGnssHistory = 100;
 
@@ -258,7 +258,7 @@ int AgentNode::run() {
       lock.unlock();  // deleting the participant waits for its listeners, which take the lock
       participant_.reset();
       lock.lock();
-      // The new readers are sent the writers' history again: not news (replay_filter.h).
+      // The new readers are sent the writers' history again: not news (redelivery_filter.h).
       replay_.arm(Stream::kImu, kImuHistory);
       replay_.arm(Stream::kDetections, kDetectionsGnssHistory);
       replay_.arm(Stream::kGnss, kDetectionsGnssHistory);

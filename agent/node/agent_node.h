@@ -31,7 +31,7 @@
 #include <swa/msg/VelocitySetpoint.h>
 #include <swa/ros/TwistStamped.h>
 
-#include "replay_filter.h"
+#include "redelivery_filter.h"
 #include "sample_order.h"
 #include "silence_watch.h"
 #include "swa/agent/agent.h"
@@ -50,7 +50,7 @@ struct AgentNodeStats {
   std::uint64_t foreign = 0;         // samples naming another UAV (a wiring error upstream): dropped
   std::uint64_t write_failures = 0;
   std::uint64_t forced_releases = 0;  // samples the stamp orderer let through early (sample_order.h)
-  std::uint64_t replayed = 0;         // history sent again to a re-created participant, dropped (replay_filter.h)
+  std::uint64_t replayed = 0;         // history sent again to a re-created participant, dropped (redelivery_filter.h)
 };
 
 class AgentNode : public app::Role {

@@ -1,12 +1,12 @@
 #pragma once
 // Lockstep: every step's sensor samples are published, then the world waits for each live agent's answer to its IMU
-// sample (lockstep.h) up to the agent timeout, and for the acknowledgment of its detections and GNSS fix, before it
+// sample (lockstep_tracker.h) up to the agent timeout, and for the acknowledgment of its detections and GNSS fix, before it
 // steps. Deterministic: the same scenario and seed give the same run as the in-process loop (deploy/batch).
 
 #include <vector>
 
 #include "driver.h"
-#include "lockstep.h"
+#include "lockstep_tracker.h"
 
 namespace swa::sim_node {
 

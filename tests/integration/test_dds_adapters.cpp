@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "agent_options.h"
-#include "lockstep.h"
+#include "lockstep_tracker.h"
 #include "sample_order.h"
 #include "silence_watch.h"
 #include "sim_options.h"

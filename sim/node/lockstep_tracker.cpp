@@ -1,4 +1,4 @@
-#include "lockstep.h"
+#include "lockstep_tracker.h"
 
 #include <stdexcept>
 
