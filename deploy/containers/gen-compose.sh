@@ -107,42 +107,34 @@ for ((i = 0; i < n; i++)); do
     networks: [swa]
     stop_grace_period: 10s
 EOF
+  [ "$vehicle" != direct ] || continue
   if [ "$vehicle" = px4 ]; then
-    cat <<EOF
-
-  bridge$i:
-    image: localhost/swa-bridge:latest
-    environment:
-      SWA_DOMAIN: "42"
-      SWA_TRANSPORT: network
-      SWA_UAV_ID: "$i"
-      # The simulator's PX4 stand-ins start in Hold; on a real drone leave it 0 and let the pilot switch to offboard.
-      SWA_BRIDGE_ENGAGE: "1"
-      # The simulator publishes GNSS itself (vehicle.gnss_source=swa); on a real drone leave it 1 (PX4's fix).
-      SWA_BRIDGE_GNSS: "0"
-    networks: [swa]
-    stop_grace_period: 10s
-EOF
-  elif [ "$vehicle" = ardupilot ]; then
-    cat <<EOF
-
-  bridge$i:
-    image: localhost/swa-bridge:latest
-    environment:
-      SWA_DOMAIN: "42"
-      SWA_TRANSPORT: network
-      SWA_UAV_ID: "$i"
-      # ArduPilot's topics under ap/v$((i + 1)) (DDS_USE_NS 1 with MAV_SYSID $((i + 1))), as the simulator's stand-in
+    autopilot_lines=""
+    engage_why="The simulator's PX4 stand-ins start in Hold; on a real drone leave it 0 and let the pilot switch to offboard."
+    gnss_source="PX4's fix"
+  else
+    autopilot_lines="      # ArduPilot's topics under ap/v$((i + 1)) (DDS_USE_NS 1 with MAV_SYSID $((i + 1))), as the simulator's stand-in
       # names them; SWA_AP_NAMESPACE for another.
       SWA_AUTOPILOT: ardupilot
       # The stand-ins write the IMU quaternion in the ROS order; on a real drone leave it out (auto: told by gravity).
       SWA_AP_QUATERNION: ros
-      # The stand-ins start armed in LOITER; on a real drone leave it 0 and let the pilot switch to GUIDED.
+"
+    engage_why="The stand-ins start armed in LOITER; on a real drone leave it 0 and let the pilot switch to GUIDED."
+    gnss_source="ArduPilot's navsat"
+  fi
+  cat <<EOF
+
+  bridge$i:
+    image: localhost/swa-bridge:latest
+    environment:
+      SWA_DOMAIN: "42"
+      SWA_TRANSPORT: network
+      SWA_UAV_ID: "$i"
+${autopilot_lines}      # $engage_why
       SWA_BRIDGE_ENGAGE: "1"
-      # The simulator publishes GNSS itself (vehicle.gnss_source=swa); on a real drone leave it 1 (ArduPilot's navsat).
+      # The simulator publishes GNSS itself (vehicle.gnss_source=swa); on a real drone leave it 1 ($gnss_source).
       SWA_BRIDGE_GNSS: "0"
     networks: [swa]
     stop_grace_period: 10s
 EOF
-  fi
 done
