@@ -182,14 +182,22 @@ void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& s
     EXPECT_TRUE(bridges.empty()) << bridges.front() << "\n" << table;
     const std::vector<std::string> agents = auditIsolation(endpoints);
     EXPECT_TRUE(agents.empty()) << agents.front() << "\n" << table;
-    // AND the recording holds what the agents read from their bridges: re-run in-process on it, every agent sends
-    // the same commands, byte for byte (swa_replay --check)
+    // AND the recording holds what the agents read from their bridges: re-run in-process on it, every recorded
+    // command comes out again, byte for byte (swa_replay --check). The agent's cmd_vel writer keeps only its newest
+    // sample (KEEP_LAST 1, deploy/dds/profiles.xml): a recorder that falls behind on a loaded host misses one now and
+    // then (CI: 1 of 6000 for two UAVs), which the replay produces without a recorded twin. That is the recording's
+    // gap, not a difference.
     const replay::RecordedRun recorded = replay::readRecordedRun((ap.dir / "run.mcap").string(), std::nullopt, false);
     ASSERT_TRUE(recorded.scenario_yaml);
     const std::vector<replay::UavCheck> checks = replay::checkRun(
         recorded, sim::parseRecordedScenario(*recorded.scenario_yaml, "run.mcap", {}).agent);
     ASSERT_EQ(checks.size(), static_cast<std::size_t>(n)) << replay::formatChecks(checks);
-    for (const replay::UavCheck& c : checks) EXPECT_TRUE(c.identicalRun()) << replay::formatChecks(checks);
+    for (const replay::UavCheck& c : checks) {
+      EXPECT_GT(c.recorded, 0u) << replay::formatChecks(checks);
+      EXPECT_EQ(c.identical, c.recorded) << replay::formatChecks(checks);
+      EXPECT_EQ(c.differing, 0u) << replay::formatChecks(checks);
+      EXPECT_EQ(c.not_replayed, 0u) << replay::formatChecks(checks);
+    }
   }
   expectNothingLeft();
 }
