@@ -88,6 +88,13 @@ void BridgeNode::connect() {
 
 BridgeNode::~BridgeNode() { closeParticipant(); }
 
+void BridgeNode::reconnect() {
+  closeParticipant();
+  connect();
+  const std::lock_guard<std::mutex> lock(mutex_);
+  vehicle_reads_ = false;  // the new writers must match the vehicle again before anything is forwarded
+}
+
 void BridgeNode::closeParticipant() {
   std::unique_ptr<dds::Participant> closing;
   {
@@ -255,10 +262,7 @@ int BridgeNode::run() {
                    "are, with DDS Security on (a stalled handshake or a broken channel, see deploy/README.md): "
                    "re-creating the participant (reconnection %d)\n",
                    id_, handshake_.reconnects());
-      closeParticipant();
-      connect();
-      const std::lock_guard<std::mutex> lock(mutex_);
-      vehicle_reads_ = false;  // the new writers must match the vehicle again before anything is forwarded
+      reconnect();
       continue;
     }
     if (requests_handshake_.stalled(engaged_, vehicle_->requestsMatched(), std::chrono::steady_clock::now())) {
@@ -266,10 +270,7 @@ int BridgeNode::run() {
                    "swa_px4_bridge %d: --engage's requests to %s (arm, mode) not matched with DDS Security on, and the "
                    "vehicle not engaged yet: re-creating the participant (reconnection %d)\n",
                    id_, core_.autopilot().name, requests_handshake_.reconnects());
-      closeParticipant();
-      connect();
-      const std::lock_guard<std::mutex> lock(mutex_);
-      vehicle_reads_ = false;
+      reconnect();
       continue;
     }
     const std::lock_guard<std::mutex> lock(mutex_);

@@ -54,6 +54,7 @@ class BridgeNode : public app::Role {
   // Deletes the participant. Listeners still running on it (they call participant_, imu_, ...) see it gone under
   // mutex_ and return; a plain participant_.reset() would null the pointer while they still ran.
   void closeParticipant();
+  void reconnect();  // a new participant (a stalled DDS Security handshake): closeParticipant, then connect
   double nowS() const;
   // From the vehicle link's listeners.
   void onAttitude(const Attitude& a);

@@ -1,6 +1,7 @@
 #include "bridge_options.h"
 
 #include "swa/app/cli.h"
+#include "swa/app/number.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/naming.h"
 #include "swa/dds/options.h"
@@ -137,12 +138,10 @@ app::Cli makeCli(BridgeOptions& o) {
       "--gnss-silence-s", "T",
       [&o](const std::string& v, app::Problems& problems) {
         o.gnss_silence_given = true;
-        char* end = nullptr;
-        const double t = std::strtod(v.c_str(), &end);
-        if (v.empty() || *end != '\0' || !(t >= 0.05 && t <= 10.0)) {
-          problems.push_back("--gnss-silence-s '" + v + "': a time in seconds in [0.05, 10]");
+        if (const std::optional<double> t = app::parseReal(v, 0.05, 10.0)) {
+          o.navsat.silence_s = *t;
         } else {
-          o.navsat.silence_s = t;
+          problems.push_back("--gnss-silence-s '" + v + "': a time in seconds in [0.05, 10]");
         }
       },
       "ArduPilot: no fix on navsat for this long (its IMU's time) is a GNSS loss (default 0.5: a GPS at 5 Hz or "
