@@ -54,7 +54,8 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
       imu_seq_(static_cast<std::size_t>(n_), 0),
       det_seq_(static_cast<std::size_t>(n_), 0),
       gnss_seq_(static_cast<std::size_t>(n_), 0),
-      side_written_(static_cast<std::size_t>(n_), false) {
+      side_written_(static_cast<std::size_t>(n_), false),
+      refused_(static_cast<std::size_t>(n_)) {
   if (!options_.truth_out.empty()) {
     truth_csv_.open(options_.truth_out);
     if (!truth_csv_) throw std::runtime_error("cannot write --truth-out " + options_.truth_out);
@@ -258,22 +259,37 @@ const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
   admitted_.clear();
   for (const dds::PeerKey& gone : participant_->takePeersGone()) gate_.participantGone(gone);
   if (autopilot_) {
-    autopilot_->drain(batch_, wait, world_.time_ns(), [this](const Answer& a) { return fromCommander(a); });
+    autopilot_->drain(batch_, wait, world_.time_ns(), [this](const Answer& a) { return fromCommander(a, a.received); });
   } else {
     queue_.drain(batch_, wait);
   }
+  // A command refused a moment ago whose writer may now command (the old owner's participant has left, or it fell
+  // silent) goes first: it is older than anything drained just now (command_gate.h).
+  const Clock::time_point now = Clock::now();
+  for (const int uav : gate_.releasable(now)) {
+    std::optional<Answer>& held = refused_[static_cast<std::size_t>(uav)];
+    if (held && fromCommander(*held, now)) admit(std::move(*held));
+    held.reset();
+  }
   for (Answer& a : batch_) {
-    if (!fromCommander(a)) continue;
-    if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav)) {
-      ++summary_.ignored_commands;
-      continue;
+    if (fromCommander(a, a.received)) {
+      admit(std::move(a));
+    } else {
+      refused_[static_cast<std::size_t>(a.uav)] = std::move(a);
     }
-    if (time_latency_) {
-      latency_.answered(a.uav, a.setpoint.answered_seq(), a.setpoint.answered_stamp_ns(), wallNs(a.received));
-    }
-    admitted_.push_back(std::move(a));
   }
   return admitted_;
+}
+
+void SimPorts::admit(Answer&& a) {
+  if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav)) {
+    ++summary_.ignored_commands;
+    return;
+  }
+  if (time_latency_) {
+    latency_.answered(a.uav, a.setpoint.answered_seq(), a.setpoint.answered_stamp_ns(), wallNs(a.received));
+  }
+  admitted_.push_back(std::move(a));
 }
 
 void SimPorts::apply(const Answer& a) {
@@ -345,8 +361,8 @@ std::string SimPorts::commandTopic(int uav) const {
   return autopilot_ ? autopilot_->commandTopic(uav) : dds::topics::cmdVel(uav);
 }
 
-bool SimPorts::fromCommander(const Answer& a) {
-  const dds::Admission admission = gate_.admit(a.uav, a.writer, a.received);
+bool SimPorts::fromCommander(const Answer& a, Clock::time_point at) {
+  const dds::Admission admission = gate_.admit(a.uav, a.writer, at);
   if (admission == dds::Admission::kRefused) {
     ++summary_.refused_commands;
     if (gate_.firstRefusal(a.uav, a.writer)) {

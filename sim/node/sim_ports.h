@@ -90,7 +90,9 @@ class SimPorts {
   bool gnssAcknowledged(int uav, double wait_s);
 
  private:
-  bool fromCommander(const Answer& a);  // the UAV's current commander; refusals counted and reported
+  // Whether `a` comes from the UAV's current commander (admitted at `at`); refusals counted and reported.
+  bool fromCommander(const Answer& a, Clock::time_point at);
+  void admit(Answer&& a);  // an answer of the commander: checked, timed, into admitted_
   std::string commandTopic(int uav) const;  // where a UAV's setpoints come from (for the log)
   bool olderTwinRuns();                 // another swa_sim older than us in this swarm: refuse (logged)
   void noteYoungerTwin();
@@ -116,6 +118,7 @@ class SimPorts {
   std::ofstream truth_csv_;
   std::vector<Answer> batch_;
   std::vector<Answer> admitted_;
+  std::vector<std::optional<Answer>> refused_;  // per UAV, the newest refused answer (CommandGate::releasable)
 
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Answer> queue_;

@@ -93,6 +93,44 @@ TEST_F(CommandGateTest, AStallNoticedLateDoesNotPushTheOwnerIntoTheFuture) {
   EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(5600)), Admission::kHandover);
 }
 
+// Seen in CI (lockstep, a simulator stopped beyond the DDS lease): an agent re-created its participant and its new
+// writer's answer arrived before the old participant's goodbye was processed. It was refused, the step waited for an
+// answer that never came again, and the agent was declared dead 2 s later.
+TEST_F(CommandGateTest, ACommandRefusedJustBeforeItsOwnersParticipantLeftIsReleased) {
+  gate.admit(0, writer(1), t0);
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(10)), Admission::kRefused);
+  EXPECT_TRUE(gate.releasable(t0 + milliseconds(11)).empty()) << "the owner is still active";
+  std::array<std::uint8_t, 12> prefix{};
+  prefix.fill(1);
+  gate.participantGone(prefix);
+  EXPECT_TRUE(gate.admits(0, writer(2), t0 + milliseconds(12)));
+  EXPECT_EQ(gate.releasable(t0 + milliseconds(12)), std::vector<int>{0});
+  EXPECT_TRUE(gate.releasable(t0 + milliseconds(13)).empty()) << "named once";
+  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(12)), Admission::kHandover);
+}
+
+TEST_F(CommandGateTest, ARefusedCommandIsReleasedWhenTheOwnerFallsSilentButNotOnceItIsStale) {
+  gate.admit(0, writer(1), t0);
+  gate.admit(1, writer(1), t0);
+  // UAV 0: refused 100 ms after the owner's last command; the owner is silent from then on
+  gate.admit(0, writer(2), t0 + milliseconds(100));
+  EXPECT_FALSE(gate.admits(0, writer(2), t0 + milliseconds(499)));
+  EXPECT_TRUE(gate.releasable(t0 + milliseconds(499)).empty());
+  EXPECT_EQ(gate.releasable(t0 + milliseconds(500)), std::vector<int>{0});
+  // UAV 1: a rogue's command while the owner talks, which then falls silent. Asked only after 1 s (twice the
+  // handover time), the gate drops the rogue's old command although its writer could take over now
+  gate.admit(1, writer(3), t0 + milliseconds(5));
+  gate.admit(1, writer(1), t0 + milliseconds(10));
+  EXPECT_TRUE(gate.releasable(t0 + milliseconds(400)).empty());
+  EXPECT_TRUE(gate.releasable(t0 + milliseconds(1005)).empty());
+  EXPECT_TRUE(gate.releasable(t0 + milliseconds(2000)).empty()) << "forgotten, not held for later";
+  // A handover to another writer forgets the refused one
+  gate.admit(2, writer(1), t0);
+  gate.admit(2, writer(2), t0 + milliseconds(100));
+  gate.admit(2, writer(3), t0 + milliseconds(700));
+  EXPECT_TRUE(gate.releasable(t0 + milliseconds(701)).empty());
+}
+
 TEST_F(CommandGateTest, EachRefusedWriterIsReportedOnce) {
   gate.admit(0, writer(1), t0);
   EXPECT_TRUE(gate.firstRefusal(0, writer(2)));

@@ -5,6 +5,10 @@
 // one took over) or until its participant left (an agent that re-created its participant: its new writer takes over
 // at once); commands of any other writer meanwhile are refused and counted, and each new refused writer is reported
 // once.
+// A refused command is not always a rogue's: an agent that re-created its participant answers with its new writer
+// before the old participant's goodbye has been processed. In lockstep that answer is the only one the step will get,
+// so the gate remembers the newest refused writer per UAV, and `releasable` names the UAVs whose refused command may
+// be applied after all (its writer would now be admitted, and the command is younger than twice the handover time).
 // Pure (no DDS, no clock): the node passes the writer's identity (its GUID) and the time the sample arrived.
 
 #include <array>
@@ -31,6 +35,10 @@ class CommandGate {
   CommandGate(int uav_count, Clock::duration handover);
 
   Admission admit(int uav, const WriterId& writer, Clock::time_point received);
+  // Whether a command of `writer` arriving at `at` would be applied (kOwner or kHandover); changes nothing.
+  bool admits(int uav, const WriterId& writer, Clock::time_point at) const;
+  // The UAVs whose newest refused command (see above) `admits` now; each is named once.
+  std::vector<int> releasable(Clock::time_point now);
   // A refused writer not reported before (the caller logs it): true once per (UAV, writer).
   bool firstRefusal(int uav, const WriterId& writer);
   // Moves every owner's last-heard time by `lost` (a stall of the simulator itself: nobody could be heard), but not
@@ -50,8 +58,13 @@ class CommandGate {
     Clock::time_point last_heard{};
     bool gone = false;  // its participant left
   };
+  struct Refusal {
+    WriterId writer{};
+    Clock::time_point received{};
+  };
   Clock::duration handover_;
   std::vector<std::optional<Owner>> owners_;
+  std::vector<std::optional<Refusal>> held_;  // the newest refused command's writer, per UAV
   std::set<std::pair<int, WriterId>> reported_;  // bounded by the writers that ever tried, at most a few per UAV
   std::uint64_t refused_ = 0;
   std::uint64_t handovers_ = 0;
