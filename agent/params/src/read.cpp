@@ -6,12 +6,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
-#include <cmath>
-#include <limits>
 #include <list>
 #include <set>
 
+#include "read_value.h"
 #include "spec_text.h"
 #include "yaml_node.h"
 #include "swa/params/engine.h"
@@ -24,13 +22,6 @@ namespace {
 using namespace detail;
 
 constexpr std::size_t kMaxKeys = 2000;  // a parameter file has about a hundred; each unknown key costs a suggestion
-
-// A quoted scalar ("10") or an explicit !!str: a string, never a number.
-bool isQuoted(const YAML::Node& scalar) { return scalar.Tag() == "!" || scalar.Tag() == "tag:yaml.org,2002:str"; }
-
-bool isText(const std::string& text) {
-  return text.size() <= kMaxTextChars && text.find_first_not_of(kTextChars) == std::string::npos;
-}
 
 // Map keys in the document, counted up to `limit` + 1.
 std::size_t countKeys(const YAML::Node& node, std::size_t limit) {
@@ -312,193 +303,13 @@ class Reader {
     }
   }
 
-  static std::optional<std::string> numberProblem(const Spec& s, double v, const std::string& name,
-                                                  const std::string& shown) {
-    if (s.allow_infinity && !std::isfinite(v)) {
-      if (v == std::numeric_limits<double>::infinity()) return std::nullopt;
-      return name + " = " + shown + " is not a finite number; expected " + expectation(s);
-    }
-    return params::numberProblem(name, v, shown, s.kind != Kind::kReal, s.range, rangeText(s) + unitSuffix(s));
-  }
-
-  // A plain scalar as a valid number for `s`, else nullopt and `fail` told why (`fail` returns std::nullopt).
-  template <class Fail>
-  static std::optional<double> readNumber(const Spec& s, const YAML::Node& value, const std::string& name,
-                                          const Fail& fail) {
-    if (!value.IsScalar()) return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value));
-    const std::string& text = value.Scalar();
-    if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected " + expectation(s));
-    double number = 0.0;
-    switch (parseNumber(text, number)) {
-      case NumberStatus::kNotANumber:
-        return fail(name + " = '" + text + "' is not a number; expected " + expectation(s));
-      case NumberStatus::kUnrepresentable:
-        return fail(name + " = " + text + " cannot be represented as a double");
-      case NumberStatus::kOk:
-        break;
-    }
-    if (auto why = numberProblem(s, number, name, text)) return fail(std::move(*why));
-    return number;
-  }
-
   // The value of entry `e` for parameter `s`, or nullopt after reporting why it is not valid.
   std::optional<Value> read(const Spec& s, const Entry& e) {
-    const std::string& name = e.written;
-    const auto fail = [&](std::string message) {
-      bad(s.key, std::move(message) + e.where);
-      return std::nullopt;
-    };
-    const YAML::Node& value = e.value;
-    if (value.IsNull()) return fail(name + " has no value; expected " + expectation(s));
-    if (s.kind == Kind::kIntList || s.kind == Kind::kRecordList) {
-      if (!value.IsSequence()) {
-        return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value));
-      }
-      return s.kind == Kind::kIntList ? readIntList(s, e) : readRecords(s, e);
-    }
-    if (!value.IsScalar()) return fail(name + " must be " + expectation(s) + ", got " + nodeKindName(value));
-    const std::string& text = value.Scalar();
-    switch (s.kind) {
-      case Kind::kChoice:
-        if (std::find(s.choices.begin(), s.choices.end(), text) != s.choices.end()) return Value(text);
-        return fail(name + " = '" + text + "' is not valid; expected " + expectation(s));
-      case Kind::kText:
-        if (isText(text)) return Value(text);
-        return fail(name + " = '" + text.substr(0, 80) + "' is not valid; expected " + expectation(s));
-      case Kind::kBool:
-        if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected true or false");
-        if (text == "true" || text == "True" || text == "TRUE") return Value(true);
-        if (text == "false" || text == "False" || text == "FALSE") return Value(false);
-        return fail(name + " = '" + text + "' is not valid; expected true or false");
-      case Kind::kSeed:
-        if (isQuoted(value)) return fail(name + " = \"" + text + "\" is a string; expected " + expectation(s));
-        return readSeed(s, name, text, fail);
-      default:
-        if (const auto v = readNumber(s, value, name, fail)) return Value(*v);
-        return std::nullopt;
-    }
-  }
-
-  template <class Fail>
-  static std::optional<Value> readSeed(const Spec& s, const std::string& name, const std::string& text,
-                                       const Fail& fail) {
-    std::string_view digits = text;
-    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-    const bool negative = !digits.empty() && digits.front() == '-';
-    if (negative) digits.remove_prefix(1);
-    const bool all_digits = !digits.empty() && std::all_of(digits.begin(), digits.end(), [](char c) {
-      return c >= '0' && c <= '9';
+    return readValue(s, e.value, e.written, [&](std::string message, const YAML::Node* at) {
+      // A list element's problem is at the element's own line in a file; the --set otherwise.
+      const bool own_line = at != nullptr && e.from_file && !locationOf(*at).empty();
+      bad(s.key, std::move(message) + (own_line ? locationOf(*at) : e.where));
     });
-    if (!all_digits) return fail(name + " = '" + text + "' is not " + expectation(s));
-    std::uint64_t seed = 0;
-    const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), seed);
-    if (negative || ec != std::errc() || ptr != digits.data() + digits.size()) {
-      return fail(name + " = " + text + " is out of range " + rangeText(s));
-    }
-    return Value(seed);
-  }
-
-  // Where a problem inside a list element is: the element's own line in a file, the --set otherwise.
-  static std::string whereIn(const Entry& e, const YAML::Node& at) {
-    return e.from_file && !locationOf(at).empty() ? locationOf(at) : e.where;
-  }
-
-  std::optional<Value> readIntList(const Spec& s, const Entry& e) {
-    std::vector<long long> list;
-    bool ok = true;
-    Spec element = s;
-    element.kind = Kind::kInteger;
-    for (const YAML::Node& item : e.value) {
-      const auto fail = [&](std::string message) {
-        ok = false;
-        bad(s.key, std::move(message) + whereIn(e, item));
-        return std::nullopt;
-      };
-      const std::string name = e.written + "[" + std::to_string(list.size()) + "]";
-      if (const auto v = readNumber(element, item, name, fail)) list.push_back(static_cast<long long>(*v));
-      else list.push_back(0);  // keeps the next element's index
-    }
-    return ok ? std::optional<Value>(list) : std::nullopt;
-  }
-
-  std::optional<Value> readRecords(const Spec& s, const Entry& e) {
-    std::vector<Record> records;
-    bool ok = true;
-    for (const YAML::Node& item : e.value) {
-      const std::string name = e.written + "[" + std::to_string(records.size()) + "]";
-      const auto fail = [&](std::string message, const YAML::Node& at) {
-        ok = false;
-        bad(s.key, std::move(message) + whereIn(e, at));
-      };
-      records.push_back(readRecord(s, item, name, fail));
-    }
-    return ok ? std::optional<Value>(records) : std::nullopt;
-  }
-
-  // One element of a record list: a map of the spec's fields. Every problem goes to `fail`.
-  template <class Fail>
-  static Record readRecord(const Spec& s, const YAML::Node& item, const std::string& name, const Fail& fail) {
-    Record record(s.fields.size(), 0.0);
-    std::vector<std::string> names;
-    for (const Spec& f : s.fields) names.push_back(f.key);
-    if (!item.IsMap()) {
-      fail(name + " must be a map such as " + s.example + ", got " + nodeKindName(item), item);
-      return record;
-    }
-    std::vector<const YAML::Node*> given(s.fields.size(), nullptr);
-    std::vector<bool> valid(s.fields.size(), false);
-    std::list<YAML::Node> nodes;  // copies: a YAML::Node is never assigned
-    for (const auto& field : item) {
-      if (!field.first.IsScalar()) {
-        fail("a key in " + name + " is " + nodeKindName(field.first) + ", not a name; expected " + join(names, ", "),
-             field.first);
-        continue;
-      }
-      const std::string& key = field.first.Scalar();
-      const auto at = std::find(names.begin(), names.end(), key);
-      if (at == names.end()) {
-        fail("unknown key '" + key + "' in " + name + didYouMean(closestMatch(key, names)) + "; expected " +
-                 join(names, ", "),
-             field.first);
-        continue;
-      }
-      const auto i = static_cast<std::size_t>(at - names.begin());
-      if (given[i] != nullptr) {
-        fail("duplicate key '" + name + "." + key + "'", field.first);
-        continue;
-      }
-      given[i] = &nodes.emplace_back(field.second);
-      const auto field_fail = [&](std::string message) {
-        fail(std::move(message), field.second);
-        return std::nullopt;
-      };
-      if (const auto v = readNumber(s.fields[i], field.second, name + "." + key, field_fail)) {
-        record[i] = *v;
-        valid[i] = true;
-      }
-    }
-    for (std::size_t i = 0; i < s.fields.size(); ++i) {
-      if (given[i] != nullptr) continue;
-      if (s.fields[i].default_value) {
-        record[i] = *s.fields[i].default_value;
-        valid[i] = true;
-      } else {
-        fail(name + " has no " + names[i] + "; expected a map such as " + s.example, item);
-      }
-    }
-    const auto index = [&](const std::string& field) {
-      return static_cast<std::size_t>(std::find(names.begin(), names.end(), field) - names.begin());
-    };
-    const std::size_t earlier = index(s.earlier);
-    const std::size_t later = index(s.later);
-    if (later < names.size() && valid[earlier] && valid[later] && given[later] != nullptr &&
-        !(record[later] > record[earlier])) {
-      const std::string unit = unitSuffix(s.fields[later]);
-      fail(name + "." + s.later + " = " + formatYamlNumber(record[later]) + unit + " must be > " + name + "." +
-               s.earlier + " = " + formatYamlNumber(record[earlier]) + unit + ": " + s.order_why,
-           *given[later]);
-    }
-    return record;
   }
 
   const Schema& schema_;
