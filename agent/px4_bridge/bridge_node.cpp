@@ -93,6 +93,11 @@ void BridgeNode::reconnect() {
   connect();
   const std::lock_guard<std::mutex> lock(mutex_);
   vehicle_reads_ = false;  // the new writers must match the vehicle again before anything is forwarded
+  // The new IMU writer's history is empty, and a vehicle repeats the attitude it waits on (a lockstep simulator
+  // does) with the same timestamp, which is not forwarded twice: without this the agent would never get the sample
+  // its vehicle waits for. Seen in a secure launch through PX4: a UAV declared dead after 60 s. An agent that had it
+  // already drops it as re-delivered.
+  if (last_imu_) imu_.write(*last_imu_);
 }
 
 void BridgeNode::closeParticipant() {
@@ -141,6 +146,7 @@ void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_poin
     }
     msg::Imu out = wire::toMsg(*imu, static_cast<std::uint32_t>(id_), ++imu_seq_);
     imu_.write(out);
+    last_imu_ = std::move(out);
     timings_.push_back({a.timestamp_us, received, std::chrono::steady_clock::now()});
     if (timings_.size() > kTimedSamples) timings_.pop_front();
   }

@@ -92,6 +92,7 @@ class BridgeNode : public app::Role {
   bool status_seen_ = false;
   bool upside_down_reported_ = false;
   std::uint32_t imu_seq_ = 0, state_seq_ = 0;
+  std::optional<msg::Imu> last_imu_;  // the newest forwarded: written again by a new participant (reconnect)
   std::uint64_t commands_foreign_ = 0;  // naming another UAV
   std::string last_event_;
   std::deque<Timing> timings_;  // the newest samples forwarded
