@@ -1,5 +1,6 @@
 #include "swa/monitor/svg_plot.h"
 
+#include "svg_legend.h"
 #include "svg_ticks.h"
 
 #include <algorithm>
@@ -13,8 +14,9 @@
 namespace swa::monitor {
 namespace {
 
+using namespace svg;
+
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
-constexpr double kCoordLimit = 1e6;  // pixel coordinates are clamped to this (a clipped far-away point stays short)
 constexpr double kMarginLeft = 64.0;
 constexpr double kMarginRight = 20.0;
 constexpr double kMarginTopTitle = 32.0;
@@ -22,10 +24,7 @@ constexpr double kMarginTopBare = 12.0;
 constexpr double kMarginBottom = 48.0;
 constexpr double kLegendGap = 16.0;
 constexpr double kLegendRow = 18.0;
-constexpr double kLegendSwatch = 24.0;
 constexpr double kCharWidth = 7.0;  // rough advance of a 12 px sans-serif glyph, for sizing the legend
-
-std::string px(double v) { return formatFixed(std::clamp(v, -kCoordLimit, kCoordLimit), 2); }
 
 std::size_t codePoints(const std::string& s) {
   std::size_t n = 0;
@@ -39,43 +38,6 @@ std::string axisTitle(const std::string& label, const std::string& unit) {
   if (unit.empty()) return label;
   if (label.empty()) return "[" + unit + "]";
   return label + " [" + unit + "]";
-}
-
-enum class LegendKind : unsigned char { kSeries, kBand, kLine, kStart, kEnd };
-
-struct LegendEntry {
-  LegendKind kind;
-  std::string label;
-  std::string colour;
-  bool dashed = false;
-  double opacity = 1.0;
-};
-
-std::string seriesColour(const PlotSeries& s, std::size_t index) {
-  return s.colour.empty() ? paletteColour(index) : s.colour;
-}
-
-bool seriesDashed(const PlotSeries& s, std::size_t index) { return s.dashed || (s.colour.empty() && index >= 10); }
-
-std::vector<LegendEntry> legendEntries(const PlotSpec& spec) {
-  std::vector<LegendEntry> entries;
-  for (std::size_t i = 0; i < spec.series.size(); ++i) {
-    const PlotSeries& s = spec.series[i];
-    if (!s.label.empty()) {
-      entries.push_back({LegendKind::kSeries, s.label, seriesColour(s, i), seriesDashed(s, i), s.opacity});
-    }
-  }
-  for (const PlotBand& b : spec.bands) {
-    if (!b.label.empty()) entries.push_back({LegendKind::kBand, b.label, b.colour, false, b.opacity});
-  }
-  for (const PlotLine& l : spec.lines) {
-    if (!l.label.empty()) entries.push_back({LegendKind::kLine, l.label, l.colour, l.dashed});
-  }
-  if (spec.equal_aspect && !spec.series.empty()) {
-    entries.push_back({LegendKind::kStart, "start", "#333333"});
-    entries.push_back({LegendKind::kEnd, "end", "#333333"});
-  }
-  return entries;
 }
 
 void validateSpec(const PlotSpec& spec) {
@@ -142,35 +104,6 @@ std::vector<std::size_t> thin(const std::vector<double>& sx, const std::vector<d
     if (std::hypot(sx[i] - sx[last], sy[i] - sy[last]) >= 0.5 || i + 1 == end) keep.push_back(i);
   }
   return keep;
-}
-
-std::string dashAttr(bool dashed, const char* pattern) {
-  return dashed ? std::string(" stroke-dasharray=\"") + pattern + "\"" : std::string();
-}
-
-void renderLegendSwatch(std::string& out, const LegendEntry& e, double x, double y) {
-  const std::string colour = escapeXml(e.colour);
-  switch (e.kind) {
-    case LegendKind::kSeries:
-    case LegendKind::kLine:
-      out += "<line x1=\"" + px(x) + "\" y1=\"" + px(y) + "\" x2=\"" + px(x + kLegendSwatch) + "\" y2=\"" + px(y) +
-             "\" stroke=\"" + colour + "\" stroke-width=\"2\"" +
-             (e.opacity < 1.0 ? " stroke-opacity=\"" + formatFixed(std::max(e.opacity, 0.0), 3) + "\"" : "") +
-             dashAttr(e.dashed, e.kind == LegendKind::kSeries ? "6 4" : "5 4") + "/>\n";
-      break;
-    case LegendKind::kBand:
-      out += "<rect x=\"" + px(x) + "\" y=\"" + px(y - 5.0) + "\" width=\"" + px(kLegendSwatch) +
-             "\" height=\"10\" fill=\"" + colour + "\" fill-opacity=\"" + formatFixed(e.opacity, 3) + "\"/>\n";
-      break;
-    case LegendKind::kStart:
-      out += "<circle cx=\"" + px(x + 0.5 * kLegendSwatch) + "\" cy=\"" + px(y) +
-             "\" r=\"4\" fill=\"#ffffff\" stroke=\"" + colour + "\" stroke-width=\"1.5\"/>\n";
-      break;
-    case LegendKind::kEnd:
-      out += "<rect x=\"" + px(x + 0.5 * kLegendSwatch - 3.5) + "\" y=\"" + px(y - 3.5) +
-             "\" width=\"7\" height=\"7\" fill=\"" + colour + "\"/>\n";
-      break;
-  }
 }
 
 }  // namespace
