@@ -33,12 +33,6 @@ namespace {
 // one (0.5 s back-off plus the start).
 constexpr auto kCommandHandover = std::chrono::milliseconds(500);
 
-std::string guidText(const dds::WriterGuid& g) {
-  char text[3 * 16 + 1] = {};
-  for (std::size_t k = 0; k < g.size(); ++k) std::snprintf(text + 3 * k, 4, k + 1 < g.size() ? "%02x." : "%02x", g[k]);
-  return text;
-}
-
 }  // namespace
 
 SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim::World& world, SimSummary& summary,
@@ -254,56 +248,6 @@ void SimPorts::publishEnd(const AliveFn& alive, bool completed) {
   if (truth_csv_.is_open()) truth_csv_.flush();
 }
 
-const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
-  batch_.clear();
-  admitted_.clear();
-  for (const dds::PeerKey& gone : participant_->takePeersGone()) gate_.participantGone(gone);
-  if (autopilot_) {
-    autopilot_->drain(batch_, wait, world_.time_ns(), [this](const Answer& a) { return fromCommander(a, a.received); });
-  } else {
-    queue_.drain(batch_, wait);
-  }
-  // A command refused a moment ago whose writer may now command (the old owner's participant has left, or it fell
-  // silent) goes first: it is older than anything drained just now (command_gate.h).
-  const Clock::time_point now = Clock::now();
-  for (const int uav : gate_.releasable(now)) {
-    std::optional<Answer>& held = refused_[static_cast<std::size_t>(uav)];
-    if (held && fromCommander(*held, now)) admit(std::move(*held));
-    held.reset();
-  }
-  for (Answer& a : batch_) {
-    if (fromCommander(a, a.received)) {
-      admit(std::move(a));
-    } else {
-      refused_[static_cast<std::size_t>(a.uav)] = std::move(a);
-    }
-  }
-  return admitted_;
-}
-
-void SimPorts::admit(Answer&& a) {
-  if (a.setpoint.uav_id() != static_cast<std::uint32_t>(a.uav)) {
-    ++summary_.ignored_commands;
-    return;
-  }
-  if (time_latency_) {
-    latency_.answered(a.uav, a.setpoint.answered_seq(), a.setpoint.answered_stamp_ns(), wallNs(a.received));
-  }
-  admitted_.push_back(std::move(a));
-}
-
-void SimPorts::apply(const Answer& a) {
-  if (autopilot_) {
-    autopilot_->apply(a);
-  } else if (const std::optional<agent::VelocityCommand> command = worldCommand(a.setpoint)) {
-    world_.command(a.uav, *command);
-  } else {
-    ++summary_.ignored_commands;  // a non-finite number: the previous setpoint stays in force
-    return;
-  }
-  ++summary_.applied_commands;
-}
-
 void SimPorts::repeatWhileWaiting(const std::vector<int>& uavs) {
   if (!autopilot_) return;
   for (const int uav : uavs) autopilot_->repeatAttitude(uav);
@@ -359,27 +303,6 @@ bool SimPorts::gnssAcknowledged(int uav, double wait_s) {
 
 std::string SimPorts::commandTopic(int uav) const {
   return autopilot_ ? autopilot_->commandTopic(uav) : dds::topics::cmdVel(uav);
-}
-
-bool SimPorts::fromCommander(const Answer& a, Clock::time_point at) {
-  const dds::Admission admission = gate_.admit(a.uav, a.writer, at);
-  if (admission == dds::Admission::kRefused) {
-    ++summary_.refused_commands;
-    if (gate_.firstRefusal(a.uav, a.writer)) {
-      summary_.refused_writers = gate_.refusedWriters();
-      std::fprintf(stderr,
-                   "swa_sim: t = %.2f s: a second writer on %s (writer %s) while the current one is active: its "
-                   "commands are refused (a second agent with this id, or another program writing it)\n",
-                   sim::stampSeconds(world_.time_ns()), commandTopic(a.uav).c_str(), guidText(a.writer).c_str());
-    }
-    return false;
-  }
-  if (admission == dds::Admission::kHandover && gate_.handovers() != summary_.command_handovers) {
-    summary_.command_handovers = gate_.handovers();
-    std::fprintf(stderr, "swa_sim: t = %.2f s: %s now written by writer %s (the previous one fell silent or left)\n",
-                 sim::stampSeconds(world_.time_ns()), commandTopic(a.uav).c_str(), guidText(a.writer).c_str());
-  }
-  return true;
 }
 
 bool SimPorts::olderTwinRuns() {
