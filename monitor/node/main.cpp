@@ -8,7 +8,7 @@
 
 #include "combine.h"
 #include "live_config.h"
-#include "live_monitor.h"
+#include "live_mode.h"
 #include "monitor_options.h"
 #include "swa/app/program.h"
 #include "swa/dds/options.h"
@@ -30,7 +30,7 @@ app::Plan prepare(const std::vector<std::string>& args) {
   monitor::prepareOutputDir(options.out_dir);
   return app::startWith(
       [options, scenario, config, domain]() -> std::unique_ptr<app::Role> {
-        return std::make_unique<LiveMonitor>(options, scenario, config, domain);
+        return std::make_unique<LiveMode>(options, scenario, config, domain);
       },
       kExitBadInput);
 }

@@ -20,7 +20,7 @@ LAYERS = [
     ("monitor core", ["monitor/include", "monitor/src", "monitor/record"]),
     ("wire", ["idl"]),
     ("runtime", ["deploy/app", "deploy/dds"]),
-    ("processes", ["agent/node", "agent/px4_bridge", "sim/node", "monitor/node", "monitor/live", "monitor/live_view",
+    ("processes", ["agent/node", "agent/bridge_node", "sim/node", "monitor/node", "monitor/scoring", "monitor/live_view",
                    "deploy/launch", "deploy/batch", "deploy/replay", "deploy/study"]),
 ]
 TOPS = ["agent", "sim", "monitor", "idl", "deploy"]

@@ -8,7 +8,7 @@
 
 #include "bridge_options.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 namespace {
 
 std::string problemsOf(const std::vector<std::string>& args) {
@@ -104,4 +104,4 @@ TEST(BridgeOptions, ArdupilotHasItsOwnNamespaceAndQuaternionLayoutAndNoneOfPx4s)
 }
 
 }  // namespace
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node

@@ -1,5 +1,5 @@
 #pragma once
-// The autopilot bridge of one UAV without DDS, the rules PX4 and ArduPilot share (agent/px4_bridge is the process
+// The autopilot bridge of one UAV without DDS, the rules PX4 and ArduPilot share (agent/bridge_node is the process
 // around it, with one adapter per autopilot): the vehicle's attitude in, SWA's IMU sample out; SWA's velocity commands
 // in, the vehicle's external-control stream out. Both autopilots are NED inside (attitude: the quaternion FRD body ->
 // NED earth), so the core speaks NED and each adapter converts to its wire (PX4's trajectory_setpoint, ArduPilot's

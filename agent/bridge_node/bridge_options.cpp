@@ -8,7 +8,7 @@
 #include "swa/dds/topics.h"
 #include "swa/px4/release.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 namespace {
 
 constexpr int kMaxUavId = 9999;
@@ -187,4 +187,4 @@ std::string px4Namespace(const BridgeOptions& o) { return o.px4_namespace.value_
 
 std::string apNamespace(const BridgeOptions& o) { return o.ap_namespace.value_or(dds::topics::apNamespace(o.id)); }
 
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node

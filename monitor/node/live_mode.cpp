@@ -1,4 +1,4 @@
-#include "live_monitor.h"
+#include "live_mode.h"
 
 #include <sys/resource.h>
 
@@ -35,7 +35,7 @@ int writeOutputs(const std::string& dir, const RunRecord& run) {
 
 }  // namespace
 
-LiveMonitor::LiveMonitor(const MonitorOptions& options, const std::optional<sim::Scenario>& scenario,
+LiveMode::LiveMode(const MonitorOptions& options, const std::optional<sim::Scenario>& scenario,
                          const LiveRunConfig& config, int domain_id)
     : options_(options), scenario_(scenario), config_(config), run_(config_) {
   MonitorNodeOptions node_options;
@@ -69,7 +69,7 @@ LiveMonitor::LiveMonitor(const MonitorOptions& options, const std::optional<sim:
   node_ = std::make_unique<MonitorNode>(run_, node_options, domain_id, dds::resolveProfilesFile());
 }
 
-int LiveMonitor::run() {
+int LiveMode::run() {
   RunEnd end;
   try {
     end = node_->run();
@@ -102,7 +102,7 @@ int LiveMonitor::run() {
   return status;
 }
 
-void LiveMonitor::finishLiveView() {
+void LiveMode::finishLiveView() {
   if (!live_) return;
   live_->onMetrics(run_.series());  // the steps finish() scored
   const live::LiveServer::Stats s = live_->stats();
@@ -114,7 +114,7 @@ void LiveMonitor::finishLiveView() {
                static_cast<unsigned long long>(s.dropped));
 }
 
-void LiveMonitor::finishRecording() {
+void LiveMode::finishRecording() {
   if (!recording_) return;
   try {
     metrics_->writeNew(run_.series());  // the steps finish() scored

@@ -24,7 +24,7 @@
 #include "swa/wire/px4.h"
 #include "vehicle_link.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 namespace {
 
 namespace topics = dds::topics;
@@ -173,4 +173,4 @@ std::unique_ptr<VehicleLink> makePx4Link(const BridgeOptions& options, VehicleEv
   return std::make_unique<Px4Link>(options, std::move(events));
 }
 
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node

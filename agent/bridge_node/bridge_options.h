@@ -10,7 +10,7 @@
 #include "swa/autopilot/bridge_core.h"
 #include "swa/px4/release.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 
 enum class AutopilotKind { kPx4, kArdupilot };
 
@@ -42,4 +42,4 @@ std::string px4Namespace(const BridgeOptions& o);
 // ArduPilot's: --ap-namespace, or ap/v<I+1>.
 std::string apNamespace(const BridgeOptions& o);
 
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node

@@ -19,7 +19,7 @@
 #include "swa/wire/px4.h"
 #include "swa/wire/samples.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 namespace {
 
 constexpr auto kTickPeriod = std::chrono::milliseconds(10);
@@ -354,4 +354,4 @@ void BridgeNode::writeSummary() const {
   }
 }
 
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node

@@ -31,7 +31,7 @@
 #include "swa/dds/participant.h"
 #include "vehicle_link.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 
 class BridgeNode : public app::Role {
  public:
@@ -117,4 +117,4 @@ class BridgeNode : public app::Role {
   dds::Reader<msg::VelocitySetpoint> cmd_reader_;
 };
 
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node

@@ -15,10 +15,10 @@
 
 namespace swa::monitor_node {
 
-class LiveMonitor : public app::Role {
+class LiveMode : public app::Role {
  public:
   // Creates the DDS node; throws swa::dds::DdsError.
-  LiveMonitor(const MonitorOptions& options, const std::optional<sim::Scenario>& scenario, const LiveRunConfig& config,
+  LiveMode(const MonitorOptions& options, const std::optional<sim::Scenario>& scenario, const LiveRunConfig& config,
               int domain_id);
 
   // The verdict's exit status (0 PASS, 1 FAIL, 3 INCOMPLETE).

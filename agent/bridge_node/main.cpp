@@ -8,7 +8,7 @@
 #include "swa/app/program.h"
 #include "swa/dds/options.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 namespace {
 
 app::Plan prepare(const std::vector<std::string>& args) {
@@ -21,8 +21,8 @@ app::Plan prepare(const std::vector<std::string>& args) {
 }
 
 }  // namespace
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node
 
 int main(int argc, char** argv) {
-  return swa::app::runProgram("swa_px4_bridge", "command line", argc, argv, swa::px4_bridge::prepare);
+  return swa::app::runProgram("swa_px4_bridge", "command line", argc, argv, swa::bridge_node::prepare);
 }

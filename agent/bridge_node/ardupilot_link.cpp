@@ -26,7 +26,7 @@
 #include "swa/wire/ardupilot.h"
 #include "vehicle_link.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 namespace {
 
 namespace topics = dds::topics;
@@ -199,4 +199,4 @@ std::unique_ptr<VehicleLink> makeArdupilotLink(const BridgeOptions& options, Veh
   return std::make_unique<ArdupilotLink>(options, std::move(events));
 }
 
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node

@@ -14,7 +14,7 @@
 #include "swa/autopilot/bridge_core.h"
 #include "swa/dds/participant.h"
 
-namespace swa::px4_bridge {
+namespace swa::bridge_node {
 
 // What a link reports, on the middleware's threads (the node serialises them).
 struct VehicleEvents {
@@ -47,4 +47,4 @@ class VehicleLink {
 std::unique_ptr<VehicleLink> makePx4Link(const BridgeOptions& options, VehicleEvents events);
 std::unique_ptr<VehicleLink> makeArdupilotLink(const BridgeOptions& options, VehicleEvents events);
 
-}  // namespace swa::px4_bridge
+}  // namespace swa::bridge_node
