@@ -160,7 +160,7 @@ int Batch::run() {
   notes.title = "SWA batch report";
   notes.scenario = opt.scenario_path;
   for (int k = 0; k < opt.seeds; ++k) notes.seeds.push_back(scenario.seed + static_cast<std::uint64_t>(k));
-  notes.formation_radius_m = scenario.agent.formation.radius_m;
+  notes.scoring.formation = scenario.agent.formation;
   notes.gnss_loss_s = sim::driftWindowStart(scenario) > 0.0 ? sim::driftWindowStart(scenario) : monitor::kNaN;
   notes.extra.push_back({"plots", "first seed of each mode; summary.json has every seed and the aggregate"});
   monitor::writeReport((out / "report").string(), report_runs, notes);

@@ -35,11 +35,11 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
   monitor::ReportNotes notes = record::reportNotes(runs, "SWA monitor report — comparison");
   if (scenario) {
     notes.scenario = options.scenario_path;
-    notes.formation_radius_m = scenario->agent.formation.radius_m;
+    notes.scoring.formation = scenario->agent.formation;
     const double loss = sim::driftWindowStart(*scenario);
     notes.gnss_loss_s = loss > 0.0 ? loss : monitor::kNaN;
   }
-  if (options.tolerance_given) notes.radius_tolerance = options.tolerance;
+  if (options.tolerance_given) notes.scoring.radius_tolerance = options.tolerance;
 
   namespace fs = std::filesystem;
   try {

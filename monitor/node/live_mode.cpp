@@ -40,7 +40,7 @@ LiveMode::LiveMode(const MonitorOptions& options, const std::optional<sim::Scena
     : options_(options), scenario_(scenario), config_(config), run_(config_) {
   MonitorNodeOptions node_options;
   if (scenario_) node_options.uav_count = scenario_->uav_count;
-  node_options.formation = config_.formation;
+  node_options.formation = config_.metrics.formation;
   node_options.timeout_s = options_.timeout_s;
   node_options.quiet = options_.quiet;
   if (!options_.record_path.empty()) {

@@ -114,10 +114,11 @@ RunRecord runFromSummaryJson(const Json& j, const std::string& source) {
   }
   run.end_reason = memberOr<std::string>(j, "end_reason", "");
   run.verdict.reasons = strings(j, "verdict_reasons");
-  if (const double r = numberOrNaN(j, "formation_radius_m"); std::isfinite(r)) run.formation_radius_m = r;
-  if (const double t = numberOrNaN(j, "tolerance"); std::isfinite(t)) run.tolerance = t;
-  if (const double c = numberOrNaN(j, "collision_distance_m"); std::isfinite(c)) run.collision_distance_m = c;
-  if (const double w = numberOrNaN(j, "window_from_s"); std::isfinite(w)) run.window_start_s = w;
+  monitor::MetricsConfig& scoring = run.scoring;
+  if (const double r = numberOrNaN(j, "formation_radius_m"); std::isfinite(r)) scoring.formation.radius_m = r;
+  if (const double t = numberOrNaN(j, "tolerance"); std::isfinite(t)) scoring.radius_tolerance = t;
+  if (const double c = numberOrNaN(j, "collision_distance_m"); std::isfinite(c)) scoring.collision_distance_m = c;
+  if (const double w = numberOrNaN(j, "window_from_s"); std::isfinite(w)) scoring.window_start_s = w;
 
   std::vector<monitor::NamedValue> fields;
   for (const monitor::NamedValue& f : monitor::summaryFields(monitor::Summary{})) {

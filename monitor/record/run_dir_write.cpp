@@ -33,10 +33,10 @@ Json summaryJson(const RunRecord& run) {
   j["end_reason"] = run.end_reason;
   j["verdict"] = toString(run.verdict.outcome);
   j["verdict_reasons"] = run.verdict.reasons;
-  j["formation_radius_m"] = run.formation_radius_m;
-  j["tolerance"] = run.tolerance;
-  j["collision_distance_m"] = run.collision_distance_m;
-  j["window_from_s"] = run.window_start_s;
+  j["formation_radius_m"] = run.scoring.formation.radius_m;
+  j["tolerance"] = run.scoring.radius_tolerance;
+  j["collision_distance_m"] = run.scoring.collision_distance_m;
+  j["window_from_s"] = run.scoring.window_start_s;
   // The same keys and values as swa_batch's per-seed entries.
   j.update(metricsJson(run.summary));
   const auto countIf = [&run](auto pred) {

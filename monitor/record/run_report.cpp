@@ -111,10 +111,8 @@ monitor::ReportNotes reportNotes(const std::vector<RunRecord>& runs, const std::
   if (!runs.empty()) {
     const RunRecord& first = runs.front();
     notes.scenario = first.scenario;
-    notes.formation_radius_m = first.formation_radius_m;
-    notes.radius_tolerance = first.tolerance;
-    notes.collision_distance_m = first.collision_distance_m;
-    notes.gnss_loss_s = first.window_start_s > 0.0 ? first.window_start_s : monitor::kNaN;
+    notes.scoring = first.scoring;
+    notes.gnss_loss_s = first.scoring.window_start_s > 0.0 ? first.scoring.window_start_s : monitor::kNaN;
   }
   for (const RunRecord& run : runs) {
     if (run.seed && std::find(notes.seeds.begin(), notes.seeds.end(), *run.seed) == notes.seeds.end()) {

@@ -4,7 +4,7 @@ namespace swa::record {
 
 Scoring scoringOf(const sim::Scenario& scenario) {
   Scoring s;
-  s.metrics.formation_radius_m = scenario.agent.formation.radius_m;
+  s.metrics.formation = scenario.agent.formation;
   s.metrics.window_start_s = sim::driftWindowStart(scenario);
   s.score_estimates = scenario.agent.mode != agent::Mode::kStandalone;
   return s;

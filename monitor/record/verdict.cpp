@@ -24,14 +24,15 @@ Verdict judge(const VerdictInput& in) {
     v.reasons.push_back("scenario not completed: " + (in.end_reason.empty() ? "no end event" : in.end_reason));
   }
 
-  const double r = in.formation_radius_m;
+  const double r = in.scoring.formation.radius_m;
+  const double tolerance = in.scoring.radius_tolerance;
   const double d = s.mean_neighbor_distance_m;
   if (!std::isfinite(d)) {
     v.reasons.push_back("final d_NB undefined (fewer than 2 UAVs)");
-  } else if (std::fabs(d - r) > in.tolerance * r) {
+  } else if (std::fabs(d - r) > tolerance * r) {
     v.reasons.push_back("final d_NB " + fixed(d, 3) + " m outside r = " + fixed(r, 3) + " m ± " +
-                        fixed(100.0 * in.tolerance, 1) + " % [" + fixed(r * (1.0 - in.tolerance), 3) + ", " +
-                        fixed(r * (1.0 + in.tolerance), 3) + "] m");
+                        fixed(100.0 * tolerance, 1) + " % [" + fixed(r * (1.0 - tolerance), 3) + ", " +
+                        fixed(r * (1.0 + tolerance), 3) + "] m");
   }
   if (s.collisions > 0) v.reasons.push_back(std::to_string(s.collisions) + " collision(s)");
   if (s.groups != 1) v.reasons.push_back(std::to_string(s.groups) + " groups at the end (expected 1)");

@@ -11,14 +11,11 @@ LiveRunConfig liveRunConfig(const sim::Scenario& scenario) {
   c.score_estimates = scoring.score_estimates;
   c.window_from_events = false;
   c.mode = scenario.agent.mode;
-  c.formation = scenario.agent.formation;
   return c;
 }
 
 LiveRunConfig liveRunConfigWithoutScenario() {
   LiveRunConfig c;
-  c.formation = agent::FormationConfig{};
-  c.metrics.formation_radius_m = c.formation.radius_m;
   c.window_from_events = true;
   // Every state is converted with monitor::estimateFromDiagnostics rules, so standalone agents' estimates are
   // invalid anyway and count as "no estimate".

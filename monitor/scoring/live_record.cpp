@@ -37,12 +37,11 @@ RunRecord makeRunRecord(const LiveRun& run, const LiveRunConfig& config, const R
   r.seed = context.seed;
   r.completed = context.end.completed;
   r.end_reason = context.end.reason;
-  r.formation_radius_m = config.metrics.formation_radius_m;
-  r.tolerance = context.tolerance;
-  r.collision_distance_m = config.metrics.collision_distance_m;
-  r.window_start_s = run.windowStartS();
+  r.scoring = config.metrics;
+  r.scoring.radius_tolerance = context.tolerance;
+  r.scoring.window_start_s = run.windowStartS();
   r.summary = run.summary();
-  r.verdict = record::judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.formation_radius_m, r.tolerance,
+  r.verdict = record::judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.scoring,
                      run.coverage().missed(), run.failsafeNow()});
   r.counts = inputCounts(run);
   r.restarts = context.restarts;

@@ -19,6 +19,7 @@
 namespace swa::monitor_node {
 
 struct LiveRunConfig {
+  // The agents' formation (radius, circle fit: the state message carries neither) and how the run is scored;
   // window_start_s is used as given unless window_from_events is set.
   monitor::MetricsConfig metrics;
   // Without a scenario the window start is not known up front: it is the stamp of the first EVENT_GNSS_LOST for
@@ -28,7 +29,6 @@ struct LiveRunConfig {
   // false: no NEES at all (standalone agents estimate in their take-off frame, nothing to score; as swa_batch).
   bool score_estimates = true;
   std::optional<agent::Mode> mode;   // the scenario's; without one, the first mode an agent reports
-  agent::FormationConfig formation;  // the agents' radius and circle fit (the state message carries neither)
   // StepJoiner horizon, in truth samples (10 Hz): 3 s. A state lost on the way is repaired by the reliable protocol
   // after the writer's next heartbeat (100 ms) and holds back that agent's later states until then; with 30 % loss
   // each repair round (heartbeat, acknack, data) gets through only about one time in three, so a step must wait

@@ -111,8 +111,8 @@ std::string renderReportHtml(const std::vector<RunReport>& runs, const ReportNot
       {"Seeds", orDash(seeds)},
       {"Version", orDash(notes.version)},
       {"Runs", orDash(labels)},
-      {"Formation radius r", metresText(notes.formation_radius_m)},
-      {"Collision distance", metresText(notes.collision_distance_m)},
+      {"Formation radius r", metresText(notes.scoring.formation.radius_m)},
+      {"Collision distance", metresText(notes.scoring.collision_distance_m)},
       {"GNSS lost at", std::isfinite(notes.gnss_loss_s) ? formatFixed(notes.gnss_loss_s, 3) + " s" : "—"}};
   for (const auto* list : {&fixed, &notes.extra}) {
     for (const auto& [key, value] : *list) {

@@ -227,17 +227,18 @@ std::vector<UavTrajectory> TrajectoryRecorder::trajectories() const {
 
 std::vector<ReportPlot> reportPlots(const std::vector<RunReport>& runs, const ReportNotes& notes) {
   std::vector<ReportPlot> plots;
-  const double r = notes.formation_radius_m;
+  const double r = notes.scoring.formation.radius_m;
+  const double tolerance = notes.scoring.radius_tolerance;
 
   ReportPlot d_nb{"d_nb", "",
                   timePlot("Mean neighbour distance d_NB", "d_NB", "m", runs, &TimeSeriesRow::d_nb_m, notes)};
-  d_nb.spec.bands.push_back({r * (1.0 - notes.radius_tolerance), r * (1.0 + notes.radius_tolerance),
-                             "r ± " + percentText(notes.radius_tolerance), kBandColour, 0.15});
+  d_nb.spec.bands.push_back({r * (1.0 - tolerance), r * (1.0 + tolerance),
+                             "r ± " + percentText(tolerance), kBandColour, 0.15});
   d_nb.spec.lines.push_back({LineOrientation::kHorizontal, r, "r = " + metresText(r), "#333333", true});
   d_nb.caption =
       "Each UAV's mean distance to its nearest neighbours, averaged over the swarm. Shaded: the "
       "formation radius r ± " +
-      percentText(notes.radius_tolerance) + ".";
+      percentText(tolerance) + ".";
   plots.push_back(std::move(d_nb));
 
   ReportPlot drift{"drift", "",
@@ -251,8 +252,8 @@ std::vector<ReportPlot> reportPlots(const std::vector<RunReport>& runs, const Re
   ReportPlot separation{"min_separation", "",
                         timePlot("Minimum separation", "closest pair", "m", runs, &TimeSeriesRow::min_sep_m, notes)};
   separation.spec.y_include_zero = true;
-  separation.spec.lines.push_back({LineOrientation::kHorizontal, notes.collision_distance_m,
-                                   "collision " + metresText(notes.collision_distance_m), kCollisionColour, true});
+  separation.spec.lines.push_back({LineOrientation::kHorizontal, notes.scoring.collision_distance_m,
+                                   "collision " + metresText(notes.scoring.collision_distance_m), kCollisionColour, true});
   separation.caption = "Smallest distance between any two UAVs; below the red line a pair is in collision.";
   plots.push_back(std::move(separation));
 

@@ -45,9 +45,7 @@ EstimateRecord estimateFromDiagnostics(const agent::Diagnostics& d, const agent:
   r.velocity_cov_m2ps2 = d.velocity_cov_m2ps2;
   r.neighbour_count = d.neighbour_count;
   r.neighbour_ids = d.neighbour_ids;
-  r.radius_m = formation.radius_m;
-  r.circle_fit = formation.circle_fit;
-  r.far_neighbour_weight = formation.far_neighbour_weight;
+  r.formation = formation;
   return r;
 }
 
@@ -56,7 +54,8 @@ void validate(const MetricsConfig& c) {
   auto check = [&errors](bool ok, const char* what) {
     if (!ok) errors += std::string(errors.empty() ? "" : "; ") + what;
   };
-  check(std::isfinite(c.formation_radius_m) && c.formation_radius_m > 0.0, "formation_radius_m must be > 0");
+  check(std::isfinite(c.formation.radius_m) && c.formation.radius_m > 0.0, "formation.radius_m must be > 0");
+  check(std::isfinite(c.radius_tolerance) && c.radius_tolerance > 0.0, "radius_tolerance must be > 0");
   check(std::isfinite(c.collision_distance_m) && c.collision_distance_m > 0.0, "collision_distance_m must be > 0");
   check(std::isfinite(c.drift_segment_s) && c.drift_segment_s > 0.0, "drift_segment_s must be > 0");
   check(std::isfinite(c.collision_release_m) && c.collision_release_m >= 0.0, "collision_release_m must be >= 0");
@@ -114,7 +113,7 @@ Geometry computeGeometry(const std::vector<UavTruth>& uavs, const MetricsConfig&
   g.centroid_m = sum / static_cast<double>(n);
   g.spread_m = 0.0;
   for (const Vec2& x : p) g.spread_m = std::max(g.spread_m, (x - g.centroid_m).norm());
-  g.groups = countGroups(p, config.group_link_factor * config.formation_radius_m);
+  g.groups = countGroups(p, config.group_link_factor * config.formation.radius_m);
   if (n < 2) return g;
 
   std::vector<double> dist(n * n, 0.0);
@@ -130,7 +129,7 @@ Geometry computeGeometry(const std::vector<UavTruth>& uavs, const MetricsConfig&
   g.min_separation_m = min_sep;
 
   const std::size_t m = std::min(static_cast<std::size_t>(config.distance_neighbours), n - 1);
-  const double r = config.formation_radius_m;
+  const double r = config.formation.radius_m;
   std::vector<double> others(n - 1);
   double d_nb_sum = 0.0;
   double fe_sum = 0.0;
@@ -205,7 +204,8 @@ TruthInFrame truthInFloatingFrame(const UavTruth& self, const std::vector<UavTru
     for (const FrameNeighbour& f : nb) {
       positions.position[static_cast<std::size_t>(positions.count++)] = f.relative_position + dt * f.relative_velocity;
     }
-    return agent::fitFloatingFrame(positions, record.radius_m, record.circle_fit, record.far_neighbour_weight);
+    return agent::fitFloatingFrame(positions, record.formation.radius_m, record.formation.circle_fit,
+                                   record.formation.far_neighbour_weight);
   };
 
   const agent::FrameFit fit = fitAt(0.0, 0.0);

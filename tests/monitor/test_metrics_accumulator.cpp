@@ -312,7 +312,7 @@ TEST(MetricsAccumulator, BadStepsThrowAndLeaveTheAccumulatorUnchanged) {
   // AND a step at the same stamp is accepted
   EXPECT_NO_THROW(acc.add(pairAt(1.0, 1.0)));
   MetricsConfig bad;
-  bad.formation_radius_m = -1.0;
+  bad.formation.radius_m = -1.0;
   EXPECT_THROW(MetricsAccumulator{bad}, std::invalid_argument);
 }
 

@@ -127,7 +127,7 @@ TEST(MetricsGeometry, GroupLinkIsStrictlyCloserThanOneAndAHalfR) {
   EXPECT_EQ(computeGeometry(swarm({Vec2(0, 0), Vec2(14.999, 0)}), config).groups, 1);
   // AND with r = 20 the same 15 m pair is linked
   MetricsConfig wide;
-  wide.formation_radius_m = 20.0;
+  wide.formation.radius_m = 20.0;
   EXPECT_EQ(computeGeometry(swarm({Vec2(0, 0), Vec2(15.0, 0)}), wide).groups, 1);
 }
 

@@ -26,8 +26,8 @@ Vec2 onCircle(const Vec2& centre, double deg) {
 EstimateRecord recordWith(const std::vector<int>& ids) {
   EstimateRecord r;
   r.valid = true;
-  r.radius_m = kR;
-  r.circle_fit = agent::CircleFit::kFixedRadius;
+  r.formation.radius_m = kR;
+  r.formation.circle_fit = agent::CircleFit::kFixedRadius;
   for (int id : ids) r.neighbour_ids[static_cast<std::size_t>(r.neighbour_count++)] = id;
   r.position_cov_m2 = Mat2::Identity();
   r.velocity_cov_m2ps2 = Mat2::Identity();
@@ -53,7 +53,7 @@ TEST(MetricsTruthFrame, ThreeNeighboursOnACircleGiveTheOffsetFromItsCentre) {
   // WHEN the truth is rebuilt with the fixed-radius fit and with the algebraic fit
   const TruthInFrame t = truthInFloatingFrame(f.uavs[0], f.uavs, recordWith({1, 2, 3}), FrameVelocity::kNeighbourMean);
   EstimateRecord alg = recordWith({1, 2, 3});
-  alg.circle_fit = agent::CircleFit::kAlgebraic;
+  alg.formation.circle_fit = agent::CircleFit::kAlgebraic;
   const TruthInFrame a = truthInFloatingFrame(f.uavs[0], f.uavs, alg, FrameVelocity::kNeighbourMean);
   // THEN both put UAV 0 at (1, -2) in the frame, and the velocity relative to the frame is v_0 - v_neighbours
   ASSERT_TRUE(t.ok());
@@ -76,7 +76,7 @@ TEST(MetricsTruthFrame, TheWeightedFitWeighsTheTwoNeighboursTheAgentRanksNearest
   f.uavs[3].position_m += Vec2(-0.5, 0.2);
   EstimateRecord a = recordWith({1, 2, 3});
   EstimateRecord b = recordWith({3, 1, 2});
-  a.far_neighbour_weight = b.far_neighbour_weight = 0.2;
+  a.formation.far_neighbour_weight = b.formation.far_neighbour_weight = 0.2;
   const TruthInFrame ta = truthInFloatingFrame(f.uavs[0], f.uavs, a, FrameVelocity::kNeighbourMean);
   const TruthInFrame tb = truthInFloatingFrame(f.uavs[0], f.uavs, b, FrameVelocity::kNeighbourMean);
   // THEN each truth is the agent's fit in the record's order on the true positions, and the two frames differ
@@ -259,8 +259,8 @@ TEST(MetricsNees, DiagnosticsBecomeARecordOnlyWhenTrackingAFloatingFrame) {
   EXPECT_EQ(r.position_cov_m2, d.position_cov_m2);
   EXPECT_EQ(r.neighbour_count, 2);
   EXPECT_EQ(r.neighbour_ids[1], 2);
-  EXPECT_DOUBLE_EQ(r.radius_m, 12.0);
-  EXPECT_EQ(r.circle_fit, agent::CircleFit::kAlgebraic);
+  EXPECT_DOUBLE_EQ(r.formation.radius_m, 12.0);
+  EXPECT_EQ(r.formation.circle_fit, agent::CircleFit::kAlgebraic);
   // AND not while initialising, lost, without frame, or in standalone mode (take-off frame, not floating)
   agent::Diagnostics lost = d;
   lost.stage = agent::Stage::kLost;

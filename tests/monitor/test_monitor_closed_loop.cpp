@@ -62,7 +62,7 @@ std::unique_ptr<LiveRun> monitorLoop(const sim::Scenario& s, int dead_agent = -1
         msg::AgentState m = wire::toMsg(agents[static_cast<std::size_t>(i)].diagnostics(),
                                         static_cast<std::uint32_t>(i), ++seq);
         m.header().stamp_ns(world.time_ns());
-        states.push_back(fromStateMsg(m, config.formation));
+        states.push_back(fromStateMsg(m, config.metrics.formation));
       }
       const bool odd = (world.step_index() / 10) % 2 == 1;
       if (!odd) {

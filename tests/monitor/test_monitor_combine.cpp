@@ -44,7 +44,7 @@ class CombineTest : public ::testing::Test {
     r.end_reason = r.completed ? "completed" : "interrupted by SIGINT";
     r.verdict.outcome = outcome;
     if (outcome != Outcome::kPass) r.verdict.reasons = {"something <failed>"};
-    r.window_start_s = 10.0;
+    r.scoring.window_start_s = 10.0;
     r.summary.steps = 3;
     r.summary.mean_neighbor_distance_m = d_nb;
     for (int k = 0; k < 3; ++k) {

@@ -50,8 +50,8 @@ void expectSameRecord(const monitor::EstimateRecord& a, const monitor::EstimateR
   EXPECT_EQ(a.velocity_cov_m2ps2, b.velocity_cov_m2ps2);
   EXPECT_EQ(a.neighbour_count, b.neighbour_count);
   EXPECT_EQ(a.neighbour_ids, b.neighbour_ids);
-  EXPECT_EQ(a.radius_m, b.radius_m);
-  EXPECT_EQ(a.circle_fit, b.circle_fit);
+  EXPECT_EQ(a.formation.radius_m, b.formation.radius_m);
+  EXPECT_EQ(a.formation.circle_fit, b.formation.circle_fit);
 }
 
 TEST(MonitorConvert, StateGivesTheRecordOfTheAgentsOwnDiagnostics) {
@@ -72,8 +72,8 @@ TEST(MonitorConvert, StateGivesTheRecordOfTheAgentsOwnDiagnostics) {
     // formation's radius and fit
     expectSameRecord(s.estimate, monitor::estimateFromDiagnostics(d, f));
     EXPECT_EQ(s.estimate.valid, mode != agent::Mode::kStandalone);
-    EXPECT_EQ(s.estimate.radius_m, 12.5);  // from the scenario's formation: the message has no radius
-    EXPECT_EQ(s.estimate.circle_fit, agent::CircleFit::kAlgebraic);
+    EXPECT_EQ(s.estimate.formation.radius_m, 12.5);  // from the scenario's formation: the message has no radius
+    EXPECT_EQ(s.estimate.formation.circle_fit, agent::CircleFit::kAlgebraic);
   }
 }
 

@@ -52,9 +52,9 @@ RunRecord sampleRun() {
   r.end_reason = "completed";
   r.verdict.outcome = Outcome::kFail;
   r.verdict.reasons = {"1 collision(s)", "final d_NB \"odd\" text"};
-  r.formation_radius_m = 12.0;
-  r.tolerance = 0.05;
-  r.window_start_s = 10.0;
+  r.scoring.formation.radius_m = 12.0;
+  r.scoring.radius_tolerance = 0.05;
+  r.scoring.window_start_s = 10.0;
   r.summary.steps = 301;
   r.summary.duration_s = 30.0;
   r.summary.mean_neighbor_distance_m = 0.1 + 0.2;  // not a short decimal
@@ -149,9 +149,9 @@ TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
   EXPECT_EQ(out.end_reason, in.end_reason);
   EXPECT_EQ(out.verdict.outcome, in.verdict.outcome);
   EXPECT_EQ(out.verdict.reasons, in.verdict.reasons);
-  EXPECT_EQ(out.formation_radius_m, in.formation_radius_m);
-  EXPECT_EQ(out.tolerance, in.tolerance);
-  EXPECT_EQ(out.window_start_s, in.window_start_s);
+  EXPECT_EQ(out.scoring.formation.radius_m, in.scoring.formation.radius_m);
+  EXPECT_EQ(out.scoring.radius_tolerance, in.scoring.radius_tolerance);
+  EXPECT_EQ(out.scoring.window_start_s, in.scoring.window_start_s);
   const auto fin = monitor::summaryFields(in.summary);
   const auto fout = monitor::summaryFields(out.summary);
   ASSERT_EQ(fin.size(), fout.size());

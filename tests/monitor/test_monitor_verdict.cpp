@@ -19,8 +19,8 @@ VerdictInput good() {
   in.summary.mean_neighbor_distance_m = 10.3;
   in.summary.collisions = 0;
   in.summary.groups = 1;
-  in.formation_radius_m = 10.0;
-  in.tolerance = 0.10;
+  in.scoring.formation.radius_m = 10.0;
+  in.scoring.radius_tolerance = 0.10;
   return in;
 }
 
@@ -70,15 +70,15 @@ TEST(MonitorVerdict, BandEdgesAreInclusive) {
   in.summary.mean_neighbor_distance_m = 8.99;
   EXPECT_EQ(judge(in).outcome, Outcome::kFail);
   // WHEN the band is widened to 20 % THEN 8.99 m passes
-  in.tolerance = 0.2;  // a wider band accepts it
+  in.scoring.radius_tolerance = 0.2;  // a wider band accepts it
   EXPECT_EQ(judge(in).outcome, Outcome::kPass);
 }
 
 TEST(MonitorVerdict, DefaultBandIsFivePercentOfR) {
   // GIVEN the default tolerance (issue #10 tightened it from 10 %: the Gabriel rule holds d_NB within 3 %)
   VerdictInput in = good();
-  in.tolerance = VerdictInput{}.tolerance;
-  EXPECT_DOUBLE_EQ(in.tolerance, 0.05);
+  in.scoring.radius_tolerance = VerdictInput{}.scoring.radius_tolerance;
+  EXPECT_DOUBLE_EQ(in.scoring.radius_tolerance, 0.05);
   // THEN 9.5 and 10.5 m pass, 9.4 and 10.6 m (which the old band passed) fail
   for (double d : {9.5, 10.5}) {
     in.summary.mean_neighbor_distance_m = d;

@@ -78,18 +78,13 @@ struct ReportTable {
   std::string empty_text = "None.";  // shown instead of the table when there is no row
 };
 
-// The monitor's PASS band for the final d_NB, as a fraction of r (DESIGN §5: the Gabriel rule holds ±3 % for 3 to 16
-// UAVs, so ±5 % leaves room for noise, not for a squeezed formation).
-constexpr double kDefaultRadiusTolerance = 0.05;
-
 struct ReportNotes {
   std::string title = "SWA swarm report";
   std::string scenario;
   std::vector<std::uint64_t> seeds;
   std::string version;
-  double formation_radius_m = 10.0;                               // r: reference line and band on the d_NB plot
-  double radius_tolerance = kDefaultRadiusTolerance;              // band r × (1 ± tolerance)
-  double collision_distance_m = 1.5;                              // reference line on the minimum separation plot
+  // r and its band on the d_NB plot, the collision distance on the minimum separation plot (the runs' scoring)
+  MetricsConfig scoring;
   double nees_dof = 2.0;                                          // expected NEES (reference line on the NEES plot)
   double gnss_loss_s = std::numeric_limits<double>::quiet_NaN();  // vertical line on the time plots (NaN: none)
   std::vector<std::pair<std::string, std::string>> extra;         // further notes, "key: value", in this order

@@ -47,9 +47,7 @@ struct EstimateRecord {
   agent::Mat2 velocity_cov_m2ps2 = agent::Mat2::Zero();
   int neighbour_count = 0;                            // neighbours the frame was fitted on
   std::array<int, agent::kMaxNeighbours> neighbour_ids{};
-  double radius_m = 10.0;                             // formation.radius_m of that agent
-  agent::CircleFit circle_fit = agent::CircleFit::kFixedRadius;
-  double far_neighbour_weight = agent::FormationConfig{}.far_neighbour_weight;
+  agent::FormationConfig formation;                   // that agent's: its radius and circle fit rebuild its frame
 };
 
 // The record of an agent's diagnostics. valid only when the estimate is a floating-frame one that is being tracked:
@@ -76,8 +74,15 @@ enum class FrameVelocity : std::uint8_t {
   kFitDerivative
 };
 
+// The monitor's PASS band for the final d_NB, as a fraction of r (DESIGN §5: the Gabriel rule holds ±3 % for 3 to 16
+// UAVs, so ±5 % leaves room for noise, not for a squeezed formation).
+constexpr double kDefaultRadiusTolerance = 0.05;
+
 struct MetricsConfig {
-  double formation_radius_m = 10.0;    // r: group link distance and formation error
+  // The agents' formation (the scenario's agent.formation): r is the group link distance, the formation error's
+  // target and the verdict's. The one copy of r from the scenario to the record, the verdict and the report.
+  agent::FormationConfig formation;
+  double radius_tolerance = kDefaultRadiusTolerance;  // PASS band of the final d_NB: r × (1 ± this)
   double collision_distance_m = 1.5;   // a pair closer than this is in collision
   double collision_release_m = 0.5;    // hysteresis: the contact ends once the pair is farther than distance + this,
                                        // so a pair jittering around the threshold is one collision, not ten

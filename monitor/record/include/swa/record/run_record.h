@@ -26,10 +26,9 @@ struct RunRecord {
   bool completed = false;             // EVENT_SCENARIO_END "completed" received
   std::string end_reason;             // "completed", or why not
   Verdict verdict;
-  double formation_radius_m = 10.0;  // r the run was scored against
-  double tolerance = monitor::kDefaultRadiusTolerance;  // PASS band, fraction of r
-  double collision_distance_m = 1.5;
-  double window_start_s = 0.0;  // metrics window start (the GNSS loss time when there is one)
+  // What the run was scored against: r and its PASS band, the collision distance, and the metrics window's start as
+  // the run used it (the GNSS loss time when there is one)
+  monitor::MetricsConfig scoring;
   monitor::Summary summary;
   // Input counters in summary.json order ("truth_samples", "dropped_truth_out_of_order", ...): keys starting with
   // "dropped_" are inputs thrown away.

@@ -33,8 +33,7 @@ struct VerdictInput {
   std::string end_reason;  // why the run ended, when not completed
   bool saw_truth = false;  // at least one step was scored
   monitor::Summary summary;
-  double formation_radius_m = 10.0;
-  double tolerance = monitor::kDefaultRadiusTolerance;
+  monitor::MetricsConfig scoring;  // r and its PASS band (radius_tolerance)
   // Parts of the run the monitor did not see: the verdict is INCOMPLETE if there are any.
   std::vector<MissedSpan> missed;
   // UAVs whose agent the last truth calls dead (declared dead, never rejoined): their UAVs ended on the failsafe, so
