@@ -149,6 +149,16 @@ void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_poin
     last_imu_ = std::move(out);
     timings_.push_back({a.timestamp_us, received, std::chrono::steady_clock::now()});
     if (timings_.size() > kTimedSamples) timings_.pop_front();
+  } else if (last_answer_ && last_answer_->timestamp_us == a.timestamp_us &&
+             core_.newestTimestampUs() == std::optional<std::uint64_t>(a.timestamp_us)) {
+    // The vehicle sent the sample it waits on once more (a lockstep simulator does; PX4 and ArduPilot never repeat a
+    // stamp). Our answer to it is lost: a best-effort setpoint, or one written just before this participant was
+    // re-created (a secure launch through PX4 stalled 60 s so). The agent's own resend of its command is "not newer"
+    // here, so the answer goes again from here.
+    autopilot::Outbox again;
+    again.setpoint = last_answer_;
+    vehicle_->send(again);
+    ++answers_repeated_;
   }
   vehicle_->send(core_.tick(now));
   report();
@@ -203,6 +213,7 @@ void BridgeNode::onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& wri
   const autopilot::Outbox out = core_.onCommand(wire::fromMsg(m), nowS());
   vehicle_->send(out);
   if (out.setpoint) {
+    last_answer_ = out.setpoint;
     const auto sent = std::chrono::steady_clock::now();
     const auto t = std::find_if(timings_.begin(), timings_.end(),
                                 [&](const Timing& x) { return x.timestamp_us == out.setpoint->timestamp_us; });
@@ -313,8 +324,8 @@ void BridgeNode::logFinalCounts() const {
   std::fprintf(stderr,
                "swa_px4_bridge %d: stopping on signal %d after %llu attitude samples (%llu rejected, %llu out of "
                "order), %llu commands (%llu applied, %llu replayed, %llu not newer, %llu for unknown samples, %llu "
-               "non-finite, %llu clamped, %llu from another writer); sent %llu setpoints, %llu heartbeats, %llu "
-               "requests\n",
+               "non-finite, %llu clamped, %llu from another writer); sent %llu setpoints (and %llu answers again to a "
+               "repeated sample), %llu heartbeats, %llu requests\n",
                id_, app::shutdownSignal(), static_cast<unsigned long long>(c.attitude_in),
                static_cast<unsigned long long>(c.attitude_rejected),
                static_cast<unsigned long long>(c.attitude_out_of_order), static_cast<unsigned long long>(c.commands_in),
@@ -324,7 +335,8 @@ void BridgeNode::logFinalCounts() const {
                static_cast<unsigned long long>(c.commands_unknown_sample),
                static_cast<unsigned long long>(c.commands_nonfinite),
                static_cast<unsigned long long>(c.commands_clamped), static_cast<unsigned long long>(gate_.refused()),
-               static_cast<unsigned long long>(c.setpoints_out), static_cast<unsigned long long>(c.heartbeats_out),
+               static_cast<unsigned long long>(c.setpoints_out), static_cast<unsigned long long>(answers_repeated_),
+               static_cast<unsigned long long>(c.heartbeats_out),
                static_cast<unsigned long long>(c.requests_out));
   const auto us = [](const app::LogHistogram& h, double q) { return h.quantileNs(q) * 1e-3; };
   std::fprintf(stderr,

@@ -93,6 +93,8 @@ class BridgeNode : public app::Role {
   bool upside_down_reported_ = false;
   std::uint32_t imu_seq_ = 0, state_seq_ = 0;
   std::optional<msg::Imu> last_imu_;  // the newest forwarded: written again by a new participant (reconnect)
+  std::optional<autopilot::Setpoint> last_answer_;  // the newest setpoint sent: again if the vehicle repeats its sample
+  std::uint64_t answers_repeated_ = 0;
   std::uint64_t commands_foreign_ = 0;  // naming another UAV
   std::string last_event_;
   std::deque<Timing> timings_;  // the newest samples forwarded
