@@ -88,11 +88,11 @@ app::Cli makeCli(LaunchOptions& o) {
            "with --naming ros2: a ROS namespace in front of every SWA topic (/NS/swa/uav1/imu), so two swarms can "
            "share a domain; sets SWA_ROS_NAMESPACE",
            "a ROS namespace");
-  const std::vector<std::string> sets = record::recordSetNames();
+  const std::vector<std::string> sets = recording::recordSetNames();
   cli.flagChoice("--record", sets,
                  [&o, sets](std::size_t k) {
                    o.record = true;
-                   o.record_set = *record::recordSetFromName(sets[k]);
+                   o.record_set = *recording::recordSetFromName(sets[k]);
                  },
                  "record each run into its directory's run.mcap (swa_monitor --record FILE --record-set SET). "
                  "--record (= all): every topic's payloads unchanged, with their swa_msgs schemas, and the monitor's "

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "swa/agent/config.h"
-#include "swa/record/record_set.h"
+#include "swa/recording/record_set.h"
 
 namespace swa::launch {
 
@@ -32,7 +32,7 @@ struct LaunchOptions {
   std::string naming;                     // --naming swa|ros2 (else $SWA_NAMING, else swa)
   std::string ros_namespace;              // --ros-namespace NS (ros2 naming; else $SWA_ROS_NAMESPACE)
   bool record = false;                    // --record[=SET]: each run's monitor records it into <run dir>/run.mcap
-  record::RecordSet record_set = record::RecordSet::kAll;  // --record=monitor: only the monitor's own topics
+  recording::RecordSet record_set = recording::RecordSet::kAll;  // --record=monitor: only the monitor's own topics
   std::string live;                       // --live [ADDR:]PORT: passed to the monitor (empty: no live view)
   bool help = false;
 };

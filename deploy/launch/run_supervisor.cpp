@@ -145,7 +145,7 @@ class Supervisor {
       argv.push_back("--record");
       argv.push_back((spec_.dir / file).string());
       argv.push_back("--record-set");
-      argv.push_back(record::toString(o_.record_set));
+      argv.push_back(recording::toString(o_.record_set));
     }
     if (!o_.live.empty()) {
       argv.push_back("--live");

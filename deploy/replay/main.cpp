@@ -11,7 +11,7 @@
 #include "replay_options.h"
 #include "swa/app/program.h"
 #include "swa/dds/options.h"
-#include "swa/record/record_set.h"
+#include "swa/recording/record_set.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::replay {
@@ -33,7 +33,7 @@ app::Plan prepare(const std::vector<std::string>& args) {
     std::fprintf(stderr, "swa_replay: %s ends early (a recorder that crashed): read up to its last whole record\n",
                  options.file.c_str());
   }
-  if (run.record_set && *run.record_set != record::toString(record::RecordSet::kAll)) {
+  if (run.record_set && *run.record_set != recording::toString(recording::RecordSet::kAll)) {
     // Without the sensors and commands there is nothing to re-run or re-send; say why rather than "no input".
     throw std::invalid_argument(options.file + " is a '" + *run.record_set +
                                 "' recording (swa_monitor --record-set " + *run.record_set +

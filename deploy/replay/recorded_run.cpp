@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <tuple>
 
-#include "swa/record/mcap_reader.h"
-#include "swa/record/record_set.h"
-#include "swa/record/recording.h"
+#include "swa/recording/mcap_reader.h"
+#include "swa/recording/record_set.h"
+#include "swa/recording/recording.h"
 
 namespace swa::replay {
 
@@ -27,11 +27,11 @@ std::optional<std::pair<int, std::string>> uavTopic(const std::string& swa_topic
 }
 
 RecordedRun readRecordedRun(const std::string& path, std::optional<int> only_uav, bool world) {
-  record::McapReader reader(path);
+  recording::McapReader reader(path);
   RecordedRun run;
   run.profile = reader.profile();
   std::uint64_t order = 0;
-  while (std::optional<record::McapReader::Message> m = reader.next()) {
+  while (std::optional<recording::McapReader::Message> m = reader.next()) {
     ++order;
     const std::optional<std::string> topic = swaTopicOf(reader.channels().at(m->channel_id).topic);
     const auto per_uav = topic ? uavTopic(*topic) : std::nullopt;
@@ -43,7 +43,7 @@ RecordedRun readRecordedRun(const std::string& path, std::optional<int> only_uav
                                          : leaf == "gnss"       ? std::optional<Input>(Input::kGnss)
                                                                 : std::nullopt;
       if (input) {
-        const std::optional<record::PayloadStamp> stamp = record::payloadStamp(m->data.data(), m->data.size());
+        const std::optional<recording::PayloadStamp> stamp = recording::payloadStamp(m->data.data(), m->data.size());
         if (!stamp) {
           ++run.unstamped;
           continue;
@@ -61,14 +61,14 @@ RecordedRun readRecordedRun(const std::string& path, std::optional<int> only_uav
     }
   }
   run.truncated = reader.truncated();
-  const auto scenario = reader.metadata().find(record::kScenarioMetadata);
+  const auto scenario = reader.metadata().find(recording::kScenarioMetadata);
   if (scenario != reader.metadata().end()) {
-    const auto yaml = scenario->second.find(record::kScenarioYamlKey);
+    const auto yaml = scenario->second.find(recording::kScenarioYamlKey);
     if (yaml != scenario->second.end()) run.scenario_yaml = yaml->second;
   }
-  const auto set = reader.metadata().find(record::kRecordingMetadata);
+  const auto set = reader.metadata().find(recording::kRecordingMetadata);
   if (set != reader.metadata().end()) {
-    const auto name = set->second.find(record::kRecordSetKey);
+    const auto name = set->second.find(recording::kRecordSetKey);
     if (name != set->second.end()) run.record_set = name->second;
   }
   for (auto& [uav, recording] : run.uavs) {

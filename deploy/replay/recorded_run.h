@@ -42,7 +42,7 @@ struct RecordedRun {
   std::map<int, UavRecording> uavs;
   std::vector<WorldSample> world;           // by (log time, order)
   std::optional<std::string> scenario_yaml;  // the run's effective scenario, if the recorder knew it
-  std::optional<std::string> record_set;     // which topics the recorder took (swa/record/record_set.h), if it said
+  std::optional<std::string> record_set;     // which topics the recorder took (swa/recording/record_set.h), if it said
   std::string profile;
   bool truncated = false;          // the file ends before its Data End (a recorder that crashed)
   std::uint64_t unstamped = 0;     // input payloads without a readable header: skipped
@@ -55,7 +55,7 @@ std::optional<std::string> swaTopicOf(const std::string& recorded_topic);
 // UAV and leaf of a per-UAV SWA topic: "swa/uav3/imu" -> (3, "imu").
 std::optional<std::pair<int, std::string>> uavTopic(const std::string& swa_topic);
 
-// Reads `path` (McapReader: throws record::McapError on a file that is not MCAP or is malformed). `only_uav`: keep
+// Reads `path` (McapReader: throws recording::McapError on a file that is not MCAP or is malformed). `only_uav`: keep
 // the inputs and commands of that UAV only; `world`: keep the world topics.
 RecordedRun readRecordedRun(const std::string& path, std::optional<int> only_uav, bool world);
 

@@ -17,7 +17,7 @@
 
 #include "swa/dds/options.h"
 #include "swa/dds/topics.h"
-#include "swa/record/recording.h"
+#include "swa/recording/recording.h"
 
 namespace swa::replay {
 namespace {
@@ -76,7 +76,7 @@ void ReplayNode::stop() {
 }
 
 void ReplayNode::onCommand(int uav, dds::Payload&& payload) {
-  const std::optional<record::PayloadStamp> stamp = record::payloadStamp(payload.data(), payload.size());
+  const std::optional<recording::PayloadStamp> stamp = recording::payloadStamp(payload.data(), payload.size());
   if (!stamp) return;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -183,7 +183,7 @@ int ReplayNode::report() {
   for (const auto& [uav, recording] : run_.uavs) {
     std::map<std::int64_t, const dds::Payload*> recorded;
     for (const dds::Payload& p : recording.commands) {
-      if (auto stamp = record::payloadStamp(p.data(), p.size())) recorded.emplace(stamp->stamp_ns, &p);
+      if (auto stamp = recording::payloadStamp(p.data(), p.size())) recorded.emplace(stamp->stamp_ns, &p);
     }
     std::uint64_t answers = 0, identical = 0, differing = 0, unrecorded = 0;
     for (const auto& [key, payload] : answers_) {

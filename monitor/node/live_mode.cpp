@@ -44,16 +44,16 @@ LiveMode::LiveMode(const MonitorOptions& options, const std::optional<sim::Scena
   node_options.timeout_s = options_.timeout_s;
   node_options.quiet = options_.quiet;
   if (!options_.record_path.empty()) {
-    recording_ = std::make_unique<record::Recording>(options_.record_path, record::Recording::Options{});
+    recording_ = std::make_unique<recording::Recording>(options_.record_path, recording::Recording::Options{});
     metrics_ = std::make_unique<MetricsRecorder>(*recording_);
     node_options.recording = recording_.get();
     node_options.metrics = metrics_.get();
     node_options.record_set = options_.record_set;
-    recording_->writeMetadata(record::kRecordingMetadata,
-                              {{record::kRecordSetKey, record::toString(options_.record_set)}});
+    recording_->writeMetadata(recording::kRecordingMetadata,
+                              {{recording::kRecordSetKey, recording::toString(options_.record_set)}});
     if (scenario_) {
-      recording_->writeMetadata(record::kScenarioMetadata,
-                                {{record::kScenarioYamlKey, sim::scenarioToYaml(*scenario_)},
+      recording_->writeMetadata(recording::kScenarioMetadata,
+                                {{recording::kScenarioYamlKey, sim::scenarioToYaml(*scenario_)},
                                  {"source", options_.scenario_path}});
     }
   }
@@ -119,7 +119,7 @@ void LiveMode::finishRecording() {
   try {
     metrics_->writeNew(run_.series());  // the steps finish() scored
     recording_->close();
-    record::writeRecordingManifest(options_.out_dir + "/recording.json", *recording_);
+    recording::writeRecordingManifest(options_.out_dir + "/recording.json", *recording_);
     std::uint64_t messages = 0;
     const auto channels = recording_->channelCounts();
     for (const auto& c : channels) messages += c.messages;

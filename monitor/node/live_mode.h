@@ -10,7 +10,7 @@
 #include "monitor_node.h"
 #include "monitor_options.h"
 #include "swa/app/program.h"
-#include "swa/record/recording.h"
+#include "swa/recording/recording.h"
 #include "swa/sim/scenario.h"
 
 namespace swa::monitor_node {
@@ -34,7 +34,7 @@ class LiveMode : public app::Role {
   const LiveRunConfig config_;
   LiveRun run_;
   // --record: declared before the node, which writes into them from DDS threads until it is destroyed.
-  std::unique_ptr<record::Recording> recording_;
+  std::unique_ptr<recording::Recording> recording_;
   std::unique_ptr<MetricsRecorder> metrics_;
   std::unique_ptr<live::LiveView> live_;
   std::unique_ptr<MonitorNode> node_;

@@ -25,8 +25,8 @@
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
-#include "swa/record/record_set.h"
-#include "swa/record/recording.h"
+#include "swa/recording/record_set.h"
+#include "swa/recording/recording.h"
 
 namespace swa::monitor_node {
 
@@ -36,9 +36,9 @@ struct MonitorNodeOptions {
   double timeout_s = 0.0;            // wall seconds without EVENT_SCENARIO_END before giving up; 0 = never
   bool quiet = false;
   // Where every payload read also goes (swa_monitor --record); nullptr: no recording. Must outlive the node.
-  record::Recording* recording = nullptr;
+  recording::Recording* recording = nullptr;
   // kMonitor: only the monitor's own inputs go into `recording`, no reader is created just to record.
-  record::RecordSet record_set = record::RecordSet::kAll;
+  recording::RecordSet record_set = recording::RecordSet::kAll;
   MetricsRecorder* metrics = nullptr;  // with `recording`: the monitor's metrics channel of it
   live::LiveView* live = nullptr;      // swa_monitor --live; nullptr: none. Must outlive the node.
   // After EVENT_SCENARIO_END, wall seconds to wait for the truth samples and states of the last steps (they travel
@@ -81,7 +81,7 @@ class MonitorNode {
   void publishNewMetrics();  // to the recording and the live view
   // Whether readers are created only to record (recording every topic).
   bool recordsEveryTopic() const {
-    return options_.recording != nullptr && options_.record_set == record::RecordSet::kAll;
+    return options_.recording != nullptr && options_.record_set == recording::RecordSet::kAll;
   }
 
   LiveRun& run_;

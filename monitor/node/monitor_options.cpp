@@ -100,9 +100,9 @@ app::Cli makeCli(MonitorOptions& o) {
            "PASS band for the final d_NB, as a fraction of r, not 0; with --combine only the band drawn in the "
            "report, by default the first run's");
   cli.path("--record", "FILE.mcap", o.record_path, "also record the run into this MCAP file (see above)");
-  const std::vector<std::string> sets = record::recordSetNames();
+  const std::vector<std::string> sets = recording::recordSetNames();
   cli.choice("--record-set", "SET", sets,
-             [&o, sets](std::size_t k) { o.record_set = *record::recordSetFromName(sets[k]); },
+             [&o, sets](std::size_t k) { o.record_set = *recording::recordSetFromName(sets[k]); },
              "what --record holds: all, every topic of the run (default; what swa_replay needs), or monitor, only "
              "truth, events, the agents' states and the metrics (see above); needs --record");
   cli.value("--live", "[ADDR:]PORT",

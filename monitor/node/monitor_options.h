@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "swa/monitor/report_html.h"
-#include "swa/record/record_set.h"
+#include "swa/recording/record_set.h"
 
 namespace swa::monitor_node {
 
@@ -36,7 +36,7 @@ struct MonitorOptions {
   double tolerance = monitor::kDefaultRadiusTolerance;  // --tolerance F: PASS needs |d_NB - r| <= F r
   bool tolerance_given = false;
   std::string record_path;            // --record FILE.mcap: empty, no recording
-  record::RecordSet record_set = record::RecordSet::kAll;  // --record-set SET: which topics it holds
+  recording::RecordSet record_set = recording::RecordSet::kAll;  // --record-set SET: which topics it holds
   std::optional<std::string> live_address;  // --live [ADDR:]PORT: the live view (nullopt: none); ADDR 127.0.0.1
   int live_port = 0;
   bool quiet = false;                 // --quiet: no status line

@@ -18,7 +18,7 @@
 
 #include "swa/dds/participant.h"
 #include "swa/dds/topics.h"
-#include "swa/record/recording.h"
+#include "swa/recording/recording.h"
 
 namespace swa::monitor_node {
 
@@ -31,7 +31,7 @@ std::string msgTypeName(const std::string& generated);
 
 // The recording channel of `swa_topic` read by `participant` with PubSubType.
 template <class PubSubType>
-std::uint16_t recordingChannel(record::Recording& recording, const dds::Participant& participant,
+std::uint16_t recordingChannel(recording::Recording& recording, const dds::Participant& participant,
                                const std::string& swa_topic) {
   PubSubType type;
   return recording.cdrChannel(recordedTopic(participant.wireNames(), swa_topic), msgTypeName(type.getName()));
@@ -58,9 +58,9 @@ void forEachRecordedTopic(int uav_count, Visit&& visit);
 // participant's readers). Returns the cmd_vel reader: its writer keeps only the newest command (KEEP_LAST 1), so a
 // recorder that matches it after the run started misses the commands before; the monitor waits for it to match
 // before it lets the simulator start (monitor_node.cpp). The sensors' writers keep 1000 samples for late readers.
-dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, record::Recording& recording, int uav);
+dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, recording::Recording& recording, int uav);
 // A reader of swa/clock into `recording`.
-void tapClock(dds::Participant& participant, record::Recording& recording);
+void tapClock(dds::Participant& participant, recording::Recording& recording);
 
 template <class Visit>
 void forEachUavTap(int uav, Visit&& visit) {

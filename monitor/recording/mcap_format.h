@@ -4,7 +4,7 @@
 #include <array>
 #include <cstdint>
 
-namespace swa::record::mcap {
+namespace swa::recording::mcap {
 
 constexpr std::array<std::uint8_t, 8> kMagic = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
 
@@ -25,4 +25,4 @@ constexpr std::uint8_t kSummaryOffset = 0x0E;
 constexpr std::uint8_t kDataEnd = 0x0F;
 }  // namespace op
 
-}  // namespace swa::record::mcap
+}  // namespace swa::recording::mcap

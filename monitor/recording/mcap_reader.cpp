@@ -1,10 +1,10 @@
-#include "swa/record/mcap_reader.h"
+#include "swa/recording/mcap_reader.h"
 
 #include <array>
 
 #include "mcap_format.h"
 
-namespace swa::record {
+namespace swa::recording {
 namespace {
 
 using mcap::kMagic;
@@ -170,4 +170,4 @@ std::optional<McapReader::Message> McapReader::next() {
   return message;
 }
 
-}  // namespace swa::record
+}  // namespace swa::recording

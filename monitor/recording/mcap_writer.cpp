@@ -1,4 +1,4 @@
-#include "swa/record/mcap_writer.h"
+#include "swa/recording/mcap_writer.h"
 
 #include <array>
 #include <cerrno>
@@ -6,7 +6,7 @@
 
 #include "mcap_format.h"
 
-namespace swa::record {
+namespace swa::recording {
 namespace {
 
 using mcap::kMagic;
@@ -295,4 +295,4 @@ void McapWriter::close() {
   if (flushed != 0 || closed != 0) throw McapError("cannot write " + path_ + ": " + std::strerror(errno));
 }
 
-}  // namespace swa::record
+}  // namespace swa::recording

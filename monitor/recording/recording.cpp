@@ -1,4 +1,4 @@
-#include "swa/record/recording.h"
+#include "swa/recording/recording.h"
 
 #include <algorithm>
 
@@ -9,7 +9,7 @@
 
 #include "swa/msg_defs/ros_definition.h"
 
-namespace swa::record {
+namespace swa::recording {
 namespace {
 
 std::uint64_t littleEndian(const std::uint8_t* p, int n) {
@@ -151,4 +151,4 @@ void writeRecordingManifest(const std::string& path, const Recording& recording)
   if (!out) throw std::runtime_error("cannot write " + path);
 }
 
-}  // namespace swa::record
+}  // namespace swa::recording

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "swa/monitor/report.h"
-#include "swa/record/recording.h"
+#include "swa/recording/recording.h"
 
 namespace swa::monitor_node {
 
@@ -24,11 +24,11 @@ std::string metricsJson(const monitor::TimeSeriesRow& row);
 // with the step's time as log time.
 class MetricsRecorder {
  public:
-  explicit MetricsRecorder(record::Recording& recording) : recording_(recording) {}
+  explicit MetricsRecorder(recording::Recording& recording) : recording_(recording) {}
   void writeNew(const std::vector<monitor::TimeSeriesRow>& series);
 
  private:
-  record::Recording& recording_;
+  recording::Recording& recording_;
   std::optional<std::uint16_t> channel_;
   std::size_t written_ = 0;
 };

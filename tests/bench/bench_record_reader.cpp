@@ -27,7 +27,7 @@
 #include "swa/app/signals.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
-#include "swa/record/mcap_reader.h"
+#include "swa/recording/mcap_reader.h"
 
 namespace {
 
@@ -51,7 +51,7 @@ struct CountInto {
 double seconds(const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); }
 
 int countMcap(const std::string& path) {
-  swa::record::McapReader reader(path);
+  swa::recording::McapReader reader(path);
   std::map<std::uint16_t, std::uint64_t> per_channel;
   while (const auto m = reader.next()) ++per_channel[m->channel_id];
   nlohmann::ordered_json counts = nlohmann::ordered_json::object();

@@ -25,13 +25,13 @@ TEST(LaunchRecordOptions, BareRecordIsCompleteAndEqualsNamesTheSet) {
   // WHEN --record bare, before another option THEN a complete recording, and the next option is still read
   const LaunchOptions bare = parseLaunchOptions({"--scenario", "s", "--record", "--live", "0"});
   EXPECT_TRUE(bare.record);
-  EXPECT_TRUE(bare.record_set == record::RecordSet::kAll);
+  EXPECT_TRUE(bare.record_set == recording::RecordSet::kAll);
   EXPECT_EQ(bare.live, "0");
   // WHEN --record=monitor or --record=all THEN that set
   const LaunchOptions monitor = parseLaunchOptions({"--scenario", "s", "--record=monitor"});
   EXPECT_TRUE(monitor.record);
-  EXPECT_TRUE(monitor.record_set == record::RecordSet::kMonitor);
-  EXPECT_TRUE(parseLaunchOptions({"--scenario", "s", "--record=all"}).record_set == record::RecordSet::kAll);
+  EXPECT_TRUE(monitor.record_set == recording::RecordSet::kMonitor);
+  EXPECT_TRUE(parseLaunchOptions({"--scenario", "s", "--record=all"}).record_set == recording::RecordSet::kAll);
   // WHEN the set is unknown THEN exit-2 error naming the valid sets
   EXPECT_EQ(recordOptionsError({"--scenario", "s", "--record=sensors"}), "--record must be all or monitor, got 'sensors'");
   // WHEN the set is a separate argument THEN it is not taken as the set (it would be the scenario's neighbour)

@@ -170,15 +170,15 @@ TEST(MonitorOptions, UsageDocumentsTheContract) {
 
 TEST(MonitorOptions, RecordSetChoosesWhatTheRecordingHolds) {
   // WHEN --record is given without --record-set THEN the recording is complete
-  EXPECT_TRUE(parseMonitorOptions({"--record", "r.mcap"}).record_set == record::RecordSet::kAll);
-  EXPECT_TRUE(parseMonitorOptions({}).record_set == record::RecordSet::kAll);
+  EXPECT_TRUE(parseMonitorOptions({"--record", "r.mcap"}).record_set == recording::RecordSet::kAll);
+  EXPECT_TRUE(parseMonitorOptions({}).record_set == recording::RecordSet::kAll);
   // WHEN --record-set monitor (either spelling) THEN only the monitor's topics, all names it back
   EXPECT_TRUE(parseMonitorOptions({"--record", "r.mcap", "--record-set", "monitor"}).record_set ==
-              record::RecordSet::kMonitor);
+              recording::RecordSet::kMonitor);
   EXPECT_TRUE(parseMonitorOptions({"--record-set=monitor", "--record=r.mcap"}).record_set ==
-              record::RecordSet::kMonitor);
+              recording::RecordSet::kMonitor);
   EXPECT_TRUE(parseMonitorOptions({"--record", "r.mcap", "--record-set", "all"}).record_set ==
-              record::RecordSet::kAll);
+              recording::RecordSet::kAll);
   // WHEN the set is unknown THEN the error lists the valid ones
   EXPECT_EQ(optionsError({"--record", "r.mcap", "--record-set", "sensors"}),
             "--record-set must be all or monitor, got 'sensors'");

@@ -1,4 +1,4 @@
-// The MCAP writer (swa/record/mcap_writer.h) byte for byte where the format fixes the bytes, the recording around it
+// The MCAP writer (swa/recording/mcap_writer.h) byte for byte where the format fixes the bytes, the recording around it
 // (recording.h), the message definitions it stores (swa/msg_defs) and the monitor's metrics messages. The whole file
 // against the reference reader: tests/record/test_mcap_record.sh.
 
@@ -18,11 +18,11 @@
 
 #include "metrics_json.h"
 #include "swa/msg_defs/ros_definition.h"
-#include "swa/record/mcap_reader.h"
-#include "swa/record/mcap_writer.h"
-#include "swa/record/recording.h"
+#include "swa/recording/mcap_reader.h"
+#include "swa/recording/mcap_writer.h"
+#include "swa/recording/recording.h"
 
-namespace swa::record {
+namespace swa::recording {
 namespace {
 
 namespace fs = std::filesystem;
@@ -304,4 +304,4 @@ TEST(MetricsJson, EveryColumnOfTheTimeSeriesWithNullForAnUndefinedValue) {
 }
 
 }  // namespace
-}  // namespace swa::record
+}  // namespace swa::recording

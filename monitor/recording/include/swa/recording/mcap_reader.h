@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "swa/record/mcap_writer.h"
+#include "swa/recording/mcap_writer.h"
 
-namespace swa::record {
+namespace swa::recording {
 
 class McapReader {
  public:
@@ -65,4 +65,4 @@ class McapReader {
   bool truncated_ = false;
 };
 
-}  // namespace swa::record
+}  // namespace swa::recording

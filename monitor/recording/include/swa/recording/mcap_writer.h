@@ -15,7 +15,7 @@
 // Memory: one chunk's records and message indexes (closeChunk() when it reaches Options::chunk_bytes, or when the
 // caller decides it is old enough), plus one small Chunk Index per closed chunk for the summary.
 //
-// Not thread-safe: one owner (swa/record/recording.h serialises its callers).
+// Not thread-safe: one owner (swa/recording/recording.h serialises its callers).
 
 #include <cstdint>
 #include <cstdio>
@@ -25,7 +25,7 @@
 #include <string_view>
 #include <vector>
 
-namespace swa::record {
+namespace swa::recording {
 
 // CRC-32 (ISO-HDLC, as zlib): `crc` continues a previous call (0 to start).
 std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc = 0);
@@ -123,4 +123,4 @@ class McapWriter {
   bool closed_ = false;
 };
 
-}  // namespace swa::record
+}  // namespace swa::recording

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace swa::record {
+namespace swa::recording {
 
 enum class RecordSet {
   kAll,      // every topic of the run: truth, events, clock, and per UAV detections, imu, gnss, cmd_vel, state,
@@ -32,4 +32,4 @@ inline std::optional<RecordSet> recordSetFromName(const std::string& name) {
   return std::nullopt;
 }
 
-}  // namespace swa::record
+}  // namespace swa::recording

@@ -20,9 +20,9 @@
 #include <utility>
 #include <vector>
 
-#include "swa/record/mcap_writer.h"
+#include "swa/recording/mcap_writer.h"
 
-namespace swa::record {
+namespace swa::recording {
 
 // The log time and sequence of a CDR payload of a swa_msgs message (encapsulation header, then MessageHeader);
 // nullopt if the payload is too short, not CDR, or its stamp is negative.
@@ -94,4 +94,4 @@ class Recording {
 // std::runtime_error if `path` cannot be written.
 void writeRecordingManifest(const std::string& path, const Recording& recording);
 
-}  // namespace swa::record
+}  // namespace swa::recording
