@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "swa/monitor/accumulator.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
 #include "swa/sim/scenario.h"
 #include "swa/sim/world.h"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "study_plan.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/record/run_dir.h"
 
 namespace swa::study {

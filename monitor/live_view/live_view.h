@@ -12,7 +12,7 @@
 
 #include "live_server.h"
 #include "monitor_inputs.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 
 namespace swa::live {
 

@@ -13,7 +13,7 @@
 #include "truth_coverage.h"
 #include "swa/agent/config.h"
 #include "swa/monitor/accumulator.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
 
 namespace swa::monitor_node {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/recording/recording.h"
 
 namespace swa::monitor_node {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "batch_runner.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::batch::testing {

@@ -10,7 +10,7 @@
 #include "swa/monitor/chi2.h"
 #include "swa/record/run_dir.h"
 #include "swa/monitor/accumulator.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 
 namespace swa::monitor {
 namespace {

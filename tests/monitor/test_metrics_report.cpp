@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "markup_support.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 
 namespace swa::monitor {
 namespace {

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
 
 namespace swa::monitor {

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "swa/monitor/accumulator.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/monitor/svg_plot.h"
 #include "swa/monitor/swarm_metrics.h"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "swa/monitor/accumulator.h"
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
 #include "swa/record/events.h"
 #include "swa/record/restarts.h"

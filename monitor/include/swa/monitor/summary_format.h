@@ -1,5 +1,5 @@
 #pragma once
-// Report formats: a time-series CSV row, a flat key/value view of a Summary (the single list every writer and the
+// Summary formats: a time-series CSV row, a flat key/value view of a Summary (the single list every writer and the
 // seed aggregate iterate, so a new field cannot be forgotten in one of them), JSON writers, and the aggregate of
 // many runs. Numbers are written in the shortest form that reads back to the same double, independent of the
 // locale; a non-finite value is "nan" in CSV and null in JSON.

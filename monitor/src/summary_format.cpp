@@ -1,4 +1,4 @@
-#include "swa/monitor/report.h"
+#include "swa/monitor/summary_format.h"
 
 #include <algorithm>
 #include <array>
