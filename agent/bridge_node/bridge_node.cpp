@@ -150,11 +150,12 @@ void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_poin
     timings_.push_back({a.timestamp_us, received, std::chrono::steady_clock::now()});
     if (timings_.size() > kTimedSamples) timings_.pop_front();
   } else if (last_answer_ && last_answer_->timestamp_us == a.timestamp_us &&
-             core_.newestTimestampUs() == std::optional<std::uint64_t>(a.timestamp_us)) {
+             core_.newestTimestampUs() == std::optional<std::uint64_t>(a.timestamp_us) &&
+             core_.link() == autopilot::Link::kFresh) {
     // The vehicle sent the sample it waits on once more (a lockstep simulator does; PX4 and ArduPilot never repeat a
     // stamp). Our answer to it is lost: a best-effort setpoint, or one written just before this participant was
     // re-created (a secure launch through PX4 stalled 60 s so). The agent's own resend of its command is "not newer"
-    // here, so the answer goes again from here.
+    // here, so the answer goes again from here; only while the link streams (never past the core's own stops).
     autopilot::Outbox again;
     again.setpoint = last_answer_;
     vehicle_->send(again);

@@ -27,20 +27,25 @@ const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
   } else {
     queue_.drain(batch_, wait);
   }
-  // A command refused a moment ago whose writer may now command (the old owner's participant has left, or it fell
-  // silent) goes first: it is older than anything drained just now (command_gate.h).
-  const Clock::time_point now = Clock::now();
-  for (const int uav : gate_.releasable(now)) {
-    std::optional<Answer>& held = refused_[static_cast<std::size_t>(uav)];
-    if (held && fromCommander(*held, now)) admit(std::move(*held));
-    held.reset();
-  }
   for (Answer& a : batch_) {
     if (fromCommander(a, a.received)) {
       admit(std::move(a));
     } else {
       refused_[static_cast<std::size_t>(a.uav)] = std::move(a);
     }
+  }
+  // A command refused a moment ago whose writer may command now that every newer command was heard (the old owner's
+  // participant has left, or it fell silent): applied now, and timed from now (command_gate.h).
+  const Clock::time_point now = Clock::now();
+  for (std::size_t k = 0; k < refused_.size(); ++k) {
+    std::optional<Answer>& held = refused_[k];
+    if (!held) continue;
+    const dds::Held verdict = gate_.heldCommand(held->uav, held->writer, held->received, now);
+    if (verdict == dds::Held::kRelease) {
+      held->received = now;
+      if (fromCommander(*held, now)) admit(std::move(*held));
+    }
+    if (verdict != dds::Held::kKeep) held.reset();
   }
   return admitted_;
 }

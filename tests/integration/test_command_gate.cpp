@@ -98,37 +98,36 @@ TEST_F(CommandGateTest, AStallNoticedLateDoesNotPushTheOwnerIntoTheFuture) {
 // answer that never came again, and the agent was declared dead 2 s later.
 TEST_F(CommandGateTest, ACommandRefusedJustBeforeItsOwnersParticipantLeftIsReleased) {
   gate.admit(0, writer(1), t0);
-  EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(10)), Admission::kRefused);
-  EXPECT_TRUE(gate.releasable(t0 + milliseconds(11)).empty()) << "the owner is still active";
+  const auto refused_at = t0 + milliseconds(10);
+  EXPECT_EQ(gate.admit(0, writer(2), refused_at), Admission::kRefused);
+  EXPECT_EQ(gate.heldCommand(0, writer(2), refused_at, t0 + milliseconds(11)), Held::kKeep) << "the owner is active";
   std::array<std::uint8_t, 12> prefix{};
   prefix.fill(1);
   gate.participantGone(prefix);
-  EXPECT_TRUE(gate.admits(0, writer(2), t0 + milliseconds(12)));
-  EXPECT_EQ(gate.releasable(t0 + milliseconds(12)), std::vector<int>{0});
-  EXPECT_TRUE(gate.releasable(t0 + milliseconds(13)).empty()) << "named once";
+  EXPECT_EQ(gate.heldCommand(0, writer(2), refused_at, t0 + milliseconds(12)), Held::kRelease);
   EXPECT_EQ(gate.admit(0, writer(2), t0 + milliseconds(12)), Admission::kHandover);
 }
 
-TEST_F(CommandGateTest, ARefusedCommandIsReleasedWhenTheOwnerFallsSilentButNotOnceItIsStale) {
+TEST_F(CommandGateTest, ARefusedCommandIsReleasedWhenTheOwnerFallsSilentNeverWhileItTalksAndDroppedWhenStale) {
   gate.admit(0, writer(1), t0);
+  // Refused 100 ms after the owner's last command; the owner is silent from then on
+  const auto refused_at = t0 + milliseconds(100);
+  gate.admit(0, writer(2), refused_at);
+  EXPECT_EQ(gate.heldCommand(0, writer(2), refused_at, t0 + milliseconds(499)), Held::kKeep);
+  EXPECT_EQ(gate.heldCommand(0, writer(2), refused_at, t0 + milliseconds(500)), Held::kRelease);
+  // An owner whose steps are slow (lockstep waiting for another agent) but that answers: its fresh answer, admitted
+  // first, keeps the refused command held
   gate.admit(1, writer(1), t0);
-  // UAV 0: refused 100 ms after the owner's last command; the owner is silent from then on
-  gate.admit(0, writer(2), t0 + milliseconds(100));
-  EXPECT_FALSE(gate.admits(0, writer(2), t0 + milliseconds(499)));
-  EXPECT_TRUE(gate.releasable(t0 + milliseconds(499)).empty());
-  EXPECT_EQ(gate.releasable(t0 + milliseconds(500)), std::vector<int>{0});
-  // UAV 1: a rogue's command while the owner talks, which then falls silent. Asked only after 1 s (twice the
-  // handover time), the gate drops the rogue's old command although its writer could take over now
   gate.admit(1, writer(3), t0 + milliseconds(5));
-  gate.admit(1, writer(1), t0 + milliseconds(10));
-  EXPECT_TRUE(gate.releasable(t0 + milliseconds(400)).empty());
-  EXPECT_TRUE(gate.releasable(t0 + milliseconds(1005)).empty());
-  EXPECT_TRUE(gate.releasable(t0 + milliseconds(2000)).empty()) << "forgotten, not held for later";
-  // A handover to another writer forgets the refused one
+  gate.admit(1, writer(1), t0 + milliseconds(900));
+  EXPECT_EQ(gate.heldCommand(1, writer(3), t0 + milliseconds(5), t0 + milliseconds(901)), Held::kKeep);
+  // Twice the handover time old: dropped, even though its writer could take over now
+  EXPECT_EQ(gate.heldCommand(1, writer(3), t0 + milliseconds(5), t0 + milliseconds(1500)), Held::kDrop);
+  // Another writer took over meanwhile: the refused one stays foreign
   gate.admit(2, writer(1), t0);
   gate.admit(2, writer(2), t0 + milliseconds(100));
   gate.admit(2, writer(3), t0 + milliseconds(700));
-  EXPECT_TRUE(gate.releasable(t0 + milliseconds(701)).empty());
+  EXPECT_EQ(gate.heldCommand(2, writer(2), t0 + milliseconds(100), t0 + milliseconds(701)), Held::kKeep);
 }
 
 TEST_F(CommandGateTest, EachRefusedWriterIsReportedOnce) {

@@ -11,7 +11,7 @@ constexpr std::size_t kMaxReported = 1024;
 }  // namespace
 
 CommandGate::CommandGate(int uav_count, Clock::duration handover)
-    : handover_(handover), owners_(static_cast<std::size_t>(uav_count)), held_(owners_.size()) {
+    : handover_(handover), owners_(static_cast<std::size_t>(uav_count)) {
   if (uav_count < 0) throw std::invalid_argument("CommandGate: negative UAV count");
 }
 
@@ -25,12 +25,10 @@ Admission CommandGate::admit(int uav, const WriterId& writer, Clock::time_point 
   }
   if (!admits(uav, writer, received)) {
     ++refused_;
-    held_[static_cast<std::size_t>(uav)] = Refusal{writer, received};
     return Admission::kRefused;
   }
   if (owner) ++handovers_;
   owner = Owner{writer, received};
-  held_[static_cast<std::size_t>(uav)].reset();
   return Admission::kHandover;
 }
 
@@ -39,19 +37,10 @@ bool CommandGate::admits(int uav, const WriterId& writer, Clock::time_point at) 
   return !owner || owner->writer == writer || owner->gone || at - owner->last_heard >= handover_;
 }
 
-std::vector<int> CommandGate::releasable(Clock::time_point now) {
-  std::vector<int> uavs;
-  for (std::size_t k = 0; k < held_.size(); ++k) {
-    std::optional<Refusal>& held = held_[k];
-    if (!held) continue;
-    if (now - held->received >= 2 * handover_) {
-      held.reset();  // too old to apply: the UAV has moved on
-    } else if (admits(static_cast<int>(k), held->writer, now)) {
-      uavs.push_back(static_cast<int>(k));
-      held.reset();
-    }
-  }
-  return uavs;
+Held CommandGate::heldCommand(int uav, const WriterId& writer, Clock::time_point received,
+                              Clock::time_point now) const {
+  if (now - received >= 2 * handover_) return Held::kDrop;  // too old to apply: the UAV has moved on
+  return admits(uav, writer, now) ? Held::kRelease : Held::kKeep;
 }
 
 bool CommandGate::firstRefusal(int uav, const WriterId& writer) {

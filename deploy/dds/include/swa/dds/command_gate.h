@@ -7,8 +7,9 @@
 // once.
 // A refused command is not always a rogue's: an agent that re-created its participant answers with its new writer
 // before the old participant's goodbye has been processed. In lockstep that answer is the only one the step will get,
-// so the gate remembers the newest refused writer per UAV, and `releasable` names the UAVs whose refused command may
-// be applied after all (its writer would now be admitted, and the command is younger than twice the handover time).
+// so the caller keeps the newest refused command per UAV and, once every newer command has been admitted, asks
+// `heldCommand` what to do with it: apply it if its writer would be admitted now, drop it once it is twice the
+// handover time old, else keep it.
 // Pure (no DDS, no clock): the node passes the writer's identity (its GUID) and the time the sample arrived.
 
 #include <array>
@@ -28,6 +29,8 @@ enum class Admission {
   kRefused,   // another writer while the owner is active: drop it
 };
 
+enum class Held { kKeep, kRelease, kDrop };  // a refused command kept by the caller (see above)
+
 class CommandGate {
  public:
   using Clock = std::chrono::steady_clock;
@@ -37,8 +40,8 @@ class CommandGate {
   Admission admit(int uav, const WriterId& writer, Clock::time_point received);
   // Whether a command of `writer` arriving at `at` would be applied (kOwner or kHandover); changes nothing.
   bool admits(int uav, const WriterId& writer, Clock::time_point at) const;
-  // The UAVs whose newest refused command (see above) `admits` now; each is named once.
-  std::vector<int> releasable(Clock::time_point now);
+  // A command of `writer` refused when it arrived at `received`, judged at `now` (see above).
+  Held heldCommand(int uav, const WriterId& writer, Clock::time_point received, Clock::time_point now) const;
   // A refused writer not reported before (the caller logs it): true once per (UAV, writer).
   bool firstRefusal(int uav, const WriterId& writer);
   // Moves every owner's last-heard time by `lost` (a stall of the simulator itself: nobody could be heard), but not
@@ -58,13 +61,8 @@ class CommandGate {
     Clock::time_point last_heard{};
     bool gone = false;  // its participant left
   };
-  struct Refusal {
-    WriterId writer{};
-    Clock::time_point received{};
-  };
   Clock::duration handover_;
   std::vector<std::optional<Owner>> owners_;
-  std::vector<std::optional<Refusal>> held_;  // the newest refused command's writer, per UAV
   std::set<std::pair<int, WriterId>> reported_;  // bounded by the writers that ever tried, at most a few per UAV
   std::uint64_t refused_ = 0;
   std::uint64_t handovers_ = 0;
