@@ -11,25 +11,16 @@
 
 #include "launch_options.h"
 #include "swa/dds/deployment.h"
+#include "error_text.h"
+#include "fake_env.h"
 
 namespace swa {
 namespace {
 
-dds::EnvLookup envOf(const std::map<std::string, std::string>& vars) {
-  return [vars](const std::string& name) -> std::optional<std::string> {
-    const auto it = vars.find(name);
-    if (it == vars.end()) return std::nullopt;
-    return it->second;
-  };
-}
+dds::EnvLookup envOf(const std::map<std::string, std::string>& vars) { return testing::fakeEnv(vars); }
 
 std::string errorOf(const std::map<std::string, std::string>& vars) {
-  try {
-    dds::parseDeployment(envOf(vars));
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return testing::invalidArgumentText([&] { dds::parseDeployment(envOf(vars)); });
 }
 
 TEST(Deployment, DefaultsToLocalWithoutSecurity) {

@@ -6,17 +6,13 @@
 #include <string>
 
 #include "launch_options.h"
+#include "error_text.h"
 
 namespace swa::launch {
 namespace {
 
 std::string recordOptionsError(const std::vector<std::string>& args) {
-  try {
-    parseLaunchOptions(args);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return testing::invalidArgumentText([&] { parseLaunchOptions(args); });
 }
 
 TEST(LaunchRecordOptions, BareRecordIsCompleteAndEqualsNamesTheSet) {

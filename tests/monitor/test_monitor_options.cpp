@@ -9,18 +9,14 @@
 #include <vector>
 
 #include "monitor_options.h"
+#include "error_text.h"
 
 namespace swa::monitor_node {
 namespace {
 
 // The message of the std::invalid_argument parsing throws ("" when it does not throw).
 std::string optionsError(const std::vector<std::string>& args) {
-  try {
-    parseMonitorOptions(args);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return testing::invalidArgumentText([&] { parseMonitorOptions(args); });
 }
 
 bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }

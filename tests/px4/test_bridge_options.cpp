@@ -7,17 +7,13 @@
 #include <vector>
 
 #include "bridge_options.h"
+#include "error_text.h"
 
 namespace swa::bridge_node {
 namespace {
 
 std::string problemsOf(const std::vector<std::string>& args) {
-  try {
-    parseBridgeOptions(args);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return testing::invalidArgumentText([&] { parseBridgeOptions(args); });
 }
 
 TEST(BridgeOptions, ParsesEveryOption) {

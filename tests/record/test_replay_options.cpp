@@ -8,17 +8,13 @@
 
 #include "recorded_run.h"
 #include "replay_options.h"
+#include "error_text.h"
 
 namespace swa::replay {
 namespace {
 
 std::string problemsOf(const std::vector<std::string>& args) {
-  try {
-    parseReplayOptions(args);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return testing::invalidArgumentText([&] { parseReplayOptions(args); });
 }
 
 TEST(ReplayOptions, FileFirstThenOptionsWithSafeDefaults) {

@@ -9,6 +9,8 @@
 #include "swa/dds/deployment.h"
 #include "swa/dds/naming.h"
 #include "swa/dds/topics.h"
+#include "error_text.h"
+#include "fake_env.h"
 
 namespace swa {
 namespace {
@@ -17,20 +19,11 @@ using dds::Naming;
 using dds::WireNames;
 
 dds::Deployment deploymentOf(const std::map<std::string, std::string>& vars) {
-  return dds::parseDeployment([vars](const std::string& name) -> std::optional<std::string> {
-    const auto it = vars.find(name);
-    if (it == vars.end()) return std::nullopt;
-    return it->second;
-  });
+  return dds::parseDeployment(testing::fakeEnv(vars));
 }
 
 std::string errorOf(const std::map<std::string, std::string>& vars) {
-  try {
-    deploymentOf(vars);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return testing::invalidArgumentText([&] { deploymentOf(vars); });
 }
 
 TEST(Naming, SwaNamingKeepsTheNamesOfTheCode) {
