@@ -111,8 +111,15 @@ std::string plot(const StudyRecord& s, std::size_t axis, const Metric& metric) {
   std::size_t colour = 0;
   for (const auto& [index, one] : series) {
     const std::map<std::size_t, Stats>& points = one.points;
-    monitor::PlotSeries mean{one.label, {}, {}, monitor::paletteColour(colour), false, 2.0, 1.0};
-    monitor::PlotSeries high{"", {}, {}, mean.colour, true, 1.0, 0.5};
+    monitor::PlotSeries mean;
+    mean.label = one.label;
+    mean.colour = monitor::paletteColour(colour);
+    mean.width_px = 2.0;
+    monitor::PlotSeries high;
+    high.colour = mean.colour;
+    high.dashed = true;
+    high.width_px = 1.0;
+    high.opacity = 0.5;
     monitor::PlotSeries low = high;
     for (const auto& [x, st] : points) {
       const double xv = numeric ? *numberOf(a.values[x]) : static_cast<double>(x);

@@ -69,21 +69,18 @@ std::string agentStateJsonSchema() {
   return schema.dump();
 }
 
-std::string swarmJson(const monitor_node::TruthSample& truth, const std::map<int, monitor_node::StateSample>& latest) {
-  Json uavs = Json::array();
+SwarmScene swarmScene(const monitor_node::TruthSample& truth,
+                      const std::map<int, monitor_node::StateSample>& latest) {
+  SwarmScene scene;
+  scene.t_s = monitor_node::stampSeconds(truth.stamp_ns);
   std::map<int, const monitor::UavTruth*> by_id;
   for (std::size_t k = 0; k < truth.uavs.size(); ++k) {
     const monitor::UavTruth& u = truth.uavs[k];
     by_id[u.id] = &u;
-    uavs.push_back({{"id", u.id},
-                    {"x_m", number(u.position_m.x())},
-                    {"y_m", number(u.position_m.y())},
-                    {"vx_mps", number(u.velocity_mps.x())},
-                    {"vy_mps", number(u.velocity_mps.y())},
-                    {"agent_alive", k < truth.agent_alive.size() ? static_cast<bool>(truth.agent_alive[k]) : true}});
+    scene.uavs.push_back({u.id, u.position_m.x(), u.position_m.y(), u.velocity_mps.x(), u.velocity_mps.y(),
+                          k < truth.agent_alive.size() ? static_cast<bool>(truth.agent_alive[k]) : true});
   }
   std::set<std::pair<int, int>> links;
-  Json centres = Json::array();
   for (const auto& [uav, state] : latest) {
     const monitor::EstimateRecord& e = state.estimate;
     const auto self = by_id.find(uav);
@@ -93,14 +90,29 @@ std::string swarmJson(const monitor_node::TruthSample& truth, const std::map<int
       if (other != uav && by_id.count(other) > 0) links.emplace(std::min(uav, other), std::max(uav, other));
     }
     const agent::Vec2 centre = self->second->position_m - e.position_m;
-    centres.push_back({{"uav", uav}, {"x_m", number(centre.x())}, {"y_m", number(centre.y())}});
+    scene.centres.push_back({uav, centre.x(), centre.y()});
+  }
+  scene.links.assign(links.begin(), links.end());
+  return scene;
+}
+
+std::string swarmJson(const SwarmScene& scene) {
+  Json uavs = Json::array();
+  for (const SwarmScene::Uav& u : scene.uavs) {
+    uavs.push_back({{"id", u.id},
+                    {"x_m", number(u.x_m)},
+                    {"y_m", number(u.y_m)},
+                    {"vx_mps", number(u.vx_mps)},
+                    {"vy_mps", number(u.vy_mps)},
+                    {"agent_alive", u.agent_alive}});
+  }
+  Json centres = Json::array();
+  for (const SwarmScene::Centre& c : scene.centres) {
+    centres.push_back({{"uav", c.uav}, {"x_m", number(c.x_m)}, {"y_m", number(c.y_m)}});
   }
   Json link_list = Json::array();
-  for (const auto& [a, b] : links) link_list.push_back({a, b});
-  const Json j = {{"t_s", monitor_node::stampSeconds(truth.stamp_ns)},
-                  {"uavs", uavs},
-                  {"links", link_list},
-                  {"centres", centres}};
+  for (const auto& [a, b] : scene.links) link_list.push_back({a, b});
+  const Json j = {{"t_s", scene.t_s}, {"uavs", uavs}, {"links", link_list}, {"centres", centres}};
   return j.dump();
 }
 

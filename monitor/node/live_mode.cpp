@@ -58,7 +58,7 @@ LiveMode::LiveMode(const MonitorOptions& options, const std::optional<sim::Scena
     }
   }
   if (options_.live_address) {
-    live_ = std::make_unique<live::LiveView>(*options_.live_address, options_.live_port);
+    live_ = std::make_unique<live::LiveView>(*options_.live_address, options_.live_port, config_.metrics);
     const std::string host = options_.live_address->find(':') != std::string::npos ? "[" + *options_.live_address + "]"
                              : *options_.live_address == "0.0.0.0"                   ? std::string("127.0.0.1")
                                                                                      : *options_.live_address;
@@ -105,6 +105,7 @@ int LiveMode::run() {
 void LiveMode::finishLiveView() {
   if (!live_) return;
   live_->onMetrics(run_.series());  // the steps finish() scored
+  live_->flush();
   const live::LiveServer::Stats s = live_->stats();
   std::fprintf(stderr,
                "swa_monitor: live view: %llu page request(s), %llu client(s) (%llu refused), %llu message(s) sent, "

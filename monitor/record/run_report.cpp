@@ -112,7 +112,7 @@ monitor::ReportNotes reportNotes(const std::vector<RunRecord>& runs, const std::
     const RunRecord& first = runs.front();
     notes.scenario = first.scenario;
     notes.scoring = first.scoring;
-    notes.gnss_loss_s = first.scoring.window_start_s > 0.0 ? first.scoring.window_start_s : monitor::kNaN;
+    notes.gnss_loss_s = monitor::gnssLossTime(first.scoring);
   }
   for (const RunRecord& run : runs) {
     if (run.seed && std::find(notes.seeds.begin(), notes.seeds.end(), *run.seed) == notes.seeds.end()) {

@@ -225,7 +225,11 @@ std::vector<UavTrajectory> TrajectoryRecorder::trajectories() const {
   return out;
 }
 
-std::vector<ReportPlot> reportPlots(const std::vector<RunReport>& runs, const ReportNotes& notes) {
+double gnssLossTime(const MetricsConfig& scoring) {
+  return scoring.window_start_s > 0.0 ? scoring.window_start_s : kNaN;
+}
+
+std::vector<ReportPlot> reportTimePlots(const std::vector<RunReport>& runs, const ReportNotes& notes) {
   std::vector<ReportPlot> plots;
   const double r = notes.scoring.formation.radius_m;
   const double tolerance = notes.scoring.radius_tolerance;
@@ -263,7 +267,11 @@ std::vector<ReportPlot> reportPlots(const std::vector<RunReport>& runs, const Re
   double legend = 0.0;
   for (const ReportPlot& p : plots) legend = std::max(legend, layoutPlot(p.spec).legend_px);
   for (ReportPlot& p : plots) p.spec.legend_width_px = legend;
+  return plots;
+}
 
+std::vector<ReportPlot> reportPlots(const std::vector<RunReport>& runs, const ReportNotes& notes) {
+  std::vector<ReportPlot> plots = reportTimePlots(runs, notes);
   std::set<std::string> names;
   for (const ReportPlot& p : plots) names.insert(p.name);
   for (std::size_t i = 0; i < runs.size(); ++i) {

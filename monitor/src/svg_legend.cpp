@@ -1,5 +1,7 @@
 #include "svg_legend.h"
 
+#include "svg_markers.h"
+
 #include <algorithm>
 
 namespace swa::monitor::svg {
@@ -17,7 +19,7 @@ std::vector<LegendEntry> legendEntries(const PlotSpec& spec) {
   for (std::size_t i = 0; i < spec.series.size(); ++i) {
     const PlotSeries& s = spec.series[i];
     if (!s.label.empty()) {
-      entries.push_back({LegendKind::kSeries, s.label, seriesColour(s, i), seriesDashed(s, i), s.opacity});
+      entries.push_back({LegendKind::kSeries, s.label, seriesColour(s, i), seriesDashed(s, i), s.opacity, s.marker});
     }
   }
   for (const PlotBand& b : spec.bands) {
@@ -26,7 +28,9 @@ std::vector<LegendEntry> legendEntries(const PlotSpec& spec) {
   for (const PlotLine& l : spec.lines) {
     if (!l.label.empty()) entries.push_back({LegendKind::kLine, l.label, l.colour, l.dashed});
   }
-  if (spec.equal_aspect && !spec.series.empty()) {
+  const bool tracks = std::any_of(spec.series.begin(), spec.series.end(),
+                                  [](const PlotSeries& s) { return s.marker == MarkerShape::kNone; });
+  if (spec.equal_aspect && spec.track_markers && tracks) {
     entries.push_back({LegendKind::kStart, "start", "#333333"});
     entries.push_back({LegendKind::kEnd, "end", "#333333"});
   }
@@ -39,6 +43,10 @@ std::string dashAttr(bool dashed, const char* pattern) {
 
 void renderLegendSwatch(std::string& out, const LegendEntry& e, double x, double y) {
   const std::string colour = escapeXml(e.colour);
+  if (e.kind == LegendKind::kSeries && e.marker != MarkerShape::kNone) {
+    renderMarker(out, e.marker, x + 0.5 * kLegendSwatch, y, 5.0, colour, "");
+    return;
+  }
   switch (e.kind) {
     case LegendKind::kSeries:
     case LegendKind::kLine:

@@ -24,6 +24,7 @@ struct LegendEntry {
   std::string colour;
   bool dashed = false;
   double opacity = 1.0;
+  MarkerShape marker = MarkerShape::kNone;  // kSeries: a marker series' swatch is its marker
 };
 
 // A series without a colour of its own takes the palette's; past the palette's 10 colours it is dashed.

@@ -1,6 +1,7 @@
 #include "swa/monitor/svg_plot.h"
 
 #include "svg_legend.h"
+#include "svg_markers.h"
 #include "svg_ticks.h"
 
 #include <algorithm>
@@ -47,17 +48,20 @@ void validateSpec(const PlotSpec& spec) {
       problems += "series " + std::to_string(i) + " has " + std::to_string(spec.series[i].x.size()) + " x and " +
                   std::to_string(spec.series[i].y.size()) + " y values; ";
     }
+    const std::size_t labels = spec.series[i].point_labels.size();
+    if (labels != 0 && labels != spec.series[i].x.size()) {
+      problems += "series " + std::to_string(i) + " has " + std::to_string(labels) + " point labels for " +
+                  std::to_string(spec.series[i].x.size()) + " points; ";
+    }
   }
   if (spec.width_px < 200) problems += "width_px must be >= 200; ";
   if (spec.height_px < 120) problems += "height_px must be >= 120; ";
   if (spec.target_ticks < 2) problems += "target_ticks must be >= 2; ";
-  if (!spec.equal_aspect) {
-    if (std::isfinite(spec.x_min) && std::isfinite(spec.x_max) && !(spec.x_min < spec.x_max)) {
-      problems += "x_min must be < x_max; ";
-    }
-    if (std::isfinite(spec.y_min) && std::isfinite(spec.y_max) && !(spec.y_min < spec.y_max)) {
-      problems += "y_min must be < y_max; ";
-    }
+  if (std::isfinite(spec.x_min) && std::isfinite(spec.x_max) && !(spec.x_min < spec.x_max)) {
+    problems += "x_min must be < x_max; ";
+  }
+  if (std::isfinite(spec.y_min) && std::isfinite(spec.y_max) && !(spec.y_min < spec.y_max)) {
+    problems += "y_min must be < y_max; ";
   }
   if (!problems.empty()) {
     problems.resize(problems.size() - 2);
@@ -177,12 +181,17 @@ PlotLayout layoutPlot(const PlotSpec& spec) {
   }
 
   if (spec.equal_aspect) {
-    if (xr.empty()) {
+    const bool box = std::isfinite(spec.x_min) && std::isfinite(spec.x_max) && std::isfinite(spec.y_min) &&
+                     std::isfinite(spec.y_max);
+    if (box) {
+      xr = {spec.x_min, spec.x_max};
+      yr = {spec.y_min, spec.y_max};
+    } else if (xr.empty()) {
       xr.add(0.0);
       yr.add(0.0);
     }
     // 5 % of the larger span as padding, so markers on the edge stay inside; at least 1 unit around a single point.
-    const double pad = std::max(0.05 * std::max(xr.hi - xr.lo, yr.hi - yr.lo), 1e-9);
+    const double pad = box ? 0.0 : std::max(0.05 * std::max(xr.hi - xr.lo, yr.hi - yr.lo), 1e-9);
     const double x_span = std::max(xr.hi - xr.lo + 2.0 * pad, 2.0);
     const double y_span = std::max(yr.hi - yr.lo + 2.0 * pad, 2.0);
     const double w = l.right_px - l.left_px;
@@ -304,6 +313,10 @@ std::string renderSvg(const PlotSpec& spec) {
   bool any_point = false;
   for (std::size_t si = 0; si < spec.series.size(); ++si) {
     const PlotSeries& s = spec.series[si];
+    if (s.marker != MarkerShape::kNone) {
+      any_point = renderMarkers(out, s, si, l) || any_point;
+      continue;
+    }
     const std::string colour = escapeXml(seriesColour(s, si));
     const std::string index = std::to_string(si);
     const std::string opacity = s.opacity < 1.0
@@ -342,26 +355,7 @@ std::string renderSvg(const PlotSpec& spec) {
       i = end;
     }
   }
-  if (spec.equal_aspect) {
-    for (std::size_t si = 0; si < spec.series.size(); ++si) {
-      const PlotSeries& s = spec.series[si];
-      std::size_t first = s.x.size();
-      std::size_t last = s.x.size();
-      for (std::size_t i = 0; i < s.x.size(); ++i) {
-        if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
-        if (first == s.x.size()) first = i;
-        last = i;
-      }
-      if (first == s.x.size()) continue;
-      const std::string colour = escapeXml(seriesColour(s, si));
-      const std::string index = std::to_string(si);
-      out += "<circle class=\"start-marker\" data-series=\"" + index + "\" cx=\"" + px(l.xToPx(s.x[first])) +
-             "\" cy=\"" + px(l.yToPx(s.y[first])) + "\" r=\"4\" fill=\"#ffffff\" stroke=\"" + colour +
-             "\" stroke-width=\"1.5\"/>\n";
-      out += "<rect class=\"end-marker\" data-series=\"" + index + "\" x=\"" + px(l.xToPx(s.x[last]) - 3.5) +
-             "\" y=\"" + px(l.yToPx(s.y[last]) - 3.5) + "\" width=\"7\" height=\"7\" fill=\"" + colour + "\"/>\n";
-    }
-  }
+  if (spec.equal_aspect && spec.track_markers) renderTrackMarkers(out, spec, l);
   if (!any_point) {
     out += "<text class=\"no-data\" x=\"" + px(0.5 * (l.left_px + l.right_px)) + "\" y=\"" +
            px(0.5 * (l.top_px + l.bottom_px)) + "\" text-anchor=\"middle\" fill=\"#888888\">no data</text>\n";

@@ -93,7 +93,7 @@ TEST(LiveMessages, SwarmHasEveryUavEachLinkOnceAndEachCentreAtTruthMinusEstimate
   latest[1] = state(1, -1.0, 0.0, {0, 7});  // 7: not in the truth, no link
   latest[2] = state(2, 0.0, 0.0, {});
   latest[2].estimate.valid = false;  // no centre, no link
-  const Json j = Json::parse(swarmJson(truth, latest));
+  const Json j = Json::parse(swarmJson(swarmScene(truth, latest)));
   EXPECT_DOUBLE_EQ(j["t_s"].get<double>(), 2.5);
   ASSERT_EQ(j["uavs"].size(), 3u);
   EXPECT_EQ(j["uavs"][1]["x_m"], 10.0);

@@ -83,6 +83,16 @@ for i, dom in enumerate(doms, 1):
         problems.append(f"snapshot {i}: the page shows {field(dom, 'uav-count')!r} UAVs, not 4")
     if not re.search(r'data-messages="[1-9]', dom):
         problems.append(f"snapshot {i}: the page received no message")
+    # The monitor draws the pictures (svg_plot.h); the page shows them: a labelled dot per UAV, lines on the plots.
+    swarm = re.search(r'id="swarm"[^>]*>(.*?)</svg>', dom, re.S)
+    dots = re.findall(r'<circle class="marker"', swarm.group(1)) if swarm else []
+    labels = re.findall(r'class="point-label"[^>]*>(\d+)<', swarm.group(1)) if swarm else []
+    if len(dots) != 4 or sorted(labels) != ["0", "1", "2", "3"]:
+        problems.append(f"snapshot {i}: the swarm picture shows {len(dots)} dots labelled {labels}, not UAVs 0-3")
+    for plot in ("d_nb", "drift", "min_separation"):
+        picture = re.search(r'id="plot-%s"[^>]*>(.*?)</svg>\s*</div>' % plot, dom, re.S)
+        if not picture or 'class="series"' not in picture.group(1):
+            problems.append(f"snapshot {i}: the {plot} plot shows no line")
 dnb = [field(d, "dnb") for d in doms]
 try:
     values = [float(v) for v in dnb]

@@ -1,5 +1,5 @@
-// The SVG line-plot writer: nice ticks, layout, NaN gaps, bands, reference lines, equal-aspect XY mode, escaping and
-// deterministic, locale-independent output.
+// The SVG line-plot writer: nice ticks, layout, NaN gaps, bands, reference lines, equal-aspect XY mode, markers,
+// escaping and deterministic, locale-independent output.
 
 #include <gtest/gtest.h>
 
@@ -390,6 +390,64 @@ TEST(SvgPlot, OutputIsDeterministicAndLocaleIndependent) {
   EXPECT_NE(texts(first, "tick-y").size(), 0U);
 }
 
+TEST(SvgPlot, AMarkerSeriesDrawsEachFinitePointWithItsLabelAndNoLine) {
+  // GIVEN a dot series of three points, the second not finite, and a cross series of one point
+  PlotSpec spec;
+  PlotSeries dots = line({0, kNan, 4}, {0, 1, 2}, "UAVs");
+  dots.marker = MarkerShape::kDot;
+  dots.marker_px = 6.0;
+  dots.point_labels = {"a", "b", "c&d"};
+  PlotSeries cross = line({2}, {1});
+  cross.marker = MarkerShape::kCross;
+  spec.series = {dots, cross};
+  // WHEN rendered
+  const PlotLayout l = layoutPlot(spec);
+  const std::string svg = renderSvg(spec);
+  // THEN each finite point is a marker where its data put it, with its label, and nothing joins them
+  const std::vector<std::string> circles = elements(svg, "circle", "marker");
+  ASSERT_EQ(circles.size(), 2U);
+  EXPECT_NEAR(num(circles[1], "cx"), l.xToPx(4.0), 0.01);
+  EXPECT_NEAR(num(circles[1], "cy"), l.yToPx(2.0), 0.01);
+  EXPECT_EQ(num(circles[1], "r"), 6.0);
+  EXPECT_EQ(texts(svg, "point-label"), (std::vector<std::string>{"a", "c&amp;d"}));
+  EXPECT_EQ(elements(svg, "path", "marker").size(), 1U);
+  EXPECT_TRUE(elements(svg, "polyline", "series").empty());
+  EXPECT_TRUE(elements(svg, "circle", "point").empty());
+  // AND the legend's swatch of the labelled series is its marker
+  const std::size_t legend = svg.find("<g class=\"legend\">");
+  ASSERT_NE(legend, std::string::npos);
+  EXPECT_NE(svg.find("<circle", legend), std::string::npos);
+}
+
+TEST(SvgPlot, EqualAspectShowsTheGivenBoxAndCanLeaveTracksUnmarked) {
+  // GIVEN a point at (1, 1), a box of [-10, 10] x [-10, 10] to show and no track markers
+  PlotSpec spec;
+  spec.equal_aspect = true;
+  spec.track_markers = false;
+  spec.width_px = 500;
+  spec.height_px = 500;
+  spec.series.push_back(line({1, 2}, {1, 1}, "track"));
+  spec.x_min = -10;
+  spec.x_max = 10;
+  spec.y_min = -10;
+  spec.y_max = 10;
+  // WHEN laid out and rendered
+  const PlotLayout l = layoutPlot(spec);
+  const std::string svg = renderSvg(spec);
+  // THEN the whole box is shown, centred, at one scale on both axes
+  EXPECT_LE(l.x.lo, -10.0);
+  EXPECT_GE(l.x.hi, 10.0);
+  EXPECT_LE(l.y.lo, -10.0);
+  EXPECT_GE(l.y.hi, 10.0);
+  EXPECT_NEAR(l.xToPx(0.0), 0.5 * (l.left_px + l.right_px), 0.01);
+  EXPECT_NEAR(l.yToPx(0.0), 0.5 * (l.top_px + l.bottom_px), 0.01);
+  EXPECT_NEAR(l.xScale(), l.yScale(), 1e-9 * l.xScale());
+  // AND without track markers there is no start or end marker, nor in the legend
+  EXPECT_TRUE(elements(svg, "circle", "start-marker").empty());
+  EXPECT_TRUE(elements(svg, "rect", "end-marker").empty());
+  EXPECT_EQ(svg.find(">start</text>"), std::string::npos);
+}
+
 TEST(SvgPlot, RejectsMalformedSpecs) {
   PlotSpec spec;
   spec.series.push_back(line({0, 1, 2}, {0, 1}));
@@ -401,6 +459,11 @@ TEST(SvgPlot, RejectsMalformedSpecs) {
   PlotSpec tiny;
   tiny.width_px = 10;
   EXPECT_THROW(layoutPlot(tiny), std::invalid_argument);
+  PlotSpec labels;
+  labels.series.push_back(line({0, 1}, {0, 1}));
+  labels.series[0].marker = MarkerShape::kDot;
+  labels.series[0].point_labels = {"only one"};
+  EXPECT_THROW(layoutPlot(labels), std::invalid_argument);
 }
 
 TEST(SvgPlot, IsAStandaloneSvgDocumentElement) {

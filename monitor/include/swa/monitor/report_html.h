@@ -100,6 +100,13 @@ struct ReportPlot {
 // The plots of the report, in report order: d_nb, drift, min_separation, nees_position, then trajectories_<label>
 // per run. Names are unique (a repeated label gets a numeric suffix).
 std::vector<ReportPlot> reportPlots(const std::vector<RunReport>& runs, const ReportNotes& notes);
+// Only the plots over time (d_nb, drift, min_separation, nees_position), their legends of one width: what the live
+// view draws of the last minute.
+std::vector<ReportPlot> reportTimePlots(const std::vector<RunReport>& runs, const ReportNotes& notes);
+
+// When GNSS was lost in a run scored with `scoring` (its window start; NaN when the window starts at 0): the
+// vertical line on the time plots.
+double gnssLossTime(const MetricsConfig& scoring);
 
 // Table cell text of a summary value: "—" when not finite, an integer without decimals, else 5 significant digits
 // (locale-independent).

@@ -12,8 +12,9 @@
 //
 // Element classes tests and style sheets can rely on: "title", "tick-x", "tick-y" (tick label <text>, x resp. y
 // attribute at the tick), "axis-label", "plot-area" (the clipping viewport), "band" (<rect>), "ref-line" (<line>),
-// "series" (<polyline>, attribute data-series = series index), "point" (<circle> of a lone point), "start-marker",
-// "end-marker", "legend", "no-data".
+// "series" (<polyline>, attribute data-series = series index), "point" (<circle> of a lone point), "marker" (a
+// marker series' <circle> or <path>, data-series), "point-label" (<text> beside a marker, data-series),
+// "start-marker", "end-marker", "legend", "no-data".
 
 #include <cstddef>
 #include <limits>
@@ -55,6 +56,9 @@ double niceStep(double span, int target_ticks);
 // Tick label text: formatFixed(value, ticks.decimals).
 std::string formatTick(double value, const AxisTicks& ticks);
 
+// How a series' points are drawn: joined by a line, or each on its own as a marker (a swarm's UAVs at one instant).
+enum class MarkerShape : unsigned char { kNone, kDot, kCross };
+
 struct PlotSeries {
   std::string label;      // legend text; empty: not in the legend
   std::vector<double> x;  // same size as y (renderSvg throws std::invalid_argument otherwise)
@@ -63,6 +67,10 @@ struct PlotSeries {
   bool dashed = false;
   double width_px = 1.5;
   double opacity = 1.0;  // stroke (and dot) opacity, e.g. to put a noisy raw series behind its running mean
+  // kDot / kCross: every finite point is a marker of this radius, and no line joins them.
+  MarkerShape marker = MarkerShape::kNone;
+  double marker_px = 5.0;
+  std::vector<std::string> point_labels;  // with a marker: text beside point i; empty, or one per point
 };
 
 // A horizontal band y in [low, high] across the plot (drawn under the data).
@@ -96,9 +104,11 @@ struct PlotSpec {
   std::vector<PlotBand> bands;
   std::vector<PlotLine> lines;
   // XY mode: one data unit is the same number of pixels on both axes (the shorter data range is widened, centred,
-  // to fill the plot area), both axes use the same tick step, and each series' first and last finite points get a
-  // start (hollow circle) and end (filled square) marker. Forced limits are ignored in this mode.
+  // to fill the plot area), both axes use the same tick step, and each line series' first and last finite points
+  // get a start (hollow circle) and end (filled square) marker when track_markers is set. In this mode forced limits
+  // count only when all four are given: they are the box to show (instead of the data's), centred and widened alike.
   bool equal_aspect = false;
+  bool track_markers = true;
   // Forced axis limits (NaN: from the data, bands and lines). A forced limit is used as is, not rounded to a tick;
   // data outside are clipped.
   double x_min = std::numeric_limits<double>::quiet_NaN();
@@ -131,8 +141,9 @@ struct PlotLayout {
   double yScale() const { return (bottom_px - top_px) / (y.hi - y.lo); }
 };
 
-// The layout renderSvg uses. Throws std::invalid_argument when a series' x and y differ in size, width_px < 200,
-// height_px < 120, target_ticks < 2, or both forced limits of an axis are given and not lo < hi.
+// The layout renderSvg uses. Throws std::invalid_argument when a series' x and y differ in size (or its point
+// labels are neither none nor one per point), width_px < 200, height_px < 120, target_ticks < 2, or both forced limits
+// of an axis are given and not lo < hi.
 PlotLayout layoutPlot(const PlotSpec& spec);
 
 // The <svg> element (with xmlns, without an XML declaration), ending in a newline. Long series are thinned in pixel
