@@ -8,8 +8,8 @@
 #
 # Prints one line per round (kills, rejoin p50 / max, d_NB, minimum separation, drift) and exits non-zero if a round
 # failed. About 3 min 10 s per round; nothing else should run on the machine meanwhile (realtime).
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=${1:-$root/build/bin}
 rounds=${2:-1}
 [ -x "$bin/test_chaos" ] || { echo "bench_chaos: no $bin/test_chaos (bash deploy/build.sh)" >&2; exit 2; }

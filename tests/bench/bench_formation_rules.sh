@@ -9,8 +9,8 @@
 #   bench_formation_rules.sh [BIN_DIR] [gtest args...]     (default build/bin; e.g. --gtest_filter='EverySwarmSize*')
 #
 # About 3 min on 2 cores (Release). Exit status non-zero if a bar is missed.
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=${1:-$root/build/bin}
 [ $# -gt 0 ] && shift
 if [ ! -x "$bin/formation_statistics" ]; then

@@ -14,8 +14,8 @@
 #     interface) and the bridge's part (the difference), all in the same run.
 # The table shows the median over the rounds of each figure, and the ratio to direct of the simulator's loop (pairs of
 # the same round).
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=${1:-$root/build/bin}
 duration=${2:-30}
 rounds=${3:-3}

@@ -14,8 +14,8 @@
 # the ratio monitor / bare reader is the issue's figure. Sample counts: the bare reader's per topic, the recording's
 # per channel (read back from run.mcap with SWA's McapReader), and where the simulator's summary implies one, the
 # expected count (IMU and clock: one per simulated step).
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=${1:-$root/build/bin}
 duration=${2:-60}
 rounds=${3:-3}
@@ -32,8 +32,6 @@ trap cleanup EXIT
 for b in swa_launch swa_sim swa_agent swa_monitor bench_record_reader; do
   [ -x "$bin/$b" ] || { echo "bench_record_live: no $bin/$b (bash deploy/build.sh)" >&2; exit 2; }
 done
-# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
-source "$root/tests/node_tools.sh"
 install_npm_folder "$root/tests/live/live_client" "$work/client" live_check.mjs
 
 run() {  # run WITH(0|1) ROUND

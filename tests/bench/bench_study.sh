@@ -10,8 +10,8 @@
 # 3. Merge: a study of 2 * SHARDS short runs cut into SHARDS shards (each shard a swa_batch process), then
 #    `swa_batch merge` of all of them, ROUNDS times: its wall time (median), and the merged files equal to the
 #    whole study's.
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=${1:-$root/build/bin}
 rounds=${2:-3}
 shard_count=${3:-1000}

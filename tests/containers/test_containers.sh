@@ -5,7 +5,8 @@
 # (deploy/containers.sh test). Leaves no container or network behind, also on failure or timeout.
 #
 #   test_containers.sh BIN_DIR WORK_DIR [VEHICLE]
-set -euo pipefail
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 
 if [ $# -ne 2 ] && [ $# -ne 3 ]; then
   echo "usage: test_containers.sh BIN_DIR WORK_DIR [direct|px4|ardupilot]" >&2
@@ -14,7 +15,6 @@ fi
 bin_dir=$1
 work=$2
 vehicle=${3:-direct}
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 # A project name of its own: teardown removes exactly this test's containers and network (by compose label),
 # including those of an earlier run of this test that was killed before its cleanup.
 project=swa-ctest
@@ -29,9 +29,7 @@ trap cleanup EXIT
 trap 'exit 130' INT TERM
 
 # The containers' fixed DDS domain (42, deploy/containers/compose.yaml), held against the tests that reserve domains
-# of their own (tests/test_domain.sh): a test beside this one that looks at its whole domain never sees them.
-# shellcheck source=../test_domain.sh
-source "$root/tests/test_domain.sh"
+# of their own (tests/script_tools.sh): a test beside this one that looks at its whole domain never sees them.
 hold_test_domain 42 120
 
 rm -rf "$work"

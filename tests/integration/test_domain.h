@@ -12,7 +12,7 @@ namespace swa::testing {
 
 // Reserves DDS domain `first`, or the next one (1..232, wrapping) that no other SWA test holds, for the rest of this
 // process: an exclusive flock on /tmp/swa-test-domain-<d>.lock, released by the kernel when the process ends, and
-// shared with the scripted tests (tests/test_domain.sh). Tests run two at a time (ctest -j2) and some of them look at
+// shared with the scripted tests (tests/script_tools.sh). Tests run two at a time (ctest -j2) and some of them look at
 // a whole domain (the isolation audit's observer, processesOnDomain), so two of them must never share one; the
 // swarm partition (useOwnSwarm) only keeps their samples apart. Returns -1 when all 232 are taken.
 inline int reserveTestDomain(int first) {

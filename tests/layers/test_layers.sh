@@ -3,8 +3,8 @@
 # "Layers"); and the check can fail: a small tree with an include against the order, and one with a file in no
 # layer, are both refused.
 #   test_layers.sh SOURCE_DIR
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 src=$1
 python3 "$here/check_layers.py" "$src"
 

@@ -12,13 +12,10 @@
 # 4. after the run: PASS (the clients did not disturb it), and every swarm message on the 0.5 s grid has exactly the
 #    positions of the monitor's trajectories.csv.
 # The run uses the launcher's own swarm partition on a random domain.
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=$1
 work=$2
-# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
-source "$root/tests/node_tools.sh"
 launch=""
 cleanup() {
   if [ -n "$launch" ]; then
@@ -28,12 +25,11 @@ cleanup() {
 }
 trap cleanup EXIT
 
-ensure_packages nodejs npm chromium
+ensure_packages chromium
 rm -rf "$work"
 install_npm_folder "$here/live_client" "$work/client" live_check.mjs
 client() { node "$work/client/live_check.mjs" "$@"; }
 
-source "$root/tests/test_domain.sh"
 reserve_test_domain $((120 + RANDOM % 100))
 
 # 2.

@@ -27,7 +27,8 @@
 # private tmpfs on /dev/shm. An EXIT trap stops every process in the namespaces and deletes them; a later run removes
 # namespaces left by a run that was killed outright.
 
-set -euo pipefail
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 
 readonly NS_TAG=swaloss
 readonly QUEUE=7
@@ -48,9 +49,7 @@ UAVS=${SWA_LOSS_UAVS:-6}
 SCENARIO=$SRC_DIR/deploy/scenarios/dropout_8.yaml
 declare -A VALUE=()
 
-CHECK_TAG=loss
-# shellcheck source-path=SCRIPTDIR source=../checks.sh
-source "$(dirname "${BASH_SOURCE[0]}")/../checks.sh"
+TEST_TAG=loss
 
 [[ $(id -u) -eq 0 ]] || die "needs root (network namespaces, iptables)"
 [[ -x $NETEM ]] || die "$NETEM not found (build tests/loss first)"

@@ -27,7 +27,8 @@
 # An EXIT trap stops every process and deletes every namespace (with them the bridge, the veths and the nftables
 # table); a later run also removes namespaces left by a run that was killed outright (SIGKILL skips the trap).
 
-set -euo pipefail
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 
 readonly NS_TAG=swant                     # namespace names: swant<PID>-<role>
 readonly SUBNET=10.77.0                   # private to this run's bridge: no route to it exists outside
@@ -67,9 +68,7 @@ T_START=$SECONDS
 
 # ---------------------------------------------------------------------------------------------------------- output
 
-CHECK_TAG=netns
-# shellcheck source-path=SCRIPTDIR source=../checks.sh
-source "$(dirname "${BASH_SOURCE[0]}")/../checks.sh"
+TEST_TAG=netns
 section() { printf '\nnetns: ===== %s =====\n' "$*"; }
 equals() { [[ $1 == "$2" ]]; }
 

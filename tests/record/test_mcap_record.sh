@@ -9,20 +9,15 @@
 # 3. recovers a copy cut at 60 % (a crash mid-chunk) with the reference streaming reader;
 # 4. kills the recording monitor with SIGKILL during a realtime run and recovers what it left.
 # Every run uses the launcher's own swarm partition, so another swarm on the domain neither disturbs nor is disturbed.
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=$1
 work=$2
 scenario=$root/deploy/scenarios/dropout_4.yaml
 
-# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
-source "$root/tests/node_tools.sh"
-ensure_packages nodejs npm
 rm -rf "$work"
 install_npm_folder "$here/mcap_reader" "$work/reader" mcap_check.mjs
 check() { node "$work/reader/mcap_check.mjs" "$@"; }
-source "$root/tests/test_domain.sh"
 reserve_test_domain $((120 + RANDOM % 100))
 domain=$TEST_DOMAIN
 

@@ -9,18 +9,13 @@
 #    both with --check and when asked to replay over DDS.
 # The launcher gives the run a swarm partition of its own on a random domain; node and npm come from Debian/npm as in
 # test_mcap_record.sh.
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=$1
 work=$2
-# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
-source "$root/tests/node_tools.sh"
-ensure_packages nodejs npm
 rm -rf "$work"
 install_npm_folder "$here/mcap_reader" "$work/reader" mcap_check.mjs
 
-source "$root/tests/test_domain.sh"
 reserve_test_domain $((120 + RANDOM % 100))
 
 # 1.

@@ -7,14 +7,11 @@
 # 3. replays it over DDS (--lockstep) into four fresh swa_agent processes and a fresh swa_monitor: every agent's
 #    answer equals its recorded command byte for byte, and the monitor's verdict and scores equal the recorded run's.
 # Processes run in their own swarm partition (SWA_SWARM) on a random domain; every one is stopped on exit.
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=$1
 work=$2
 scenario=$root/deploy/scenarios/dropout_4.yaml
-# shellcheck source-path=SCRIPTDIR source=../node_tools.sh
-source "$root/tests/node_tools.sh"
 pids=()
 cleanup() {
   for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
@@ -24,7 +21,6 @@ trap cleanup EXIT
 
 rm -rf "$work"
 mkdir -p "$work"
-source "$root/tests/test_domain.sh"
 reserve_test_domain $((120 + RANDOM % 100))
 export SWA_DOMAIN=$TEST_DOMAIN
 

@@ -6,15 +6,13 @@
 # 2. foreign_payloads write: SWA's payloads of every type, with the values set;
 # 3. decoder/foreign_check.mjs decodes them field for field and serialises the same values itself;
 # 4. foreign_payloads check: SWA reads those as the agent does.
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 payloads=$1
 work=$2
 
-# shellcheck source=decoder/prepare.sh
-source "$here/decoder/prepare.sh"
-prepare_decoder "$work"
+rm -rf "$work"
+install_npm_folder "$here/decoder" "$work/decoder"
 
 "$payloads" write "$work/capture.json"
 node "$work/decoder/foreign_check.mjs" "$work/capture.json" "$root/tests/px4/msg" "$work/independent.json"

@@ -6,15 +6,13 @@
 #    every captured payload with its Fast DDS decoding to WORK_DIR/capture.json;
 # 3. decodes each payload again with @foxglove/rosmsg2-serialization against idl/swa_msgs/msg and compares field by
 #    field (decoder/decode_check.mjs).
-set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 profile_test=$1
 work=$2
 
-# shellcheck source=decoder/prepare.sh
-source "$here/decoder/prepare.sh"
-prepare_decoder "$work"
+rm -rf "$work"
+install_npm_folder "$here/decoder" "$work/decoder"
 
 SWA_ROS2_CAPTURE="$work/capture.json" "$profile_test"
 node "$work/decoder/decode_check.mjs" "$work/capture.json" "$root/idl/swa_msgs/msg"

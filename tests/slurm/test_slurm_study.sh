@@ -6,15 +6,10 @@
 # what swa_batch writes for the same study run here in one process; the same for the shipped example study
 # (deploy/scenarios/study_drift_vs_n.yaml), whose drift must fall with N. Then a study whose third shard fails: the
 # merge job must never run. Tears the cluster down on every exit.
-set -euo pipefail
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin_dir=$(cd "$1" && pwd)
 work=$2
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
-fail() {
-  echo "test_slurm_study: FAIL: $*" >&2
-  exit 1
-}
 # shellcheck source=local_cluster.sh
 source "$here/local_cluster.sh"
 

@@ -15,8 +15,8 @@
 # The run is a swarm of its own (swa_launch names one) on the domain given by $SWA_DOMAIN (default 0), so another
 # swarm on the same domain is neither disturbed nor counted; only the launcher's own children are sampled.
 
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 uavs=8
 duration=600
 period=30

@@ -4,14 +4,10 @@
 # another order): runs.csv, every points/<k>/summary.json and study.json are byte-identical; the merge refuses a
 # missing shard, a shard given twice, a shard of another study or another cut, and an --out holding a study; studies
 # whose grid points repeat a scenario or move the seed are refused before they run. No DDS: swa_batch runs in-process.
-set -euo pipefail
+# shellcheck source-path=SCRIPTDIR source=../script_tools.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 batch=$1
 work=$2
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-fail() {
-  echo "test_study_shards: FAIL: $*" >&2
-  exit 1
-}
 rm -rf "$work"
 mkdir -p "$work"
 study=(--scenario "$root/deploy/scenarios/dropout_4.yaml" --set duration_s=20 --sweep uav_count=4,6
