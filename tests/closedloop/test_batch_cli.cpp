@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "batch_options.h"
+#include "scratch.h"
 
 namespace swa::batch {
 namespace {
@@ -49,8 +50,8 @@ TEST(BatchOptions, ReportsEveryProblemAtOnce) {
 }
 
 TEST(BatchCli, MalformedScenarioExitsWith2AndWritesNothing) {
-  const fs::path out = fs::temp_directory_path() / ("swa_batch_bad_" + std::to_string(::getpid()));
-  fs::remove_all(out);
+  const swa::testing::ScratchDir scratch("swa_batch_bad");
+  const fs::path out = scratch / "out";
   const std::string scenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml";
   EXPECT_EQ(runBatch("--scenario " + scenario + " --set uav_count=-3 --set agent.kk=2 --out " + out.string()), 2);
   EXPECT_EQ(runBatch("--scenario /nonexistent.yaml --out " + out.string()), 2);
@@ -68,8 +69,8 @@ TEST(BatchCli, UnwritableOutputExits2BeforeRunning) {
 
 TEST(BatchCli, ShortRunWritesSummaryAndSeries) {
   // GIVEN a 5 s run of 2 seeds with the standalone comparison
-  const fs::path out = fs::temp_directory_path() / ("swa_batch_ok_" + std::to_string(::getpid()));
-  fs::remove_all(out);
+  const swa::testing::ScratchDir scratch("swa_batch_ok");
+  const fs::path out = scratch / "out";
   const std::string scenario = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml";
   ASSERT_EQ(runBatch("--scenario " + scenario + " --set duration_s=5 --seeds 2 --jobs 2 --compare standalone --out " +
                      out.string()),
@@ -92,7 +93,6 @@ TEST(BatchCli, ShortRunWritesSummaryAndSeries) {
   }
   EXPECT_TRUE(fs::exists(out / "scenario.yaml"));
   EXPECT_TRUE(fs::exists(out / "report" / "report.html"));
-  fs::remove_all(out);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "process_support.h"
+#include "scratch.h"
 
 namespace swa::testing {
 
@@ -18,7 +19,7 @@ namespace swa::testing {
 // that the directories failed tests keep are told apart).
 inline fs::path freshTestDir(const std::string& prefix, bool per_test = false) {
   std::string name = prefix + "_" + std::to_string(::getpid());
-  if (per_test) name += std::string("_") + ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  if (per_test) name += "_" + testNameForFiles();
   const fs::path dir = fs::temp_directory_path() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);

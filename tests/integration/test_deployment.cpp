@@ -13,6 +13,7 @@
 #include "swa/dds/deployment.h"
 #include "error_text.h"
 #include "fake_env.h"
+#include "scratch.h"
 
 namespace swa {
 namespace {
@@ -109,7 +110,8 @@ TEST(Deployment, SecurityFilesAreNamedAfterTheParticipant) {
 TEST(Deployment, UnreadableCredentialsAreListed) {
   // GIVEN a credentials directory with swa_sim's files but its permissions
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("swa_test_creds_" + std::to_string(::getpid()));
+  const swa::testing::ScratchDir scratch("swa_test_creds");
+  const fs::path& dir = scratch.path();
   fs::create_directories(dir / "swa_sim");
   for (const char* f : {"ca.pem", "governance.p7s", "swa_sim/cert.pem", "swa_sim/key.pem"}) std::ofstream(dir / f) << "x";
   // WHEN the unreadable files of swa_sim are listed THEN only its permissions are
@@ -118,7 +120,6 @@ TEST(Deployment, UnreadableCredentialsAreListed) {
   EXPECT_EQ(missing[0], (dir / "swa_sim" / "permissions.p7s").string());
   // AND swa_agent_0, with no directory of its own, lacks its certificate, key and permissions
   EXPECT_EQ(dds::unreadableFiles(dds::securityFiles(dir.string(), "swa_agent_0")).size(), 3u);
-  fs::remove_all(dir);
 }
 
 TEST(LaunchDeploymentOptions, ParsedAndChecked) {

@@ -12,6 +12,7 @@
 #include "combine.h"
 #include "swa/record/run_report.h"
 #include "swa/record/run_dir.h"
+#include "scratch.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -24,15 +25,6 @@ namespace fs = std::filesystem;
 
 class CombineTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    root_ = fs::temp_directory_path() / ("swa_monitor_combine_" + std::to_string(::getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(root_, ec);
-  }
 
   std::string writeRun(const std::string& name, Outcome outcome, double d_nb) {
     RunRecord r;
@@ -76,7 +68,7 @@ class CombineTest : public ::testing::Test {
     return s.str();
   }
 
-  fs::path root_;
+  swa::testing::ScratchDir root_{"swa_monitor_combine"};
 };
 
 TEST_F(CombineTest, OneReportOneSummaryFirstRunsVerdict) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "swa/record/restarts.h"
+#include "scratch.h"
 
 namespace swa::record {
 namespace {
@@ -146,12 +147,9 @@ TEST(RestartLog, ProblemListIsBoundedButTheCountIsNot) {
 
 TEST(RestartLog, ReadsAFile) {
   // GIVEN a restart log file with one restart of UAV 2
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / ("swa_restart_log_" + std::to_string(::getpid()) + ".csv");
-  std::ofstream(path) << restartLogHeader() << "\n5,2,1,1,0.5\n";
+  const swa::testing::ScratchFile file(std::string(restartLogHeader()) + "\n5,2,1,1,0.5\n", ".csv");
   // WHEN it is read
-  const RestartLog log = readRestartLog(path.string());
-  std::filesystem::remove(path);
+  const RestartLog log = readRestartLog(file.path());
   // THEN it is found, with that restart
   EXPECT_TRUE(log.found);
   ASSERT_EQ(log.restarts.size(), 1u);

@@ -14,6 +14,7 @@
 
 #include "swa/record/csv.h"
 #include "swa/record/run_dir.h"
+#include "scratch.h"
 
 namespace swa::record {
 namespace {
@@ -23,24 +24,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool sameDouble(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
 
-// A temporary directory removed at the end of the test.
-class TempDir {
- public:
-  explicit TempDir(const std::string& name)
-      : path_(fs::temp_directory_path() / ("swa_monitor_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string str() const { return path_.string(); }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
+using swa::testing::ScratchDir;
 
 RunRecord sampleRun() {
   RunRecord r;
@@ -133,11 +117,11 @@ TEST(MonitorRunFiles, SummaryJsonHasTheBatchKeysAndTheMonitorsOwn) {
 
 TEST(MonitorRunFiles, WhatIsWrittenReadsBack) {
   // GIVEN a run record with awkward values (NaN gaps, quotes and a line break in event text, a 64-bit seed)
-  const TempDir dir("roundtrip");
+  const ScratchDir dir("swa_monitor_roundtrip");
   const RunRecord in = sampleRun();
   // WHEN it is written to a run directory and read back
-  writeRunFiles(dir.str(), in);
-  const LoadedRun loaded = readRunDir(dir.str());
+  writeRunFiles(dir.string(), in);
+  const LoadedRun loaded = readRunDir(dir.string());
   const RunRecord& out = loaded.run;
 
   // THEN the run's description, verdict and summary are the same, numbers bit for bit
@@ -245,10 +229,10 @@ TEST(MonitorRunFiles, MalformedCsvNamesFileAndLine) {
 
 TEST(MonitorRunFiles, MissingOrBrokenFilesAreNamed) {
   // GIVEN an empty directory and a way to read it as a run directory
-  const TempDir dir("broken");
+  const ScratchDir dir("swa_monitor_broken");
   const auto errorReading = [&dir] {
     try {
-      readRunDir(dir.str());
+      readRunDir(dir.string());
     } catch (const RunFileError& e) {
       return std::string(e.what());
     }
@@ -257,7 +241,7 @@ TEST(MonitorRunFiles, MissingOrBrokenFilesAreNamed) {
   // THEN reading it names the missing summary.json
   EXPECT_NE(errorReading().find("cannot read " + (dir / "summary.json").string()), std::string::npos);
   // WHEN a run is written there and events.csv removed THEN reading names events.csv
-  writeRunFiles(dir.str(), sampleRun());
+  writeRunFiles(dir.string(), sampleRun());
   fs::remove(dir / "events.csv");
   EXPECT_NE(errorReading().find("cannot read " + (dir / "events.csv").string()), std::string::npos);
   // WHEN summary.json lacks the verdict, is cut short, or is not an object THEN reading names the file and the cause

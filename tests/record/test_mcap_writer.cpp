@@ -21,6 +21,7 @@
 #include "swa/recording/mcap_reader.h"
 #include "swa/recording/mcap_writer.h"
 #include "swa/recording/recording.h"
+#include "scratch.h"
 
 namespace swa::recording {
 namespace {
@@ -53,12 +54,7 @@ std::vector<int> opcodes(const Bytes& b, std::size_t begin, std::size_t end) {
 
 class McapWriterTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_test_mcap_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  swa::testing::ScratchDir dir_{"swa_test_mcap"};
 };
 
 TEST(Crc32, MatchesTheCheckValueOfCrc32IsoHdlc) {

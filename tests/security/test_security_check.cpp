@@ -21,6 +21,7 @@
 
 #include "swa/dds/deployment.h"
 #include "swa/dds/security_check.h"
+#include "scratch.h"
 
 namespace swa::dds {
 namespace {
@@ -49,15 +50,9 @@ std::string show(const std::optional<std::string>& problem) { return problem ? *
 class SecurityCheckTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_security_check_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
     fs::create_directories(dir_ / "scratch");
     ASSERT_TRUE(makeCredentials(creds()));
   }
-
-  // Private keys never outlive the test.
-  void TearDown() override { fs::remove_all(dir_); }
 
   // deploy/security/make-credentials.sh DIR 3: a CA, swa_sim, swa_monitor, swa_agent_0 .. swa_agent_2.
   bool makeCredentials(const fs::path& dir) const {
@@ -82,7 +77,7 @@ class SecurityCheckTest : public ::testing::Test {
     return "signature of " + permissions + " does not verify against " + files("swa_agent_1").ca;
   }
 
-  fs::path dir_;
+  swa::testing::ScratchDir dir_{"swa_security_check"};  // private keys never outlive the test
 };
 
 TEST_F(SecurityCheckTest, GenuineCredentialsOfEveryRolePass) {

@@ -16,6 +16,7 @@
 #include "swa/agent/config_io.h"
 #include "swa/sim/scenario.h"
 #include "swa/sim/scenario_io.h"
+#include "scratch.h"
 
 namespace swa::sim {
 namespace {
@@ -53,23 +54,7 @@ std::string scenarioDir() {
       .string();
 }
 
-class TempFile {
- public:
-  explicit TempFile(const std::string& text) {
-    path_ = (std::filesystem::temp_directory_path() /
-             ("swa_scenario_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++) + ".yaml"))
-                .string();
-    std::ofstream(path_) << text;
-  }
-  ~TempFile() { std::filesystem::remove(path_); }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-  const std::string& path() const { return path_; }
-
- private:
-  static inline int counter_ = 0;
-  std::string path_;
-};
+using testing::ScratchFile;
 
 std::string yamlOf(const Scenario& s) { return scenarioToYaml(s); }
 
@@ -269,7 +254,7 @@ TEST(ScenarioOverride, GivenSeveralSets_ThenTheyApplyInOrderAndOverrideTheFile) 
 TEST(ScenarioParse, GivenAFileWithManyDistinctProblems_WhenLoaded_ThenOneErrorListsThemAll) {
   // GIVEN a file with an unknown key, a wrong type, an out-of-range value, a non-finite value, a bad enum, a bad
   // agent value, an unknown agent key, a keep_uavs index outside the swarm and a sensor rate that does not divide
-  const TempFile file(
+  const ScratchFile file(
       "uav_count: 4\n"
       "duraton_s: 60\n"
       "formation:\n"
@@ -528,7 +513,7 @@ TEST(ScenarioGnssWindows, GivenPerUavWindowsInTheFileOrASet_WhenLoaded_ThenEachI
 
 TEST(ScenarioGnssWindows, GivenManyBrokenWindows_WhenLoaded_ThenOneErrorListsEveryProblem) {
   // GIVEN a file whose window entries are wrong in many ways
-  const TempFile file(
+  const ScratchFile file(
       "uav_count: 4\n"
       "gnss:\n"
       "  windows:\n"

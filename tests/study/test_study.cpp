@@ -13,6 +13,7 @@
 
 #include "study_plan.h"
 #include "study_record.h"
+#include "scratch.h"
 
 namespace swa::study {
 namespace {
@@ -151,15 +152,14 @@ TEST(StudyRecord, TidyTableHasOneRowPerRunAndEachColumnOnce) {
 }
 
 TEST(StudyRecord, WrittenAndReadBackFromADirectory) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("swa_test_study_" + std::to_string(::getpid()));
+  const swa::testing::ScratchDir scratch("swa_test_study");
+  const std::filesystem::path dir = scratch / "study";
   const StudyRecord s = record(plan2x3(1), {1, 1});
   writeStudy(dir.string(), s);
   EXPECT_TRUE(std::filesystem::exists(dir / "runs.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir / "points" / "5" / "summary.json"));
   EXPECT_EQ(studyJson(readStudy(dir.string())), studyJson(s));
   EXPECT_THROW(readStudy((dir / "points").string()), StudyError);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

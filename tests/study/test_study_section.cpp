@@ -13,6 +13,7 @@
 #include "study_section.h"
 #include "swa/params/error.h"
 #include "swa/sim/scenario_io.h"
+#include "scratch.h"
 
 namespace swa::study {
 namespace {
@@ -20,11 +21,7 @@ namespace {
 // One scenario file per test, removed afterwards.
 class StudySectionTest : public ::testing::Test {
  protected:
-  std::string write(const std::string& text) {
-    std::ofstream(path_) << text;
-    return path_.string();
-  }
-  void TearDown() override { std::filesystem::remove(path_); }
+  std::string write(const std::string& text) { return dir_.write("study.yaml", text).string(); }
 
   // The problems a section raises, one per line.
   std::string problems(const std::string& text) {
@@ -37,9 +34,7 @@ class StudySectionTest : public ::testing::Test {
   }
 
  private:
-  const std::filesystem::path path_ = std::filesystem::temp_directory_path() /
-                                      ("swa_test_study_section_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml");
+  swa::testing::ScratchDir dir_{"swa_test_study_section"};
 };
 
 const char* const kStudy = R"(uav_count: 8

@@ -14,6 +14,7 @@
 
 #include "swa/agent/config.h"
 #include "swa/agent/config_io.h"
+#include "scratch.h"
 
 namespace swa::agent {
 namespace {
@@ -142,24 +143,7 @@ std::string problemAbout(const ConfigError& error, const std::string& key) {
   return matches.empty() ? std::string() : matches.front();
 }
 
-// A file in the temp directory, removed at the end of the test.
-class TempFile {
- public:
-  explicit TempFile(const std::string& content) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = (std::filesystem::temp_directory_path() /
-             ("swa_test_config_" + std::to_string(::getpid()) + "_" + info->name() + ".yaml"))
-                .string();
-    std::ofstream(path_) << content;
-  }
-  ~TempFile() { std::filesystem::remove(path_); }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
+using testing::ScratchFile;
 
 // deploy/config/agent.yaml, found from this file's location (tests/unit/test_config.cpp).
 std::string exampleConfigPath() {
@@ -245,7 +229,7 @@ TEST(AgentConfigParse, GivenAnEmptyOrCommentOnlyText_WhenParsed_ThenAllDefaults)
 
 TEST(AgentConfigParse, GivenAPartialFile_WhenLoaded_ThenOnlyItsKeysChange) {
   // GIVEN a file that sets three keys in two sections and the mode
-  const TempFile file(
+  const ScratchFile file(
       "mode: anchored\n"
       "formation:\n"
       "  radius_m: 12.5\n"
@@ -283,7 +267,7 @@ TEST(AgentConfigParse, GivenNumbersInYamlSpellings_WhenParsed_ThenTheyAreRead) {
 
 TEST(AgentConfigParse, GivenAFileWithFiveDistinctProblems_WhenLoaded_ThenOneErrorListsAllFive) {
   // GIVEN a file with a bad enum, a wrong type, an unknown key, an out-of-range value and a NaN
-  const TempFile file(
+  const ScratchFile file(
       "mode: swarm\n"
       "formation:\n"
       "  radius_m: ten\n"
@@ -662,7 +646,7 @@ TEST(AgentConfigApplies, GivenEveryKeyAModeIgnores_ThenEachIsReported) {
 
 TEST(AgentConfigApplies, GivenALaterSetThatTurnsAFileKeyOff_ThenItIsAccepted) {
   // GIVEN a k_nearest file with k = 2, run once with gabriel by a --set (a study's sweep, swa_launch --compare)
-  const TempFile file("formation:\n  neighbourhood: k_nearest\n  k: 2\n");
+  const ScratchFile file("formation:\n  neighbourhood: k_nearest\n  k: 2\n");
   const AgentConfig c = configTable().load(file.path(), {"formation.neighbourhood=gabriel"});
   // THEN the --set wins and the file's k, now unused, is no error
   EXPECT_EQ(c.formation.neighbourhood, NeighbourhoodRule::kGabriel);

@@ -11,6 +11,7 @@
 
 #include "swa/agent/config_io.h"
 #include "swa/params/file.h"
+#include "scratch.h"
 
 namespace swa::agent {
 namespace {
@@ -19,17 +20,8 @@ namespace fs = std::filesystem;
 
 class ParamFile : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("swa_param_file_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-  fs::path dir_;
+  fs::path write(const std::string& name, const std::string& text) { return dir_.write(name, text); }
+  swa::testing::ScratchDir dir_{"swa_param_file"};
 };
 
 std::string problemOf(const std::string& path) {
