@@ -28,7 +28,7 @@ ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_coun
   for (int i = 0; i < uav_count; ++i) {
     Vehicle& v = vehicles_.emplace_back(setup.guid_timeout_s);
     v.ns = topics::apNamespace(i);
-    v.imu = participant.writer<sensor_msgs::msg::ImuPubSubType>(topics::apTopic(v.ns, "imu/experimental/data"),
+    v.imu.writer = participant.writer<sensor_msgs::msg::ImuPubSubType>(topics::apTopic(v.ns, "imu/experimental/data"),
                                                                  "ap_out_writer");
     v.status = participant.writer<ardupilot_msgs::msg::StatusPubSubType>(topics::apTopic(v.ns, "status"),
                                                                           "ap_status_writer");
@@ -61,21 +61,15 @@ ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_coun
 
 void ArdupilotVehicles::unmatched(int uav, std::vector<std::string>& missing) const {
   const Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
-  if (v.imu.matched() < 1) missing.push_back(topics::apTopic(v.ns, "imu/experimental/data") + " (no bridge reading)");
+  if (v.imu.writer.matched() < 1) missing.push_back(topics::apTopic(v.ns, "imu/experimental/data") + " (no bridge reading)");
   if (v.cmd_vel.matched() < 1) missing.push_back(topics::apTopic(v.ns, "cmd_vel") + " (no bridge writing)");
   // GNSS from the autopilot (best effort, as ArduPilot sends it): a fix sent before the bridge reads would be lost.
   if (v.navsat && v.navsat.matched() < 1) missing.push_back(topics::apTopic(v.ns, "navsat") + " (no bridge reading)");
 }
 
 bool ArdupilotVehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) {
-  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
-  const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(s.stamp_ns);
-  if (!timestamp) return false;
-  const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({s.roll_rad, s.pitch_rad, s.heading_rad}));
-  sensor_msgs::msg::Imu m = wire::imuMessage(*timestamp, q);
-  v.published.add(s.stamp_ns, seq);
-  v.last_imu = m;
-  return v.imu.write(m);
+  return vehicles_.at(static_cast<std::size_t>(uav))
+      .imu.publish(s, seq, [](std::uint64_t t_us, const px4::Quaternion& q) { return wire::imuMessage(t_us, q); });
 }
 
 bool ArdupilotVehicles::publishGnss(int uav, const agent::GnssSample& g) {
@@ -90,8 +84,7 @@ bool ArdupilotVehicles::publishGnss(int uav, const agent::GnssSample& g) {
 }
 
 void ArdupilotVehicles::repeatAttitude(int uav) {
-  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
-  if (v.last_imu) v.imu.write(*v.last_imu);
+  vehicles_.at(static_cast<std::size_t>(uav)).imu.repeat();
 }
 
 void ArdupilotVehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now,
@@ -108,7 +101,7 @@ void ArdupilotVehicles::drain(std::vector<Answer>& answers, Clock::duration wait
                                worldYawRate(px4::yawspeedOf(c.twist.yaw_rate_radps)), c.map_frame);
       const std::optional<agent::StampNs> answered =
           c.timestamp_us && c.map_frame ? px4::stampNsOf(*c.timestamp_us) : std::nullopt;
-      const std::optional<std::uint32_t> seq = answered ? v.published.answer(*answered) : std::nullopt;
+      const std::optional<std::uint32_t> seq = answered ? v.imu.published.answer(*answered) : std::nullopt;
       if (!seq) {
         // The bridge's own command (or a repeat): it answers no sample the vehicle is waiting for.
         if (admit(answer)) {

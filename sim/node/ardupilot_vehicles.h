@@ -63,8 +63,7 @@ class ArdupilotVehicles : public AutopilotVehicles {
     explicit Vehicle(double guid_timeout_s) : standin(guid_timeout_s) {}
     sim::ArdupilotStandin standin;
     std::string ns;
-    dds::Writer<sensor_msgs::msg::Imu> imu;
-    std::optional<sensor_msgs::msg::Imu> last_imu;
+    AttitudeStream<sensor_msgs::msg::Imu> imu;  // imu/experimental/data
     dds::Writer<ardupilot_msgs::msg::Status> status;
     dds::Writer<sensor_msgs::msg::NavSatFix> navsat;  // vehicle.gnss_source = autopilot only
     dds::Writer<ardupilot_msgs::srv::ArmMotors_Response> arm_reply;
@@ -72,7 +71,6 @@ class ArdupilotVehicles : public AutopilotVehicles {
     dds::Reader<geometry_msgs::msg::TwistStamped> cmd_vel;
     dds::Reader<ardupilot_msgs::srv::ArmMotors_Request> arm_request;
     dds::Reader<ardupilot_msgs::srv::ModeSwitch_Request> mode_request;
-    RecentSamples published;
     double yaw_rate_radps = 0.0;   // of the newest cmd_vel given to the stand-in
     bool status_sent = false, status_armed = false;
     std::uint8_t status_mode = 0;

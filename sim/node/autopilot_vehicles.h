@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "answer.h"
+#include "swa/dds/participant.h"
+#include "swa/px4/frames.h"
 #include "swa/agent/samples.h"
 #include "swa/sim/world.h"
 
@@ -68,6 +70,30 @@ class RecentSamples {
     bool answered = false;
   };
   std::deque<Sample> samples_;
+};
+
+// One vehicle's attitude stream, PX4's or ArduPilot's message: what it published recently (an answer names a sample by
+// its stamp) and the newest, which repeat() sends again.
+template <class Message>
+struct AttitudeStream {
+  dds::Writer<Message> writer;
+  std::optional<Message> last;
+  RecentSamples published;
+
+  // The IMU sample `s` as `make(timestamp_us, quaternion)`, the autopilot's message. False when the sample has no
+  // autopilot timestamp (negative) or the middleware refused it.
+  template <class Make>
+  bool publish(const agent::ImuSample& s, std::uint32_t seq, Make make) {
+    const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(s.stamp_ns);
+    if (!timestamp) return false;
+    const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({s.roll_rad, s.pitch_rad, s.heading_rad}));
+    last = make(*timestamp, q);
+    published.add(s.stamp_ns, seq);
+    return writer.write(*last);
+  }
+  void repeat() {
+    if (last) writer.write(*last);
+  }
 };
 
 // A vehicle's command as the drivers take it: UAV, arrival, writer and the setpoint in the stable frame (the yaw rate

@@ -38,7 +38,7 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
   for (int i = 0; i < uav_count; ++i) {
     Vehicle& v = vehicles_.emplace_back(setup.com_of_loss_t_s);
     v.ns = topics::px4Namespace(i);
-    v.attitude = participant.writer<px4_msgs::msg::VehicleAttitudePubSubType>(
+    v.attitude.writer = participant.writer<px4_msgs::msg::VehicleAttitudePubSubType>(
         topics::px4Out(v.ns, "vehicle_attitude"), "px4_out_writer");
     if (px4::hasV116VehicleStatus(setup.px4_release)) {
       v.status_v1_16 = participant.writer<px4_v1_16::px4_msgs::msg::VehicleStatusPubSubType>(
@@ -77,7 +77,7 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
 
 void Px4Vehicles::unmatched(int uav, std::vector<std::string>& missing) const {
   const Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
-  if (v.attitude.matched() < 1) missing.push_back(topics::px4Out(v.ns, "vehicle_attitude") + " (no bridge reading)");
+  if (v.attitude.writer.matched() < 1) missing.push_back(topics::px4Out(v.ns, "vehicle_attitude") + " (no bridge reading)");
   if (v.setpoint.matched() < 1) missing.push_back(topics::px4In(v.ns, "trajectory_setpoint") + " (no bridge writing)");
   if (v.mode.matched() < 1) missing.push_back(topics::px4In(v.ns, "offboard_control_mode") + " (no bridge writing)");
   // GNSS from the autopilot (best effort, as PX4 sends it): a fix sent before the bridge reads would be lost.
@@ -89,14 +89,7 @@ void Px4Vehicles::unmatched(int uav, std::vector<std::string>& missing) const {
 }
 
 bool Px4Vehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) {
-  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
-  const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(s.stamp_ns);
-  if (!timestamp) return false;
-  const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({s.roll_rad, s.pitch_rad, s.heading_rad}));
-  px4_msgs::msg::VehicleAttitude m = wire::vehicleAttitude(*timestamp, q);
-  v.published.add(s.stamp_ns, seq);
-  v.last_attitude = m;
-  return v.attitude.write(m);
+  return vehicles_.at(static_cast<std::size_t>(uav)).attitude.publish(s, seq, wire::vehicleAttitude);
 }
 
 bool Px4Vehicles::publishGnss(int uav, const agent::GnssSample& g) {
@@ -123,8 +116,7 @@ bool Px4Vehicles::publishGnss(int uav, const agent::GnssSample& g) {
 }
 
 void Px4Vehicles::repeatAttitude(int uav) {
-  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
-  if (v.last_attitude) v.attitude.write(*v.last_attitude);
+  vehicles_.at(static_cast<std::size_t>(uav)).attitude.repeat();
 }
 
 void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now, const AdmitFn& admit) {
@@ -138,7 +130,7 @@ void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agen
       Answer answer = answerOf(a.uav, a.received, a.writer, stable, worldYawRate(wire::yawspeedOf(*sp)),
                                wire::isVelocityOnly(*sp));
       const std::optional<agent::StampNs> answered = px4::stampNsOf(sp->timestamp());
-      const std::optional<std::uint32_t> seq = answered ? v.published.answer(*answered) : std::nullopt;
+      const std::optional<std::uint32_t> seq = answered ? v.attitude.published.answer(*answered) : std::nullopt;
       if (!seq) {
         // The bridge's own setpoint (or a repeat): it answers no sample the vehicle is waiting for.
         if (admit(answer)) {

@@ -82,8 +82,7 @@ class Px4Vehicles : public AutopilotVehicles {
   struct Vehicle {
     explicit Vehicle(double com_of_loss_t_s) : standin(com_of_loss_t_s) {}
     sim::Px4Standin standin;
-    dds::Writer<px4_msgs::msg::VehicleAttitude> attitude;
-    std::optional<px4_msgs::msg::VehicleAttitude> last_attitude;
+    AttitudeStream<px4_msgs::msg::VehicleAttitude> attitude;
     dds::Writer<px4_msgs::msg::VehicleStatus> status;                // v1.15
     dds::Writer<px4_v1_16::px4_msgs::msg::VehicleStatus> status_v1_16;  // v1.16 and later
     // vehicle.gnss_source = autopilot only, in the release's layouts.
@@ -95,7 +94,6 @@ class Px4Vehicles : public AutopilotVehicles {
     dds::Reader<px4_msgs::msg::TrajectorySetpoint> setpoint;
     dds::Reader<px4_msgs::msg::OffboardControlMode> mode;
     dds::Reader<px4_msgs::msg::VehicleCommand> command;
-    RecentSamples published;
     std::string ns;
     double yaw_rate_radps = 0.0;  // of the newest setpoint given to the stand-in (which knows only the velocity)
     std::uint8_t status_sent_nav = 255, status_sent_arming = 255;
