@@ -35,8 +35,12 @@ ignore the section; see deploy/scenarios/study_drift_vs_n.yaml):
     sweep:
       uav_count: [4, 8, 16, 32]
       agent.formation.neighbourhood: [gabriel, k_nearest]
+    variants:
+      gabriel: {agent.formation.neighbourhood: gabriel, agent.focal.bias_window_s: 30}
+      k3: {agent.formation.neighbourhood: k_nearest, agent.formation.k: 3}
+Variants are one more axis, "variant", after the sweep's: named sets of overrides that each grid point runs in turn.
 swa_batch --scenario FILE then runs the study; --sweep KEY=... replaces the file's values of KEY or adds an axis,
-and --seeds replaces study.seeds.)");
+--variant NAME:KEY=V,... replaces the file's variant NAME or adds one, and --seeds replaces study.seeds.)");
   cli.scenario(o.scenario_path, "scenario YAML (see deploy/scenarios/)");
   cli.required("--scenario");
   cli.overrides(o.overrides, "override any scenario key, e.g. --set uav_count=16 --set imu.bias_std=0.15");
@@ -46,6 +50,9 @@ and --seeds replaces study.seeds.)");
   cli.choice("--compare", "MODE", {agent::Mode::kStandalone, agent::Mode::kSwa, agent::Mode::kAnchored}, o.compare,
              "also run the same seeds with agent.mode = MODE and print both side by side");
   cli.list("--sweep", "KEY=V1,V2,...", o.sweeps, "sweep a scenario key over these values (a study; see above)");
+  cli.list("--variant", "NAME:KEY=V,...", o.variants,
+           "compare a named set of overrides, e.g. k3:agent.formation.neighbourhood=k_nearest,agent.formation.k=3 "
+           "(a study: one more axis; see above)");
   cli.text("--shard", "I/N", o.shard, "run only shard I of N of the study (1 <= I <= N)", "I/N");
   cli.flag("--dry-run", o.dry_run,
            "check the scenario (a study: every grid point) and print what would run, then exit without running; "

@@ -19,6 +19,7 @@ struct BatchOptions {
   std::string out_dir = "out/batch";
   std::optional<agent::Mode> compare;     // --compare standalone: the same seeds again in that mode
   std::vector<std::string> sweeps;        // --sweep KEY=V1,V2,...: a study over the grid of every sweep
+  std::vector<std::string> variants;      // --variant NAME:KEY=V,...: one more axis of named sets of overrides
   std::string shard;                      // --shard I/N: only that slice of the study's runs
   bool jobs_given = false;
   bool seeds_given = false;               // --seeds given: it replaces a study section's seeds
@@ -29,9 +30,9 @@ struct BatchOptions {
   bool help = false;
   bool list_parameters = false;
 
-  // A study by the command line (--sweep or --shard): the grid's results, not one scenario's. A scenario file with a
-  // study section (study_section.h) is a study too.
-  bool study() const { return !sweeps.empty() || !shard.empty(); }
+  // A study by the command line (--sweep, --variant or --shard): the grid's results, not one scenario's. A scenario
+  // file with a study section (study_section.h) is a study too.
+  bool study() const { return !sweeps.empty() || !variants.empty() || !shard.empty(); }
 };
 
 // Throws std::invalid_argument listing every problem found.

@@ -44,9 +44,21 @@ PreparedStudy prepareStudy(const BatchOptions& o, const study::StudySection& sec
   std::vector<std::string> problems;
   try {
     p.record.plan =
-        study::combinePlan(section, o.sweeps, o.seeds_given ? o.seeds : 0, o.seeds, sim::canonicalScenarioKey);
+        study::combinePlan(section, o.sweeps, o.variants, o.seeds_given ? o.seeds : 0, o.seeds,
+                            sim::canonicalScenarioKey);
   } catch (const std::invalid_argument& e) {
     problems.push_back(e.what());
+  }
+  // A key set by --set and by a variant: which should win is the user's to say, not ours to guess.
+  for (const study::Variant& v : p.record.plan.variants) {
+    for (const std::string& vo : v.overrides) {
+      const std::string key = vo.substr(0, vo.find('='));
+      for (const std::string& so : o.overrides) {
+        if (sim::canonicalScenarioKey(so.substr(0, so.find('='))) == key) {
+          problems.push_back("--set " + so + " and variant " + v.name + " both set " + key + ": set it in one place");
+        }
+      }
+    }
   }
   if (!o.shard.empty()) {
     try {
@@ -112,22 +124,33 @@ void printStudyPlan(const PreparedStudy& p) {
               static_cast<unsigned long long>(p.record.first_seed),
               static_cast<unsigned long long>(p.record.first_seed + static_cast<std::uint64_t>(plan.seeds) - 1));
   for (const study::Axis& a : plan.axes) {
+    if (a.key == study::kVariantAxis) continue;
     std::string values;
     for (const std::string& v : a.values) values += (values.empty() ? "" : ", ") + v;
     std::printf("sweep %s: %s\n", a.key.c_str(), values.c_str());
+  }
+  for (const study::Variant& v : plan.variants) {
+    std::string overrides;
+    for (const std::string& o : v.overrides) overrides += (overrides.empty() ? "" : ", ") + o;
+    std::printf("variant %s: %s\n", v.name.c_str(), overrides.c_str());
   }
   std::printf("%zu grid point(s) x %d seed(s) = %zu runs; shard %d/%d: %zu runs\n", study::pointCount(plan),
               plan.seeds, study::runCount(plan), p.record.shard.index, p.record.shard.count, p.runs.size());
 }
 
-int runStudy(const BatchOptions& o, const PreparedStudy& prepared, int jobs, const std::atomic<bool>& stop) {
-  const study::StudyPlan& plan = prepared.record.plan;
+std::vector<sim::Scenario> runScenarios(const PreparedStudy& prepared) {
   std::vector<sim::Scenario> scenarios;
   for (const study::RunRef& r : prepared.runs) {
     sim::Scenario s = prepared.point_scenarios[r.point];
     s.seed = prepared.record.first_seed + static_cast<std::uint64_t>(r.seed_offset);
     scenarios.push_back(std::move(s));
   }
+  return scenarios;
+}
+
+int runStudy(const BatchOptions& o, const PreparedStudy& prepared, int jobs, const std::atomic<bool>& stop) {
+  const study::StudyPlan& plan = prepared.record.plan;
+  const std::vector<sim::Scenario> scenarios = runScenarios(prepared);
   std::printf("swa_batch: study %s: %zu grid point(s) x %d seed(s) = %zu runs; shard %d/%d: %zu runs on %d job(s)\n",
               prepared.record.study_id.c_str(), study::pointCount(plan), plan.seeds, study::runCount(plan),
               prepared.record.shard.index, prepared.record.shard.count, scenarios.size(), jobs);

@@ -26,6 +26,9 @@ PreparedStudy prepareStudy(const BatchOptions& options, const study::StudySectio
 // What the study (or shard) would run: its id, the grid and the runs, on stdout.
 void printStudyPlan(const PreparedStudy& study);
 
+// The scenario of each run of the shard, in the order of study.runs: its grid point's, with its seed.
+std::vector<sim::Scenario> runScenarios(const PreparedStudy& study);
+
 // Runs the shard's runs on `jobs` threads and writes the study (whole) or the shard's study.json into
 // options.out_dir. Returns the exit status (0; 3 interrupted: nothing written).
 int runStudy(const BatchOptions& options, const PreparedStudy& study, int jobs, const std::atomic<bool>& stop);

@@ -59,6 +59,40 @@ Axis parseSweep(const std::string& text) {
   return makeAxis(text.substr(0, eq), split(text.substr(eq + 1), ','), what);
 }
 
+Variant makeVariant(std::string name, std::vector<std::string> overrides, const std::string& what) {
+  name = trim(name);
+  if (name.empty()) throw std::invalid_argument(what + " names no variant");
+  if (overrides.empty()) throw std::invalid_argument(what + " sets nothing");
+  std::set<std::string> keys;
+  for (std::string& o : overrides) {
+    const std::size_t eq = o.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument(what + ": '" + o + "' is not KEY=VALUE");
+    const std::string key = trim(o.substr(0, eq));
+    if (key.empty()) throw std::invalid_argument(what + ": '" + o + "' names no key");
+    if (!keys.insert(key).second) throw std::invalid_argument(what + " sets " + key + " twice");
+    o = key + "=" + trim(o.substr(eq + 1));
+  }
+  return Variant{std::move(name), std::move(overrides)};
+}
+
+Variant parseVariant(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  const std::string what = "--variant '" + text + "'";
+  if (colon == std::string::npos) throw std::invalid_argument(what + " is not NAME:KEY=V,KEY=V,...");
+  return makeVariant(text.substr(0, colon), split(text.substr(colon + 1), ','), what);
+}
+
+void setVariants(StudyPlan& plan, std::vector<Variant> variants) {
+  plan.axes.erase(std::remove_if(plan.axes.begin(), plan.axes.end(),
+                                 [](const Axis& a) { return a.key == kVariantAxis; }),
+                  plan.axes.end());
+  plan.variants = std::move(variants);
+  if (plan.variants.empty()) return;
+  Axis axis{kVariantAxis, {}};
+  for (const Variant& v : plan.variants) axis.values.push_back(v.name);
+  plan.axes.push_back(std::move(axis));
+}
+
 Shard parseShard(const std::string& text) {
   const std::string bad = "--shard '" + text + "' is not I/N with 1 <= I <= N";
   const std::size_t slash = text.find('/');
@@ -74,7 +108,26 @@ std::vector<std::string> planProblems(const StudyPlan& plan) {
   for (const Axis& a : plan.axes) {
     if (!keys.insert(a.key).second) problems.push_back(a.key + " is swept twice: give its values once");
   }
-  if (plan.axes.empty()) problems.push_back("a study sweeps at least one key (--sweep KEY=V1,V2 or study.sweep)");
+  if (plan.axes.empty()) {
+    problems.push_back("a study sweeps at least one key or compares variants (--sweep KEY=V1,V2, study.sweep, "
+                       "--variant NAME:KEY=V or study.variants)");
+  }
+  std::set<std::string> names;
+  for (const Variant& v : plan.variants) {
+    if (!names.insert(v.name).second) problems.push_back("variant " + v.name + " is given twice: give it once");
+    for (const std::string& o : v.overrides) {
+      const std::string key = o.substr(0, o.find('='));
+      if (key != kVariantAxis && keys.count(key) > 0) {
+        problems.push_back("variant " + v.name + " sets " + key + ", which the study sweeps: set it in one place");
+      }
+    }
+  }
+  for (const Axis& a : plan.axes) {
+    if (a.key != kVariantAxis) continue;
+    for (const std::string& value : a.values) {
+      if (names.count(value) == 0) problems.push_back("the variant axis names " + value + ", which no variant defines");
+    }
+  }
   // Counted without overflow: eight axes of 256 values would wrap a 64-bit count to 0 runs.
   std::size_t runs = static_cast<std::size_t>(std::max(plan.seeds, 1));
   for (const Axis& a : plan.axes) {
@@ -109,7 +162,15 @@ std::vector<std::string> pointValues(const StudyPlan& plan, std::size_t point) {
 std::vector<std::string> pointOverrides(const StudyPlan& plan, std::size_t point) {
   const std::vector<std::string> values = pointValues(plan, point);
   std::vector<std::string> overrides;
-  for (std::size_t k = 0; k < values.size(); ++k) overrides.push_back(plan.axes[k].key + "=" + values[k]);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (plan.axes[k].key != kVariantAxis) {
+      overrides.push_back(plan.axes[k].key + "=" + values[k]);
+      continue;
+    }
+    for (const Variant& v : plan.variants) {
+      if (v.name == values[k]) overrides.insert(overrides.end(), v.overrides.begin(), v.overrides.end());
+    }
+  }
   return overrides;
 }
 

@@ -16,8 +16,18 @@ struct Axis {
   std::vector<std::string> values;  // as given, in order
 };
 
+// A named set of overrides, e.g. a neighbourhood rule spelled out in full: one value of the axis "variant".
+struct Variant {
+  std::string name;
+  std::vector<std::string> overrides;  // "KEY=VALUE", as --set takes them
+};
+
+// The axis of the variants is called this; its values are their names.
+constexpr const char* kVariantAxis = "variant";
+
 struct StudyPlan {
-  std::vector<Axis> axes;  // in the order given; the first varies slowest
+  std::vector<Axis> axes;  // in the order given; the first varies slowest; "variant" (if any) last
+  std::vector<Variant> variants;  // what each value of the "variant" axis sets
   int seeds = 1;           // seeds scenario.seed .. scenario.seed + seeds - 1 at every grid point
 };
 
@@ -33,19 +43,27 @@ Axis makeAxis(std::string key, std::vector<std::string> values, const std::strin
 // "KEY=V1,V2,..." -> an axis. Throws std::invalid_argument saying what is wrong (no '=', no key, an empty value, a
 // value given twice).
 Axis parseSweep(const std::string& text);
+// "NAME:KEY=V,KEY=V,..." -> a variant. Throws std::invalid_argument saying what is wrong (no name, no override, an
+// override without '=' or without a key, a key set twice).
+Variant parseVariant(const std::string& text);
+// A variant with its overrides checked as parseVariant checks them; `what` names the source in the exception.
+Variant makeVariant(std::string name, std::vector<std::string> overrides, const std::string& what);
+// The plan with `variants` as its last axis ("variant", in this order); none: the plan unchanged.
+void setVariants(StudyPlan& plan, std::vector<Variant> variants);
 // "I/N" with 1 <= I <= N. Throws std::invalid_argument.
 Shard parseShard(const std::string& text);
 // More runs than a study may have: each run's scenario and summary stay in memory until the study is written.
 constexpr std::size_t kMaxRuns = 10'000'000;
 
-// Problems of a plan as a whole (no axis, the same key swept twice, more than kMaxRuns runs), one per entry.
+// Problems of a plan as a whole (no axis, the same key swept twice, more than kMaxRuns runs, a variant that sets a
+// swept key, a "variant" axis without its variants), one per entry.
 std::vector<std::string> planProblems(const StudyPlan& plan);
 
 std::size_t pointCount(const StudyPlan& plan);
 std::size_t runCount(const StudyPlan& plan);
 // The values of grid point `point` (one per axis).
 std::vector<std::string> pointValues(const StudyPlan& plan, std::size_t point);
-// The same as --set overrides: "KEY=VALUE" per axis.
+// The same as --set overrides: "KEY=VALUE" per axis, and for the "variant" axis every override of that variant.
 std::vector<std::string> pointOverrides(const StudyPlan& plan, std::size_t point);
 
 struct RunRef {

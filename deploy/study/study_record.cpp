@@ -33,7 +33,14 @@ std::uint64_t fnv1a(const std::string& text, std::uint64_t h = 14695981039346656
 Json planJson(const StudyPlan& plan) {
   Json axes = Json::array();
   for (const Axis& a : plan.axes) axes.push_back({{"key", a.key}, {"values", a.values}});
-  return {{"axes", axes}, {"seeds", plan.seeds}};
+  Json j = {{"axes", axes}, {"seeds", plan.seeds}};
+  // Only when there are some: a study without variants keeps the id and the files it had before they existed.
+  if (!plan.variants.empty()) {
+    Json variants = Json::array();
+    for (const Variant& v : plan.variants) variants.push_back({{"name", v.name}, {"overrides", v.overrides}});
+    j["variants"] = variants;
+  }
+  return j;
 }
 
 template <class T>
@@ -94,6 +101,12 @@ StudyRecord studyFromJson(const Json& j, const std::string& source) {
   const Json plan = field<Json>(j, "plan", source);
   s.plan.seeds = field<int>(plan, "seeds", source);
   const Json axes = field<Json>(plan, "axes", source);
+  if (plan.contains("variants")) {
+    for (const Json& v : field<Json>(plan, "variants", source)) {
+      s.plan.variants.push_back(
+          {field<std::string>(v, "name", source), field<std::vector<std::string>>(v, "overrides", source)});
+    }
+  }
   for (const Json& a : axes) {
     s.plan.axes.push_back({field<std::string>(a, "key", source), field<std::vector<std::string>>(a, "values", source)});
   }

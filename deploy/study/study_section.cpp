@@ -1,5 +1,6 @@
 #include "study_section.h"
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 
@@ -12,6 +13,23 @@ namespace {
 
 constexpr int kMaxSeeds = 100000;  // as swa_batch --seeds
 const std::string kSweep = "sweep.";
+const std::string kVariants = "variants.";
+
+// variants.NAME.KEY = VALUE (the YAML's nested maps flattened): one override of variant NAME.
+void addVariantLeaf(const params::SectionLeaf& leaf, std::vector<Variant>& variants,
+                    std::vector<std::string>& problems) {
+  const std::string rest = leaf.key.substr(kVariants.size());
+  const std::size_t dot = rest.find('.');
+  const std::string name = rest.substr(0, dot);
+  if (dot == std::string::npos || leaf.sequence || leaf.values.size() != 1) {
+    problems.push_back("study." + leaf.key + leaf.where + ": a variant is a map of scenario keys to one value each, " +
+                       "e.g. variants: {" + name + ": {agent.formation.k: 3}}");
+    return;
+  }
+  auto it = std::find_if(variants.begin(), variants.end(), [&](const Variant& v) { return v.name == name; });
+  if (it == variants.end()) it = variants.insert(variants.end(), Variant{name, {}});
+  it->overrides.push_back(rest.substr(dot + 1) + "=" + leaf.values.front());
+}
 
 int seedsOf(const params::SectionLeaf& leaf, std::vector<std::string>& problems) {
   const std::string bad = "study.seeds must be a whole number in [1, " + std::to_string(kMaxSeeds) + "]";
@@ -44,16 +62,27 @@ StudySection readStudySection(const std::string& scenario_path) {
       } catch (const std::invalid_argument& e) {
         problems.push_back(e.what());
       }
+    } else if (leaf.key.rfind(kVariants, 0) == 0) {
+      addVariantLeaf(leaf, s.variants, problems);
     } else {
       problems.push_back("unknown entry 'study." + leaf.key + "'" + leaf.where +
-                         ": a study section holds seeds: N and sweep: {KEY: [V1, V2, ...], ...}");
+                         ": a study section holds seeds: N, sweep: {KEY: [V1, V2, ...], ...} and variants: "
+                         "{NAME: {KEY: VALUE, ...}, ...}");
+    }
+  }
+  for (Variant& v : s.variants) {
+    try {
+      v = makeVariant(v.name, v.overrides, "study.variants." + v.name);
+    } catch (const std::invalid_argument& e) {
+      problems.push_back(e.what());
     }
   }
   if (!problems.empty()) throw params::ConfigError(scenario_path, problems);
   return s;
 }
 
-StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& sweeps, int seeds, int fallback_seeds,
+StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& sweeps,
+                      const std::vector<std::string>& variants, int seeds, int fallback_seeds,
                       const std::function<std::string(const std::string&)>& canonical) {
   StudyPlan plan;
   plan.axes = file.axes;
@@ -88,6 +117,29 @@ StudyPlan combinePlan(const StudySection& file, const std::vector<std::string>& 
     if (canonical(a.key) == "seed")
       problems.push_back("study.sweep.seed: seeds are a study's repetitions, give study.seeds N");
   }
+  std::vector<Variant> all = file.variants;
+  for (const std::string& text : variants) {
+    try {
+      Variant v = parseVariant(text);
+      const auto same = std::find_if(all.begin(), all.end(), [&](const Variant& w) { return w.name == v.name; });
+      if (same != all.end()) {
+        *same = std::move(v);
+      } else {
+        all.push_back(std::move(v));
+      }
+    } catch (const std::invalid_argument& e) {
+      problems.push_back(e.what());
+    }
+  }
+  for (Variant& v : all) {
+    for (std::string& o : v.overrides) {
+      const std::size_t eq = o.find('=');
+      const std::string key = canonical(o.substr(0, eq));
+      if (key == "seed") problems.push_back("variant " + v.name + " sets the seed: seeds are a study's repetitions");
+      o = key + o.substr(eq);
+    }
+  }
+  setVariants(plan, std::move(all));
   for (const std::string& problem : planProblems(plan)) problems.push_back(problem);
   if (!problems.empty()) {
     std::string text;

@@ -9,6 +9,10 @@
 // which the agents also take as theirs: below 360 they turn to face one way, issue #26). For the agents'
 // constant-heading behaviour under a limited field of view, add --set agent.sensor.fov_deg=360.
 //
+// It is swa_batch's study (deploy/batch/study_runner.h) with its own table: the sweep mps.fov_deg x uav_count, the
+// rules as the study's variants (swa_batch --variant), the same runs and seeds; only the table (d_NB at 120 s, the
+// split runs, the worst separation) is this program's. A --set of a key a rule sets is refused.
+//
 // Rules (each spelled out, so the table does not change meaning with the defaults): gabriel = Gabriel + weighted fit
 // (0.2) + IMU-bias removal (30 s); gabriel_nobias = the same without bias removal; gabriel_nocap = without the
 // edge-length cap (Gabriel's test alone); k3 / k2 = k nearest with the
@@ -25,7 +29,7 @@
 #include <vector>
 
 #include "batch_runner.h"
-#include "swa/sim/scenario_io.h"
+#include "study_runner.h"
 
 namespace {
 
@@ -98,6 +102,7 @@ bool parseSizes(const std::string& v, std::vector<int>& out) {
 
 Options parse(int argc, char** argv) {
   Options o;
+  bool fov_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help") usage("formation quality over swarm sizes and rules");
@@ -113,6 +118,7 @@ Options parse(int argc, char** argv) {
       o.sizes.clear();
       if (!parseSizes(v, o.sizes)) usage(("bad --sizes " + v + " (e.g. 3-16 or 3,8,16; sizes >= 2)").c_str());
     } else if (a == "--fov") {
+      fov_given = true;
       o.fovs.clear();
       for (const std::string& f : splitCommas(v)) {
         char* end = nullptr;
@@ -132,6 +138,20 @@ Options parse(int argc, char** argv) {
   }
   for (const std::string& r : o.rules)
     if (kRules.count(r) == 0) usage(("unknown rule " + r).c_str());
+  // --set mps.fov_deg=D is one field of view: the sweep's, so that the table's FOV column says which.
+  for (auto it = o.sets.begin(); it != o.sets.end();) {
+    if (it->rfind("mps.fov_deg=", 0) != 0) {
+      ++it;
+      continue;
+    }
+    if (fov_given) usage("the field of view is given by --fov and by --set mps.fov_deg: give it once");
+    char* end = nullptr;
+    const std::string value = it->substr(std::string("mps.fov_deg=").size());
+    const double d = std::strtod(value.c_str(), &end);
+    if (end == value.c_str() || *end != '\0' || !(d > 0.0 && d <= 360.0)) usage(("bad " + *it).c_str());
+    o.fovs = {d};
+    it = o.sets.erase(it);
+  }
   if (o.sizes.empty()) {
     for (int n = 3; n <= 16; ++n) o.sizes.push_back(n);
   }
@@ -152,27 +172,57 @@ struct Column {
   double stdev() const { return n > 1 ? std::sqrt(std::max(0.0, (sq - sum * sum / n) / (n - 1))) : 0.0; }
 };
 
-}  // namespace
-
-// The scenario of one cell of the table: the rule's settings first, so a --set of the user's wins over them.
-swa::sim::Scenario cellScenario(const Options& o, double fov, int n, const std::string& rule) {
-  std::vector<std::string> sets = {"uav_count=" + std::to_string(n), "duration_s=" + std::to_string(o.duration_s),
-                                   "mps.fov_deg=" + std::to_string(fov)};
-  const std::vector<std::string>& r = kRules.at(rule);
-  sets.insert(sets.end(), r.begin(), r.end());
-  sets.insert(sets.end(), o.sets.begin(), o.sets.end());
-  return swa::sim::loadScenario(o.scenario, sets);
+// The study: fov x size x rule (the variants, last: fastest), every cell run for the same seeds.
+swa::batch::BatchOptions studyOptions(const Options& o) {
+  swa::batch::BatchOptions b;
+  b.scenario_path = o.scenario;
+  b.overrides = {"duration_s=" + std::to_string(o.duration_s)};
+  b.overrides.insert(b.overrides.end(), o.sets.begin(), o.sets.end());
+  std::string fovs, sizes;
+  for (const double f : o.fovs) fovs += (fovs.empty() ? "" : ",") + std::to_string(f);
+  for (const int n : o.sizes) sizes += (sizes.empty() ? "" : ",") + std::to_string(n);
+  b.sweeps = {"mps.fov_deg=" + fovs, "uav_count=" + sizes};
+  for (const std::string& rule : o.rules) {
+    std::string variant = rule + ":";
+    for (const std::string& set : kRules.at(rule)) variant += (variant.back() == ':' ? "" : ",") + set;
+    b.variants.push_back(variant);
+  }
+  b.seeds = o.seeds;
+  b.seeds_given = true;
+  return b;
 }
+
+// One row of the table: a grid point's runs.
+struct Cell {
+  Column d120, dend, edge, drift, disp, anees, in_band;
+  int split = 0, collided = 0, runs = 0;
+  std::uint64_t collisions = 0;
+  double worst = std::numeric_limits<double>::infinity();
+  void add(const RunResult& run) {
+    const auto& s = run.summary;
+    d120.add(swa::batch::meanNeighbourDistanceAt(run, 120.0));
+    dend.add(s.mean_neighbor_distance_m);
+    edge.add(s.edge_length_m);
+    drift.add(s.drift_velocity_windows_mps);
+    disp.add(s.centroid_displacement_m);
+    anees.add(s.anees_position);
+    in_band.add(s.anees_position_in_band);
+    split += s.groups > 1 ? 1 : 0;
+    collisions += s.collisions;
+    collided += s.collisions > 0 ? 1 : 0;
+    worst = std::min(worst, s.min_separation_m);
+    ++runs;
+  }
+};
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
   // Every cell's scenario before the first run: a --set one rule refuses stops the study now, not an hour in.
+  swa::batch::PreparedStudy study;
   try {
-    for (const double fov : o.fovs) {
-      for (const int n : o.sizes) {
-        for (const std::string& rule : o.rules) cellScenario(o, fov, n, rule);
-      }
-    }
+    study = swa::batch::prepareStudy(studyOptions(o), swa::study::StudySection{});
   } catch (const std::exception& e) {
     std::fprintf(stderr, "study_formation: %s\n", e.what());
     return 2;
@@ -184,37 +234,23 @@ int main(int argc, char** argv) {
               "worst min sep | "
               "drift, 60 s windows | centroid disp. | ANEES pos (in band) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const double fov : o.fovs) {
-    for (const int n : o.sizes) {
-      for (const std::string& rule : o.rules) {
-        const swa::sim::Scenario scenario = cellScenario(o, fov, n, rule);
-        const std::vector<RunResult> runs = swa::batch::runSeeds(scenario, o.seeds, o.jobs, nullptr);
-        Column d120, dend, edge, drift, disp, anees, in_band;
-        int split = 0, collided = 0;
-        std::uint64_t collisions = 0;
-        double worst = std::numeric_limits<double>::infinity();
-        for (const RunResult& run : runs) {
-          const auto& s = run.summary;
-          d120.add(swa::batch::meanNeighbourDistanceAt(run, 120.0));
-          dend.add(s.mean_neighbor_distance_m);
-          edge.add(s.edge_length_m);
-          drift.add(s.drift_velocity_windows_mps);
-          disp.add(s.centroid_displacement_m);
-          anees.add(s.anees_position);
-          in_band.add(s.anees_position_in_band);
-          split += s.groups > 1 ? 1 : 0;
-          collisions += s.collisions;
-          collided += s.collisions > 0 ? 1 : 0;
-          worst = std::min(worst, s.min_separation_m);
-        }
-        std::printf("| %d | %.0f° | %s | %.3f ± %.2f | %.3f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | "
-                    "%.1f | %.2f (%.0f %%) |\n",
-                    n, fov, rule.c_str(), d120.mean(), d120.stdev(), dend.mean(), dend.stdev(), edge.mean(), split,
-                    o.seeds, static_cast<unsigned long long>(collisions), collided, worst, drift.mean(), disp.mean(),
-                    anees.mean(), 100.0 * in_band.mean());
-        std::fflush(stdout);
-      }
+  std::fflush(stdout);
+  // A row is printed once its runs and every earlier row's are in.
+  std::vector<Cell> cells(swa::study::pointCount(study.record.plan));
+  std::size_t next_row = 0;
+  const std::atomic<bool> never{false};
+  swa::batch::runEach(swa::batch::runScenarios(study), o.jobs, [&](std::size_t k, RunResult&& run) {
+    cells[study.runs[k].point].add(run);
+    for (; next_row < cells.size() && cells[next_row].runs == o.seeds; ++next_row) {
+      const Cell& c = cells[next_row];
+      const std::vector<std::string> v = swa::study::pointValues(study.record.plan, next_row);
+      std::printf("| %s | %.0f° | %s | %.3f ± %.2f | %.3f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | "
+                  "%.1f | %.2f (%.0f %%) |\n",
+                  v[1].c_str(), std::stod(v[0]), v[2].c_str(), c.d120.mean(), c.d120.stdev(), c.dend.mean(),
+                  c.dend.stdev(), c.edge.mean(), c.split, o.seeds, static_cast<unsigned long long>(c.collisions),
+                  c.collided, c.worst, c.drift.mean(), c.disp.mean(), c.anees.mean(), 100.0 * c.in_band.mean());
+      std::fflush(stdout);
     }
-  }
+  }, never);
   return 0;
 }

@@ -69,6 +69,39 @@ TEST(StudyPlan, ShardsCoverEveryRunOnceAndSpreadEachPointOverShards) {
   }
 }
 
+TEST(StudyPlan, VariantsAreTheLastAxisAndEachPointGetsItsVariantsOverrides) {
+  // GIVEN a sweep of two sizes and two variants, each setting two keys
+  StudyPlan plan;
+  plan.axes = {parseSweep("uav_count=4,8")};
+  setVariants(plan, {parseVariant("gabriel:agent.formation.neighbourhood=gabriel, agent.focal.bias_window_s=30"),
+                     parseVariant("k3:agent.formation.neighbourhood=k_nearest,agent.formation.k=3")});
+  // THEN the variants are one more axis, last (fastest), named by the variants
+  ASSERT_EQ(plan.axes.size(), 2u);
+  EXPECT_EQ(plan.axes[1].key, kVariantAxis);
+  EXPECT_EQ(plan.axes[1].values, (std::vector<std::string>{"gabriel", "k3"}));
+  EXPECT_EQ(pointCount(plan), 4u);
+  EXPECT_TRUE(planProblems(plan).empty());
+  // AND a grid point's overrides are its swept values, then every override of its variant, spaces trimmed
+  EXPECT_EQ(pointValues(plan, 1), (std::vector<std::string>{"4", "k3"}));
+  EXPECT_EQ(pointOverrides(plan, 1), (std::vector<std::string>{"uav_count=4", "agent.formation.neighbourhood=k_nearest",
+                                                                "agent.formation.k=3"}));
+  EXPECT_EQ(pointOverrides(plan, 2), (std::vector<std::string>{"uav_count=8", "agent.formation.neighbourhood=gabriel",
+                                                                "agent.focal.bias_window_s=30"}));
+  // AND a malformed variant says what is wrong
+  for (const char* bad : {"k3", ":agent.formation.k=3", "k3:", "k3:agent.formation.k", "k3:=3",
+                          "k3:agent.formation.k=3,agent.formation.k=2"}) {
+    EXPECT_THROW(parseVariant(bad), std::invalid_argument) << bad;
+  }
+  // AND a variant that sets a swept key, or a name given twice, is a problem of the plan
+  StudyPlan clash = plan;
+  setVariants(clash, {parseVariant("big:uav_count=16"), parseVariant("big:agent.formation.k=2")});
+  EXPECT_EQ(planProblems(clash).size(), 2u);
+  // AND a plan of variants alone is a study
+  StudyPlan only;
+  setVariants(only, {parseVariant("a:agent.formation.k=2")});
+  EXPECT_TRUE(planProblems(only).empty());
+}
+
 StudyRecord record(const StudyPlan& plan, Shard shard) {
   StudyRecord s;
   s.version = "test";
@@ -98,6 +131,21 @@ TEST(StudyRecord, JsonRoundTripKeepsEveryValueExactly) {
   EXPECT_TRUE(std::isnan(back.runs[0].metrics[2].value)) << "NaN written as null comes back NaN";
   EXPECT_EQ(back.runs[1].metrics[2].value, 1.0 / 3.0);
   EXPECT_THROW(studyFromJson(record::Json::object(), "x.json"), StudyError);
+}
+
+TEST(StudyRecord, VariantsSurviveTheJsonRoundTripAndChangeTheId) {
+  StudyPlan plan = plan2x3(2);
+  const std::string without = studyId("v", "yaml", plan, 1);
+  setVariants(plan, {parseVariant("k3:agent.formation.k=3")});
+  const StudyRecord s = record(plan, {1, 1});
+  const StudyRecord back = studyFromJson(studyJson(s), "test");
+  ASSERT_EQ(back.plan.variants.size(), 1u);
+  EXPECT_EQ(back.plan.variants[0].name, "k3");
+  EXPECT_EQ(back.plan.variants[0].overrides, (std::vector<std::string>{"agent.formation.k=3"}));
+  EXPECT_EQ(studyJson(back), studyJson(s));
+  EXPECT_NE(studyId("v", "yaml", plan, 1), without);
+  // A study without variants writes no "variants" member: its id and files are what they were before variants.
+  EXPECT_FALSE(studyJson(record(plan2x3(2), {1, 1}))["plan"].contains("variants"));
 }
 
 TEST(StudyRecord, ShardsMergeIntoTheWholeStudyAndNothingElse) {

@@ -99,17 +99,54 @@ std::string same(const std::string& key) { return key; }
 // As the scenario's aliases (sim::canonicalScenarioKey).
 std::string aliases(const std::string& key) { return key == "agent.k" ? "agent.formation.k" : key; }
 
+TEST_F(StudySectionTest, ReadsVariantsNestedOrDottedAndSaysWhatIsWrongWithOne) {
+  const StudySection s = readStudySection(write(R"(uav_count: 8
+study:
+  sweep:
+    uav_count: [4, 8]
+  variants:
+    gabriel:
+      agent:
+        formation: {neighbourhood: gabriel}
+      agent.focal.bias_window_s: 30
+    k3: {agent.formation.neighbourhood: k_nearest, agent.formation.k: 3}
+)"));
+  ASSERT_EQ(s.variants.size(), 2u);
+  EXPECT_EQ(s.variants[0].name, "gabriel");
+  EXPECT_EQ(s.variants[0].overrides,
+            (std::vector<std::string>{"agent.formation.neighbourhood=gabriel", "agent.focal.bias_window_s=30"}));
+  EXPECT_EQ(s.variants[1].overrides,
+            (std::vector<std::string>{"agent.formation.neighbourhood=k_nearest", "agent.formation.k=3"}));
+  EXPECT_NE(problems("study:\n  variants:\n    k3: 3\n").find("a variant is a map"), std::string::npos);
+  EXPECT_NE(problems("study:\n  variants:\n    k3: {agent.formation.k: [2, 3]}\n").find("line 3"), std::string::npos);
+}
+
+TEST(StudySectionPlan, CommandLineVariantsReplaceTheFilesByNameOrAddAndKeysAreCanonical) {
+  StudySection file;
+  file.present = true;
+  file.axes = {parseSweep("uav_count=4,8")};
+  file.variants = {parseVariant("k3:agent.formation.k=3"), parseVariant("k2:agent.formation.k=2")};
+  const StudyPlan plan = combinePlan(file, {}, {"k3:agent.k=4", "gabriel:agent.formation.neighbourhood=gabriel"}, 0, 1,
+                                     aliases);
+  ASSERT_EQ(plan.variants.size(), 3u);
+  EXPECT_EQ(plan.variants[0].overrides, (std::vector<std::string>{"agent.formation.k=4"})) << "replaced, canonical";
+  EXPECT_EQ(plan.variants[2].name, "gabriel");
+  EXPECT_EQ(plan.axes.back().values, (std::vector<std::string>{"k3", "k2", "gabriel"}));
+  EXPECT_THROW(combinePlan(file, {}, {"s:seed=3"}, 0, 1, same), std::invalid_argument);
+  EXPECT_THROW(combinePlan(file, {}, {"big:uav_count=16"}, 0, 1, same), std::invalid_argument);
+}
+
 TEST(StudySectionPlan, CommandLineReplacesAnAxisInPlaceAddsNewOnesAndOverridesSeeds) {
   StudySection file;
   file.present = true;
   file.seeds = 20;
   file.axes = {parseSweep("uav_count=4,8"), parseSweep("agent.formation.neighbourhood=gabriel,k_nearest")};
 
-  const StudyPlan unchanged = combinePlan(file, {}, 0, 1, same);
+  const StudyPlan unchanged = combinePlan(file, {}, {}, 0, 1, same);
   EXPECT_EQ(unchanged.seeds, 20);
   ASSERT_EQ(unchanged.axes.size(), 2u);
 
-  const StudyPlan plan = combinePlan(file, {"imu.bias_std=0.05,0.15", "uav_count=16"}, 3, 1, same);
+  const StudyPlan plan = combinePlan(file, {"imu.bias_std=0.05,0.15", "uav_count=16"}, {}, 3, 1, same);
   EXPECT_EQ(plan.seeds, 3);
   ASSERT_EQ(plan.axes.size(), 3u);
   EXPECT_EQ(plan.axes[0].key, "uav_count");
@@ -117,32 +154,32 @@ TEST(StudySectionPlan, CommandLineReplacesAnAxisInPlaceAddsNewOnesAndOverridesSe
   EXPECT_EQ(plan.axes[1].key, "agent.formation.neighbourhood");
   EXPECT_EQ(plan.axes[2].key, "imu.bias_std");
 
-  EXPECT_EQ(combinePlan(StudySection{}, {"uav_count=4"}, 0, 7, same).seeds, 7) << "--seeds' default without a section";
+  EXPECT_EQ(combinePlan(StudySection{}, {"uav_count=4"}, {}, 0, 7, same).seeds, 7) << "--seeds' default without a section";
   for (const std::vector<std::string>& bad :
        std::vector<std::vector<std::string>>{{"seed=1,2"}, {"uav_count=4", "uav_count=8"}, {"uav_count"}}) {
-    EXPECT_THROW(combinePlan(file, bad, 0, 1, same), std::invalid_argument) << bad.back();
+    EXPECT_THROW(combinePlan(file, bad, {}, 0, 1, same), std::invalid_argument) << bad.back();
   }
   // A section that sweeps nothing is a study only with the command line's sweeps.
   StudySection seeds_only;
   seeds_only.present = true;
   seeds_only.seeds = 3;
-  EXPECT_THROW(combinePlan(seeds_only, {}, 0, 1, same), std::invalid_argument);
-  EXPECT_EQ(combinePlan(seeds_only, {"uav_count=4,8"}, 0, 1, same).axes.size(), 1u);
+  EXPECT_THROW(combinePlan(seeds_only, {}, {}, 0, 1, same), std::invalid_argument);
+  EXPECT_EQ(combinePlan(seeds_only, {"uav_count=4,8"}, {}, 0, 1, same).axes.size(), 1u);
 
   // Keys by their canonical names: an alias on the command line replaces the file's axis, spaces are not part of a
   // key or value.
   StudySection k_file;
   k_file.present = true;
   k_file.axes = {parseSweep("agent.formation.k=1,5")};
-  const StudyPlan k = combinePlan(k_file, {" agent.k = 2 , 3 "}, 0, 1, aliases);
+  const StudyPlan k = combinePlan(k_file, {" agent.k = 2 , 3 "}, {}, 0, 1, aliases);
   ASSERT_EQ(k.axes.size(), 1u);
   EXPECT_EQ(k.axes[0].key, "agent.formation.k");
   EXPECT_EQ(k.axes[0].values, (std::vector<std::string>{"2", "3"}));
-  EXPECT_THROW(combinePlan(k_file, {"seed =5,9"}, 0, 1, same), std::invalid_argument);
+  EXPECT_THROW(combinePlan(k_file, {"seed =5,9"}, {}, 0, 1, same), std::invalid_argument);
 
   StudySection seeded = file;
   seeded.axes.push_back(parseSweep("seed=1,2"));
-  EXPECT_THROW(combinePlan(seeded, {}, 0, 1, same), std::invalid_argument);
+  EXPECT_THROW(combinePlan(seeded, {}, {}, 0, 1, same), std::invalid_argument);
 }
 
 TEST_F(StudySectionTest, TheScenarioLoaderSkipsTheSectionButNothingElse) {
