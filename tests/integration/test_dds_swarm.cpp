@@ -256,6 +256,20 @@ class SwarmRun : public ProcessRun {
   std::string logs() const { return runLogs(dir_, agents_.size()); }
   // The UAVs at the last step of the simulator's truth.csv, by id.
   std::vector<TruthRow> finalTruth() const { return lastStep(readTruthCsv(dir_ / "truth.csv")); }
+  // The run's last step is the in-process closed loop's bit for bit: positions, and velocities if `velocities`.
+  void expectFinalTruthOfTheInProcessLoop(const std::vector<std::string>& overrides, bool velocities) const {
+    const std::vector<TruthRow> final_rows = finalTruth();
+    const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
+    ASSERT_EQ(final_rows.size(), 4u);
+    ASSERT_EQ(ref.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+      EXPECT_EQ(final_rows[i].x, ref[i].position_m.x()) << "UAV " << i;
+      EXPECT_EQ(final_rows[i].y, ref[i].position_m.y()) << "UAV " << i;
+      if (!velocities) continue;
+      EXPECT_EQ(final_rows[i].vx, ref[i].velocity_mps.x()) << "UAV " << i;
+      EXPECT_EQ(final_rows[i].vy, ref[i].velocity_mps.y()) << "UAV " << i;
+    }
+  }
 
   std::unique_ptr<Monitor> monitor_;
   std::vector<int> agent_status_;
@@ -335,14 +349,7 @@ void SwarmRun::lockstepDropout4(const std::vector<std::string>& overrides, doubl
   EXPECT_TRUE(left.empty()) << "a process exited without deleting its DDS entities: " << left;
 
   // THEN lockstep reproduces the in-process closed loop bit for bit (same scenario, seed, sample order)
-  const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
-  ASSERT_EQ(ref.size(), 4u);
-  for (std::size_t i = 0; i < 4; ++i) {
-    EXPECT_EQ(final_rows[i].x, ref[i].position_m.x()) << "UAV " << i;
-    EXPECT_EQ(final_rows[i].y, ref[i].position_m.y()) << "UAV " << i;
-    EXPECT_EQ(final_rows[i].vx, ref[i].velocity_mps.x()) << "UAV " << i;
-    EXPECT_EQ(final_rows[i].vy, ref[i].velocity_mps.y()) << "UAV " << i;
-  }
+  expectFinalTruthOfTheInProcessLoop(overrides, true);
 }
 
 TEST_F(SwarmRun, LockstepDropout4AsShippedHoldsTenMetresAndEqualsTheInProcessLoop) {
@@ -371,16 +378,7 @@ TEST_F(SwarmRun, LockstepWithALimitedFieldOfViewTurnsAsTheInProcessLoopDoes) {
   ASSERT_EQ(finish(), 0) << logs();
   // THEN the run is the in-process closed loop bit for bit: the yaw rates arrived as computed, and the UAVs turned
   // as they do there (a heading off by one bit would move what the sensors see, and the positions with it)
-  const std::vector<TruthRow> final_rows = finalTruth();
-  const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
-  ASSERT_EQ(final_rows.size(), 4u);
-  ASSERT_EQ(ref.size(), 4u);
-  for (std::size_t i = 0; i < 4; ++i) {
-    EXPECT_EQ(final_rows[i].x, ref[i].position_m.x()) << "UAV " << i;
-    EXPECT_EQ(final_rows[i].y, ref[i].position_m.y()) << "UAV " << i;
-    EXPECT_EQ(final_rows[i].vx, ref[i].velocity_mps.x()) << "UAV " << i;
-    EXPECT_EQ(final_rows[i].vy, ref[i].velocity_mps.y()) << "UAV " << i;
-  }
+  expectFinalTruthOfTheInProcessLoop(overrides, true);
   EXPECT_EQ(monitor_->count(msg::EVENT_COLLISION), 0);
   EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD), 0);
 }
@@ -467,14 +465,7 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
   EXPECT_EQ(jsonNumber(summary, "agent_dead_events"), 0.0) << logs();
   EXPECT_NE(readFile(dir_ / "sim.log").find("a second writer on swa/uav2/cmd_vel"), std::string::npos) << logs();
   EXPECT_NE(readFile(dir_ / "agent1.log").find("a second swa_agent 1"), std::string::npos) << logs();
-  const std::vector<TruthRow> final_rows = finalTruth();
-  const std::vector<sim::UavTruth> ref = inProcessFinalTruth(sim::loadScenario(kScenario, overrides));
-  ASSERT_EQ(final_rows.size(), 4u);
-  ASSERT_EQ(ref.size(), 4u);
-  for (std::size_t i = 0; i < 4; ++i) {
-    EXPECT_EQ(final_rows[i].x, ref[i].position_m.x()) << "UAV " << i;
-    EXPECT_EQ(final_rows[i].y, ref[i].position_m.y()) << "UAV " << i;
-  }
+  expectFinalTruthOfTheInProcessLoop(overrides, false);
 }
 
 TEST_F(SwarmRun, SecondAgentWithTheSameIdInAnotherSwarmIsNotATwin) {

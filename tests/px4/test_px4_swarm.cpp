@@ -281,6 +281,27 @@ std::vector<std::pair<double, double>> eventsOf(const fs::path& run, int uav, co
   return out;
 }
 
+// The failsafe whose event text contains `what` came once, to `victim` alone, after `after_s`, at the first step past
+// `limit_s` of silence, and the launcher restarted that bridge (and no agent) once. `at_s` gets its time.
+void expectTheVictimsFailsafeAndItsBridgeRestarted(const fs::path& out, int victim, const std::string& what,
+                                                   double after_s, double limit_s, double& at_s) {
+  const auto failsafe = eventsOf(out, victim, what);
+  ASSERT_EQ(failsafe.size(), 1u) << readFile(out / "events.csv") << logs(out);
+  at_s = failsafe[0].first;
+  EXPECT_GT(failsafe[0].first, after_s);
+  EXPECT_GT(failsafe[0].second, limit_s);
+  EXPECT_LE(failsafe[0].second, limit_s + 0.0101);  // detected at the first step past the limit
+  for (int i = 0; i < 4; ++i) {
+    if (i == victim) continue;
+    EXPECT_TRUE(eventsOf(out, i, what).empty()) << "UAV " << i;
+  }
+  const std::string summary = readFile(out / "summary.json");
+  EXPECT_EQ(jsonNumber(summary, "bridge_restarts"), 1.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0) << summary;
+  EXPECT_NE(readFile(out / "logs" / "restarts.csv").find(",bridge_" + std::to_string(victim) + ","),
+            std::string::npos);
+}
+
 // The mean speed of `uav` over [from_s, to_s] from trajectories.csv (positions every 0.5 s).
 double meanSpeed(const fs::path& run, int uav, double from_s, double to_s) {
   std::istringstream in(readFile(run / "trajectories.csv"));
@@ -328,27 +349,18 @@ TEST_F(Px4SwarmTest, AKilledBridgeLetsPx4FailSafeThenItIsRestartedAndTheUavRejoi
   ASSERT_TRUE(status) << "swa_launch still running";
   const std::string summary = readFile(out / "summary.json");
   // THEN PX4 (the stand-in) lost the offboard signal: failsafe once its heartbeat was silent for COM_OF_LOSS_T, and
-  // that UAV alone
-  const auto lost = eventsOf(out, kVictim, "offboard lost");
-  ASSERT_EQ(lost.size(), 1u) << readFile(out / "events.csv") << logs(out);
-  EXPECT_GT(lost[0].first, 15.0);
-  EXPECT_GT(lost[0].second, kComOfLossT);
-  EXPECT_LE(lost[0].second, kComOfLossT + 0.0101);  // detected at the first step past COM_OF_LOSS_T
-  for (int i = 0; i < 4; ++i) {
-    if (i == kVictim) continue;
-    EXPECT_TRUE(eventsOf(out, i, "offboard lost").empty()) << "UAV " << i;
-  }
-  // AND the launcher restarted the bridge, which engaged offboard again: the UAV rejoined
-  EXPECT_EQ(jsonNumber(summary, "bridge_restarts"), 1.0) << summary;
-  EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0) << summary;
-  EXPECT_NE(readFile(out / "logs" / "restarts.csv").find(",bridge_2,"), std::string::npos);
+  // that UAV alone; the launcher restarted the bridge
+  double lost_s = 0.0;
+  expectTheVictimsFailsafeAndItsBridgeRestarted(out, kVictim, "offboard lost", 15.0, kComOfLossT, lost_s);
+  ASSERT_FALSE(HasFatalFailure());
+  // AND the restarted bridge engaged offboard again: the UAV rejoined
   const auto engaged = eventsOf(out, kVictim, "OFFBOARD on request");
   ASSERT_EQ(engaged.size(), 2u) << readFile(out / "events.csv");
   const double back_s = engaged[1].first;
-  EXPECT_GT(back_s, lost[0].first);
+  EXPECT_GT(back_s, lost_s);
   // AND between the two it held: from 2 s after the loss (the velocity responds with a 1 s lag) it barely moved
-  if (back_s - lost[0].first > 3.0) {
-    const double held = meanSpeed(out, kVictim, lost[0].first + 2.0, back_s);
+  if (back_s - lost_s > 3.0) {
+    const double held = meanSpeed(out, kVictim, lost_s + 2.0, back_s);
     EXPECT_LT(held, 0.1) << "mean speed " << held << " m/s while holding";
   }
   // AND the swarm stayed cohesive without a collision
@@ -382,27 +394,19 @@ TEST_F(Px4SwarmTest, AKilledArdupilotBridgeLetsItsVehicleStopAfterGuidTimeoutThe
   watch.reset();
   ASSERT_TRUE(status) << "swa_launch still running";
   const std::string summary = readFile(out / "summary.json");
-  // THEN ArduPilot (the stand-in) stopped the vehicle once cmd_vel was silent for GUID_TIMEOUT, that UAV alone
-  const auto stopped = eventsOf(out, kVictim, "GUID_TIMEOUT");
-  ASSERT_EQ(stopped.size(), 1u) << readFile(out / "events.csv") << logs(out);
-  EXPECT_GT(stopped[0].first, 12.0);
-  EXPECT_GT(stopped[0].second, kGuidTimeoutS);
-  EXPECT_LE(stopped[0].second, kGuidTimeoutS + 0.0101);  // detected at the first step past GUID_TIMEOUT
-  for (int i = 0; i < 4; ++i) {
-    if (i == kVictim) continue;
-    EXPECT_TRUE(eventsOf(out, i, "GUID_TIMEOUT").empty()) << "UAV " << i;
-  }
-  // AND the launcher restarted the bridge, whose commands moved the vehicle again (still in GUIDED: no new request)
-  EXPECT_EQ(jsonNumber(summary, "bridge_restarts"), 1.0) << summary;
-  EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0) << summary;
-  EXPECT_NE(readFile(out / "logs" / "restarts.csv").find(",bridge_1,"), std::string::npos);
+  // THEN ArduPilot (the stand-in) stopped the vehicle once cmd_vel was silent for GUID_TIMEOUT, that UAV alone; the
+  // launcher restarted the bridge
+  double stopped_s = 0.0;
+  expectTheVictimsFailsafeAndItsBridgeRestarted(out, kVictim, "GUID_TIMEOUT", 12.0, kGuidTimeoutS, stopped_s);
+  ASSERT_FALSE(HasFatalFailure());
+  // AND the restarted bridge's commands moved the vehicle again (still in GUIDED: no new request)
   const auto back = eventsOf(out, kVictim, "cmd_vel again");
   ASSERT_EQ(back.size(), 1u) << readFile(out / "events.csv");
-  EXPECT_GT(back[0].first, stopped[0].first);
+  EXPECT_GT(back[0].first, stopped_s);
   EXPECT_EQ(eventsOf(out, kVictim, "GUIDED on request").size(), 1u);
   // AND in between it held: from 2 s after the stop (the velocity responds with a 1 s lag) it barely moved
-  ASSERT_GT(back[0].first - stopped[0].first, 3.0);  // the restart back-off alone is 4 s
-  const double held = meanSpeed(out, kVictim, stopped[0].first + 2.0, back[0].first);
+  ASSERT_GT(back[0].first - stopped_s, 3.0);  // the restart back-off alone is 4 s
+  const double held = meanSpeed(out, kVictim, stopped_s + 2.0, back[0].first);
   EXPECT_LT(held, 0.1) << "mean speed " << held << " m/s while holding";
   // AND the swarm stayed cohesive without a collision
   EXPECT_EQ(*status, 0) << summary << logs(out);
