@@ -15,12 +15,20 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 
 #include "msg_convert.h"
-#include "record_taps.h"
+#include "recording_taps.h"
 #include "swa/app/signals.h"
 #include "swa/dds/topics.h"
 
 namespace swa::monitor_node {
 namespace {
+
+using recording::kClockProfile;
+using recording::kEventProfile;
+using recording::kStateProfile;
+using recording::kTruthProfile;
+using recording::recordingChannel;
+using recording::tapClock;
+using recording::tapUavTopics;
 
 // Longest single wait, so a signal or the timeout is noticed quickly.
 constexpr auto kPollPeriod = std::chrono::milliseconds(100);

@@ -103,7 +103,7 @@ class MonitorNode {
   std::unique_ptr<dds::Participant> participant_;
   dds::Reader<dds::Payload> truth_reader_;
   std::map<int, dds::Reader<dds::Payload>> state_reader_handles_;
-  std::map<int, dds::Reader<dds::Payload>> command_taps_;  // --record: each agent's cmd_vel (record_taps.h)
+  std::map<int, dds::Reader<dds::Payload>> command_taps_;  // --record: each agent's cmd_vel (recording_taps.h)
   bool run_readers_pending_ = false;
   std::optional<std::chrono::steady_clock::time_point> all_matched_at_;  // recording: every reader matched since
 };

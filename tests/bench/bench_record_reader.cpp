@@ -1,7 +1,7 @@
 // The baseline of issue #24: what receiving the topics of a complete recording costs a bare Fast DDS reader. It joins
 // the swarm like swa_monitor (same participant code, profiles file, SWA_SWARM partition, domain) and creates a raw
 // reader of every topic `swa_monitor --record` records, with the monitor's own reader profiles
-// (forEachRecordedTopic, record_taps.h), and only counts the samples: no decoding, no metrics, no file. Started
+// (forEachRecordedTopic, recording_taps.h), and only counts the samples: no decoding, no metrics, no file. Started
 // before the run, stopped with SIGTERM/SIGINT after it; then prints its own CPU time (getrusage) and the count per
 // topic as one JSON object on stdout. Not a ctest: tests/bench/bench_record_live.sh runs it beside the monitor.
 //
@@ -23,7 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "record_taps.h"
+#include "recording_taps.h"
 #include "swa/app/signals.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
@@ -40,7 +40,7 @@ struct CountInto {
 
   template <class PubSubType>
   void operator()(const std::string& topic, const char* profile) {
-    auto& n = counts[swa::monitor_node::recordedTopic(participant.wireNames(), topic)];
+    auto& n = counts[swa::recording::recordedTopic(participant.wireNames(), topic)];
     n = std::make_unique<std::atomic<std::uint64_t>>(0);
     std::atomic<std::uint64_t>* counter = n.get();
     readers.push_back(participant.rawReader<PubSubType>(
@@ -69,7 +69,7 @@ int readRun(int uav_count, const std::optional<std::string>& domain) {
   {
     swa::dds::Participant participant("swa_bench_reader", swa::dds::resolveDomain(domain),
                                       swa::dds::resolveProfilesFile());
-    swa::monitor_node::forEachRecordedTopic(uav_count, CountInto{participant, counts, readers});
+    swa::recording::forEachRecordedTopic(uav_count, CountInto{participant, counts, readers});
     swa::app::acceptShutdownSignals();
     std::fprintf(stderr, "bench_record_reader: %zu readers\n", readers.size());
     while (!swa::app::shutdownRequested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -21,6 +21,7 @@ LAYERS = [
     ("wire", ["idl"]),
     ("runtime", ["deploy/app", "deploy/dds"]),
     ("processes", ["agent/node", "agent/bridge_node", "sim/node", "monitor/node", "monitor/scoring", "monitor/live_view",
+                   "monitor/recording/taps",
                    "deploy/launch", "deploy/batch", "deploy/replay", "deploy/study"]),
 ]
 TOPS = ["agent", "sim", "monitor", "idl", "deploy"]

@@ -1,12 +1,12 @@
-#include "record_taps.h"
+#include "recording_taps.h"
 
-namespace swa::monitor_node {
+namespace swa::recording {
 namespace {
 
 // The reader profiles match each topic's writer (deploy/dds/profiles.xml): reliable, and transient local where the
 // writer keeps history, so a recorder that starts late still gets what its writers kept.
 template <class PubSubType>
-dds::Reader<dds::Payload> tap(dds::Participant& p, recording::Recording& recording, const std::string& topic,
+dds::Reader<dds::Payload> tap(dds::Participant& p, Recording& recording, const std::string& topic,
                               const char* profile) {
   const std::uint16_t channel = recordingChannel<PubSubType>(recording, p, topic);
   return p.rawReader<PubSubType>(topic, profile, [&recording, channel](dds::RawSample&& s) {
@@ -16,7 +16,7 @@ dds::Reader<dds::Payload> tap(dds::Participant& p, recording::Recording& recordi
 
 struct TapInto {
   dds::Participant& participant;
-  recording::Recording& recording;
+  Recording& recording;
   dds::Reader<dds::Payload> last;  // the last tapped: cmd_vel (forEachUavTap)
 
   template <class PubSubType>
@@ -39,14 +39,14 @@ std::string msgTypeName(const std::string& generated) {
   return colon == std::string::npos ? generated : generated.substr(colon + 2);
 }
 
-dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, recording::Recording& recording, int uav) {
+dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, Recording& recording, int uav) {
   TapInto visitor{participant, recording, {}};
   forEachUavTap(uav, visitor);
   return visitor.last;
 }
 
-void tapClock(dds::Participant& participant, recording::Recording& recording) {
+void tapClock(dds::Participant& participant, Recording& recording) {
   tap<msg::ClockPubSubType>(participant, recording, dds::topics::kClock, kClockProfile);
 }
 
-}  // namespace swa::monitor_node
+}  // namespace swa::recording

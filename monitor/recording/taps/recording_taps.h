@@ -1,7 +1,8 @@
 #pragma once
-// The DDS side of a recording (swa_monitor --record): raw readers whose payloads go into the MCAP file unchanged.
-// The monitor's own inputs (truth, events, states) are read raw anyway (monitor_node.cpp) and recorded there; these
-// are the topics the monitor reads only to record them.
+// The DDS side of a recording (swa_monitor --record): raw readers whose payloads go into the MCAP file unchanged, and
+// the list of what a complete recording holds. The monitor's own inputs (truth, events, states) are read raw anyway
+// (monitor/node/monitor_node.cpp) and recorded there; these are the topics the monitor reads only to record them.
+// The recording's one DDS part: the file itself (swa/recording/) knows no DDS.
 
 #include <cstdint>
 #include <string>
@@ -20,7 +21,7 @@
 #include "swa/dds/topics.h"
 #include "swa/recording/recording.h"
 
-namespace swa::monitor_node {
+namespace swa::recording {
 
 // The recording's topic for an SWA topic: the ROS 2 topic it is on the wire in the ros2 naming (with its namespace),
 // else "/" + the SWA name; either way what `ros2 topic echo` or a viewer shows, e.g. /swa/uav0/imu.
@@ -31,7 +32,7 @@ std::string msgTypeName(const std::string& generated);
 
 // The recording channel of `swa_topic` read by `participant` with PubSubType.
 template <class PubSubType>
-std::uint16_t recordingChannel(recording::Recording& recording, const dds::Participant& participant,
+std::uint16_t recordingChannel(Recording& recording, const dds::Participant& participant,
                                const std::string& swa_topic) {
   PubSubType type;
   return recording.cdrChannel(recordedTopic(participant.wireNames(), swa_topic), msgTypeName(type.getName()));
@@ -58,9 +59,9 @@ void forEachRecordedTopic(int uav_count, Visit&& visit);
 // participant's readers). Returns the cmd_vel reader: its writer keeps only the newest command (KEEP_LAST 1), so a
 // recorder that matches it after the run started misses the commands before; the monitor waits for it to match
 // before it lets the simulator start (monitor_node.cpp). The sensors' writers keep 1000 samples for late readers.
-dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, recording::Recording& recording, int uav);
+dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, Recording& recording, int uav);
 // A reader of swa/clock into `recording`.
-void tapClock(dds::Participant& participant, recording::Recording& recording);
+void tapClock(dds::Participant& participant, Recording& recording);
 
 template <class Visit>
 void forEachUavTap(int uav, Visit&& visit) {
@@ -83,4 +84,4 @@ void forEachRecordedTopic(int uav_count, Visit&& visit) {
   }
 }
 
-}  // namespace swa::monitor_node
+}  // namespace swa::recording
