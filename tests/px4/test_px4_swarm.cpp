@@ -87,6 +87,24 @@ class Px4SwarmTest : public ::testing::Test {
   void expectThroughArdupilotAsCohesiveAsDirect(const std::string& scenario, DiscoveryObserver* observer);
   void expectGnssLostAndRegainedThroughTheBridges(const std::string& vehicle, const std::string& name);
 
+  // Runs swa_launch with `args` (its log: dir_/`log`) and SIGKILLs UAV `victim`'s bridge once that UAV's agent has
+  // published its state for `kill_at_ns`; `status` gets the launcher's exit status. Afterwards no process of the run
+  // left shared memory behind.
+  void runKillingTheBridge(const std::vector<std::string>& args, const std::string& log, int victim,
+                           std::int64_t kill_at_ns, std::optional<int>& status) {
+    auto watch = std::make_unique<StateStampWatch>(domain_, victim);
+    const ShmJanitor since_watch;
+    Child launch(args, dir_ / log);
+    ASSERT_GT(watch->killWhenReached(kill_at_ns, launch,
+                                     [&] { return uavProcessPid(domain_, "swa_px4_bridge", victim); }),
+              0)
+        << readFile(dir_ / log);
+    status = launch.wait(kRunBoundS);
+    watch.reset();
+    ASSERT_TRUE(status) << "swa_launch still running";
+    expectNothingLeft(&since_watch);
+  }
+
   ShmJanitor janitor_;  // first: sees /dev/shm before anything of ours exists
   fs::path dir_;
   int domain_ = testDomain(11);
@@ -333,20 +351,13 @@ TEST_F(Px4SwarmTest, AKilledBridgeLetsPx4FailSafeThenItIsRestartedAndTheUavRejoi
   const fs::path out = dir_ / "kill";
   // GIVEN a 4-UAV run through PX4 in realtime (40 s; in lockstep the simulated time stops while the simulator waits
   // for the killed bridge's answer, so PX4 would never see the heartbeat missing), the launcher restarting a bridge
-  // after 2 s (longer than COM_OF_LOSS_T: a faster restart keeps the vehicle in offboard), and a watch on UAV 2's agent
-  auto watch = std::make_unique<StateStampWatch>(domain_, kVictim);
-  const ShmJanitor since_watch;
+  // after 2 s (longer than COM_OF_LOSS_T: a faster restart keeps the vehicle in offboard)
   std::vector<std::string> args = launchArgs("dropout_4.yaml", "px4", out, {"duration_s=40", "clock.mode=realtime"});
   args.insert(args.end(), {"--restart-backoff-s", "2"});
-  Child launch(args, dir_ / "kill.log");
   // WHEN its bridge is SIGKILLed once the agent has published its state for t = 15 s
-  ASSERT_GT(watch->killWhenReached(15'000'000'000LL, launch,
-                                   [&] { return uavProcessPid(domain_, "swa_px4_bridge", kVictim); }),
-            0)
-      << readFile(dir_ / "kill.log");
-  const std::optional<int> status = launch.wait(kRunBoundS);
-  watch.reset();
-  ASSERT_TRUE(status) << "swa_launch still running";
+  std::optional<int> status;
+  runKillingTheBridge(args, "kill.log", kVictim, 15'000'000'000LL, status);
+  ASSERT_FALSE(HasFatalFailure());
   const std::string summary = readFile(out / "summary.json");
   // THEN PX4 (the stand-in) lost the offboard signal: failsafe once its heartbeat was silent for COM_OF_LOSS_T, and
   // that UAV alone; the launcher restarted the bridge
@@ -366,7 +377,6 @@ TEST_F(Px4SwarmTest, AKilledBridgeLetsPx4FailSafeThenItIsRestartedAndTheUavRejoi
   // AND the swarm stayed cohesive without a collision
   EXPECT_EQ(*status, 0) << summary << logs(out);
   EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
-  expectNothingLeft(&since_watch);
 }
 
 TEST_F(Px4SwarmTest, AKilledArdupilotBridgeLetsItsVehicleStopAfterGuidTimeoutThenItRejoins) {
@@ -376,23 +386,16 @@ TEST_F(Px4SwarmTest, AKilledArdupilotBridgeLetsItsVehicleStopAfterGuidTimeoutThe
   const fs::path out = dir_ / "kill_ap";
   // GIVEN a 4-UAV run through ArduPilot in realtime (30 s), GUID_TIMEOUT 1 s, the launcher restarting a bridge after
   // 4 s (so that the vehicle times out and holds for a while), no gusts (a held vehicle in the simulator's wind
-  // drifts at ~0.25 m/s: its hold is a zero-velocity setpoint, not a position hold), and a watch on UAV 1's agent
-  auto watch = std::make_unique<StateStampWatch>(domain_, kVictim);
-  const ShmJanitor since_watch;
+  // drifts at ~0.25 m/s: its hold is a zero-velocity setpoint, not a position hold)
   std::vector<std::string> args =
       launchArgs("dropout_4.yaml", "ardupilot", out,
                  {"duration_s=30", "clock.mode=realtime", "wind.gust_std=0",
                   "vehicle.guid_timeout_s=" + std::to_string(kGuidTimeoutS)});
   args.insert(args.end(), {"--restart-backoff-s", "4"});
-  Child launch(args, dir_ / "kill_ap.log");
   // WHEN its bridge is SIGKILLed once the agent has published its state for t = 12 s
-  ASSERT_GT(watch->killWhenReached(12'000'000'000LL, launch,
-                                   [&] { return uavProcessPid(domain_, "swa_px4_bridge", kVictim); }),
-            0)
-      << readFile(dir_ / "kill_ap.log");
-  const std::optional<int> status = launch.wait(kRunBoundS);
-  watch.reset();
-  ASSERT_TRUE(status) << "swa_launch still running";
+  std::optional<int> status;
+  runKillingTheBridge(args, "kill_ap.log", kVictim, 12'000'000'000LL, status);
+  ASSERT_FALSE(HasFatalFailure());
   const std::string summary = readFile(out / "summary.json");
   // THEN ArduPilot (the stand-in) stopped the vehicle once cmd_vel was silent for GUID_TIMEOUT, that UAV alone; the
   // launcher restarted the bridge
@@ -411,7 +414,6 @@ TEST_F(Px4SwarmTest, AKilledArdupilotBridgeLetsItsVehicleStopAfterGuidTimeoutThe
   // AND the swarm stayed cohesive without a collision
   EXPECT_EQ(*status, 0) << summary << logs(out);
   EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
-  expectNothingLeft(&since_watch);
 }
 
 TEST_F(Px4SwarmTest, EachBridgeTouchesOnlyItsVehicleAndItsUav) {
