@@ -1,7 +1,7 @@
 #pragma once
 // The live view's channels (swa_monitor --live): what the monitor knows at each truth sample and agent state, as JSON
 // messages with their JSON Schemas, for Foxglove's panels and the page at "/". Metrics use the recording's channel
-// (metrics_json.h). No I/O.
+// (step_metrics_json.h). No I/O.
 //
 //   /swa/live/swarm        swa_live/Swarm       per truth sample: every UAV's position and velocity (world frame,
 //                                               x east, y north), the neighbour links the agents fitted their

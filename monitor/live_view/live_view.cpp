@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "live_messages.h"
-#include "metrics_json.h"
+#include "step_metrics_json.h"
 
 namespace swa::live {
 namespace {
@@ -30,7 +30,7 @@ LiveView::LiveView(const std::string& address, int port, const monitor::MetricsC
     : server_(serverOptions(address, port)), scoring_(scoring) {
   swarm_channel_ = server_.addChannel(kSwarmTopic, kSwarmSchemaName, swarmJsonSchema());
   metrics_channel_ = server_.addChannel(monitor_node::kMetricsTopic, monitor_node::kMetricsSchemaName,
-                                        monitor_node::metricsJsonSchema());
+                                        monitor_node::stepMetricsJsonSchema());
   swarm_picture_channel_ = server_.addChannel(kSwarmPictureTopic, kPictureSchemaName, pictureJsonSchema());
   metric_pictures_channel_ = server_.addChannel(kMetricPicturesTopic, kPicturesSchemaName, picturesJsonSchema());
 }
@@ -84,7 +84,7 @@ void LiveView::onState(const monitor_node::StateSample& state) {
 void LiveView::onMetrics(const std::vector<monitor::TimeSeriesRow>& series) {
   for (; metrics_sent_ < series.size(); ++metrics_sent_) {
     const monitor::TimeSeriesRow& row = series[metrics_sent_];
-    server_.publish(metrics_channel_, nanoseconds(row.t_s), monitor_node::metricsJson(row));
+    server_.publish(metrics_channel_, nanoseconds(row.t_s), monitor_node::stepMetricsJson(row));
     window_.add(row);
     plots_held_ = true;
   }

@@ -2,7 +2,7 @@
 // What swa_monitor --live publishes, fed by the monitor node as its inputs arrive: the swarm at each truth sample and
 // its picture (at most every 50 ms of wall time: a lockstep run goes faster than anyone watches), each agent's
 // states, the metrics of each scored step and their plots over the last minute (at most every 500 ms)
-// (live_messages.h, metrics_json.h, live_pictures.h), through the LiveServer.
+// (live_messages.h, step_metrics_json.h, live_pictures.h), through the LiveServer.
 
 #include <chrono>
 #include <cstddef>

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "live_run.h"
-#include "metrics_json.h"
+#include "step_metrics_json.h"
 #include "monitor_node.h"
 #include "monitor_options.h"
 #include "swa/app/program.h"

@@ -17,7 +17,7 @@
 #include <swa/msg/SwarmTruth.h>
 
 #include "live_record.h"
-#include "metrics_json.h"
+#include "step_metrics_json.h"
 #include "live_run.h"
 #include "live_view.h"
 #include "status_line.h"

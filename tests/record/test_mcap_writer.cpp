@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "metrics_json.h"
+#include "step_metrics_json.h"
 #include "swa/msg_defs/ros_definition.h"
 #include "swa/recording/mcap_reader.h"
 #include "swa/recording/mcap_writer.h"
@@ -283,18 +283,18 @@ TEST_F(McapWriterTest, RecordingCountsPerChannelClosesOldChunksAndWritesItsManif
   EXPECT_EQ(manifest["channels"]["/m"]["messages"], 1);
 }
 
-TEST(MetricsJson, EveryColumnOfTheTimeSeriesWithNullForAnUndefinedValue) {
+TEST(StepMetricsJson, EveryColumnOfTheTimeSeriesWithNullForAnUndefinedValue) {
   monitor::TimeSeriesRow row;
   row.t_s = 12.5;
   row.d_nb_m = 9.75;
   row.collisions = 2;
   row.groups = 1;
-  const auto j = nlohmann::json::parse(monitor_node::metricsJson(row));
+  const auto j = nlohmann::json::parse(monitor_node::stepMetricsJson(row));
   EXPECT_EQ(j["t_s"], 12.5);
   EXPECT_EQ(j["d_nb_m"], 9.75);
   EXPECT_TRUE(j["nees_pos"].is_null()) << "NaN is not JSON";
   EXPECT_EQ(j["collisions"], 2);
-  const auto schema = nlohmann::json::parse(monitor_node::metricsJsonSchema());
+  const auto schema = nlohmann::json::parse(monitor_node::stepMetricsJsonSchema());
   EXPECT_EQ(schema["required"].size(), j.size()) << "every field required";
   for (const auto& key : schema["required"]) EXPECT_TRUE(j.contains(key)) << key;
 }

@@ -1,4 +1,4 @@
-#include "metrics_json.h"
+#include "step_metrics_json.h"
 
 #include <algorithm>
 #include <chrono>
@@ -39,7 +39,7 @@ const std::vector<Field>& numberFields() {
 
 }  // namespace
 
-std::string metricsJsonSchema() {
+std::string stepMetricsJsonSchema() {
   Json properties = Json::object();
   Json required = Json::array();
   for (const Field& f : numberFields()) {
@@ -58,7 +58,7 @@ std::string metricsJsonSchema() {
   return schema.dump();
 }
 
-std::string metricsJson(const monitor::TimeSeriesRow& row) {
+std::string stepMetricsJson(const monitor::TimeSeriesRow& row) {
   Json j = Json::object();
   for (const Field& f : numberFields()) {
     const double v = row.*(f.number);
@@ -71,14 +71,14 @@ std::string metricsJson(const monitor::TimeSeriesRow& row) {
 
 void MetricsRecorder::writeNew(const std::vector<monitor::TimeSeriesRow>& series) {
   if (written_ >= series.size()) return;
-  if (!channel_) channel_ = recording_.jsonChannel(kMetricsTopic, kMetricsSchemaName, metricsJsonSchema());
+  if (!channel_) channel_ = recording_.jsonChannel(kMetricsTopic, kMetricsSchemaName, stepMetricsJsonSchema());
   const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                           std::chrono::system_clock::now().time_since_epoch())
                           .count();
   for (; written_ < series.size(); ++written_) {
     const monitor::TimeSeriesRow& row = series[written_];
     const auto log_ns = static_cast<std::uint64_t>(std::llround(std::max(row.t_s, 0.0) * 1e9));
-    recording_.writeJson(*channel_, metricsJson(row), log_ns, now_ns);
+    recording_.writeJson(*channel_, stepMetricsJson(row), log_ns, now_ns);
   }
 }
 

@@ -17,8 +17,8 @@ namespace swa::monitor_node {
 constexpr const char* kMetricsTopic = "/swa/monitor/metrics";
 constexpr const char* kMetricsSchemaName = "swa_monitor/StepMetrics";
 
-std::string metricsJsonSchema();
-std::string metricsJson(const monitor::TimeSeriesRow& row);
+std::string stepMetricsJsonSchema();
+std::string stepMetricsJson(const monitor::TimeSeriesRow& row);
 
 // Writes the rows of a growing time series (LiveRun::series()) to the metrics channel of a recording, each once,
 // with the step's time as log time.
