@@ -5,7 +5,7 @@
 #include "swa/agent/agent.h"
 #include "swa/agent/feed.h"
 #include "swa/monitor/swarm_metrics.h"
-#include "swa/record/scoring.h"
+#include "swa/run_record/scoring.h"
 #include "swa/sim/world.h"
 
 namespace swa::batch {

@@ -19,8 +19,8 @@
 #include "swa/agent/config_io.h"
 #include "swa/app/program.h"
 #include "swa/monitor/output_dir.h"
-#include "swa/record/events.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/events.h"
+#include "swa/run_record/run_dir.h"
 #include "swa/sim/scenario_io.h"
 
 namespace fs = std::filesystem;
@@ -62,7 +62,7 @@ record::Json modeJson(const std::vector<batch::RunResult>& runs) {
                       {"seeds", std::move(seeds)}};
 }
 
-// Per seed, the time series and the world's events, in the run directory's dialect (swa/record/run_dir.h).
+// Per seed, the time series and the world's events, in the run directory's dialect (swa/run_record/run_dir.h).
 void writeSeries(const fs::path& dir, const std::vector<batch::RunResult>& runs) {
   fs::create_directories(dir);
   for (const batch::RunResult& r : runs) {

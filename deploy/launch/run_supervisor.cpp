@@ -15,7 +15,7 @@
 #include "child_process.h"
 #include "restart_policy.h"
 #include "swa/app/signals.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/run_dir.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::launch {
@@ -46,7 +46,7 @@ struct UavProcess {
 
   std::string name() const { return (bridge ? "bridge " : "agent ") + std::to_string(uav); }
   std::string logName() const { return (bridge ? "bridge_" : "agent_") + std::to_string(uav) + ".log"; }
-  // The uav column of restarts.csv (swa/record/restarts.h).
+  // The uav column of restarts.csv (swa/run_record/restarts.h).
   std::string subject() const { return (bridge ? "bridge_" : "") + std::to_string(uav); }
 };
 

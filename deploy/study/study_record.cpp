@@ -7,7 +7,7 @@
 #include <set>
 
 #include "study_html.h"
-#include "swa/record/csv.h"
+#include "swa/run_record/csv.h"
 #include "swa_study_version.h"  // generated at build time (write_version.cmake)
 
 namespace swa::study {

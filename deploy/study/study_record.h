@@ -17,7 +17,7 @@
 
 #include "study_plan.h"
 #include "swa/monitor/summary_format.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/run_dir.h"
 
 namespace swa::study {
 

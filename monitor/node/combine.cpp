@@ -5,8 +5,8 @@
 #include <optional>
 #include <system_error>
 
-#include "swa/record/run_dir.h"
-#include "swa/record/run_report.h"
+#include "swa/run_record/run_dir.h"
+#include "swa/run_record/run_report.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::monitor_node {

@@ -10,9 +10,9 @@
 #include "live_record.h"
 #include "swa/dds/options.h"
 #include "swa/monitor/report_html.h"
-#include "swa/record/restarts.h"
-#include "swa/record/run_dir.h"
-#include "swa/record/run_report.h"
+#include "swa/run_record/restarts.h"
+#include "swa/run_record/run_dir.h"
+#include "swa/run_record/run_report.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::monitor_node {

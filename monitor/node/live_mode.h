@@ -1,6 +1,6 @@
 #pragma once
 // swa_monitor's live mode as a process role: the DDS node feeds a LiveRun until the end of the scenario (or stop());
-// then, with every DDS entity deleted, the run is finished, judged and written to its directory (swa/record).
+// then, with every DDS entity deleted, the run is finished, judged and written to its directory (swa/run_record).
 
 #include <memory>
 #include <optional>

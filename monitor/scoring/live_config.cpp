@@ -1,6 +1,6 @@
 #include "live_config.h"
 
-#include "swa/record/scoring.h"
+#include "swa/run_record/scoring.h"
 
 namespace swa::monitor_node {
 

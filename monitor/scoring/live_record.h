@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "live_run.h"
-#include "swa/record/run_record.h"
+#include "swa/run_record/run_record.h"
 
 namespace swa::monitor_node {
 

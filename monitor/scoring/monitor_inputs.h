@@ -9,7 +9,7 @@
 #include "swa/agent/config.h"
 #include "swa/agent/samples.h"
 #include "swa/monitor/swarm_metrics.h"
-#include "swa/record/events.h"
+#include "swa/run_record/events.h"
 
 namespace swa::monitor_node {
 
@@ -33,7 +33,7 @@ struct StateSample {
   monitor::EstimateRecord estimate;  // monitor::estimateFromDiagnostics of the state
 };
 
-// Events are the run record's (swa/record/events.h).
+// Events are the run record's (swa/run_record/events.h).
 using record::EventRecord;
 using record::kAllUavs;
 namespace event_kind = record::event_kind;

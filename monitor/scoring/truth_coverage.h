@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "swa/agent/samples.h"
-#include "swa/record/verdict.h"
+#include "swa/run_record/verdict.h"
 
 namespace swa::monitor_node {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "swa/record/events.h"
+#include "swa/run_record/events.h"
 #include "swa/sim/timing.h"
 
 namespace swa::sim_node {

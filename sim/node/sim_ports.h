@@ -34,7 +34,7 @@
 #include "sim_summary.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
-#include "swa/record/events.h"
+#include "swa/run_record/events.h"
 #include "swa/sim/world.h"
 
 namespace swa::sim_node {

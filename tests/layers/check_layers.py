@@ -17,7 +17,7 @@ LAYERS = [
                     "deploy/app/include/swa/app/number.h"]),
     ("agent core", ["agent/include", "agent/src", "agent/config", "agent/px4", "agent/autopilot"]),
     ("sim core", ["sim/include", "sim/src", "sim/scenario"]),
-    ("monitor core", ["monitor/include", "monitor/src", "monitor/record", "monitor/recording"]),
+    ("monitor core", ["monitor/include", "monitor/src", "monitor/run_record", "monitor/recording"]),
     ("wire", ["idl"]),
     ("runtime", ["deploy/app", "deploy/dds"]),
     ("processes", ["agent/node", "agent/bridge_node", "sim/node", "monitor/node", "monitor/scoring", "monitor/live_view",

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "swa/monitor/chi2.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/run_dir.h"
 #include "swa/monitor/accumulator.h"
 #include "swa/monitor/summary_format.h"
 

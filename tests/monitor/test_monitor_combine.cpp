@@ -10,8 +10,8 @@
 #include <string>
 
 #include "combine.h"
-#include "swa/record/run_report.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/run_report.h"
+#include "swa/run_record/run_dir.h"
 #include "scratch.h"
 
 namespace swa::monitor_node {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "truth_coverage.h"
-#include "swa/record/verdict.h"
+#include "swa/run_record/verdict.h"
 
 namespace swa::monitor_node {
 namespace {

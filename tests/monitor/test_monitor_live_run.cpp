@@ -12,7 +12,7 @@
 #include "live_record.h"
 #include "live_run.h"
 #include "status_line.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/run_dir.h"
 
 namespace swa::monitor_node {
 namespace {

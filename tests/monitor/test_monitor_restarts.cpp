@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "swa/record/restarts.h"
+#include "swa/run_record/restarts.h"
 #include "scratch.h"
 
 namespace swa::record {

@@ -12,8 +12,8 @@
 #include <sstream>
 #include <string>
 
-#include "swa/record/csv.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/csv.h"
+#include "swa/run_record/run_dir.h"
 #include "scratch.h"
 
 namespace swa::record {

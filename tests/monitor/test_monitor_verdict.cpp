@@ -6,7 +6,7 @@
 #include <string>
 
 #include "monitor_options.h"
-#include "swa/record/verdict.h"
+#include "swa/run_record/verdict.h"
 
 namespace swa::record {
 namespace {

@@ -1,4 +1,4 @@
-// summary.json's metric members (swa/record/run_dir.h): swa_batch's per-seed entries and its aggregate, written
+// summary.json's metric members (swa/run_record/run_dir.h): swa_batch's per-seed entries and its aggregate, written
 // through nlohmann::json. Every summary field is a member exactly once; what is not finite is null (JSON has no NaN).
 
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "markup_support.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/run_dir.h"
 
 namespace swa::record {
 namespace {

@@ -1,4 +1,4 @@
-// The events and restarts tables of report.html (swa/record/run_report.h): one row per event or restart of every
+// The events and restarts tables of report.html (swa/run_record/run_report.h): one row per event or restart of every
 // run, a "run" column only when there are several runs, and at most kMaxTableRows rows with the rest counted in the
 // note.
 
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "swa/record/run_report.h"
+#include "swa/run_record/run_report.h"
 
 namespace swa::record {
 namespace {

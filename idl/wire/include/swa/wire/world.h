@@ -11,7 +11,7 @@
 #include <swa/msg/ScenarioEvent.h>
 #include <swa/msg/SwarmTruth.h>
 
-#include "swa/record/events.h"
+#include "swa/run_record/events.h"
 #include "swa/sim/world.h"
 
 namespace swa::wire {

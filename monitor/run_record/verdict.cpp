@@ -1,4 +1,4 @@
-#include "swa/record/verdict.h"
+#include "swa/run_record/verdict.h"
 
 #include <cmath>
 

@@ -1,10 +1,10 @@
-#include "swa/record/restarts.h"
+#include "swa/run_record/restarts.h"
 
 #include <fstream>
 #include <limits>
 #include <optional>
 
-#include "swa/record/csv.h"
+#include "swa/run_record/csv.h"
 #include "swa/app/number.h"
 
 namespace swa::record {

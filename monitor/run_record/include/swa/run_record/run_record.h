@@ -12,9 +12,9 @@
 #include "swa/monitor/accumulator.h"
 #include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
-#include "swa/record/events.h"
-#include "swa/record/restarts.h"
-#include "swa/record/verdict.h"
+#include "swa/run_record/events.h"
+#include "swa/run_record/restarts.h"
+#include "swa/run_record/verdict.h"
 
 namespace swa::record {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "swa/monitor/report_html.h"
-#include "swa/record/run_record.h"
+#include "swa/run_record/run_record.h"
 
 namespace swa::record {
 

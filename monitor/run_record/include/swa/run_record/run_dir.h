@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "swa/record/run_record.h"
+#include "swa/run_record/run_record.h"
 
 namespace swa::record {
 

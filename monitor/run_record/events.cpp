@@ -1,4 +1,4 @@
-#include "swa/record/events.h"
+#include "swa/run_record/events.h"
 
 namespace swa::record {
 

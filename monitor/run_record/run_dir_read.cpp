@@ -11,8 +11,8 @@
 #include <utility>
 
 #include "swa/app/number.h"
-#include "swa/record/csv.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/csv.h"
+#include "swa/run_record/run_dir.h"
 
 namespace swa::record {
 namespace {

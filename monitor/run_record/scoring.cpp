@@ -1,4 +1,4 @@
-#include "swa/record/scoring.h"
+#include "swa/run_record/scoring.h"
 
 namespace swa::record {
 

@@ -3,8 +3,8 @@
 #include <fstream>
 #include <system_error>
 
-#include "swa/record/csv.h"
-#include "swa/record/run_dir.h"
+#include "swa/run_record/csv.h"
+#include "swa/run_record/run_dir.h"
 
 namespace swa::record {
 namespace {

@@ -1,4 +1,4 @@
-#include "swa/record/csv.h"
+#include "swa/run_record/csv.h"
 
 #include <cerrno>
 #include <cmath>

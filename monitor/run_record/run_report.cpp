@@ -1,4 +1,4 @@
-#include "swa/record/run_report.h"
+#include "swa/run_record/run_report.h"
 
 #include <algorithm>
 #include <cmath>
