@@ -124,6 +124,23 @@ std::string logs(const fs::path& run) {
 // releases, same seed: 50 s without GNSS show a loop that does not hold (the shipped 120 s add test time, not
 // evidence). "Directly" is the in-process closed loop, which a direct lockstep launch equals bit for bit
 // (tests/integration/test_dds_swarm.cpp) and which costs no processes.
+// A run through the autopilots passed as cohesively as the direct loop (d_NB within the tolerance, no collision, one
+// group), with every agent answering throughout (no dead agent, no bridge restart), and every vehicle engaged once on
+// its bridge's request (`engaged`: the event's text, "OFFBOARD on request" or "GUIDED on request").
+void expectAsCohesiveAsDirectAndEveryVehicleEngaged(const LaunchedRun& run, double d_direct, const std::string& engaged) {
+  EXPECT_EQ(run.status, 0) << run.summary << logs(run.dir);
+  EXPECT_NEAR(jsonNumber(run.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
+  EXPECT_EQ(jsonNumber(run.summary, "collisions"), 0.0);
+  EXPECT_EQ(jsonNumber(run.summary, "groups"), 1.0);
+  EXPECT_EQ(jsonNumber(run.summary, "bridge_restarts"), 0.0);
+  const std::string sim_summary = readFile(run.dir / "sim_summary.json");
+  EXPECT_EQ(jsonNumber(sim_summary, "agent_dead_events"), 0.0) << sim_summary;
+  const std::string events = readFile(run.dir / "events.csv");
+  std::size_t count = 0;
+  for (std::size_t at = events.find(engaged); at != std::string::npos; at = events.find(engaged, at + 1)) ++count;
+  EXPECT_EQ(count, static_cast<std::size_t>(jsonNumber(run.summary, "uav_count"))) << events;
+}
+
 void Px4SwarmTest::expectAsCohesiveAsDirect(const std::string& scenario, const std::vector<px4::Release>& releases) {
   const double d_direct =
       batch::runClosedLoop(sim::loadScenario(kScenarioDir + scenario, {"duration_s=60"})).summary.mean_neighbor_distance_m;
@@ -135,24 +152,10 @@ void Px4SwarmTest::expectAsCohesiveAsDirect(const std::string& scenario, const s
     const double d_px4 = jsonNumber(px4.summary, "mean_neighbor_distance_m");
     RecordProperty(scenario + "_d_nb_px4_" + name + "_m", std::to_string(d_px4));
     std::cout << scenario << ": d_NB direct " << d_direct << " m, through PX4 " << name << " " << d_px4 << " m\n";
-    // THEN both complete with the same verdict, and through PX4 the swarm is as cohesive: same d_NB within the
-    // tolerance, no collision, one group, every agent answering throughout (no dead agent, no restart)
-    EXPECT_EQ(px4.status, 0) << px4.summary << logs(px4.dir);
-    EXPECT_NEAR(d_px4, d_direct, kDnbToleranceM);
-    EXPECT_EQ(jsonNumber(px4.summary, "collisions"), 0.0);
-    EXPECT_EQ(jsonNumber(px4.summary, "groups"), 1.0);
-    EXPECT_EQ(jsonNumber(px4.summary, "bridge_restarts"), 0.0);
-    const std::string sim_summary = readFile(px4.dir / "sim_summary.json");
-    EXPECT_EQ(jsonNumber(sim_summary, "agent_dead_events"), 0.0) << sim_summary;
-    // AND every vehicle went to OFFBOARD on its bridge's request, once: the bridge heard the release's
+    // THEN both complete with the same verdict, and through PX4 the swarm is as cohesive, every agent answering
+    // throughout; AND every vehicle went to OFFBOARD on its bridge's request, once: the bridge heard the release's
     // vehicle_status (its layout, its topic name), or it would never have seen the vehicle armed and in offboard
-    const std::string events = readFile(px4.dir / "events.csv");
-    std::size_t engaged = 0;
-    for (std::size_t at = events.find("OFFBOARD on request"); at != std::string::npos;
-         at = events.find("OFFBOARD on request", at + 1)) {
-      ++engaged;
-    }
-    EXPECT_EQ(engaged, static_cast<std::size_t>(jsonNumber(px4.summary, "uav_count"))) << events;
+    expectAsCohesiveAsDirectAndEveryVehicleEngaged(px4, d_direct, "OFFBOARD on request");
     const std::string bridge_log = readFile(px4.dir / "logs" / "bridge_0.log");
     EXPECT_NE(bridge_log.find("PX4 " + name), std::string::npos) << bridge_log;
   }
@@ -171,23 +174,10 @@ void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& s
   const double d_ap = jsonNumber(ap.summary, "mean_neighbor_distance_m");
   RecordProperty(scenario + "_d_nb_ardupilot_m", std::to_string(d_ap));
   std::cout << scenario << ": d_NB direct " << d_direct << " m, through ArduPilot " << d_ap << " m\n";
-  // THEN it passes as cohesively as the direct loop, every agent answering throughout
-  EXPECT_EQ(ap.status, 0) << ap.summary << logs(ap.dir);
-  EXPECT_NEAR(d_ap, d_direct, kDnbToleranceM);
-  EXPECT_EQ(jsonNumber(ap.summary, "collisions"), 0.0);
-  EXPECT_EQ(jsonNumber(ap.summary, "groups"), 1.0);
-  EXPECT_EQ(jsonNumber(ap.summary, "bridge_restarts"), 0.0);
-  const std::string sim_summary = readFile(ap.dir / "sim_summary.json");
-  EXPECT_EQ(jsonNumber(sim_summary, "agent_dead_events"), 0.0) << sim_summary;
-  // AND every vehicle went to GUIDED once, on its bridge's mode_switch request (answered: the bridge logs the reply)
-  const std::string events = readFile(ap.dir / "events.csv");
-  std::size_t engaged = 0;
-  for (std::size_t at = events.find("GUIDED on request"); at != std::string::npos;
-       at = events.find("GUIDED on request", at + 1)) {
-    ++engaged;
-  }
+  // THEN it passes as cohesively as the direct loop, every agent answering throughout; AND every vehicle went to
+  // GUIDED once, on its bridge's mode_switch request (answered: the bridge logs the reply)
+  expectAsCohesiveAsDirectAndEveryVehicleEngaged(ap, d_direct, "GUIDED on request");
   const int n = static_cast<int>(jsonNumber(ap.summary, "uav_count"));
-  EXPECT_EQ(engaged, static_cast<std::size_t>(n)) << events;
   const std::string bridge_log = readFile(ap.dir / "logs" / "bridge_0.log");
   EXPECT_NE(bridge_log.find("ArduPilot namespace 'ap/v1'"), std::string::npos) << bridge_log;
   EXPECT_NE(bridge_log.find("ArduPilot answered the GUIDED request: switched"), std::string::npos) << bridge_log;
