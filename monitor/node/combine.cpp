@@ -36,8 +36,8 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
   if (scenario) {
     notes.scenario = options.scenario_path;
     notes.scoring.formation = scenario->agent.formation;
-    const double loss = sim::driftWindowStart(*scenario);
-    notes.gnss_loss_s = loss > 0.0 ? loss : monitor::kNaN;
+    notes.scoring.window_start_s = sim::driftWindowStart(*scenario);
+    notes.gnss_loss_s = monitor::gnssLossTime(notes.scoring);
   }
   if (options.tolerance_given) notes.scoring.radius_tolerance = options.tolerance;
 
