@@ -186,7 +186,19 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
     const auto id = static_cast<std::uint32_t>(i);
     const sim::UavSensors& s = sensors[k];
     side_written_[k] = s.detections.has_value() || s.gnss.has_value();
-    // The closed loop's equal-stamp order (IMU, detections, GNSS); the agent restores it whatever the arrival order.
+    // Detections and GNSS before the IMU sample: the agent processes a step in the closed loop's order (IMU,
+    // detections, GNSS) whatever the arrival order, but publishes its state of the step once its inputs fall quiet
+    // (agent_node.cpp). Arriving after the IMU sample, the step's detections could come after that on a host where
+    // a process waits 100 ms for the CPU (measured: 128 UAV processes in lockstep on 2 cores, some agents' states
+    // without that step's detections, NEES no longer equal to swa_batch's); arriving before it, they are held and
+    // processed with it, at once.
+    if (s.detections && !writeDetections(k, *s.detections, ++det_seq_[k])) ++summary_.write_failures;
+    if (s.gnss && gnss_[k]) {
+      msg::GnssFix m = wire::toMsg(*s.gnss, id, ++gnss_seq_[k]);
+      if (!gnss_[k].write(m)) ++summary_.write_failures;
+    } else if (s.gnss && autopilot_ && !autopilot_->publishGnss(i, *s.gnss)) {
+      ++summary_.write_failures;
+    }
     if (s.imu) {
       msg::Imu m = wire::toMsg(*s.imu, id, ++imu_seq_[k]);
       const WallNs published_ns = wallNs(Clock::now());
@@ -196,13 +208,6 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
       } else {
         ++summary_.write_failures;
       }
-    }
-    if (s.detections && !writeDetections(k, *s.detections, ++det_seq_[k])) ++summary_.write_failures;
-    if (s.gnss && gnss_[k]) {
-      msg::GnssFix m = wire::toMsg(*s.gnss, id, ++gnss_seq_[k]);
-      if (!gnss_[k].write(m)) ++summary_.write_failures;
-    } else if (s.gnss && autopilot_ && !autopilot_->publishGnss(i, *s.gnss)) {
-      ++summary_.write_failures;
     }
   }
   return imu_stamps;

@@ -26,13 +26,23 @@ TEST(ParticipantId, TakesTheLowestIdWhoseUnicastPortsWereNeverCreated) {
   EXPECT_EQ(unusedParticipantId(3, PortMapping{}, [](int) { return false; }), 0);
 }
 
-TEST(ParticipantId, StaysInsideItsDomainsPortRangeAndGivesUpWhenItIsFull) {
-  // GIVEN every port exists WHEN a participant chooses THEN there is no id (Fast DDS then picks one itself)
-  EXPECT_EQ(unusedParticipantId(0, PortMapping{}, [](int) { return true; }), std::nullopt);
-  // GIVEN only ports of the next domain are free WHEN choosing in domain 0 THEN none is taken: id 120 would have
-  // ports 7650/7651, which belong to domain 1
+TEST(ParticipantId, PastItsDomainsRangeTakesTheNextDomainsFreePortsButNeverItsMulticastPorts) {
+  // GIVEN domain 0's range (7400..7649) full WHEN a participant chooses THEN it takes ports of domain 1's range:
+  // not id 120 (7650 / 7651 are domain 1's discovery and user multicast ports) but id 121 (7652 / 7653)
   const auto own_domain_taken = [](int port) { return port < 7400 + 250; };
-  EXPECT_EQ(unusedParticipantId(0, PortMapping{}, own_domain_taken), std::nullopt);
+  EXPECT_EQ(unusedParticipantId(0, PortMapping{}, own_domain_taken), 121);
+  // GIVEN domain 1 in use on this host (its participants 0..2 hold 7660..7665) as well THEN its ports are skipped
+  const auto next_in_use = [](int port) { return port < 7400 + 250 || (port >= 7660 && port <= 7665); };
+  EXPECT_EQ(unusedParticipantId(0, PortMapping{}, next_in_use), 121);
+  const auto next_more_in_use = [](int port) { return port < 7400 + 250 || (port >= 7652 && port <= 7665); };
+  EXPECT_EQ(unusedParticipantId(0, PortMapping{}, next_more_in_use), 128);
+  // GIVEN both ranges full THEN there is no id (Fast DDS then picks one itself); the domain after next is not touched
+  const auto two_taken = [](int port) { return port < 7400 + 2 * 250; };
+  EXPECT_EQ(unusedParticipantId(0, PortMapping{}, two_taken), std::nullopt);
+  EXPECT_EQ(unusedParticipantId(0, PortMapping{}, [](int) { return true; }), std::nullopt);
+  // GIVEN the last domain (232: ports from 65400) THEN its last id is 62 (65534 / 65535), and none lies past it
+  EXPECT_EQ(unusedParticipantId(232, PortMapping{}, [](int port) { return port < 65534; }), 62);
+  EXPECT_EQ(unusedParticipantId(232, PortMapping{}, [](int port) { return port < 65536; }), std::nullopt);
   // GIVEN a profile with another mapping WHEN choosing THEN its gains are used
   PortMapping wide;
   wide.participant_gain = 4;

@@ -1,11 +1,16 @@
 #include "participant_qos.h"
 
+#include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <mutex>
 #include <set>
 #include <vector>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -80,25 +85,43 @@ void useSecurity(fdds::DomainParticipantQos& qos, const SecurityFiles& files, co
   addSecurity(qos, files);
 }
 
-// Shared memory only (the local transport): see participant_id.h. A profile that sets an id keeps it. Nor does a
-// participant take the ports of one this process deleted before: a peer that sent to that one keeps the deleted port
-// mapped just as after a kill, and a participant re-created after a peer's lease expired (agent_node.cpp) would never
-// hear from that peer again (measured: 1 realtime run in 10 with a CPU hog, the re-created agent's UAV on failsafe).
-void avoidAbandonedSharedMemoryPorts(fdds::DomainParticipantQos& qos, int domain_id) {
+// Whether a UDP port is bound on this host: a bind without SO_REUSEADDR fails on it (Fast DDS binds its unicast
+// ports that way; another process may still take a free one before Fast DDS does, which Fast DDS then mutates past).
+bool udpPortInUse(int port) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return false;
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_ANY);
+  const bool in_use = ::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0 && errno == EADDRINUSE;
+  ::close(fd);
+  return in_use;
+}
+
+// The participant id (participant_id.h), for every transport: past 101 participants on a host Fast DDS 2.9 finds no
+// port by itself. With shared memory (the local transport) also no id whose port a killed process left behind: a peer
+// that sent to that one keeps the deleted port mapped, and a participant re-created after a peer's lease expired
+// (agent_node.cpp) would never hear from that peer again (measured: 1 realtime run in 10 with a CPU hog, the
+// re-created agent's UAV on failsafe). Nor does a participant take the ports of one this process deleted before, for
+// the same reason. A profile that sets an id keeps it.
+void chooseParticipantId(fdds::DomainParticipantQos& qos, int domain_id, bool shared_memory) {
   fdds::WireProtocolConfigQos& wire = qos.wire_protocol();
   if (wire.participant_id >= 0) return;
   const auto& p = wire.port;
-  const PortMapping ports{static_cast<int>(p.portBase), static_cast<int>(p.domainIDGain),
-                          static_cast<int>(p.participantIDGain), static_cast<int>(p.offsetd1),
+  const PortMapping ports{static_cast<int>(p.portBase),   static_cast<int>(p.domainIDGain),
+                          static_cast<int>(p.participantIDGain), static_cast<int>(p.offsetd0),
+                          static_cast<int>(p.offsetd2),   static_cast<int>(p.offsetd1),
                           static_cast<int>(p.offsetd3)};
   static std::mutex used_mutex;
   static std::set<int> used;  // unicast ports of the participants this process created
   const std::lock_guard<std::mutex> lock(used_mutex);
-  const auto exists = [](int port) {
+  const auto exists = [shared_memory](int port) {
     std::error_code ec;
-    return used.count(port) > 0 || std::filesystem::exists("/dev/shm/fastrtps_port" + std::to_string(port), ec);
+    return used.count(port) > 0 || udpPortInUse(port) ||
+           (shared_memory && std::filesystem::exists("/dev/shm/fastrtps_port" + std::to_string(port), ec));
   };
-  // None left (120 abandoned ports: `fastdds shm clean`): Fast DDS's own choice.
+  // None left (every port of two domains' ranges taken or abandoned: `fastdds shm clean`): Fast DDS's own choice.
   if (const std::optional<int> id = unusedParticipantId(domain_id, ports, exists)) {
     wire.participant_id = *id;
     const auto [meta, user] = unicastPorts(domain_id, ports, *id);
@@ -137,7 +160,7 @@ ParticipantSetup participantSetup(const std::string& name, int domain_id, const 
     throw DdsError(std::string("participant profile '") + profile + "' missing in " + profiles_file);
   }
   qos.name(name);
-  if (deployment.transport == Transport::kLocal) avoidAbandonedSharedMemoryPorts(qos, domain_id);
+  chooseParticipantId(qos, domain_id, deployment.transport == Transport::kLocal);
   if (deployment.transport == Transport::kDiscoveryServer) useDiscoveryServers(qos, deployment.discovery_servers);
   if (!deployment.security_dir.empty()) {
     setup.security = securityFiles(deployment.security_dir, name);

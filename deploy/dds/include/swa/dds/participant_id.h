@@ -18,18 +18,22 @@
 
 namespace swa::dds {
 
-// Fast DDS's port mapping (DDSI-RTPS 9.6.1.1): PB + DG * domain + d1 (metatraffic) or d3 (user) + PG * id.
+// Fast DDS's port mapping (DDSI-RTPS 9.6.1.1): PB + DG * domain + d0 (discovery multicast), d2 (user multicast),
+// d1 (metatraffic unicast) or d3 (user unicast) + PG * id.
 struct PortMapping {
-  int base = 7400, domain_gain = 250, participant_gain = 2, meta_unicast_offset = 10, user_unicast_offset = 11;
+  int base = 7400, domain_gain = 250, participant_gain = 2, meta_multicast_offset = 0, user_multicast_offset = 1,
+      meta_unicast_offset = 10, user_unicast_offset = 11;
 };
-
-// Ids stay below this so that a participant's ports stay inside its domain's range of DG ports.
-constexpr int kMaxParticipantId = 120;
 
 // The metatraffic and user unicast ports of participant `id` on `domain`.
 std::pair<int, int> unicastPorts(int domain, const PortMapping& ports, int id);
 
-// The lowest participant id in [0, kMaxParticipantId) of which neither unicast port exists, if there is one.
+// The lowest participant id of which neither unicast port exists, if there is one. A domain's range of DG ports holds
+// 120 participants; more (a swarm of 100+ processes on one host) take ports of the next domain's range: those are
+// free unless that domain is in use on this host (then they exist and are skipped), except the next domain's two
+// multicast ports, which are never taken. No id reaches the range of the domain after next or past port 65535.
+// Fast DDS 2.9 alone gives up after 100 ids (its builtin mutation_tries): the 102nd participant on a host gets no
+// unicast port at all.
 std::optional<int> unusedParticipantId(int domain, const PortMapping& ports, const std::function<bool(int)>& exists);
 
 }  // namespace swa::dds
