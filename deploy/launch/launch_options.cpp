@@ -1,6 +1,7 @@
 #include "launch_options.h"
 
 #include "swa/app/cli.h"
+#include "swa/app/number.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/naming.h"
 #include "swa/dds/options.h"
@@ -19,7 +20,8 @@ const char* const kDetails = R"(What it does, per run:
   4. when the simulator finishes, waits for the monitor's verdict, stops the agents, removes the shared-memory
      files of killed processes, and exits with the verdict.
 Each child's output goes to DIR/logs/<name>.log (agent_<I>.log, sim.log, monitor.log). SIGINT / SIGTERM are
-forwarded: the simulator ends the run early, the monitor writes what it has, everything is stopped and reaped.
+forwarded: the simulator ends the run early, the monitor writes what it has, everything is stopped and reaped,
+within 15 s (8 s to end the run, then at most 5 s, or --grace-s if shorter, before a child is killed).
 
 With --compare MODE, the same scenario and seed run a second time with agent.mode = MODE (e.g. standalone, the
 paper's baseline) into DIR/<mode>/, the first run into DIR/<scenario mode>/, and DIR/report.html shows both side by
@@ -48,7 +50,7 @@ app::Cli makeCli(LaunchOptions& o) {
   cli.real("--timeout-s", "T", o.timeout_s, 0.0, 1e6, "a timeout in seconds",
            "wall-clock bound per run, 0 for none; the run is then stopped like on SIGINT");
   cli.real("--grace-s", "T", o.grace_s, 0.0, 600.0, "a grace period in seconds",
-           "how long a stopped child may take before it is killed");
+           "how long a stopped child may take before it is killed (at most 5 s after SIGINT / SIGTERM)");
   std::vector<std::string> transports;
   for (const auto t : {dds::Transport::kLocal, dds::Transport::kNetwork, dds::Transport::kDiscoveryServer}) {
     transports.emplace_back(dds::transportName(t));
@@ -56,12 +58,20 @@ app::Cli makeCli(LaunchOptions& o) {
   cli.choice("--transport", "T", transports, [&o, transports](std::size_t k) { o.transport = transports[k]; },
              "local: shared memory + UDP, one host; network: UDPv4 only, multicast discovery; discovery-server: "
              "UDPv4, discovery through a Fast DDS Discovery Server. Sets SWA_TRANSPORT for every child (default: "
-             "$SWA_TRANSPORT, else local; deploy/README.md: when to use which)");
+             "$SWA_TRANSPORT, else local, or discovery-server past 64 UAV processes; deploy/README.md: when to use "
+             "which)");
   cli.text("--discovery-server", "LIST", o.discovery_server,
            "with discovery-server: the servers' IP:PORT[;IP:PORT...]; without it swa_launch starts one "
            "(fast-discovery-server -i 0) on 127.0.0.1:--discovery-port and stops it at the end");
-  cli.integer("--discovery-port", "P", o.discovery_port, 1024, 65535, "a port",
-              "port of the server swa_launch starts");
+  cli.value("--discovery-port", "P",
+            [&o](const std::string& v, app::Problems& p) {
+              if (const auto port = app::parseInteger(v, 1024, 65535)) {
+                o.discovery_port = static_cast<int>(*port);
+              } else {
+                p.push_back("--discovery-port '" + v + "' is not a port in [1024, 65535]");
+              }
+            },
+            "port of the server swa_launch starts (default: the first free one from 11811)");
   cli.text("--secure", "DIR", o.secure_dir,
            "DDS Security: authenticated, encrypted, per-UAV permissions, with the credentials in DIR (create them "
            "with deploy/security/make-credentials.sh DIR N); sets SWA_SECURITY_DIR",

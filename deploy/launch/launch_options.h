@@ -10,6 +10,9 @@
 
 namespace swa::launch {
 
+// The discovery server swa_launch starts listens on the first free UDP port from here (Fast DDS's default).
+constexpr int kDefaultDiscoveryPort = 11811;
+
 struct LaunchOptions {
   std::string scenario_path;              // --scenario FILE (required)
   std::vector<std::string> overrides;     // --set key=value, in order; passed to sim, agents' config and monitor
@@ -25,7 +28,7 @@ struct LaunchOptions {
   double grace_s = 10.0;                  // SIGTERM -> SIGKILL grace when stopping children
   std::string transport;                  // --transport local|network|discovery-server (else $SWA_TRANSPORT)
   std::string discovery_server;           // --discovery-server IP:PORT[;...]: use these instead of starting one
-  int discovery_port = 11811;             // --discovery-port: of the server swa_launch starts on 127.0.0.1
+  std::optional<int> discovery_port;      // --discovery-port: of the server swa_launch starts on 127.0.0.1
   std::string secure_dir;                 // --secure DIR: DDS Security with the credentials in DIR
   std::string swarm;                      // --swarm NAME | none (else $SWA_SWARM, else a new name per launch)
   std::string vehicle;                    // --vehicle direct|px4|ardupilot: sets vehicle.interface (one bridge per agent)

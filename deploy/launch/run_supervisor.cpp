@@ -2,6 +2,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -29,6 +30,11 @@ constexpr auto kPollPeriod = std::chrono::milliseconds(20);
 constexpr double kMonitorAfterSimS = 30.0;
 // The simulator waits for acknowledgments before it exits (swa::dds::Participant): bounded by about 6 s.
 constexpr double kSimAfterMonitorS = 15.0;
+// Ctrl-C / SIGTERM ends any launch within 15 s, also 100 processes on a starved host (measured before this bound:
+// 53 s for 100 agents during a discovery storm): the simulator and monitor get this long to end the run and write
+// the report, then every child at most kStopGraceS (or --grace-s if shorter) before it is killed.
+constexpr double kFinishAfterStopS = 8.0;
+constexpr double kStopGraceS = 5.0;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -195,6 +201,7 @@ class Supervisor {
   void requestStop(const char* why) {
     if (stopping_) return;
     stopping_ = true;
+    stopped_at_ = Clock::now();
     outcome_.interrupted = true;
     std::printf("swa_launch [%s]: %s: ending the run\n", spec_.label.c_str(), why);
     std::fflush(stdout);
@@ -294,6 +301,11 @@ class Supervisor {
                     spec_.label.c_str(), kMonitorAfterSimS);
         break;
       }
+      if (stopping_ && secondsSince(*stopped_at_) > kFinishAfterStopS) {
+        std::printf("swa_launch [%s]: the run has not ended %.0f s after it was stopped; stopping every process\n",
+                    spec_.label.c_str(), kFinishAfterStopS);
+        break;
+      }
       // Restarting makes sense only while the world runs.
       if (!sim_done_at && !stopping_) superviseUavProcesses();
       std::fflush(stdout);
@@ -310,7 +322,8 @@ class Supervisor {
       if (c != nullptr && c != monitor_.get()) c->signal(SIGTERM);
     }
     if (monitor_->running()) monitor_->signal(SIGTERM);
-    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o_.grace_s));
+    const double grace_s = stopping_ ? std::min(o_.grace_s, kStopGraceS) : o_.grace_s;
+    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(grace_s));
     while (Clock::now() < deadline) {
       bool any = false;
       for (ChildProcess* c : all) any = any || (c != nullptr && c->running());
@@ -320,7 +333,7 @@ class Supervisor {
     for (ChildProcess* c : all) {
       if (c != nullptr && c->running()) {
         std::printf("swa_launch [%s]: pid %d did not stop within %.0f s; killing it\n", spec_.label.c_str(),
-                    static_cast<int>(c->pid()), o_.grace_s);
+                    static_cast<int>(c->pid()), grace_s);
         c->signal(SIGKILL);
       }
     }
@@ -347,6 +360,7 @@ class Supervisor {
   std::optional<Clock::time_point> monitor_restart_due_;
   std::vector<UavProcess> uav_processes_;  // the agents, then (px4, ardupilot) the bridges
   bool stopping_ = false;
+  std::optional<Clock::time_point> stopped_at_;
   RunOutcome outcome_;
 };
 

@@ -1,21 +1,17 @@
 #include "participant_qos.h"
 
-#include <cerrno>
 #include <chrono>
-#include <cstdint>
 #include <filesystem>
 #include <mutex>
 #include <set>
 #include <vector>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 
+#include "swa/app/udp_port.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/participant_id.h"
 
@@ -85,20 +81,6 @@ void useSecurity(fdds::DomainParticipantQos& qos, const SecurityFiles& files, co
   addSecurity(qos, files);
 }
 
-// Whether a UDP port is bound on this host: a bind without SO_REUSEADDR fails on it (Fast DDS binds its unicast
-// ports that way; another process may still take a free one before Fast DDS does, which Fast DDS then mutates past).
-bool udpPortInUse(int port) {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-  if (fd < 0) return false;
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_ANY);
-  const bool in_use = ::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0 && errno == EADDRINUSE;
-  ::close(fd);
-  return in_use;
-}
-
 // The participant id (participant_id.h), for every transport: past 101 participants on a host Fast DDS 2.9 finds no
 // port by itself. With shared memory (the local transport) also no id whose port a killed process left behind: a peer
 // that sent to that one keeps the deleted port mapped, and a participant re-created after a peer's lease expired
@@ -118,7 +100,7 @@ void chooseParticipantId(fdds::DomainParticipantQos& qos, int domain_id, bool sh
   const std::lock_guard<std::mutex> lock(used_mutex);
   const auto exists = [shared_memory](int port) {
     std::error_code ec;
-    return used.count(port) > 0 || udpPortInUse(port) ||
+    return used.count(port) > 0 || app::udpPortInUse(port) ||
            (shared_memory && std::filesystem::exists("/dev/shm/fastrtps_port" + std::to_string(port), ec));
   };
   // None left (every port of two domains' ranges taken or abandoned: `fastdds shm clean`): Fast DDS's own choice.
