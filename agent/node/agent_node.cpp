@@ -21,6 +21,7 @@
 #include "swa/wire/ros_detections.h"
 #include "swa/wire/ros_types.h"
 #include "swa/wire/samples.h"
+#include "swa/app/cpu_time.h"
 #include "swa/app/signals.h"
 #include "swa/dds/topics.h"
 
@@ -157,6 +158,7 @@ int AgentNode::run() {
   }
   participant_.reset();
   logFinalCounts();
+  std::fprintf(stderr, "%s\n", app::cpuTimeLine("swa_agent " + std::to_string(id_)).c_str());
   return 0;
 }
 
@@ -239,9 +241,13 @@ void AgentNode::handle(Input& in) {
   if (const auto* imu = std::get_if<msg::Imu>(&in)) {
     if (foreign(imu->uav_id())) return;
     if (stats_.imu++ == 0) {
-      std::fprintf(stderr, "swa_agent %d: first IMU sample (stamp %lld ns, cmd readers %d) %.3f s after start\n", id_,
-                   static_cast<long long>(imu->header().stamp_ns()), cmd_writer_.matched(),
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
+      // The CPU time so far: what the samples cost is the CPU time at the end minus this (bench_scale).
+      std::fprintf(stderr,
+                   "swa_agent %d: first IMU sample (stamp %lld ns, cmd readers %d) %.3f s after start, %.3f s of CPU "
+                   "time before it\n",
+                   id_, static_cast<long long>(imu->header().stamp_ns()), cmd_writer_.matched(),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(),
+                   app::processCpuTime().total_s());
     }
     const agent::StampNs stamp = imu->header().stamp_ns();
     if (pending_state_ns_ && stamp > *pending_state_ns_) {

@@ -1,13 +1,12 @@
 #include "live_mode.h"
 
-#include <sys/resource.h>
-
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <vector>
 
 #include "live_record.h"
+#include "swa/app/cpu_time.h"
 #include "swa/dds/options.h"
 #include "swa/monitor/report_html.h"
 #include "swa/run_record/restarts.h"
@@ -91,14 +90,7 @@ int LiveMode::run() {
   if (!options_.restarts_path.empty()) context.restarts = record::readRestartLog(options_.restarts_path);
   const int status = writeOutputs(options_.out_dir, makeRunRecord(run_, config_, context));
   // The whole process's CPU time: what the recording and the live view cost is measured on it (BENCHMARKS.md).
-  rusage usage{};
-  if (getrusage(RUSAGE_SELF, &usage) == 0) {
-    const auto seconds = [](const timeval& t) {
-      return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
-    };
-    std::fprintf(stderr, "swa_monitor: %.3f s of CPU time (user %.3f s, system %.3f s)\n",
-                 seconds(usage.ru_utime) + seconds(usage.ru_stime), seconds(usage.ru_utime), seconds(usage.ru_stime));
-  }
+  std::fprintf(stderr, "%s\n", app::cpuTimeLine("swa_monitor").c_str());
   return status;
 }
 

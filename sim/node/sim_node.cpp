@@ -6,6 +6,7 @@
 
 #include "lockstep_driver.h"
 #include "realtime_driver.h"
+#include "swa/app/cpu_time.h"
 #include "swa/sim/timing.h"
 
 namespace swa::sim_node {
@@ -36,6 +37,7 @@ int SimNode::run() {
     ports_.publishEndBeforeStart(stop_ ? "interrupted before start" : "discovery timeout");
   }
   writeSummaryFile();
+  std::fprintf(stderr, "%s\n", app::cpuTimeLine("swa_sim").c_str());
   return summary_.completed ? 0 : 1;
 }
 

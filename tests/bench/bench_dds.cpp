@@ -35,6 +35,7 @@
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
 #include "process_support.h"
+#include "proc_stats.h"
 #include "swa/app/cli.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
@@ -117,65 +118,6 @@ std::string selfPath() {
 int nextDomain() {
   static int counter = 0;
   return 1 + static_cast<int>((::getpid() * 7 + 13 * counter++) % 230);
-}
-
-double median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double quantileSorted(const std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return std::nan("");
-  const double n = static_cast<double>(sorted.size());
-  const auto rank = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(q * n)));
-  return sorted[std::min(rank, sorted.size()) - 1];
-}
-
-std::string loadAverage() {
-  std::string s = readFile("/proc/loadavg");
-  return s.substr(0, s.find(' ', s.find(' ', s.find(' ') + 1) + 1));
-}
-
-// Rss and Pss of a live process, kB (nullopt if it is gone).
-struct Memory {
-  double rss_kb = 0, pss_kb = 0;
-};
-std::optional<Memory> memoryOf(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/smaps_rollup");
-  if (!in) return std::nullopt;
-  Memory m;
-  bool rss = false, pss = false;
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream ls(line);
-    std::string key;
-    double kb = 0;
-    ls >> key >> kb;
-    if (key == "Rss:") {
-      m.rss_kb = kb;
-      rss = true;
-    } else if (key == "Pss:") {
-      m.pss_kb = kb;
-      pss = true;
-    }
-  }
-  if (!rss || !pss) return std::nullopt;
-  return m;
-}
-
-// utime + stime of a live process, seconds.
-std::optional<double> cpuSecondsOf(pid_t pid) {
-  const std::string stat = readFile("/proc/" + std::to_string(pid) + "/stat");
-  const std::size_t close = stat.rfind(')');
-  if (stat.empty() || close == std::string::npos) return std::nullopt;
-  std::istringstream s(stat.substr(close + 2));
-  std::vector<std::string> f;
-  for (std::string x; s >> x;) f.push_back(x);
-  if (f.size() < 13) return std::nullopt;  // fields 3.. of proc(5): utime is field 14, stime 15
-  return (std::strtod(f[11].c_str(), nullptr) + std::strtod(f[12].c_str(), nullptr)) /
-         static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
 // ---- (a) ping-pong ----------------------------------------------------------------------------------------------
