@@ -9,13 +9,15 @@
 //       simulator (from their own log lines: an agent's from its first IMU sample on, the simulator's whole run), PSS
 //       per agent (the last sample of all of them, taken every 0.5 s while the run steps), the verdict, and whether
 //       the time series equals swa_batch's byte for byte.
-// Then realtime at 100 Hz for each N of --realtime-sizes: late + missing commands.
+// Then SIGTERM to a launch of --stop-size UAVs (time until every process is gone), and realtime at 100 Hz for each N
+// of --realtime-sizes: late + missing commands.
 // The transport is swa_launch's own choice unless --transport: local up to 64 UAV processes, a discovery server
 // beyond. Each N runs on a DDS domain reserved among SWA's tests and benchmarks, and the next one too (past 118
 // participants the ports spill into it: swa/dds/participant_id.h). Prints Markdown tables; not a ctest.
 //
 // Usage: bench_scale [--sizes 8,16,32,64,100,128] [--duration S] [--realtime-sizes 8,16,32,48,64]
-//                    [--realtime-duration S] [--rounds R] [--transport auto|local|discovery-server] [--out DIR]
+//                    [--realtime-duration S] [--rounds R] [--transport auto|local|discovery-server]
+//                    [--stop-size N] [--out DIR]
 
 #include <signal.h>
 #include <unistd.h>
@@ -69,6 +71,7 @@ struct Options {
   int rounds = 300;
   std::string transport = "auto";
   std::string out = "/tmp/swa_bench_scale";
+  int stop_size = 100;
   bool help = false;
 };
 
@@ -93,7 +96,7 @@ app::Cli makeCli(Options& o) {
   app::Cli cli("bench_scale", "how many UAV processes one host runs, against the raw Fast DDS fan-out "
                               "(BENCHMARKS.md).");
   cli.usage("bench_scale [--sizes N,N,..] [--duration S] [--realtime-sizes N,N,..] [--realtime-duration S]\n"
-            "                   [--rounds R] [--transport auto|local|discovery-server] [--out DIR]");
+            "                   [--rounds R] [--transport auto|local|discovery-server] [--stop-size N] [--out DIR]");
   cli.value("--sizes", "N,..", sizesInto(o.sizes, "--sizes"), "lockstep runs (default 8,16,32,64,100,128)");
   cli.value("--realtime-sizes", "N,..", sizesInto(o.realtime_sizes, "--realtime-sizes"),
             "realtime runs at 100 Hz (default 8,16,32,48,64; '' for none)");
@@ -104,6 +107,8 @@ app::Cli makeCli(Options& o) {
   const std::vector<std::string> transports{"auto", "local", "discovery-server"};
   cli.choice("--transport", "T", transports, [&o, transports](std::size_t k) { o.transport = transports[k]; },
              "auto (default): swa_launch's choice, local up to 64 UAV processes, then a discovery server");
+  cli.integer("--stop-size", "N", o.stop_size, 0, 200, "a UAV count",
+              "SIGTERM to a launch of N UAVs 3 s after discovery: time until every process is gone (0: skip)");
   cli.path("--out", "DIR", o.out, "where the runs' files go (default /tmp/swa_bench_scale)");
   return cli;
 }
@@ -318,6 +323,35 @@ LaunchRun launchRun(const Options& o, int n, bool realtime, int domain, const fs
   return r;
 }
 
+// SIGTERM to a lockstep launch of o.stop_size UAVs 3 s after discovery: seconds until swa_launch has exited and no process of
+// the run is left, and the run's verdict line.
+double stopTime(const Options& o, int domain, const fs::path& dir, std::string& verdict) {
+  std::vector<std::string> argv{SWA_LAUNCH_BINARY, "--scenario", kScenario, "--out", dir.string(), "--domain",
+                                std::to_string(domain), "--set", "uav_count=" + std::to_string(o.stop_size), "--set",
+                                "duration_s=3600", "--timeout-s", "600"};
+  if (o.transport != "auto") argv.insert(argv.end(), {"--transport", o.transport});
+  Child launch(argv, dir.string() + ".log");
+  const auto t0 = Clock::now();
+  std::optional<Clock::time_point> discovered;
+  while (!launch.wait(0.05) && secondsSince(t0) < 300.0 && !app::shutdownRequested()) {
+    if (!discovered && readFile(dir / "logs" / "sim.log").find("discovered in") != std::string::npos) {
+      discovered = Clock::now();
+    }
+    if (discovered && secondsSince(*discovered) > 3.0) break;
+  }
+  const auto stopped = Clock::now();
+  launch.signal(SIGTERM);
+  launch.wait(300.0);
+  while (processesMentioning(dir.string()) > 0 && secondsSince(stopped) < 300.0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const double seconds = secondsSince(stopped);
+  const std::string log = readFile(dir.string() + ".log");
+  const std::size_t last = log.rfind("swa_launch [");
+  verdict = last == std::string::npos ? "no verdict line" : log.substr(last, log.find('\n', last) - last);
+  return discovered ? seconds : NAN;
+}
+
 std::string fmt(double x, int decimals = 1) {
   if (std::isnan(x)) return "—";
   char buf[64];
@@ -368,6 +402,12 @@ int benchMain(const Options& o) {
                 fmt(run.pss_max_mb, 2).c_str(), verdictOf(run.status).c_str(),
                 !run.equals_batch ? "—" : *run.equals_batch ? "yes" : "NO");
     std::fflush(stdout);
+  }
+  if (o.stop_size > 0 && !app::shutdownRequested()) {
+    std::string verdict;
+    const double seconds = stopTime(o, reserveDomainPair(), fs::path(o.out) / "stop", verdict);
+    std::printf("\nSIGTERM to a lockstep launch of %d UAVs 3 s after discovery: every process gone after %s s (%s)\n",
+                o.stop_size, fmt(seconds, 1).c_str(), verdict.c_str());
   }
   if (!o.realtime_sizes.empty()) {
     std::printf("\n### Realtime at 100 Hz, %.0f s per N (late + missing < 1 %% passes)\n\n", o.realtime_duration_s);

@@ -103,4 +103,20 @@ inline std::vector<pid_t> childrenNamed(pid_t parent, const std::string& comm) {
   return out;
 }
 
+// How many live processes other than this one have `text` in their command line (arguments joined by spaces).
+inline int processesMentioning(const std::string& text) {
+  int count = 0;
+  DIR* proc = ::opendir("/proc");
+  if (proc == nullptr) return 0;
+  while (const dirent* e = ::readdir(proc)) {
+    const char* name = e->d_name;
+    if (*name < '0' || *name > '9' || std::atol(name) == ::getpid()) continue;
+    std::string cmdline = readFile(std::string("/proc/") + name + "/cmdline");
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find(text) != std::string::npos) ++count;
+  }
+  ::closedir(proc);
+  return count;
+}
+
 }  // namespace swa::bench

@@ -1,6 +1,12 @@
 // The participant id a new SWA participant takes (swa/dds/participant_id.h): never one whose shared-memory port a
-// killed process left behind; and which of its own ports a process no longer hears (swa/dds/shm_ports.h). Pure, no
-// DDS (label unit).
+// killed process left behind, nor one whose ports are taken, past 120 in the next domain's free ports; which UDP port
+// is free (swa/app/udp_port.h); and which of its own ports a process no longer hears (swa/dds/shm_ports.h). No DDS
+// (label unit).
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -9,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "swa/app/udp_port.h"
 #include "swa/dds/participant_id.h"
 #include "swa/dds/shm_ports.h"
 
@@ -50,6 +57,30 @@ TEST(ParticipantId, PastItsDomainsRangeTakesTheNextDomainsFreePortsButNeverItsMu
   EXPECT_EQ(unusedParticipantId(0, wide, [&](int port) { return taken.count(port) > 0; }), 1);
   const std::set<int> second{7414};  // id 1 under gain 4: 7414 / 7415
   EXPECT_EQ(unusedParticipantId(0, wide, [&](int port) { return second.count(port) > 0; }), 0);
+}
+
+// ---- udp_port.h -------------------------------------------------------------------------------------------------
+
+TEST(UdpPort, APortBoundByAnotherSocketIsInUseAndTheSearchGoesPastIt) {
+  // GIVEN a UDP socket bound (without SO_REUSEADDR) to a port the kernel chose
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_ANY);
+  ASSERT_EQ(::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);
+  socklen_t size = sizeof address;
+  ASSERT_EQ(::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size), 0);
+  const int port = ntohs(address.sin_port);
+  // THEN it is in use, and the first free port from it is another one
+  EXPECT_TRUE(app::udpPortInUse(port));
+  const std::optional<int> free_port = app::firstFreeUdpPort(port, 100);
+  ASSERT_TRUE(free_port.has_value());
+  EXPECT_GT(*free_port, port);
+  // AND a range holding only that port has none free, nor one past port 65535
+  EXPECT_EQ(app::firstFreeUdpPort(port, 1), std::nullopt);
+  EXPECT_EQ(app::firstFreeUdpPort(65536, 10), std::nullopt);
+  ::close(fd);
 }
 
 // ---- deafPorts (shm_ports.h) ------------------------------------------------------------------------------------
