@@ -15,6 +15,8 @@ namespace {
 constexpr const char* kBandColour = "#2ca02c";
 constexpr const char* kLossColour = "#7f7f7f";
 constexpr const char* kCollisionColour = "#d62728";
+// The largest swarm whose trajectory plot lists each UAV in a legend (every shipped scenario has at most 16).
+constexpr std::size_t kMaxLegendUavs = 16;
 
 bool anyFinite(const std::vector<double>& v) {
   return std::any_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
@@ -164,9 +166,21 @@ ReportPlot trajectoryPlot(const RunReport& run, const std::string& name) {
   spec.equal_aspect = true;
   spec.width_px = 560;
   spec.height_px = 480;
+  // Past kMaxLegendUavs a legend would be taller than the plot (128 UAVs: 2384 px, the plot squeezed into its
+  // top): each track's end is labelled with its UAV's id instead.
+  const bool legend = run.trajectories.size() <= kMaxLegendUavs;
+  PlotSeries ends;
+  ends.colour = "#333333";
+  ends.marker = MarkerShape::kDot;
+  ends.marker_px = 1.5;
   for (const UavTrajectory& t : run.trajectories) {
     PlotSeries s;
-    s.label = "UAV " + std::to_string(t.id);
+    if (legend) s.label = "UAV " + std::to_string(t.id);
+    if (!legend && !t.points.empty()) {
+      ends.x.push_back(t.points.back().x_m);
+      ends.y.push_back(t.points.back().y_m);
+      ends.point_labels.push_back(std::to_string(t.id));
+    }
     s.width_px = 1.25;
     s.x.reserve(t.points.size());
     s.y.reserve(t.points.size());
@@ -176,10 +190,12 @@ ReportPlot trajectoryPlot(const RunReport& run, const std::string& name) {
     }
     spec.series.push_back(std::move(s));
   }
+  if (!legend) spec.series.push_back(std::move(ends));
   plot.caption =
       "World frame seen from above, equal scale on both axes; a hollow circle marks where each UAV's "
-      "track starts, a filled square where it ends (" +
-      std::to_string(run.trajectories.size()) + " UAVs; each run's plot has its own scale).";
+      "track starts, a filled square where it ends" +
+      std::string(legend ? "" : ", labelled with the UAV's id") + " (" + std::to_string(run.trajectories.size()) +
+      " UAVs; each run's plot has its own scale).";
   return plot;
 }
 

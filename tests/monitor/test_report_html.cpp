@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -275,6 +276,42 @@ TEST(ReportHtml, TrajectoryPlotsHaveEqualScaleAndAMarkerPairPerUav) {
   // AND the trajectories sit in their own section after the time plots
   EXPECT_LT(html.find("id=\"plot-nees_position\""), html.find("<section id=\"trajectories\">"));
   EXPECT_LT(html.find("<section id=\"trajectories\">"), html.find("id=\"plot-trajectories_swa\""));
+}
+
+TEST(ReportHtml, ALargeSwarmsTracksAreLabelledAtTheirEndsInsteadOfALegendTallerThanThePlot) {
+  // GIVEN a run of 100 UAVs on a 10 x 10 lattice, and one of 16
+  RunReport big = makeRun("swa", 10.0, true);
+  big.trajectories.clear();
+  for (int id = 0; id < 100; ++id) {
+    UavTrajectory t;
+    t.id = id;
+    for (int k = 0; k <= 4; ++k) t.points.push_back({1.0 * k, 10.0 * (id % 10) + 0.1 * k, 10.0 * (id / 10)});
+    big.trajectories.push_back(t);
+  }
+  RunReport sixteen = big;
+  sixteen.label = "sixteen";
+  sixteen.trajectories.resize(16);
+  const std::vector<ReportPlot> plots = reportPlots({big, sixteen}, makeNotes());
+  const ReportPlot* p = plotNamed(plots, "trajectories_swa");
+  ASSERT_NE(p, nullptr);
+  // THEN the 100-UAV plot keeps its size (no legend row per UAV) and its tracks have no legend entry
+  const PlotLayout l = layoutPlot(p->spec);
+  EXPECT_DOUBLE_EQ(l.height_px, static_cast<double>(p->spec.height_px));
+  EXPECT_TRUE(std::all_of(p->spec.series.begin(), p->spec.series.end(),
+                          [](const PlotSeries& s) { return s.label.empty(); }));
+  // AND each track's end carries its UAV's id, at that end
+  const PlotSeries& ends = p->spec.series.back();
+  ASSERT_EQ(ends.point_labels.size(), 100U);
+  EXPECT_EQ(ends.marker, MarkerShape::kDot);
+  EXPECT_EQ(ends.point_labels[37], "37");
+  EXPECT_DOUBLE_EQ(ends.x[37], 70.4);
+  EXPECT_DOUBLE_EQ(ends.y[37], 30.0);
+  EXPECT_NE(p->caption.find("labelled with the UAV's id"), std::string::npos);
+  // AND 16 UAVs, the largest shipped swarm, still get their legend
+  const ReportPlot* q = plotNamed(plots, "trajectories_sixteen");
+  ASSERT_NE(q, nullptr);
+  EXPECT_EQ(q->spec.series.size(), 16U);
+  EXPECT_EQ(q->spec.series[15].label, "UAV 15");
 }
 
 TEST(ReportHtml, PlotNamesAreFileSafeAndUnique) {
