@@ -1,7 +1,6 @@
 #include "swa/app/program.h"
 
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <thread>
@@ -49,12 +48,13 @@ int runProgram(const std::string& name, const std::string& input, int argc, char
   // land in it) turns the flag into stop().
   std::atomic<bool> done{false};
   std::thread watcher([&] {
-    while (!done.load()) {
+    while (true) {
+      awaitShutdownOrWake();
+      if (done.load()) return;
       if (shutdownRequested()) {
         role->stop();
         return;
       }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
   });
   acceptShutdownSignals();
@@ -65,6 +65,7 @@ int runProgram(const std::string& name, const std::string& input, int argc, char
     std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
   }
   done.store(true);
+  wakeShutdownWatcher();
   watcher.join();
   return status;
 }

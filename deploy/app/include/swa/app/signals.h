@@ -23,4 +23,10 @@ bool shutdownRequested();
 // The signal that requested the shutdown (0 if none).
 int shutdownSignal();
 
+// Blocks until SIGINT / SIGTERM arrives or wakeShutdownWatcher() is called (each counts once; one that came before
+// the call returns at once). Returns at once if the handlers are not installed. For the one thread that turns the
+// flag into a stop (program.h), without polling.
+void awaitShutdownOrWake();
+void wakeShutdownWatcher();
+
 }  // namespace swa::app
