@@ -58,8 +58,9 @@ app::Cli makeCli(LaunchOptions& o) {
   cli.choice("--transport", "T", transports, [&o, transports](std::size_t k) { o.transport = transports[k]; },
              "local: shared memory + UDP, one host; network: UDPv4 only, multicast discovery; discovery-server: "
              "UDPv4, discovery through a Fast DDS Discovery Server. Sets SWA_TRANSPORT for every child (default: "
-             "$SWA_TRANSPORT, else local, or discovery-server past 64 UAV processes; deploy/README.md: when to use "
-             "which)");
+             "$SWA_TRANSPORT, else local, or discovery-server past " +
+                 std::to_string(kMaxUavProcessesForSimpleDiscovery) +
+                 " UAV processes; deploy/README.md: when to use which)");
   cli.text("--discovery-server", "LIST", o.discovery_server,
            "with discovery-server: the servers' IP:PORT[;IP:PORT...]; without it swa_launch starts one "
            "(fast-discovery-server -i 0) on 127.0.0.1:--discovery-port and stops it at the end");

@@ -13,6 +13,14 @@ namespace swa::launch {
 // The discovery server swa_launch starts listens on the first free UDP port from here (Fast DDS's default).
 constexpr int kDefaultDiscoveryPort = 11811;
 
+// Past this many UAV processes (agents and bridges) on one host swa_launch uses a discovery server of its own unless
+// a transport is given. With multicast discovery every participant announces every endpoint to every other one;
+// through a server a process learns only of those it shares a topic with. bench_scale on 2 cores, lockstep, both
+// transports alternated twice: at 32 alike (1.9-2.4 s to discover, 3.2-3.4 ms per step); at 64 multicast took
+// 9.6-11.4 s to discover and 11.7-16.2 ms per step, the server 2.0-2.2 s and 8.5-8.7 ms; 100 never matched by
+// multicast within 60 s (load average 88), 4.5 s through the server.
+constexpr int kMaxUavProcessesForSimpleDiscovery = 32;
+
 struct LaunchOptions {
   std::string scenario_path;              // --scenario FILE (required)
   std::vector<std::string> overrides;     // --set key=value, in order; passed to sim, agents' config and monitor

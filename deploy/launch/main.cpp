@@ -51,12 +51,6 @@ Binaries findBinaries(const std::string& bin_dir, bool bridges, std::vector<std:
   return b;
 }
 
-// Past this many UAV processes (agents and bridges) on one host, Fast DDS's simple (multicast) discovery does not
-// settle: every participant announces every endpoint to every other one. Measured on 2 cores, lockstep: 64 agents
-// matched and the run passed (13 s to start); 100 did not match in 60 s (load average 88). Through a discovery
-// server each process learns only of those it shares a topic with: 128 agents matched in 4 s.
-constexpr int kMaxUavProcessesForSimpleDiscovery = 64;
-
 // How every child joins DDS (swa/dds/deployment.h), decided here once and passed down through the environment.
 // Returns the discovery server to start, empty if none. Throws std::invalid_argument / std::runtime_error.
 std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_count, bool bridges) {
@@ -66,8 +60,8 @@ std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_cou
   if ((chosen == nullptr || !*chosen) && o.secure_dir.empty() && o.discovery_server.empty() &&
       uav_processes > kMaxUavProcessesForSimpleDiscovery) {
     ::setenv("SWA_TRANSPORT", "discovery-server", 1);
-    std::printf("swa_launch: %d UAV processes: discovery through a discovery server (multicast discovery on one host "
-                "does not settle past about %d; --transport local forces it)\n",
+    std::printf("swa_launch: %d UAV processes: discovery through a discovery server (past %d on one host it starts "
+                "and steps faster than multicast discovery; --transport local forces that)\n",
                 uav_processes, kMaxUavProcessesForSimpleDiscovery);
   }
   if (!o.discovery_server.empty()) ::setenv("SWA_DISCOVERY_SERVER", o.discovery_server.c_str(), 1);

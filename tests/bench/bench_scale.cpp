@@ -11,8 +11,8 @@
 //       the time series equals swa_batch's byte for byte.
 // Then SIGTERM to a launch of --stop-size UAVs (time until every process is gone), and realtime at 100 Hz for each N
 // of --realtime-sizes: late + missing commands.
-// The transport is swa_launch's own choice unless --transport: local up to 64 UAV processes, a discovery server
-// beyond. Each N runs on a DDS domain reserved among SWA's tests and benchmarks, and the next one too (past 118
+// The transport is swa_launch's own choice unless --transport: local up to 32 UAV processes, a discovery server
+// beyond (launch_options.h). Each N runs on a DDS domain reserved among SWA's tests and benchmarks, and the next one too (past 118
 // participants the ports spill into it: swa/dds/participant_id.h). Prints Markdown tables; not a ctest.
 //
 // Usage: bench_scale [--sizes 8,16,32,64,100,128] [--duration S] [--realtime-sizes 8,16,32,48,64]
@@ -38,6 +38,7 @@
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
+#include "launch_options.h"
 #include "proc_stats.h"
 #include "process_support.h"
 #include "swa/app/cli.h"
@@ -59,7 +60,6 @@ using Clock = std::chrono::steady_clock;
 
 const std::string kSource = SWA_SOURCE_DIR;
 const std::string kScenario = kSource + "/deploy/scenarios/dropout_8.yaml";
-constexpr int kMaxUavProcessesForSimpleDiscovery = 64;  // swa_launch's rule (deploy/launch/main.cpp)
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -106,7 +106,7 @@ app::Cli makeCli(Options& o) {
   cli.integer("--rounds", "R", o.rounds, 10, 100000, "a count", "fan-out rounds of the raw floor per N");
   const std::vector<std::string> transports{"auto", "local", "discovery-server"};
   cli.choice("--transport", "T", transports, [&o, transports](std::size_t k) { o.transport = transports[k]; },
-             "auto (default): swa_launch's choice, local up to 64 UAV processes, then a discovery server");
+             "auto (default): swa_launch's choice, local up to 32 UAV processes, then a discovery server");
   cli.integer("--stop-size", "N", o.stop_size, 0, 200, "a UAV count",
               "SIGTERM to a launch of N UAVs 3 s after discovery: time until every process is gone (0: skip)");
   cli.path("--out", "DIR", o.out, "where the runs' files go (default /tmp/swa_bench_scale)");
@@ -128,7 +128,7 @@ int reserveDomainPair() {
 
 std::string transportFor(const Options& o, int n) {
   if (o.transport != "auto") return o.transport;
-  return n > kMaxUavProcessesForSimpleDiscovery ? "discovery-server" : "local";
+  return n > launch::kMaxUavProcessesForSimpleDiscovery ? "discovery-server" : "local";
 }
 
 // A discovery server of this benchmark's own on a free port; SWA_DISCOVERY_SERVER names it for what follows.
