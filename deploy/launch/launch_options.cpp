@@ -144,6 +144,15 @@ void finish(LaunchOptions& o, const app::Cli& cli, app::Problems& problems) {
 
 }  // namespace
 
+std::optional<std::string> automaticTransport(const LaunchOptions& o, const char* env_transport, int uav_processes) {
+  const bool asked = !o.transport.empty() || (env_transport != nullptr && *env_transport != '\0');
+  if (asked || !o.secure_dir.empty() || !o.discovery_server.empty() ||
+      uav_processes <= kMaxUavProcessesForSimpleDiscovery) {
+    return std::nullopt;
+  }
+  return std::string("discovery-server");
+}
+
 LaunchOptions parseLaunchOptions(const std::vector<std::string>& args) {
   return app::parseOptions<LaunchOptions>(args, makeCli, finish);
 }

@@ -51,6 +51,12 @@ struct LaunchOptions {
 // Accepts "--opt value" and "--opt=value" (--record takes a value only as --record=SET). Throws
 // std::invalid_argument listing every problem, one per line.
 LaunchOptions parseLaunchOptions(const std::vector<std::string>& args);
+
+// The transport swa_launch chooses itself: "discovery-server" for more than kMaxUavProcessesForSimpleDiscovery UAV
+// processes when no transport was asked for (neither --transport nor `env_transport`, the value of $SWA_TRANSPORT,
+// null if unset), no servers were named and DDS Security is off (a server would need credentials of its own);
+// otherwise nothing, and the asked-for transport or local applies.
+std::optional<std::string> automaticTransport(const LaunchOptions& o, const char* env_transport, int uav_processes);
 std::string launchUsage();
 
 }  // namespace swa::launch

@@ -54,16 +54,14 @@ Binaries findBinaries(const std::string& bin_dir, bool bridges, std::vector<std:
 // How every child joins DDS (swa/dds/deployment.h), decided here once and passed down through the environment.
 // Returns the discovery server to start, empty if none. Throws std::invalid_argument / std::runtime_error.
 std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_count, bool bridges) {
-  if (!o.transport.empty()) ::setenv("SWA_TRANSPORT", o.transport.c_str(), 1);
   const int uav_processes = max_uav_count * (bridges ? 2 : 1);
-  const char* chosen = std::getenv("SWA_TRANSPORT");
-  if ((chosen == nullptr || !*chosen) && o.secure_dir.empty() && o.discovery_server.empty() &&
-      uav_processes > kMaxUavProcessesForSimpleDiscovery) {
-    ::setenv("SWA_TRANSPORT", "discovery-server", 1);
+  if (const auto automatic = automaticTransport(o, std::getenv("SWA_TRANSPORT"), uav_processes)) {
+    ::setenv("SWA_TRANSPORT", automatic->c_str(), 1);
     std::printf("swa_launch: %d UAV processes: discovery through a discovery server (past %d on one host it starts "
                 "and steps faster than multicast discovery; --transport local forces that)\n",
                 uav_processes, kMaxUavProcessesForSimpleDiscovery);
   }
+  if (!o.transport.empty()) ::setenv("SWA_TRANSPORT", o.transport.c_str(), 1);
   if (!o.discovery_server.empty()) ::setenv("SWA_DISCOVERY_SERVER", o.discovery_server.c_str(), 1);
   if (!o.naming.empty()) ::setenv("SWA_NAMING", o.naming.c_str(), 1);
   if (!o.ros_namespace.empty()) ::setenv("SWA_ROS_NAMESPACE", o.ros_namespace.c_str(), 1);

@@ -122,6 +122,26 @@ TEST(Deployment, UnreadableCredentialsAreListed) {
   EXPECT_EQ(dds::unreadableFiles(dds::securityFiles(dir.string(), "swa_agent_0")).size(), 3u);
 }
 
+TEST(LaunchDeploymentOptions, PastThirtyTwoUavProcessesDiscoveryGoesThroughAServerUnlessATransportIsAskedFor) {
+  const launch::LaunchOptions plain = launch::parseLaunchOptions({"--scenario", "s"});
+  // GIVEN nothing asked for THEN 32 UAV processes keep the default, 33 get a discovery server
+  EXPECT_EQ(launch::automaticTransport(plain, nullptr, 32), std::nullopt);
+  EXPECT_EQ(launch::automaticTransport(plain, nullptr, 33), "discovery-server");
+  EXPECT_EQ(launch::automaticTransport(plain, "", 128), "discovery-server");  // SWA_TRANSPORT= (empty) asks nothing
+  // GIVEN a transport asked for, on the command line or in the environment THEN it stays, however many
+  EXPECT_EQ(launch::automaticTransport(launch::parseLaunchOptions({"--scenario", "s", "--transport", "local"}),
+                                       nullptr, 128),
+            std::nullopt);
+  EXPECT_EQ(launch::automaticTransport(plain, "network", 128), std::nullopt);
+  // GIVEN DDS Security (a server would need credentials of its own) or named servers THEN nothing is chosen
+  EXPECT_EQ(launch::automaticTransport(launch::parseLaunchOptions({"--scenario", "s", "--secure", "creds"}), nullptr,
+                                       128),
+            std::nullopt);
+  launch::LaunchOptions servers = plain;
+  servers.discovery_server = "127.0.0.1:11900";
+  EXPECT_EQ(launch::automaticTransport(servers, nullptr, 128), std::nullopt);
+}
+
 TEST(LaunchDeploymentOptions, ParsedAndChecked) {
   // WHEN the launcher is given a discovery-server transport with a server, and credentials
   const launch::LaunchOptions o = launch::parseLaunchOptions({"--scenario", "s.yaml", "--transport",
