@@ -51,7 +51,6 @@ using testing::ShmJanitor;
 using testing::jsonNumber;
 using testing::readFile;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 const std::string kSource = SWA_SOURCE_DIR;
 // One ping / pong topic pair per echo peer, as each UAV has its own imu / cmd_vel topics.
@@ -59,7 +58,6 @@ std::string pingTopic(int peer) { return "swa/bench/ping" + std::to_string(peer)
 std::string pongTopic(int peer) { return "swa/bench/pong" + std::to_string(peer); }
 constexpr auto kPingPeriod = std::chrono::milliseconds(10);  // 100 Hz, as the IMU
 
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // ---- options ----------------------------------------------------------------------------------------------------
 
@@ -387,13 +385,6 @@ std::string scenarioFor(int n) {
   if (n == 4) return "dropout_4.yaml";
   if (n == 16) return "swarm_16.yaml";
   return "dropout_8.yaml";  // every other N: the same swarm (lattice at 10 m spacing, k = 3, r = 10 m) with N UAVs
-}
-
-std::string fmt(double x, int decimals = 1) {
-  if (std::isnan(x)) return "—";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
-  return buf;
 }
 
 // (a) + (b): the loop against the raw ping-pong, medians over the repetitions; then the loop with fewer agents.

@@ -56,12 +56,10 @@ namespace {
 using testing::Child;
 using testing::jsonNumber;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 const std::string kSource = SWA_SOURCE_DIR;
 const std::string kScenario = kSource + "/deploy/scenarios/dropout_8.yaml";
 
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Options {
   std::vector<int> sizes{8, 16, 32, 64, 100, 128};
@@ -350,13 +348,6 @@ double stopTime(const Options& o, int domain, const fs::path& dir, std::string& 
   const std::size_t last = log.rfind("swa_launch [");
   verdict = last == std::string::npos ? "no verdict line" : log.substr(last, log.find('\n', last) - last);
   return discovered ? seconds : NAN;
-}
-
-std::string fmt(double x, int decimals = 1) {
-  if (std::isnan(x)) return "—";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
-  return buf;
 }
 
 std::string verdictOf(int status) {

@@ -1,13 +1,16 @@
 #pragma once
-// What the benchmarks read of processes and samples: medians and quantiles, the load average, a live process's
-// memory and CPU time (proc(5)), and the children of a process. Shared by bench_dds and bench_scale.
+// What the benchmarks read of processes and samples and how they print it: medians and quantiles, the load average,
+// a live process's memory and CPU time (proc(5)), the children of a process, elapsed time, table numbers. Shared by
+// bench_dds and bench_scale.
 
 #include <dirent.h>
 #include <sys/types.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <optional>
@@ -20,6 +23,19 @@
 namespace swa::bench {
 
 using testing::readFile;
+using Clock = std::chrono::steady_clock;
+
+inline double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// A table cell: `decimals` after the point, "—" for NaN (no value).
+inline std::string fmt(double x, int decimals = 1) {
+  if (std::isnan(x)) return "—";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  return buf;
+}
 
 inline double median(std::vector<double> v) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
