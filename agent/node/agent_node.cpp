@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <thread>
 #include <type_traits>
 #include <utility>
 
@@ -32,7 +31,10 @@ constexpr agent::StampNs kStatePeriodNs = 100'000'000;  // 10 Hz
 // Inputs silent this long: the simulator has delivered every sample of the pending step (it publishes a step's
 // samples together) and is waiting or has ended, so the pending state is published.
 constexpr auto kQuietPeriod = std::chrono::milliseconds(100);
-constexpr auto kQuietPoll = std::chrono::milliseconds(20);
+// run()'s checks (matching, silence, twins, the 1 s state heartbeat) need no finer grain than this. A pending state
+// is published at its quiet deadline instead, so the loop wakes 10 times a second, not 50 (issue #29: every wake-up
+// of an agent costs CPU, and a host runs 100 of them). Below kPollGapLimit with room for a busy host.
+constexpr auto kPoll = std::chrono::milliseconds(100);
 // The state is published at least this often once the agent has run, and says STAGE_NO_INPUT after this long
 // without a valid IMU sample.
 constexpr auto kHeartbeat = std::chrono::seconds(1);
@@ -98,9 +100,23 @@ void AgentNode::onForeign(const agent::ForeignDetectionSet& set) {
 
 AgentNode::~AgentNode() { participant_.reset(); }
 
+void AgentNode::stop() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stop_requested_ = true;
+  }
+  wake_.notify_all();
+}
+
 int AgentNode::run() {
   while (!stop_requested_) {
-    std::this_thread::sleep_for(kQuietPoll);
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      auto until = std::chrono::steady_clock::now() + kPoll;
+      if (pending_state_ns_) until = std::min(until, last_input_ + kQuietPeriod);
+      wake_.wait_until(lock, until, [this] { return stop_requested_.load(); });
+    }
+    if (stop_requested_) break;
     // Matched-status queries stay outside mutex_: a listener delivering a sample may hold its reader's lock while it
     // waits for mutex_ (seen: every agent of a loaded host stuck after its first samples).
     const Matched matched = matchedNow();

@@ -15,6 +15,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -72,7 +73,7 @@ class AgentNode : public app::Role {
   // Until stop(): publishes the pending state when the inputs go quiet. Then deletes the DDS entities, so no
   // listener runs any more and stats() / diagnostics() are final, and logs them. Returns the exit status.
   int run() override;
-  void stop() override { stop_requested_ = true; }
+  void stop() override;
   const AgentNodeStats& stats() const { return stats_; }
   const agent::Diagnostics& diagnostics() const { return agent_.diagnostics(); }
 
@@ -121,6 +122,7 @@ class AgentNode : public app::Role {
   dds::HandshakeWatch handshake_;
   int reconnects_ = 0;
   std::atomic<bool> stop_requested_{false};
+  std::condition_variable wake_;  // run()'s wait: stop(), or its next deadline
   dds::PeerKey reported_twin_{};
   int peers_back_ = 0;  // PeerBook count of the current participant
   std::optional<std::chrono::steady_clock::time_point> peer_back_at_;
