@@ -156,6 +156,9 @@ class DiscoveryServer {
 
 struct FanOut {
   double discovery_s = NAN, round_p50_us = NAN, round_p99_us = NAN;
+  // The floor of the CPU figures over the measured rounds: an echo peer's per ping answered, the pinger's per ping
+  // sent and answer taken (what an agent and the simulator do per sample, with no SWA code).
+  double echo_cpu_per_ping_us = NAN, ping_cpu_per_peer_round_us = NAN;
   int lost_rounds = 0;
   std::string error;
 };
@@ -201,7 +204,12 @@ FanOut rawFanOut(const Options& o, int n, int domain, const fs::path& dir) {
       constexpr int kWarmup = 20;
       std::vector<double> rounds_us;
       std::vector<Pong> batch;
+      double echo_cpu0_s = 0.0, ping_cpu0_s = 0.0;
       for (int round = 1; round <= kWarmup + o.rounds && !app::shutdownRequested(); ++round) {
+        if (round == kWarmup + 1) {
+          for (const auto& e : echoes) echo_cpu0_s += cpuSecondsFine(e->pid()).value_or(NAN);
+          ping_cpu0_s = cpuSecondsFine(::getpid()).value_or(NAN);
+        }
         const auto start = Clock::now();
         for (int j = 0; j < n; ++j) {
           msg::Imu m;
@@ -223,6 +231,11 @@ FanOut rawFanOut(const Options& o, int n, int domain, const fs::path& dir) {
         }
         if (round > kWarmup) rounds_us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
       }
+      const double sent = static_cast<double>(n) * static_cast<double>(o.rounds);
+      r.ping_cpu_per_peer_round_us = 1e6 * (cpuSecondsFine(::getpid()).value_or(NAN) - ping_cpu0_s) / sent;
+      double echo_cpu1_s = 0.0;
+      for (const auto& e : echoes) echo_cpu1_s += cpuSecondsFine(e->pid()).value_or(NAN);
+      r.echo_cpu_per_ping_us = 1e6 * (echo_cpu1_s - echo_cpu0_s) / sent;
       std::sort(rounds_us.begin(), rounds_us.end());
       r.round_p50_us = quantileSorted(rounds_us, 0.5);
       r.round_p99_us = quantileSorted(rounds_us, 0.99);
@@ -360,8 +373,9 @@ int benchMain(const Options& o) {
   std::printf("## bench_scale: %ld cores, load %s at start; lockstep %.0f s simulated per run, raw floor %d rounds\n\n",
               ::sysconf(_SC_NPROCESSORS_ONLN), loadAverage().c_str(), o.duration_s, o.rounds);
   std::printf("| N | transport | discovery: launch / raw | wall per step | raw fan-out round p50 (p99) | ratio | "
-              "agent CPU per received sample | sim CPU per UAV-step | PSS per agent median / max | verdict | "
-              "= swa_batch |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "agent CPU per received sample / raw echo's per ping (ratio) | sim CPU per UAV-step / raw pinger's per "
+              "ping (ratio) | PSS per agent median / max | verdict | = swa_batch |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   for (const int n : o.sizes) {
     if (app::shutdownRequested()) break;
@@ -382,14 +396,18 @@ int benchMain(const Options& o) {
     const LaunchRun run = launchRun(o, n, false, domain, dir / "lockstep");
     const double ratio = run.wall_per_step_us / raw.round_p50_us;
     failures += run.status != 0 || run.equals_batch != true || !raw.error.empty();
-    std::printf("| %d | %s | %s s / %s s | %s us | %s us (%s us)%s | %s | %s us | %s us | %s / %s MB | %s | %s |\n", n,
+    const auto against = [](double swa_us, double raw_us) {
+      return fmt(swa_us, 0) + " / " + fmt(raw_us, 0) + " us (" + fmt(swa_us / raw_us, 2) + ")";
+    };
+    std::printf("| %d | %s | %s s / %s s | %s us | %s us (%s us)%s | %s | %s | %s | %s / %s MB | %s | %s |\n", n,
                 transport.c_str(), fmt(run.discovery_s, 2).c_str(), fmt(raw.discovery_s, 2).c_str(),
                 fmt(run.wall_per_step_us, 0).c_str(), fmt(raw.round_p50_us, 0).c_str(),
                 fmt(raw.round_p99_us, 0).c_str(),
                 raw.error.empty() ? (raw.lost_rounds ? (", " + std::to_string(raw.lost_rounds) + " lost").c_str() : "")
                                   : (" " + raw.error).c_str(),
-                fmt(ratio, 2).c_str(), fmt(run.agent_cpu_per_sample_us, 0).c_str(),
-                fmt(run.sim_cpu_per_uav_step_us, 0).c_str(), fmt(run.pss_median_mb, 2).c_str(),
+                fmt(ratio, 2).c_str(), against(run.agent_cpu_per_sample_us, raw.echo_cpu_per_ping_us).c_str(),
+                against(run.sim_cpu_per_uav_step_us, raw.ping_cpu_per_peer_round_us).c_str(),
+                fmt(run.pss_median_mb, 2).c_str(),
                 fmt(run.pss_max_mb, 2).c_str(), verdictOf(run.status).c_str(),
                 !run.equals_batch ? "—" : *run.equals_batch ? "yes" : "NO");
     std::fflush(stdout);

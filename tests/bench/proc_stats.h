@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -94,6 +95,25 @@ inline std::optional<double> cpuSecondsOf(pid_t pid) {
   if (f.size() < 13) return std::nullopt;  // fields 3.. of proc(5): utime is field 14, stime 15
   return (std::strtod(f[11].c_str(), nullptr) + std::strtod(f[12].c_str(), nullptr)) /
          static_cast<double>(::sysconf(_SC_CLK_TCK));
+}
+
+// Time on a CPU of a live process's threads, seconds, to the nanosecond (proc(5) schedstat), for spans too short for
+// the clock ticks of cpuSecondsOf. Threads that ended are not counted.
+inline std::optional<double> cpuSecondsFine(pid_t pid) {
+  std::error_code ec;
+  const std::filesystem::path tasks = "/proc/" + std::to_string(pid) + "/task";
+  double ns = 0.0;
+  bool any = false;
+  for (const auto& t : std::filesystem::directory_iterator(tasks, ec)) {
+    std::istringstream s(readFile((t.path() / "schedstat").string()));
+    double on_cpu_ns = 0.0;
+    if (s >> on_cpu_ns) {
+      ns += on_cpu_ns;
+      any = true;
+    }
+  }
+  if (!any) return std::nullopt;
+  return ns * 1e-9;
 }
 
 // The live children of `parent` whose command name (proc(5) comm, at most 15 characters) is `comm`.
