@@ -181,34 +181,47 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
   const std::optional<WallNs> due_ns = due ? std::optional<WallNs>(wallNs(*due)) : std::nullopt;
   std::vector<std::optional<agent::StampNs>> imu_stamps(static_cast<std::size_t>(n_));
   const std::vector<sim::UavSensors>& sensors = world_.sensors();
-  for (int i = 0; i < n_; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const auto id = static_cast<std::uint32_t>(i);
+  const auto writeSides = [&](std::size_t k) {
     const sim::UavSensors& s = sensors[k];
     side_written_[k] = s.detections.has_value() || s.gnss.has_value();
-    // Detections and GNSS before the IMU sample: the agent processes a step in the closed loop's order (IMU,
-    // detections, GNSS) whatever the arrival order, but publishes its state of the step once its inputs fall quiet
-    // (agent_node.cpp). Arriving after the IMU sample, the step's detections could come after that on a host where
-    // a process waits 100 ms for the CPU (measured: 128 UAV processes in lockstep on 2 cores, some agents' states
-    // without that step's detections, NEES no longer equal to swa_batch's); arriving before it, they are held and
-    // processed with it, at once.
     if (s.detections && !writeDetections(k, *s.detections, ++det_seq_[k])) ++summary_.write_failures;
     if (s.gnss && gnss_[k]) {
-      msg::GnssFix m = wire::toMsg(*s.gnss, id, ++gnss_seq_[k]);
+      msg::GnssFix m = wire::toMsg(*s.gnss, static_cast<std::uint32_t>(k), ++gnss_seq_[k]);
       if (!gnss_[k].write(m)) ++summary_.write_failures;
-    } else if (s.gnss && autopilot_ && !autopilot_->publishGnss(i, *s.gnss)) {
+    } else if (s.gnss && autopilot_ && !autopilot_->publishGnss(static_cast<int>(k), *s.gnss)) {
       ++summary_.write_failures;
     }
-    if (s.imu) {
-      msg::Imu m = wire::toMsg(*s.imu, id, ++imu_seq_[k]);
-      const WallNs published_ns = wallNs(Clock::now());
-      if (autopilot_ ? autopilot_->publishAttitude(i, *s.imu, imu_seq_[k]) : imu_[k].write(m)) {
-        if (time_latency_) latency_.published(i, imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
-        imu_stamps[k] = s.imu->stamp_ns;
-      } else {
-        ++summary_.write_failures;
-      }
+  };
+  const auto writeImu = [&](std::size_t k) {
+    const sim::UavSensors& s = sensors[k];
+    if (!s.imu) return;
+    msg::Imu m = wire::toMsg(*s.imu, static_cast<std::uint32_t>(k), ++imu_seq_[k]);
+    const WallNs published_ns = wallNs(Clock::now());
+    if (autopilot_ ? autopilot_->publishAttitude(static_cast<int>(k), *s.imu, imu_seq_[k]) : imu_[k].write(m)) {
+      if (time_latency_) latency_.published(static_cast<int>(k), imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
+      imu_stamps[k] = s.imu->stamp_ns;
+    } else {
+      ++summary_.write_failures;
     }
+  };
+  const auto n = static_cast<std::size_t>(n_);
+  if (due) {
+    // Realtime: every UAV's IMU sample first, the detections and GNSS fixes after them. The command answers the IMU
+    // sample alone, so neither the simulator's writing of the others nor the agent's receiving of them comes before
+    // it; at 64 UAVs a step with detections wrote 128 other samples before the last IMU sample. An agent processes
+    // a step's samples in the closed loop's order whatever their arrival order (agent_node.cpp).
+    for (std::size_t k = 0; k < n; ++k) writeImu(k);
+    for (std::size_t k = 0; k < n; ++k) writeSides(k);
+    return imu_stamps;
+  }
+  // Lockstep (and realtime's untimed step 0): detections and GNSS before the IMU sample. The agent publishes its
+  // state of the step once its inputs fall quiet (agent_node.cpp). Arriving after the IMU sample, the step's
+  // detections could come after that on a host where a process waits 100 ms for the CPU (measured: 128 UAV processes
+  // in lockstep on 2 cores, some agents' states without that step's detections, NEES no longer equal to swa_batch's);
+  // arriving before it, they are held and processed with it, at once.
+  for (std::size_t k = 0; k < n; ++k) {
+    writeSides(k);
+    writeImu(k);
   }
   return imu_stamps;
 }

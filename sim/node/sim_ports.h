@@ -57,7 +57,8 @@ class SimPorts {
 
   void publishStepOutputs(const AliveFn& alive);  // the world's events, truth when due, the clock
   // `due`: when the UAVs' next IMU samples are due (realtime), for the latency statistics; nullopt in lockstep.
-  // Returns the IMU stamp published to each UAV (nullopt: none this step).
+  // With `due` every IMU sample is written before the step's detections and GNSS fixes, without it after them (the
+  // reasons are at the definition). Returns the IMU stamp published to each UAV (nullopt: none this step).
   std::vector<std::optional<agent::StampNs>> publishSensors(std::optional<Clock::time_point> due);
   // An event of the node (agent dead / rejoined, scenario end) at the current sim time.
   void publishEvent(const char* kind, int uav, double value, const std::string& text);
