@@ -8,8 +8,9 @@
 //   (c) lockstep speed: simulated seconds per wall second for N = 4, 8, 16, 32;
 //   (d) scale: realtime at 100 Hz for N = 8, 16, 24, 32 (then 40, 48 if 32 passes): late + missing commands;
 //   (e) per-agent RSS / PSS from /proc/<pid>/smaps_rollup while the runs of (b) and (d) are in progress.
-// Each run uses a private DDS domain (never 0), every child is reaped and every /dev/shm file a killed process
-// leaves is removed. Prints Markdown tables. Not a ctest: takes minutes and needs a quiet machine.
+// Each run uses a DDS domain reserved among SWA's tests and a swarm of its own, every child is reaped and every
+// /dev/shm file a killed process leaves is removed. Prints Markdown tables. Not a ctest: takes minutes and needs a
+// quiet machine.
 //
 // Usage: bench_dds [--quick] [--only latency|lockstep|scale|pingpong] [--duration S] [--reps R] [--pings N]
 //                  [--keep DIR]
@@ -112,10 +113,14 @@ std::string selfPath() {
   return std::string(buf, static_cast<std::size_t>(n));
 }
 
-// A private domain per run: PID-derived like the tests, never 0, <= 232, a different one for every run.
+// A domain and a swarm of this run's own: reserved among SWA's tests and benchmarks on this host (test_domain.h),
+// a different one for every run, and a DDS partition of its own (useOwnSwarm) for every participant of the run,
+// its children included, so another DDS user on the same domain neither disturbs the run nor is disturbed by it.
 int nextDomain() {
   static int counter = 0;
-  return 1 + static_cast<int>((::getpid() * 7 + 13 * counter++) % 230);
+  const int domain = testing::testDomain(7 * counter++);
+  testing::useOwnSwarm();
+  return domain;
 }
 
 // ---- (a) ping-pong ----------------------------------------------------------------------------------------------
