@@ -32,7 +32,8 @@ constexpr auto kLastAnswersWait = std::chrono::seconds(2);
 struct Item {
   std::int64_t time_ns;
   int rank;  // at equal times: the world first (the simulator publishes truth and events of a step before the
-             // next step's sensors), then inputs in the agent's order
+             // next step's sensors), then detections and GNSS, then the IMU sample, as the simulator writes them in
+             // lockstep (sim_ports.cpp)
   std::uint64_t order;
   int uav;                   // -1: a world topic
   InputSample* input;  // or
@@ -119,11 +120,25 @@ bool ReplayNode::waitForAnswers(std::int64_t stamp_ns, const std::set<int>& uavs
   return false;
 }
 
+void ReplayNode::waitForAcknowledgments(const std::set<int>& uavs) {
+  // The agent orders its inputs by stamp (sample_order.h): the commands are the recorded ones only if this stamp's
+  // detections and GNSS fix are in its queue before the next stamp's IMU sample. DDS orders samples per topic, not
+  // across topics, and a lost sample is repaired only after the next heartbeat (deploy/dds/profiles.xml), so the
+  // next IMU sample could overtake it: wait until the agent has acknowledged them, as the simulator does.
+  const double wait_s = std::chrono::duration<double>(kAnswerTimeout).count();
+  for (const int uav : uavs) {
+    if (stop_) return;
+    Writers& w = writers_.at(uav);
+    if (!w.detections.waitForAcknowledgments(wait_s) || !w.gnss.waitForAcknowledgments(wait_s)) ++unacknowledged_;
+  }
+}
+
 int ReplayNode::run() {
   std::vector<Item> items;
   for (auto& [uav, recording] : run_.uavs) {
     for (InputSample& in : recording.inputs) {
-      items.push_back({in.stamp_ns, 1 + static_cast<int>(in.input), in.order, uav, &in, nullptr});
+      const int rank = in.input == Input::kDetections ? 1 : in.input == Input::kGnss ? 2 : 3;
+      items.push_back({in.stamp_ns, rank, in.order, uav, &in, nullptr});
     }
   }
   for (WorldSample& w : run_.world) {
@@ -145,7 +160,7 @@ int ReplayNode::run() {
       std::this_thread::sleep_until(t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
                                              static_cast<double>(stamp - first_ns) * 1e-9 / options_.speed)));
     }
-    std::set<int> imu_uavs;
+    std::set<int> imu_uavs, side_uavs;
     for (; i < items.size() && items[i].time_ns == stamp; ++i) {
       const Item& it = items[i];
       bool ok = true;
@@ -159,11 +174,13 @@ int ReplayNode::run() {
           imu_uavs.insert(it.uav);
         } else {
           ok = (it.input->input == Input::kDetections ? w.detections : w.gnss).write(payload);
+          side_uavs.insert(it.uav);
         }
       }
       if (!ok) ++write_failures;
     }
     if (options_.lockstep && !imu_uavs.empty()) waitForAnswers(stamp, imu_uavs);
+    if (options_.lockstep) waitForAcknowledgments(side_uavs);
   }
   if (options_.lockstep && !stop_) std::this_thread::sleep_for(kLastAnswersWait);
   if (write_failures > 0) {
@@ -205,6 +222,12 @@ int ReplayNode::report() {
                 static_cast<unsigned long long>(identical), static_cast<unsigned long long>(differing),
                 static_cast<unsigned long long>(unrecorded), static_cast<unsigned long long>(unanswered));
     all_identical = all_identical && differing == 0 && unrecorded == 0 && unanswered == 0 && answers > 0;
+  }
+  if (unacknowledged_ > 0) {
+    std::printf("swa_replay: %llu steps whose detections or GNSS fix were not acknowledged within %lld s (the "
+                "next IMU sample may have overtaken them)\n",
+                static_cast<unsigned long long>(unacknowledged_),
+                static_cast<long long>(std::chrono::duration_cast<std::chrono::seconds>(kAnswerTimeout).count()));
   }
   if (answers_missed_ > 0) {
     std::printf("swa_replay: %llu steps without every answer within %lld s\n",

@@ -35,6 +35,8 @@ class ReplayNode : public app::Role {
   // Publishes the samples of one stamp; returns the UAVs whose IMU sample of that stamp went out.
   void onCommand(int uav, dds::Payload&& payload);
   bool waitForAnswers(std::int64_t stamp_ns, const std::set<int>& uavs);
+  // --lockstep: until the agents of `uavs` acknowledged the detections and GNSS fixes just written.
+  void waitForAcknowledgments(const std::set<int>& uavs);
   int report();
 
   RecordedRun run_;
@@ -45,6 +47,7 @@ class ReplayNode : public app::Role {
   std::condition_variable answered_;
   std::map<std::pair<int, std::int64_t>, dds::Payload> answers_;  // (uav, stamp) -> the agent's command
   std::uint64_t answers_missed_ = 0;                              // --lockstep: waits that timed out
+  std::uint64_t unacknowledged_ = 0;  // --lockstep: stamps whose detections / GNSS were not acknowledged in time
 
   std::unique_ptr<dds::Participant> participant_;
   std::map<int, Writers> writers_;

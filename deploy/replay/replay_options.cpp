@@ -23,9 +23,9 @@ Without --check it re-publishes the recorded inputs on DDS as the simulator did,
 (SWA_NAMING, SWA_SWARM apply): every UAV's imu, detections and gnss, and with all UAVs also swa/truth, swa/events
 and swa/clock, so agents (started with other parameters, say) and swa_monitor run on the recorded data. It waits
 (--wait-s) until every replayed UAV's IMU, and with all UAVs swa/truth, has a reader, then publishes at --speed.
---lockstep: after the samples of each stamp, waits for every replayed agent's answer to its IMU sample (as the
-lockstep simulator does), which makes a fresh agent's commands reproducible; the answers are compared with the
-recorded commands and counted.)";
+--lockstep: after the samples of each stamp, waits for every replayed agent's answer to its IMU sample and for its
+acknowledgment of the detections and GNSS fix (as the lockstep simulator does), which makes a fresh agent's commands
+reproducible even over a lossy network; the answers are compared with the recorded commands and counted.)";
 
 app::Cli makeCli(ReplayOptions& o) {
   app::Cli cli("swa_replay", "replays a recorded run into agents (DDS), or re-runs the agents' core on it (--check).");
