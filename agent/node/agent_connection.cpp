@@ -13,6 +13,7 @@
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
@@ -63,6 +64,11 @@ void AgentNode::connect() {
   }
   gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
       dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
+  if (agent_.config().sensor.input == agent::DetectionInput::kSwa &&
+      participant_->wireNames().naming == dds::Naming::kSwa) {
+    frame_reader_ = participant_->reader<msg::SensorFramePubSubType>(
+        dds::topics::sensors(id_), "swa_frame_reader", [this](msg::SensorFrame&& m) { onFrame(std::move(m)); });
+  }
   imu_silence_.restart();
   peers_back_ = 0;
   peer_back_at_.reset();
@@ -75,7 +81,9 @@ AgentNode::Matched AgentNode::matchedNow() const {
   const int detections = det_reader_      ? det_reader_.matched()
                          : vision_reader_ ? vision_reader_.matched()
                                           : uvdar_reader_.matched();
-  return {cmd_writer_.matched(), imu_reader_.matched(), detections, gnss_reader_.matched()};
+  // A writer of frames writes all three inputs.
+  const int frames = frame_reader_ ? frame_reader_.matched() : 0;
+  return {cmd_writer_.matched(), imu_reader_.matched() + frames, detections + frames, gnss_reader_.matched() + frames};
 }
 
 std::string AgentNode::detectionsTopic() const {
@@ -91,12 +99,16 @@ void AgentNode::reportWaiting(const Matched& matched) {
   // A silent agent that never got a sample looks exactly like one that is fine: say once what it is waiting for.
   if (waiting_reported_ || stats_.imu > 0 || std::chrono::steady_clock::now() - connected_at_ < kWaitReport) return;
   waiting_reported_ = true;
+  const std::string frames =
+      frame_reader_ ? " (each counting the " + std::to_string(frame_reader_.matched()) + " of " +
+                          dds::topics::sensors(id_) + ")"
+                    : std::string();
   std::fprintf(stderr,
                "swa_agent %d: no IMU sample %.0f s after connecting; matched: %d reader(s) of %s, %d writer(s) of %s, "
-               "%d of %s, %d of %s\n",
+               "%d of %s, %d of %s%s\n",
                id_, std::chrono::duration<double>(kWaitReport).count(), matched[0], dds::topics::cmdVel(id_).c_str(),
                matched[1], dds::topics::imu(id_).c_str(), matched[2], detectionsTopic().c_str(), matched[3],
-               dds::topics::gnss(id_).c_str());
+               dds::topics::gnss(id_).c_str(), frames.c_str());
 }
 
 std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn(const Matched& matched) {

@@ -244,6 +244,14 @@ void AgentNode::onInput(Input&& in) {
   stats_.forced_releases = order_.forcedReleases();
 }
 
+void AgentNode::onFrame(msg::SensorFrame&& frame) {
+  // In the order the simulator's separate topics were written in lockstep; the orderer processes the IMU sample
+  // first whatever the order (sample_order.h).
+  for (msg::Detections& d : frame.detection_set()) onInput(Input(std::move(d)));
+  for (msg::GnssFix& g : frame.gnss_fix()) onInput(Input(std::move(g)));
+  for (msg::Imu& i : frame.imu_sample()) onInput(Input(std::move(i)));
+}
+
 void AgentNode::handle(Input& in) {
   const auto foreign = [&](std::uint32_t named) {
     if (feed_.isFor(named)) return false;

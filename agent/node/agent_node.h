@@ -1,6 +1,6 @@
 #pragma once
 // The agent of one UAV as a Fast DDS node: a thin adapter around swa::agent::Agent. Reads only
-// swa/uav<id>/{imu,detections,gnss}, writes only swa/uav<id>/{cmd_vel,state}. Samples are processed one at a time,
+// swa/uav<id>/{imu,detections,gnss,sensors}, writes only swa/uav<id>/{cmd_vel,state}. Samples are processed one at a time,
 // in stamp order (sample_order.h), in the listener that delivers them: handing them to a worker thread cost one more
 // thread wake-up per sample, which with 8 agents on 2 vCPUs added ~35 % to the sensor-to-command latency
 // (BENCHMARKS.md). Fast DDS delivers one transport port's samples on one receive thread; a mutex serialises the
@@ -29,6 +29,7 @@
 #include <swa/ros/PoseWithCovarianceArrayStamped.h>
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
+#include <swa/msg/SensorFrame.h>
 #include <swa/msg/VelocitySetpoint.h>
 #include <swa/ros/TwistStamped.h>
 
@@ -82,6 +83,7 @@ class AgentNode : public app::Role {
 
   void connect();             // creates the participant and the endpoints
   void onInput(Input&& in);  // listener threads
+  void onFrame(msg::SensorFrame&& frame);  // listener threads: each part through onInput
   void onForeign(const agent::ForeignDetectionSet& set);  // listener threads: through adapter_, then onInput
   std::string detectionsTopic() const;  // of sensor.input
   void handle(Input& in);
@@ -149,6 +151,9 @@ class AgentNode : public app::Role {
   dds::Reader<vision_msgs::msg::Detection3DArray> vision_reader_;
   dds::Reader<mrs_msgs::msg::PoseWithCovarianceArrayStamped> uvdar_reader_;
   dds::Reader<msg::GnssFix> gnss_reader_;
+  // sensor.input = swa in the SWA naming: the simulator's frames (a step's samples in one message), unpacked into
+  // the three inputs above.
+  dds::Reader<msg::SensorFrame> frame_reader_;
 };
 
 }  // namespace swa::agent_node

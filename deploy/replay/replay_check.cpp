@@ -18,14 +18,6 @@
 namespace swa::replay {
 namespace {
 
-// The bytes a DataWriter sends for `m` (the recorded payloads are what swa_agent's writer sent).
-Payload encode(msg::VelocitySetpoint m) {
-  msg::VelocitySetpointPubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t p(type.getSerializedSizeProvider(&m)());
-  if (!type.serialize(&m, &p)) return {};
-  return Payload(p.data, p.data + p.length);
-}
-
 UavCheck checkUav(int uav, const UavRecording& recording, const agent::AgentConfig& config) {
   UavCheck c;
   c.uav = uav;
@@ -62,7 +54,7 @@ UavCheck checkUav(int uav, const UavRecording& recording, const agent::AgentConf
         continue;
       }
       answered[it->first] = true;
-      if (encode(out) == *it->second) {
+      if (dds::encodePayload<msg::VelocitySetpointPubSubType>(out) == *it->second) {
         ++c.identical;
         continue;
       }

@@ -72,7 +72,8 @@ publishes() {
   local r=$SWA_ROOT
   case $1 in
     swa_sim)
-      echo "${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss ${r}truth ${r}events ${r}clock $(px4_out "$PX4_PREFIX*")" \
+      echo "${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss ${r}uav*/sensors ${r}truth ${r}events ${r}clock" \
+        "$(px4_out "$PX4_PREFIX*")" \
         "$(detector_topics '*') $(ap_out 'ap/v*')"
       ;;
     swa_monitor) echo '' ;;
@@ -95,11 +96,11 @@ subscribes() {
     # The monitor reads every topic of the run: the UAVs' inputs and commands only to record them (--record).
     swa_monitor)
       echo "${r}truth ${r}events ${r}clock ${r}uav*/state ${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss" \
-        "${r}uav*/cmd_vel ${r}uav*/bridge_state"
+        "${r}uav*/sensors ${r}uav*/cmd_vel ${r}uav*/bridge_state"
       ;;
     swa_agent_*)
       local i=${1#swa_agent_}
-      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}clock $(detector_topics "$i")"
+      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}uav$i/sensors ${r}clock $(detector_topics "$i")"
       ;;
     swa_bridge_*)
       local i=${1#swa_bridge_}

@@ -27,11 +27,11 @@ Governance (domains 0-$MAX_DOMAIN by default): only authenticated participants w
 domain may join; every topic's data and submessages are encrypted, and so is endpoint discovery and liveliness;
 reading or writing a topic needs a permissions grant.
 Permissions (default DENY, nothing else is allowed):
-  swa_agent_<I>  reads swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/clock, and a real detector's
-                 rt/uav<I>/detections (vision_msgs) or rt/uav<I>/uvdar/measuredPoses (UVDAR);
+  swa_agent_<I>  reads swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/sensors, swa/clock,
+                 and a real detector's rt/uav<I>/detections (vision_msgs) or rt/uav<I>/uvdar/measuredPoses (UVDAR);
                  writes swa/uav<I>/cmd_vel, swa/uav<I>/state (and swa/uav<I>/cmd_vel_stamped with --naming ros2)
-  swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/truth, swa/events, swa/clock,
-                 rt/uav*/detections, rt/uav*/uvdar/measuredPoses;
+  swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/sensors, swa/truth,
+                 swa/events, swa/clock, rt/uav*/detections, rt/uav*/uvdar/measuredPoses;
                  reads swa/uav*/cmd_vel; as every UAV's PX4 stand-in (vehicle.interface=px4) writes
                  rt/<P>*/fmu/out/vehicle_attitude, vehicle_status(_v1), vehicle_command_ack,
                  vehicle_gps_position, vehicle_local_position(_v1) and reads
@@ -40,7 +40,8 @@ Permissions (default DENY, nothing else is allowed):
                  status, navsat and the replies rr/ap/v*/arm_motorsReply, mode_switchReply, and reads
                  rt/ap/v*/cmd_vel and the requests rq/ap/v*/arm_motorsRequest, mode_switchRequest
   swa_monitor    reads swa/truth, swa/events, swa/uav*/state, and to record them (swa_monitor --record) swa/clock,
-                 swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/cmd_vel, swa/uav*/bridge_state
+                 swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/sensors, swa/uav*/cmd_vel,
+                 swa/uav*/bridge_state
   swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I (swa_px4_bridge, or a bridge of your own):
                  writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and
                  rt/<P><I>/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command;

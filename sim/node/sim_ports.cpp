@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include <swa/msg/ClockPubSubTypes.h>
@@ -13,6 +15,7 @@
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 #include <swa/ros/Detection3DArrayPubSubTypes.h>
@@ -32,6 +35,15 @@ namespace {
 // longer than any pause of a healthy agent (it answers every 10 ms), shorter than the launcher's restart of a crashed
 // one (0.5 s back-off plus the start).
 constexpr auto kCommandHandover = std::chrono::milliseconds(500);
+
+// SWA_SENSOR_FRAMES (deploy/README.md): 1 or unset, a step's samples in one message where the agents read them
+// (SensorFrame); 0, each on its own topic, as bridges and real sensors send them.
+bool framesAllowed() {
+  const char* v = std::getenv("SWA_SENSOR_FRAMES");
+  if (v == nullptr || std::string(v) == "1") return true;
+  if (std::string(v) == "0") return false;
+  throw std::runtime_error("SWA_SENSOR_FRAMES must be 0 or 1, not '" + std::string(v) + "'");
+}
 
 }  // namespace
 
@@ -57,6 +69,7 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
     truth_csv_ << std::setprecision(17);
   }
 
+  const bool frames_allowed = framesAllowed();  // a bad value stops the simulator before it joins the domain
   participant_ = std::make_unique<dds::Participant>("swa_sim", domain_id, profiles_file);
   if (const std::vector<int> ports = dds::Participant::ownSharedMemoryPorts(); !ports.empty()) {
     std::string list;
@@ -69,7 +82,19 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
   const bool autopilot = scenario.vehicle.interface != sim::VehicleInterface::kDirect;
   // With GNSS from the autopilot the bridges write swa/uav<i>/gnss; the simulator reports the fix as PX4 does.
   const bool own_gnss = !autopilot || scenario.vehicle.gnss_source == sim::GnssSource::kSwa;
+  // In the ros2 naming each sample keeps its own topic, where ROS tools expect them.
+  frames_ = frames_allowed && !autopilot && scenario.agent.sensor.input == agent::DetectionInput::kSwa &&
+            participant_->wireNames().naming == dds::Naming::kSwa;
   for (int i = 0; i < n_; ++i) {
+    if (frames_) {
+      frame_.push_back(participant_->writer<msg::SensorFramePubSubType>(dds::topics::sensors(i), "swa_frame_writer"));
+      frame_seq_.push_back(0);
+      cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
+          dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
+            queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
+          }));
+      continue;
+    }
     switch (scenario.agent.sensor.input) {
       case agent::DetectionInput::kSwa:
         det_.push_back(participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i),
@@ -117,6 +142,11 @@ bool SimPorts::awaitDiscovery() {
     missing.clear();
     for (int i = 0; i < n_; ++i) {
       const auto k = static_cast<std::size_t>(i);
+      if (frames_) {
+        if (frame_[k].matched() < 1) missing.push_back(dds::topics::sensors(i) + " (no reader)");
+        if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
+        continue;
+      }
       if (detectionsMatched(k) < 1) {
         const std::string topic = !det_.empty()        ? dds::topics::detections(i)
                                   : !vision_det_.empty() ? dds::topics::visionDetections(i)
@@ -205,6 +235,15 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
     }
   };
   const auto n = static_cast<std::size_t>(n_);
+  if (frames_) {
+    // One message per UAV: its parts arrive together and in order, so the lockstep simulator waits for no
+    // acknowledgment (side_written_ stays false) and realtime needs no IMU-first order.
+    for (std::size_t k = 0; k < n; ++k) {
+      if (writeFrame(k, sensors[k], due_ns)) imu_stamps[k] = sensors[k].imu ? std::optional(sensors[k].imu->stamp_ns)
+                                                                            : std::nullopt;
+    }
+    return imu_stamps;
+  }
   if (due) {
     // Realtime: every UAV's IMU sample first, the detections and GNSS fixes after them. The command answers the IMU
     // sample alone, so neither the simulator's writing of the others nor the agent's receiving of them comes before
@@ -311,6 +350,25 @@ bool SimPorts::writeDetections(std::size_t k, const agent::DetectionSet& s, std:
   }
   mrs_msgs::msg::PoseWithCovarianceArrayStamped m = wire::poseArray(s, id);
   return uvdar_det_[k].write(m);
+}
+
+bool SimPorts::writeFrame(std::size_t k, const sim::UavSensors& s, std::optional<WallNs> due_ns) {
+  if (!s.imu && !s.detections && !s.gnss) return false;
+  const auto id = static_cast<std::uint32_t>(k);
+  msg::SensorFrame m;
+  m.uav_id(id);
+  m.header().stamp_ns(world_.time_ns());
+  m.header().seq(++frame_seq_[k]);
+  if (s.detections) m.detection_set().push_back(wire::toMsg(*s.detections, id, ++det_seq_[k]));
+  if (s.gnss) m.gnss_fix().push_back(wire::toMsg(*s.gnss, id, ++gnss_seq_[k]));
+  if (s.imu) m.imu_sample().push_back(wire::toMsg(*s.imu, id, ++imu_seq_[k]));
+  const WallNs published_ns = wallNs(Clock::now());
+  if (!frame_[k].write(m)) {
+    ++summary_.write_failures;
+    return false;
+  }
+  if (s.imu && time_latency_) latency_.published(static_cast<int>(k), imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
+  return true;
 }
 
 bool SimPorts::gnssAcknowledged(int uav, double wait_s) {

@@ -20,6 +20,7 @@
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
 #include <swa/msg/ScenarioEvent.h>
+#include <swa/msg/SensorFrame.h>
 #include <swa/msg/SwarmTruth.h>
 #include <swa/msg/VelocitySetpoint.h>
 #include <swa/ros/Detection3DArray.h>
@@ -127,11 +128,18 @@ class SimPorts {
   std::vector<int> deaf_ports_;  // shared-memory ports found deaf (noteDeafness), each said once
   std::unique_ptr<AutopilotVehicles> autopilot_;  // vehicle.interface = px4 or ardupilot: instead of imu_ and cmd_
   std::vector<dds::Writer<msg::Imu>> imu_;
+  // Direct vehicles, SWA's own detections and the SWA naming: each step's samples of a UAV in one message
+  // (idl/SensorFrame.idl) on swa/uav<i>/sensors, instead of imu_, det_ and gnss_.
+  bool frames_ = false;
+  std::vector<dds::Writer<msg::SensorFrame>> frame_;
+  std::vector<std::uint32_t> frame_seq_;
   // The detections in the message the agents read (agent sensor.input): one of these three per UAV.
   std::vector<dds::Writer<msg::Detections>> det_;
   std::vector<dds::Writer<vision_msgs::msg::Detection3DArray>> vision_det_;
   std::vector<dds::Writer<mrs_msgs::msg::PoseWithCovarianceArrayStamped>> uvdar_det_;
   int detectionsMatched(std::size_t k) const;
+  // frames_: UAV k's samples of this step in one message; false if it has none or the write failed (counted).
+  bool writeFrame(std::size_t k, const sim::UavSensors& s, std::optional<WallNs> due_ns);
   bool writeDetections(std::size_t k, const agent::DetectionSet& s, std::uint32_t seq);
   std::vector<dds::Writer<msg::GnssFix>> gnss_;
   std::vector<dds::Reader<msg::VelocitySetpoint>> cmd_;

@@ -1,7 +1,7 @@
 #pragma once
 // The "no inter-agent communication" audit (DESIGN §1): given every reader and writer seen on a domain, which agent
-// endpoints break the rule that agent I reads only swa/uav<I>/{imu,detections,gnss} (and swa/clock) and writes only
-// swa/uav<I>/{cmd_vel,state}. Pure, no DDS include: test_isolation feeds it what Fast DDS discovery reported,
+// endpoints break the rule that agent I reads only swa/uav<I>/{imu,detections,gnss,sensors} (and swa/clock) and
+// writes only swa/uav<I>/{cmd_vel,state}. Pure, no DDS include: test_isolation feeds it what Fast DDS discovery reported,
 // test_isolation_audit feeds it synthetic lists (including planted violations, so the audit is known to fail).
 //
 // An agent is a participant named swa_agent_<I> (agent/node/agent_node.cpp). Participants are told apart by GUID
@@ -105,10 +105,9 @@ inline std::vector<std::string> auditIsolation(const std::vector<Endpoint>& endp
 }
 
 // Completeness, so that the isolation audit cannot pass on too little: each agent 0..agent_count-1 is exactly one
-// participant, and it has exactly one reader on each of swa/uav<I>/{imu,detections,gnss} (one on swa/clock
-// allowed), exactly one writer on each of swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped allowed), and nothing
-// else. Agents with an index
-// outside 0..agent_count-1 are reported too.
+// participant, and it has exactly one reader on each of swa/uav<I>/{imu,detections,gnss} (one on swa/uav<I>/sensors
+// and one on swa/clock allowed), exactly one writer on each of swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped
+// allowed), and nothing else. Agents with an index outside 0..agent_count-1 are reported too.
 inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>& endpoints, int agent_count) {
   using Key = std::pair<EndpointKind, std::string>;
   std::map<int, std::map<std::string, std::map<Key, int>>> seen;  // agent -> participant guid -> endpoint -> count
@@ -139,6 +138,7 @@ inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>&
         {{EndpointKind::kReader, dds::topics::imu(id)}, true},
         {{EndpointKind::kReader, dds::topics::detections(id)}, true},
         {{EndpointKind::kReader, dds::topics::gnss(id)}, true},
+        {{EndpointKind::kReader, dds::topics::sensors(id)}, false},  // the simulator's frames, SWA naming
         {{EndpointKind::kReader, dds::topics::kClock}, false},
         {{EndpointKind::kWriter, dds::topics::cmdVel(id)}, true},
         {{EndpointKind::kWriter, dds::topics::cmdVelStamped(id)}, false},  // the ros2 naming

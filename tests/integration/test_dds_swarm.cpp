@@ -21,6 +21,7 @@
 
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
@@ -435,15 +436,18 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
   auto rogue = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
   auto rogue_cmd = rogue->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(2), "swa_command_writer");
   std::mutex rogue_mutex;
-  rogue->reader<msg::ImuPubSubType>(dds::topics::imu(2), "swa_sensor_reader", [&](msg::Imu&& imu) {
+  // (the simulator writes UAV 2's IMU samples in its frames)
+  rogue->reader<msg::SensorFramePubSubType>(dds::topics::sensors(2), "swa_frame_reader", [&](msg::SensorFrame&& f) {
     const std::lock_guard<std::mutex> lock(rogue_mutex);
-    msg::VelocitySetpoint sp;
-    sp.header().stamp_ns(imu.header().stamp_ns());
-    sp.uav_id(2);
-    sp.vx_mps(2.0);
-    sp.answered_stamp_ns(imu.header().stamp_ns());
-    sp.answered_seq(imu.header().seq());
-    if (rogue_cmd.write(sp)) ++rogue_commands;
+    for (const msg::Imu& imu : f.imu_sample()) {
+      msg::VelocitySetpoint sp;
+      sp.header().stamp_ns(imu.header().stamp_ns());
+      sp.uav_id(2);
+      sp.vx_mps(2.0);
+      sp.answered_stamp_ns(imu.header().stamp_ns());
+      sp.answered_seq(imu.header().seq());
+      if (rogue_cmd.write(sp)) ++rogue_commands;
+    }
   });
   // AND a second agent with id 1 starts in the same swarm
   Child twin(agentCommand(SWA_AGENT_BINARY, 1, domain_, dir_ / "agent.yaml"), dir_ / "twin.log");

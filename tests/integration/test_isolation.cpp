@@ -46,8 +46,10 @@ bool has(const std::vector<Endpoint>& endpoints, const std::string& participant,
 // Whether swa_sim's per-UAV endpoints of this run's agents have all been discovered.
 bool simEndpointsSeen(const std::vector<Endpoint>& endpoints) {
   for (int i = 0; i < kAgents; ++i) {
+    // The simulator writes each UAV's samples in frames (SWA naming), the three topics otherwise.
+    const bool frames = has(endpoints, "swa_sim", EndpointKind::kWriter, dds::topics::sensors(i));
     for (const std::string& topic : {dds::topics::imu(i), dds::topics::detections(i), dds::topics::gnss(i)}) {
-      if (!has(endpoints, "swa_sim", EndpointKind::kWriter, topic)) return false;
+      if (!frames && !has(endpoints, "swa_sim", EndpointKind::kWriter, topic)) return false;
     }
     if (!has(endpoints, "swa_sim", EndpointKind::kReader, dds::topics::cmdVel(i))) return false;
   }

@@ -7,6 +7,7 @@
 #include <swa/msg/DetectionsPubSubTypes.h>
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
 #include "roundtrip.h"
@@ -79,6 +80,50 @@ TEST(WireMessages, OversizeDetectionListStillReachesTheConsumer) {
   const msg::Detections out = through_the_wire<msg::DetectionsPubSubType>(in, "swa::msg::Detections");
   // THEN nothing is truncated: rejecting oversize input is the consumer's job, not the transport's
   EXPECT_EQ(out.items().size(), 150u);
+}
+
+TEST(WireMessages, ASensorFrameCarriesItsPartsUnchangedAndOnlyThoseItHas) {
+  // GIVEN a simulator step's three samples, and a frame of them (issue #29)
+  msg::Imu imu;
+  imu.header(make_header(3'000'000'000, 301));
+  imu.uav_id(5);
+  imu.roll_rad(-0.0625);
+  imu.pitch_rad(0.03125);
+  imu.heading_rad(-1.75);
+  msg::Detections det;
+  det.header(make_header(3'000'000'000, 31));
+  det.observer_id(5);
+  for (std::int32_t i = 0; i < 150; ++i) det.items().push_back(detection(i, i * 0.5, -i * 0.25, (i % 2) == 0));
+  msg::GnssFix fix;
+  fix.header(make_header(3'000'000'000, 31));
+  fix.uav_id(5);
+  fix.valid(false);
+  msg::SensorFrame frame;
+  frame.header(make_header(3'000'000'000, 301));
+  frame.uav_id(5);
+  frame.imu_sample().push_back(imu);
+  frame.detection_set().push_back(det);
+  frame.gnss_fix().push_back(fix);
+  // WHEN it goes through serialize/deserialize
+  const msg::SensorFrame out = through_the_wire<msg::SensorFramePubSubType>(frame, "swa::msg::SensorFrame");
+  // THEN each part is its original, a detection set beyond fastddsgen's assumed 100 elements included
+  ASSERT_EQ(out.imu_sample().size(), 1u);
+  ASSERT_EQ(out.detection_set().size(), 1u);
+  ASSERT_EQ(out.gnss_fix().size(), 1u);
+  EXPECT_TRUE(out.imu_sample()[0] == imu);
+  EXPECT_TRUE(out.detection_set()[0] == det);
+  EXPECT_EQ(out.detection_set()[0].items().size(), 150u);
+  EXPECT_TRUE(out.gnss_fix()[0] == fix);
+  EXPECT_EQ(out.header().seq(), 301u);
+
+  // AND a step without detections or fix sends only its IMU sample
+  msg::SensorFrame imu_only;
+  imu_only.uav_id(5);
+  imu_only.imu_sample().push_back(imu);
+  const msg::SensorFrame out2 = through_the_wire<msg::SensorFramePubSubType>(imu_only, "swa::msg::SensorFrame");
+  EXPECT_EQ(out2.imu_sample().size(), 1u);
+  EXPECT_TRUE(out2.detection_set().empty());
+  EXPECT_TRUE(out2.gnss_fix().empty());
 }
 
 TEST(WireSamples, SamplesSurviveTheBridgeAndTheWireBitForBit) {

@@ -441,8 +441,9 @@ case_blocked() {
   for pid in "${AGENT_PIDS[@]}"; do if alive "$pid"; then running=$((running + 1)); fi; done
   stop "${AGENT_PIDS[@]}"
 
-  # swa_sim lists at most 12 unmatched endpoints, then "... and N more".
-  local shown more unmatched expected=$((4 * N_AGENTS)) offered dropped
+  # swa_sim lists at most 12 unmatched endpoints, then "... and N more". Per agent: swa/uav<i>/sensors (the simulator's
+  # frames: imu, detections and gnss in one message) and cmd_vel.
+  local shown more unmatched expected=$((2 * N_AGENTS)) offered dropped
   shown=$(grep -cE '^  swa/uav[0-9]+/' "$dir/sim.log" || true)
   more=$(sed -nE 's/^  \.\.\. and ([0-9]+) more$/\1/p' "$dir/sim.log" | tail -n 1)
   unmatched=$((shown + ${more:-0}))

@@ -124,10 +124,11 @@ test_layout_and_documents() {
     "$(sorted swa/uav1/cmd_vel swa/uav1/state)"
   check "agent 1 subscribes only its sensors and the clock" \
     test "$(granted "$d/swa_agent_1/permissions.xml" subscribe)" = \
-    "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/clock rt/uav1/detections rt/uav1/uvdar/measuredPoses)"
+    "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/uav1/sensors swa/clock rt/uav1/detections \
+      rt/uav1/uvdar/measuredPoses)"
   check "sim publishes sensors, truth, events, clock, and the outputs of every UAV's PX4 and ArduPilot" \
     test "$(granted "$d/swa_sim/permissions.xml" publish)" = \
-    "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' swa/truth swa/events swa/clock \
+    "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' 'swa/uav*/sensors' swa/truth swa/events swa/clock \
       'rt/uav*/detections' 'rt/uav*/uvdar/measuredPoses' 'rt/px4_*/fmu/out/vehicle_attitude' \
       'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_status_v1' \
       'rt/px4_*/fmu/out/vehicle_command_ack' 'rt/px4_*/fmu/out/vehicle_gps_position' \
@@ -142,7 +143,8 @@ test_layout_and_documents() {
   check "monitor publishes nothing" test -z "$(granted "$d/swa_monitor/permissions.xml" publish)"
   check "monitor subscribes every topic (to record it)" \
     test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = "$(sorted swa/truth swa/events swa/clock \
-    'swa/uav*/state' 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' 'swa/uav*/cmd_vel' 'swa/uav*/bridge_state')"
+    'swa/uav*/state' 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' 'swa/uav*/sensors' 'swa/uav*/cmd_vel' \
+    'swa/uav*/bridge_state')"
 }
 
 test_overwrite_rules() {
@@ -211,8 +213,8 @@ test_bridges_and_naming() {
     "$(sorted rt/lab/a/swa/uav0/cmd_vel rt/lab/a/swa/uav0/state rt/lab/a/swa/uav0/cmd_vel_stamped)"
   check "monitor subscribes under the ROS mapping" test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = \
     "$(sorted rt/lab/a/swa/truth rt/lab/a/swa/events rt/lab/a/swa/clock 'rt/lab/a/swa/uav*/state' \
-    'rt/lab/a/swa/uav*/imu' 'rt/lab/a/swa/uav*/detections' 'rt/lab/a/swa/uav*/gnss' 'rt/lab/a/swa/uav*/cmd_vel' \
-    'rt/lab/a/swa/uav*/bridge_state')"
+    'rt/lab/a/swa/uav*/imu' 'rt/lab/a/swa/uav*/detections' 'rt/lab/a/swa/uav*/gnss' 'rt/lab/a/swa/uav*/sensors' \
+    'rt/lab/a/swa/uav*/cmd_vel' 'rt/lab/a/swa/uav*/bridge_state')"
   expect_status 2 "--ros-namespace without --naming ros2" bash "$SCRIPT" --ros-namespace a "$WORK/b" 1
   expect_status 2 "--naming other" bash "$SCRIPT" --naming ros "$WORK/b" 1
   expect_status 2 "--ros-namespace with a '-'" bash "$SCRIPT" --naming ros2 --ros-namespace team-a "$WORK/b" 1

@@ -28,6 +28,7 @@
 #include <swa/msg/DetectionsPubSubTypes.h>
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
+#include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
@@ -158,6 +159,9 @@ void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
   }
   if (endsWith(topic, "/gnss")) {
     return createWith<msg::GnssFixPubSubType>(p, kind, topic, "swa_detections_gnss_writer", "swa_sensor_reader");
+  }
+  if (endsWith(topic, "/sensors")) {
+    return createWith<msg::SensorFramePubSubType>(p, kind, topic, "swa_frame_writer", "swa_frame_reader");
   }
   if (endsWith(topic, "/cmd_vel")) {
     return createWith<msg::VelocitySetpointPubSubType>(p, kind, topic, "swa_command_writer", "swa_command_reader");
@@ -368,6 +372,7 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
   using dds::topics::detections;
   using dds::topics::gnss;
   using dds::topics::imu;
+  using dds::topics::sensors;
   using dds::topics::state;
   using dds::topics::bridgeState;
   using dds::topics::px4In;
@@ -389,17 +394,20 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
   const Kind R = Kind::kReader, W = Kind::kWriter;
   const std::vector<Role> roles{
       {"swa_agent_2",
-       {{R, imu(2)}, {R, detections(2)}, {R, gnss(2)}, {R, clock}, {W, cmdVel(2)}, {W, state(2)}},
-       {{R, imu(1)}, {R, detections(1)}, {R, gnss(3)}, {R, state(1)}, {R, cmdVel(2)}, {R, truth}, {R, events},
-        {W, cmdVel(1)}, {W, state(1)}, {W, imu(2)}, {W, detections(2)}, {W, clock}, {W, truth}}},
+       {{R, imu(2)}, {R, detections(2)}, {R, gnss(2)}, {R, sensors(2)}, {R, clock}, {W, cmdVel(2)}, {W, state(2)}},
+       {{R, imu(1)}, {R, detections(1)}, {R, gnss(3)}, {R, sensors(1)}, {R, state(1)}, {R, cmdVel(2)}, {R, truth},
+        {R, events}, {W, cmdVel(1)}, {W, state(1)}, {W, imu(2)}, {W, detections(2)}, {W, sensors(2)}, {W, clock},
+        {W, truth}}},
       {"swa_sim",
-       {{W, imu(0)}, {W, detections(3)}, {W, gnss(12)}, {W, truth}, {W, events}, {W, clock}, {R, cmdVel(1)},
+       {{W, imu(0)}, {W, detections(3)}, {W, gnss(12)}, {W, sensors(5)}, {W, truth}, {W, events}, {W, clock},
+        {R, cmdVel(1)},
         {W, px4Out(px4Namespace(3), "vehicle_attitude")}, {W, px4Out(px4Namespace(0), "vehicle_status")},
         {W, px4Out(px4Namespace(2), "vehicle_status_v1")}, {R, px4In(px4Namespace(2), "trajectory_setpoint")},
         {R, px4In(px4Namespace(1), "offboard_control_mode")}, {W, apTopic(apNamespace(3), "imu/experimental/data")},
         {W, apTopic(apNamespace(0), "status")}, {R, apTopic(apNamespace(2), "cmd_vel")},
         {R, apRequest(apNamespace(1), "mode_switch")}, {W, apReply(apNamespace(1), "mode_switch")}},
-       {{R, imu(0)}, {R, detections(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth}, {R, clock},
+       {{R, imu(0)}, {R, detections(0)}, {R, sensors(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth},
+        {R, clock},
         {R, px4Out(px4Namespace(0), "vehicle_attitude")}, {W, px4In(px4Namespace(0), "trajectory_setpoint")}}},
       // The autopilot bridge of UAV 1: its sensors out, its commands in, its own PX4's topics, nothing of another UAV
       // or vehicle.
@@ -410,7 +418,8 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
         {W, px4In(px4Namespace(1), "offboard_control_mode")}, {R, apTopic(apNamespace(1), "imu/experimental/data")},
         {R, apTopic(apNamespace(1), "status")}, {W, apTopic(apNamespace(1), "cmd_vel")},
         {W, apRequest(apNamespace(1), "arm_motors")}, {R, apReply(apNamespace(1), "arm_motors")}},
-       {{W, imu(2)}, {W, detections(0)}, {R, imu(1)}, {R, cmdVel(2)}, {W, cmdVel(1)}, {R, state(1)}, {W, state(1)},
+       {{W, imu(2)}, {W, detections(0)}, {W, sensors(1)}, {R, imu(1)}, {R, cmdVel(2)}, {W, cmdVel(1)}, {R, state(1)},
+        {W, state(1)},
         {R, truth}, {W, truth}, {W, clock}, {W, bridgeState(2)}, {R, px4Out(px4Namespace(2), "vehicle_attitude")},
         {W, px4In(px4Namespace(0), "trajectory_setpoint")}, {W, px4Out(px4Namespace(1), "vehicle_attitude")},
         {R, px4In(px4Namespace(1), "trajectory_setpoint")}, {R, px4Out(px4Namespace(2), "vehicle_status_v1")},
@@ -418,9 +427,9 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
         {W, apTopic(apNamespace(1), "status")}, {R, apTopic(apNamespace(1), "cmd_vel")},
         {W, apRequest(apNamespace(2), "mode_switch")}, {R, apRequest(apNamespace(1), "arm_motors")}}},
       {"swa_monitor",
-       {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}, {R, imu(0)}, {R, detections(2)}, {R, cmdVel(1)},
-        {R, clock}},
-       {{W, truth}, {W, events}, {W, state(0)}, {W, imu(0)}, {W, cmdVel(0)}, {W, clock}}},
+       {{R, truth}, {R, events}, {R, state(0)}, {R, state(3)}, {R, imu(0)}, {R, detections(2)}, {R, sensors(1)},
+        {R, cmdVel(1)}, {R, clock}},
+       {{W, truth}, {W, events}, {W, state(0)}, {W, imu(0)}, {W, sensors(0)}, {W, cmdVel(0)}, {W, clock}}},
   };
   for (const Role& role : roles) {
     // WHEN a participant with the role's credentials creates each endpoint
@@ -442,7 +451,7 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
 // (c) A participant without credentials, next to a running secure simulator and its agents (realtime clock, so
 // sensor samples flow all the time), matches none of their endpoints and receives nothing. Positive controls: a
 // participant with UAV 1's credentials, created the same way in the same process, matches both and receives UAV 1's
-// IMU samples; and the unsecured reader does match an unsecured writer added afterwards.
+// sensor frames; and the unsecured reader does match an unsecured writer added afterwards.
 TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
   // GIVEN a secure simulator (realtime clock) and its 4 agents, all discovered
   std::vector<std::unique_ptr<Child>> agents;
@@ -455,15 +464,16 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
       << readFile(dir_ / "sim.log") << runLogs(dir_, kUavs);
   std::cout << "secure sim + 4 agents discovered: " << secondsSince(t0) << " s\n";
 
-  // WHEN a participant without credentials and one with UAV 1's (the control) read UAV 1's IMU and write its commands
+  // WHEN a participant without credentials and one with UAV 1's (the control) read UAV 1's sensor frames and write its
+  // commands
   std::atomic<int> intruder_samples{0}, control_samples{0};
   auto intruder = makeParticipant("swa_intruder", domain_, std::nullopt);
-  auto intruder_imu = intruder->reader<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_reader",
-                                                           [&](msg::Imu&&) { ++intruder_samples; });
+  auto intruder_imu = intruder->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_reader",
+                                                                   [&](msg::SensorFrame&&) { ++intruder_samples; });
   auto intruder_cmd = intruder->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
   auto control = makeParticipant("swa_agent_1", domain_, creds_);
-  auto control_imu = control->reader<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_reader",
-                                                         [&](msg::Imu&&) { ++control_samples; });
+  auto control_imu = control->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_reader",
+                                                                 [&](msg::SensorFrame&&) { ++control_samples; });
   auto control_cmd = control->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
 
   // THEN the control matches both and receives samples; once it has, the intruder has had the same time to do so
@@ -476,15 +486,15 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
                           << control_cmd.matched() << ", samples " << control_samples.load() << "\n"
                           << readFile(dir_ / "sim.log");
   // AND the intruder matched nothing and received nothing
-  EXPECT_EQ(intruder_imu.matched(), 0) << "an unauthenticated reader matched swa/uav1/imu";
+  EXPECT_EQ(intruder_imu.matched(), 0) << "an unauthenticated reader matched swa/uav1/sensors";
   EXPECT_EQ(intruder_cmd.matched(), 0) << "an unauthenticated writer matched swa/uav1/cmd_vel";
-  EXPECT_EQ(intruder_samples.load(), 0) << "an unauthenticated reader received IMU samples";
+  EXPECT_EQ(intruder_samples.load(), 0) << "an unauthenticated reader received sensor frames";
   std::cout << "intruder: matched " << intruder_imu.matched() << " / " << intruder_cmd.matched() << ", samples "
             << intruder_samples.load() << "; control: samples " << control_samples.load() << "\n";
 
   // AND the intruder itself can match: an unsecured peer's writer on the same topic is found within seconds
   auto peer = makeParticipant("swa_intruder_peer", domain_, std::nullopt);
-  auto peer_imu = peer->writer<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_writer");
+  auto peer_imu = peer->writer<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_writer");
   EXPECT_TRUE(waitFor([&] { return intruder_imu.matched() == 1 && peer_imu.matched() == 1; }, 10.0))
       << "the unsecured reader did not even match an unsecured writer: intruder " << intruder_imu.matched()
       << ", peer " << peer_imu.matched();

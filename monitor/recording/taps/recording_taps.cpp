@@ -1,5 +1,9 @@
 #include "recording_taps.h"
 
+#include <type_traits>
+
+#include "swa/dds/raw_type.h"
+
 namespace swa::recording {
 namespace {
 
@@ -14,6 +18,37 @@ dds::Reader<dds::Payload> tap(dds::Participant& p, Recording& recording, const s
   });
 }
 
+// A frame's parts go to the channels of their own topics (swa/uav<i>/imu, detections, gnss), each as the bytes its
+// own topic would carry: a recording, and its replay, are the same whether the simulator wrote frames or separate
+// topics. A frame that does not decode is kept as it came, on its own topic.
+dds::Reader<dds::Payload> tapFrames(dds::Participant& p, Recording& recording, const std::string& topic,
+                                    const char* profile) {
+  const std::string uav_prefix = topic.substr(0, topic.rfind('/') + 1);
+  const std::uint16_t imu = recordingChannel<msg::ImuPubSubType>(recording, p, uav_prefix + "imu");
+  const std::uint16_t det = recordingChannel<msg::DetectionsPubSubType>(recording, p, uav_prefix + "detections");
+  const std::uint16_t gnss = recordingChannel<msg::GnssFixPubSubType>(recording, p, uav_prefix + "gnss");
+  const std::string frame_topic = recordedTopic(p.wireNames(), topic);
+  return p.rawReader<msg::SensorFramePubSubType>(
+      topic, profile, [&recording, imu, det, gnss, frame_topic](dds::RawSample&& s) {
+        msg::SensorFrame f;
+        if (!dds::decodePayload<msg::SensorFramePubSubType>(s.payload, f)) {
+          msg::SensorFramePubSubType type;
+          recording.writeCdr(recording.cdrChannel(frame_topic, msgTypeName(type.getName())), s.payload,
+                             s.source_time_ns);
+          return;
+        }
+        for (const msg::Detections& d : f.detection_set()) {
+          recording.writeCdr(det, dds::encodePayload<msg::DetectionsPubSubType>(d), s.source_time_ns);
+        }
+        for (const msg::GnssFix& g : f.gnss_fix()) {
+          recording.writeCdr(gnss, dds::encodePayload<msg::GnssFixPubSubType>(g), s.source_time_ns);
+        }
+        for (const msg::Imu& i : f.imu_sample()) {
+          recording.writeCdr(imu, dds::encodePayload<msg::ImuPubSubType>(i), s.source_time_ns);
+        }
+      });
+}
+
 struct TapInto {
   dds::Participant& participant;
   Recording& recording;
@@ -21,7 +56,11 @@ struct TapInto {
 
   template <class PubSubType>
   void operator()(const std::string& topic, const char* profile) {
-    last = tap<PubSubType>(participant, recording, topic, profile);
+    if constexpr (std::is_same_v<PubSubType, msg::SensorFramePubSubType>) {
+      last = tapFrames(participant, recording, topic, profile);
+    } else {
+      last = tap<PubSubType>(participant, recording, topic, profile);
+    }
   }
 };
 

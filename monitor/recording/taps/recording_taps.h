@@ -14,6 +14,7 @@
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
@@ -55,10 +56,11 @@ void forEachUavTap(int uav, Visit&& visit);
 template <class Visit>
 void forEachRecordedTopic(int uav_count, Visit&& visit);
 
-// Readers of UAV `uav`'s detections, imu, gnss, cmd_vel and bridge_state into `recording` (which must outlive the
-// participant's readers). Returns the cmd_vel reader: its writer keeps only the newest command (KEEP_LAST 1), so a
-// recorder that matches it after the run started misses the commands before; the monitor waits for it to match
-// before it lets the simulator start (monitor_node.cpp). The sensors' writers keep 1000 samples for late readers.
+// Readers of UAV `uav`'s detections, imu, gnss, sensors (split into the first three), cmd_vel and bridge_state into
+// `recording` (which must outlive the participant's readers). Returns the cmd_vel reader: its writer keeps only the
+// newest command (KEEP_LAST 1), so a recorder that matches it after the run started misses the commands before; the
+// monitor waits for it to match before it lets the simulator start (monitor_node.cpp). The sensors' writers keep
+// 1000 samples for late readers.
 dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, Recording& recording, int uav);
 // A reader of swa/clock into `recording`.
 void tapClock(dds::Participant& participant, Recording& recording);
@@ -69,6 +71,8 @@ void forEachUavTap(int uav, Visit&& visit) {
   visit.template operator()<msg::DetectionsPubSubType>(topics::detections(uav), "swa_detections_gnss_reader");
   visit.template operator()<msg::ImuPubSubType>(topics::imu(uav), "swa_sensor_reader");
   visit.template operator()<msg::GnssFixPubSubType>(topics::gnss(uav), "swa_detections_gnss_reader");
+  // The simulator's frames (SWA naming): the recorder files each part under its own topic (recording_taps.cpp).
+  visit.template operator()<msg::SensorFramePubSubType>(topics::sensors(uav), "swa_frame_reader");
   visit.template operator()<msg::BridgeStatePubSubType>(topics::bridgeState(uav), kStateProfile);
   visit.template operator()<msg::VelocitySetpointPubSubType>(topics::cmdVel(uav), "swa_command_reader");
 }

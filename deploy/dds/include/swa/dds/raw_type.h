@@ -65,4 +65,13 @@ bool decodePayload(const Payload& payload, typename PubSubType::type& out) {
   }
 }
 
+// The bytes a DataWriter of PubSubType sends for `m` (CDR encapsulation header included); empty if it cannot.
+template <class PubSubType>
+Payload encodePayload(typename PubSubType::type m) {
+  PubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t p(type.getSerializedSizeProvider(&m)());
+  if (!type.serialize(&m, &p)) return {};
+  return Payload(p.data, p.data + p.length);
+}
+
 }  // namespace swa::dds

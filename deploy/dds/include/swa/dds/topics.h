@@ -1,6 +1,6 @@
 #pragma once
 // Topic names of the SWA system (DESIGN §1). Per-UAV topics carry the UAV index in the name so DDS Security
-// permissions can be written per UAV: agent i may read only swa/uav<i>/{detections,imu,gnss} and write only
+// permissions can be written per UAV: agent i may read only swa/uav<i>/{detections,imu,gnss,sensors} and write only
 // swa/uav<i>/{cmd_vel,state}. The monitor-only topics are global.
 
 #include <string>
@@ -17,6 +17,8 @@ inline std::string visionDetections(int uav) { return "rt/uav" + std::to_string(
 inline std::string uvdarPoses(int uav) { return "rt/uav" + std::to_string(uav) + "/uvdar/measuredPoses"; }
 inline std::string imu(int uav) { return uavPrefix(uav) + "imu"; }
 inline std::string gnss(int uav) { return uavPrefix(uav) + "gnss"; }
+// A simulator step's imu, detections and gnss in one message (idl/SensorFrame.idl), SWA naming only.
+inline std::string sensors(int uav) { return uavPrefix(uav) + "sensors"; }
 inline std::string cmdVel(int uav) { return uavPrefix(uav) + "cmd_vel"; }
 // The same setpoint as geometry_msgs/TwistStamped, written only in the ros2 naming (swa/dds/naming.h).
 inline std::string cmdVelStamped(int uav) { return uavPrefix(uav) + "cmd_vel_stamped"; }
