@@ -1,5 +1,5 @@
 #pragma once
-// Every tunable of the agent in one typed struct. Defaults are the paper's Table I and ../shared/DESIGN.md §3;
+// Every tunable of the agent in one typed struct. Defaults are the paper's Table I and DESIGN.md §3;
 // where a default deliberately differs from the paper, the comment says why.
 
 #include <cstddef>
