@@ -9,6 +9,7 @@
 
 #include "help_format.h"
 #include "swa/app/number.h"
+#include "swa/params/text.h"
 
 namespace swa::app {
 namespace {
@@ -258,7 +259,28 @@ Problems Cli::parse(const std::vector<std::string>& args) {
     if (!e.read) continue;
     for (const std::string& v : e.option->results()) e.read(v, problems);
   }
-  for (const std::string& arg : impl_->app.remaining()) problems.push_back("unknown argument '" + arg + "' (see --help)");
+  // An unknown option gets the nearest known one as a hint, and the word after it, which it would have taken as its
+  // value, is reported with it rather than as a second unknown argument.
+  std::vector<std::string> names{"--help"};
+  for (const Impl::Entry& e : impl_->entries) {
+    for (const std::string& n : e.option->get_lnames()) names.push_back("--" + n);
+  }
+  const std::vector<std::string> extras = impl_->app.remaining();
+  for (std::size_t k = 0; k < extras.size(); ++k) {
+    const std::string& arg = extras[k];
+    if (arg.size() < 2 || arg[0] != '-') {
+      problems.push_back("unknown argument '" + arg + "' (see --help)");
+      continue;
+    }
+    std::string text = "unknown option '" + arg + "'";
+    const std::size_t equals = arg.find('=');
+    if (equals == std::string::npos && k + 1 < extras.size() && extras[k + 1].rfind('-', 0) != 0) {
+      text += " (given '" + extras[++k] + "')";
+    }
+    const std::string hint = params::closestMatch(arg.substr(0, equals), names);
+    if (!hint.empty()) text += ": did you mean " + hint + "?";
+    problems.push_back(text + " (see --help)");
+  }
   problems.insert(problems.end(), lacking.begin(), lacking.end());
   const Problems missing = impl_->missing();
   problems.insert(problems.end(), missing.begin(), missing.end());

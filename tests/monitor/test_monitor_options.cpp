@@ -98,7 +98,7 @@ TEST(MonitorOptions, BareArgumentOutsideCombineIsUnknown) {
 
 TEST(MonitorOptions, EachErrorIsReported) {
   // WHEN an option is unknown, lacks its value, or its value is empty or out of range THEN the error names it
-  EXPECT_TRUE(contains(optionsError({"--frobnicate"}), "unknown argument '--frobnicate'"));
+  EXPECT_TRUE(contains(optionsError({"--frobnicate"}), "unknown option '--frobnicate'"));
   EXPECT_TRUE(contains(optionsError({"--out"}), "--out needs a value"));
   EXPECT_TRUE(contains(optionsError({"--out="}), "--out needs a file name"));
   EXPECT_TRUE(contains(optionsError({"--scenario="}), "--scenario needs a file name"));
@@ -128,7 +128,7 @@ TEST(MonitorOptions, AllProblemsTogetherOnePerLine) {
   // WHEN four arguments are wrong at once
   const std::string e = optionsError({"--bogus", "--timeout-s", "x", "--set", "a=b", "--tolerance", "2"});
   // THEN the error names each of them, one per line
-  EXPECT_TRUE(contains(e, "unknown argument '--bogus'"));
+  EXPECT_TRUE(contains(e, "unknown option '--bogus'"));
   EXPECT_TRUE(contains(e, "--timeout-s 'x'"));
   EXPECT_TRUE(contains(e, "--tolerance '2'"));
   EXPECT_TRUE(contains(e, "--set needs --scenario"));

@@ -117,17 +117,30 @@ TEST(Cli, TheArgumentAfterAnOptionIsItsValueWhateverItLooksLike) {
 TEST(Cli, EveryProblemOfOneLineIsReportedOnePerLine) {
   // GIVEN a bad real, a bad integer, an empty path, an empty name, a bad choice, an unknown option, a stray word,
   // no --scenario and an option without its value at the end
-  const std::string p = problemsOf({"--rate", "nan", "--count", "3x", "--out=", "--name", "", "--colour", "blue",
-                                    "--frobnicate", "stray", "--count"});
+  const std::string p = problemsOf({"stray", "--rate", "nan", "--count", "3x", "--out=", "--name", "", "--colour",
+                                    "blue", "--frobnicate", "--count"});
   // THEN each is named, in a line of its own
   for (const char* line : {"--rate 'nan' is not a rate in hertz in [0.5, 10]\n",
                            "--count '3x' is not a count in [1, 100]\n", "--out needs a file name\n",
                            "--name needs a name\n", "--colour must be red or green, got 'blue'\n",
-                           "unknown argument '--frobnicate' (see --help)\n", "unknown argument 'stray' (see --help)\n",
+                           "unknown option '--frobnicate' (see --help)\n", "unknown argument 'stray' (see --help)\n",
                            "--count needs a value\n", "--scenario FILE is required\n"}) {
     EXPECT_TRUE(mentions(p, line)) << line << " missing from:\n" << p;
   }
   EXPECT_EQ(std::count(p.begin(), p.end(), '\n'), 9) << p;
+}
+
+TEST(Cli, AMistypedOptionIsAnsweredWithTheNearestOneAndKeepsItsValue) {
+  // GIVEN an option one or two letters off a known one, with its value as the next word or after '='
+  // THEN the problem names the option it was probably meant to be, in one line with the value it was given
+  EXPECT_TRUE(mentions(problemsOf({"--scenario", "s", "--rat", "2"}),
+                       "unknown option '--rat' (given '2'): did you mean --rate? (see --help)\n"));
+  EXPECT_TRUE(mentions(problemsOf({"--scenario", "s", "--colur=red"}),
+                       "unknown option '--colur=red': did you mean --colour? (see --help)\n"));
+  // AND an option far from every known one gets no guess, a word after it is still taken as its value, and an
+  // option after it is not
+  const std::string far = problemsOf({"--scenario", "s", "--frobnicate", "x", "--verbose"});
+  EXPECT_EQ(far, "unknown option '--frobnicate' (given 'x') (see --help)\n");
 }
 
 TEST(Cli, AnEmptyInlineValueIsAValueAndTakesNothingAfterIt) {
@@ -198,7 +211,7 @@ TEST(Cli, ReportThrowsEveryProblemOnePerLine) {
     FAIL() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
-              "--count 'x' is not a count in [1, 100]\nunknown argument '--bogus' (see --help)\n"
+              "--count 'x' is not a count in [1, 100]\nunknown option '--bogus' (see --help)\n"
               "--scenario FILE is required");
   }
   EXPECT_NO_THROW(cli.report({}));
