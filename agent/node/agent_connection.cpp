@@ -18,6 +18,7 @@
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/wire/ros_detections.h"
+#include "swa/dds/deployment.h"
 #include "swa/dds/topics.h"
 
 namespace swa::agent_node {
@@ -109,6 +110,15 @@ void AgentNode::reportWaiting(const Matched& matched) {
                id_, std::chrono::duration<double>(kWaitReport).count(), matched[0], dds::topics::cmdVel(id_).c_str(),
                matched[1], dds::topics::imu(id_).c_str(), matched[2], detectionsTopic().c_str(), matched[3],
                dds::topics::gnss(id_).c_str(), frames.c_str());
+  // What a person who started the agent by hand needs to know: what it waits for, and where. A swarm started by
+  // swa_launch is a partition of its own, which an agent outside it never sees.
+  const std::string swarm = dds::resolveDeployment().swarm;
+  std::fprintf(stderr,
+               "swa_agent %d: it waits for a simulator (swa_sim) or an autopilot bridge writing UAV %d's samples on DDS "
+               "domain %d, %s; a swa_launch run is a swarm of its own (named on its first line) unless launched with "
+               "--swarm none: to join one, start this agent with that SWA_SWARM\n",
+               id_, id_, domain_id_,
+               swarm.empty() ? "in the default swarm (SWA_SWARM unset)" : ("in swarm " + swarm + " (SWA_SWARM)").c_str());
 }
 
 std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn(const Matched& matched) {

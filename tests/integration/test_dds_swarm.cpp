@@ -497,6 +497,12 @@ TEST_F(SwarmRun, AgentWithoutASimulatorSaysWhatItIsWaitingFor) {
       "swa_agent 1: no IMU sample 5 s after connecting; matched: 0 reader(s) of swa/uav1/cmd_vel, 0 writer(s) of "
       "swa/uav1/imu, 0 of swa/uav1/detections, 0 of swa/uav1/gnss";
   EXPECT_TRUE(waitFor([&] { return readFile(log).find(expected) != std::string::npos; }, 15.0)) << readFile(log);
+  // AND what it waits for, on which domain and in which swarm (issue #30: a hand-started agent beside a launched run
+  // never connects unless its SWA_SWARM matches)
+  const std::string waits = "swa_agent 1: it waits for a simulator (swa_sim) or an autopilot bridge writing UAV 1's "
+                            "samples on DDS domain " + std::to_string(domain_) + ", in ";
+  EXPECT_NE(readFile(log).find(waits), std::string::npos) << readFile(log);
+  EXPECT_NE(readFile(log).find("start this agent with that SWA_SWARM"), std::string::npos) << readFile(log);
   // AND it keeps waiting, and stops cleanly
   EXPECT_FALSE(agent.wait(0.0)) << readFile(log);
   EXPECT_EQ(agent.stop(), 0) << readFile(log);
