@@ -44,6 +44,15 @@ int Launch::run() {
       std::printf("swa_launch [%s]: %s%s; %d agent restart(s)%s; %s\n", spec.label.c_str(),
                   r.verdict.empty() ? "no verdict" : r.verdict.c_str(), r.interrupted ? " (interrupted)" : "",
                   r.restarts, bridges.c_str(), (spec.dir / "report.html").c_str());
+      // Why, on the console: a FAIL is not left to the report.
+      for (const std::string& why : r.verdict_reasons) {
+        std::printf("swa_launch [%s]:   %s\n", spec.label.c_str(), why.c_str());
+      }
+      if (runs_.size() > 1 && spec.scenario.agent.mode == agent::Mode::kStandalone && r.verdict == "FAIL") {
+        std::printf("swa_launch [%s]: as expected of the baseline: without GNSS each UAV flies on its own dead "
+                    "reckoning, which is what SWA is compared with\n",
+                    spec.label.c_str());
+      }
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "swa_launch: %s\n", e.what());

@@ -35,7 +35,8 @@ app::Cli makeCli(LaunchOptions& o) {
   cli.scenario(o.scenario_path, "scenario YAML (see deploy/scenarios/, swa_sim --parameters)");
   cli.required("--scenario");
   cli.overrides(o.overrides, "override a scenario key, e.g. --set duration_s=60 --set uav_count=12");
-  cli.path("--out", "DIR", o.out_dir, "output directory");
+  cli.path("--out", "DIR", o.out_dir,
+           "output directory; an earlier run's is replaced, one with anything else in it refused");
   cli.choice("--compare", "MODE", {agent::Mode::kStandalone, agent::Mode::kSwa, agent::Mode::kAnchored}, o.compare,
              "also run the baseline in that mode, with the same seed");
   cli.domain(o.domain, dds::kMaxDomainId, "use distinct domains for launches that run at the same time");

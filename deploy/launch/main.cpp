@@ -17,6 +17,7 @@
 #include "child_process.h"
 #include "launch.h"
 #include "launch_options.h"
+#include "run_directory.h"
 #include "run_supervisor.h"
 #include "shm_janitor.h"
 #include "swa/agent/config_io.h"
@@ -159,7 +160,10 @@ app::Plan prepare(const std::vector<std::string>& args) {
     for (const std::string& p : problems) all += (all.empty() ? "" : "\n") + p;
     throw std::runtime_error(all);
   }
-  monitor::prepareOutputDir(o.out_dir);  // last: a run refused for another reason writes nothing
+  // Last: a run refused for another reason writes (and removes) nothing.
+  claimRunDirectory(o.out_dir);
+  monitor::prepareOutputDir(o.out_dir);
+  markRunDirectory(o.out_dir);
   return app::startWith(
       [o, runs, bin, domain, discovery_server]() -> std::unique_ptr<app::Role> {
         return std::make_unique<Launch>(o, runs, bin, domain, discovery_server);

@@ -110,6 +110,7 @@ class Supervisor {
     supervise();
     stopAll();
     outcome_.verdict = record::recordedVerdict(spec_.dir.string());
+    outcome_.verdict_reasons = record::recordedVerdictReasons(spec_.dir.string());
     return outcome_;
   }
 

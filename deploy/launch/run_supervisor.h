@@ -31,6 +31,7 @@ struct RunOutcome {
   int bridge_restarts = 0;  // of autopilot bridges (vehicle.interface = px4)
   bool interrupted = false;  // SIGINT / SIGTERM or --timeout-s
   std::string verdict;       // the monitor's verdict line from summary.json, if any
+  std::vector<std::string> verdict_reasons;  // why it did not pass, from summary.json
 };
 
 // Returns when every child has exited; `stop` (SIGINT / SIGTERM) ends the run early. Throws std::runtime_error only

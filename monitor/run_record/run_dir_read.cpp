@@ -264,4 +264,18 @@ std::string recordedVerdict(const std::string& dir) {
   }
 }
 
+std::vector<std::string> recordedVerdictReasons(const std::string& dir) {
+  std::vector<std::string> reasons;
+  try {
+    const Json summary = readJsonFile((std::filesystem::path(dir) / kSummaryFile).string());
+    const auto list = summary.is_object() ? summary.find("verdict_reasons") : summary.end();
+    if (list == summary.end() || !list->is_array()) return reasons;
+    for (const Json& r : *list) {
+      if (r.is_string()) reasons.push_back(r.get<std::string>());
+    }
+  } catch (const RunFileError&) {
+  }
+  return reasons;
+}
+
 }  // namespace swa::record

@@ -70,5 +70,7 @@ LoadedRun readRunDir(const std::string& dir);
 
 // The verdict ("PASS", "FAIL", "INCOMPLETE") that dir/summary.json records, or "" when there is none.
 std::string recordedVerdict(const std::string& dir);
+// Why the run in `dir` did not pass (its summary.json's verdict_reasons), or nothing if it passed or has no summary.
+std::vector<std::string> recordedVerdictReasons(const std::string& dir);
 
 }  // namespace swa::record
