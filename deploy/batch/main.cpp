@@ -22,6 +22,7 @@
 #include "swa/run_record/events.h"
 #include "swa/run_record/run_dir.h"
 #include "swa/sim/scenario_io.h"
+#include "swa/app/version.h"
 
 namespace fs = std::filesystem;
 using namespace swa;
@@ -158,6 +159,7 @@ int Batch::run() {
   }
   monitor::ReportNotes notes;
   notes.title = "SWA batch report";
+  notes.version = app::programVersion();
   notes.scenario = opt.scenario_path;
   for (int k = 0; k < opt.seeds; ++k) notes.seeds.push_back(scenario.seed + static_cast<std::uint64_t>(k));
   notes.scoring.formation = scenario.agent.formation;

@@ -8,7 +8,7 @@
 
 #include "study_html.h"
 #include "swa/run_record/csv.h"
-#include "swa_study_version.h"  // generated at build time (write_version.cmake)
+#include "swa/app/version.h"
 
 namespace swa::study {
 namespace {
@@ -58,7 +58,7 @@ std::string shardText(const Shard& s) { return std::to_string(s.index) + "/" + s
 
 }  // namespace
 
-std::string programVersion() { return SWA_STUDY_VERSION; }
+std::string programVersion() { return app::programVersion(); }
 
 std::string studyId(const std::string& version, const std::string& scenario_yaml, const StudyPlan& plan,
                     std::uint64_t first_seed) {

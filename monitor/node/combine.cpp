@@ -8,6 +8,7 @@
 #include "swa/run_record/run_dir.h"
 #include "swa/run_record/run_report.h"
 #include "swa/sim/scenario_io.h"
+#include "swa/app/version.h"
 
 namespace swa::monitor_node {
 
@@ -33,6 +34,7 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
   }
 
   monitor::ReportNotes notes = record::reportNotes(runs, "SWA monitor report — comparison");
+  notes.version = app::programVersion();
   if (scenario) {
     notes.scenario = options.scenario_path;
     notes.scoring.formation = scenario->agent.formation;

@@ -13,6 +13,7 @@
 #include "swa/run_record/run_dir.h"
 #include "swa/run_record/run_report.h"
 #include "swa/sim/scenario_io.h"
+#include "swa/app/version.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -20,7 +21,8 @@ namespace {
 int writeOutputs(const std::string& dir, const RunRecord& run) {
   try {
     record::writeRunFiles(dir, run);
-    const monitor::ReportNotes notes = record::reportNotes({run}, "SWA monitor report — " + run.label);
+    monitor::ReportNotes notes = record::reportNotes({run}, "SWA monitor report — " + run.label);
+    notes.version = app::programVersion();
     const std::vector<std::string> written = monitor::writeReport(dir, record::reportRuns({run}), notes);
     std::printf("swa_monitor: %s\n", record::verdictText(run.verdict).c_str());
     std::printf("swa_monitor: report %s\n", written.front().c_str());
