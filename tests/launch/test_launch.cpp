@@ -28,6 +28,7 @@
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/topics.h"
+#include "swa/app/version.h"
 
 namespace swa::testing {
 namespace {
@@ -333,6 +334,10 @@ TEST_F(LaunchTest, CompareStandaloneWritesOneReport) {
   const std::string report = readFile(out / "report.html");
   EXPECT_NE(report.find("swa"), std::string::npos);
   EXPECT_NE(report.find("standalone"), std::string::npos);
+  // AND the comparison report and each run's name the build that wrote them (issue #30: "Version —")
+  for (const fs::path& r : {out / "report.html", out / "swa" / "report.html", out / "standalone" / "report.html"}) {
+    EXPECT_NE(readFile(r).find("<dt>Version</dt><dd>" + app::programVersion() + "</dd>"), std::string::npos) << r;
+  }
   // AND nothing of either run is left
   expectNothingLeft();
 }
