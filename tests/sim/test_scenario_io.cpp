@@ -634,6 +634,12 @@ TEST(ScenarioLoad, GivenAMissingFileOrBrokenYaml_ThenTheErrorSaysSo) {
   ASSERT_EQ(syntax.problems().size(), 1u) << syntax.what();
   EXPECT_TRUE(contains(syntax.problems()[0], "invalid YAML at line ")) << syntax.what();
   EXPECT_EQ(std::string(syntax.what()).rfind("bad.yaml: invalid YAML at line", 0), 0u);
+  // an unclosed '[' or '{' is reported where YAML gave up, one or more lines late: the error also names where it was
+  // opened, past brackets in quotes and comments (issue #30)
+  const ConfigError flow = expectConfigError([] {
+    parseScenario("uav_count: 4  # a comment with a [ bracket\nlabel: '[x'\nwind: [1, 2\nseed: 3\n", "bad.yaml");
+  });
+  EXPECT_TRUE(contains(flow.what(), "(the '[' at line 3, column 7 is never closed)")) << flow.what();
   // a top level that is not a map, and two documents
   EXPECT_TRUE(contains(expectConfigError([] { parseScenario("- 1\n", "<t>"); }).what(), "must be a map"));
   EXPECT_TRUE(

@@ -14,6 +14,7 @@
 #include "yaml_node.h"
 #include "swa/params/engine.h"
 #include "swa/params/file.h"
+#include "yaml_error.h"
 
 namespace swa::params {
 
@@ -69,11 +70,7 @@ class Reader {
     try {
       documents = YAML::LoadAll(text);
     } catch (const YAML::Exception& e) {
-      problem("invalid YAML" +
-              (e.mark.is_null() ? std::string()
-                                : " at line " + std::to_string(e.mark.line + 1) + ", column " +
-                                      std::to_string(e.mark.column + 1)) +
-              ": " + e.msg);
+      problem(detail::yamlErrorText(e, text));
       return false;
     }
     if (documents.size() > 1) {

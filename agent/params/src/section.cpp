@@ -7,6 +7,7 @@
 #include "swa/params/error.h"
 #include "swa/params/file.h"
 #include "yaml_node.h"
+#include "yaml_error.h"
 
 namespace swa::params {
 namespace {
@@ -25,11 +26,7 @@ class SectionReader {
     try {
       documents = YAML::LoadAll(text);
     } catch (const YAML::Exception& e) {
-      unreadable_ = ("invalid YAML" +
-                     (e.mark.is_null() ? std::string()
-                                       : " at line " + std::to_string(e.mark.line + 1) + ", column " +
-                                             std::to_string(e.mark.column + 1)) +
-                     ": " + e.msg);
+      unreadable_ = detail::yamlErrorText(e, text);
       return;
     }
     // Several documents or a top level that is not a map: the file's own loader says so.
