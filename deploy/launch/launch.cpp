@@ -7,8 +7,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <set>
 
 #include "child_process.h"
+#include "run_directory.h"
 #include "shm_janitor.h"
 
 namespace swa::launch {
@@ -16,6 +18,15 @@ namespace swa::launch {
 namespace fs = std::filesystem;
 
 int Launch::run() {
+  // What is in --out before this run is not the run's: the marker written at the end lists only what appeared since.
+  const std::set<std::string> before = entriesOf(o_.out_dir);
+  const auto mark = [&] {
+    try {
+      markRunDirectory(o_.out_dir, before);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "swa_launch: %s (the next launch here will not remove this run's files)\n", e.what());
+    }
+  };
   const ShmJanitor janitor;
   std::vector<RunOutcome> outcomes;
   std::unique_ptr<ChildProcess> server;
@@ -58,6 +69,7 @@ int Launch::run() {
     std::fprintf(stderr, "swa_launch: %s\n", e.what());
     stopServer();
     janitor.clean();
+    mark();
     return 3;
   }
   stopServer();
@@ -86,6 +98,7 @@ int Launch::run() {
   if (!removed.empty()) {
     std::printf("swa_launch: removed %zu shared-memory file(s) left by killed processes\n", removed.size());
   }
+  mark();
   return status;
 }
 

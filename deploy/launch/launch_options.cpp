@@ -36,7 +36,7 @@ app::Cli makeCli(LaunchOptions& o) {
   cli.required("--scenario");
   cli.overrides(o.overrides, "override a scenario key, e.g. --set duration_s=60 --set uav_count=12");
   cli.path("--out", "DIR", o.out_dir,
-           "output directory; an earlier run's is replaced, one with anything else in it refused");
+           "output directory; the files an earlier launch wrote there are removed first, nothing else");
   cli.choice("--compare", "MODE", {agent::Mode::kStandalone, agent::Mode::kSwa, agent::Mode::kAnchored}, o.compare,
              "also run the baseline in that mode, with the same seed");
   cli.domain(o.domain, dds::kMaxDomainId, "use distinct domains for launches that run at the same time");

@@ -163,7 +163,6 @@ app::Plan prepare(const std::vector<std::string>& args) {
   // Last: a run refused for another reason writes (and removes) nothing.
   claimRunDirectory(o.out_dir);
   monitor::prepareOutputDir(o.out_dir);
-  markRunDirectory(o.out_dir);
   return app::startWith(
       [o, runs, bin, domain, discovery_server]() -> std::unique_ptr<app::Role> {
         return std::make_unique<Launch>(o, runs, bin, domain, discovery_server);

@@ -2,41 +2,45 @@
 
 #include <fstream>
 #include <stdexcept>
-#include <string>
 
 namespace swa::launch {
 namespace fs = std::filesystem;
 
 namespace {
-
-bool earlierRun(const fs::path& out) {
-  std::error_code ec;
-  if (fs::exists(out / kRunMarker, ec)) return true;
-  return fs::is_directory(out / "logs", ec) &&
-         (fs::exists(out / "scenario.yaml", ec) || fs::exists(out / "report.html", ec));
-}
-
+constexpr const char* kMarkerHeader =
+    "# What swa_launch wrote here; the next swa_launch --out here removes these entries (and nothing else).";
 }  // namespace
 
 void claimRunDirectory(const fs::path& out) {
   std::error_code ec;
   if (!fs::exists(out, ec)) return;
   if (!fs::is_directory(out, ec)) throw std::runtime_error("--out " + out.string() + " is a file, not a directory");
-  if (fs::is_empty(out, ec)) return;
-  if (!earlierRun(out)) {
-    throw std::runtime_error("--out " + out.string() +
-                             " is not empty and holds no earlier swa_launch run; give a new or empty directory "
-                             "(a launch replaces only a directory it wrote)");
+  std::ifstream marker(out / kRunMarker);
+  if (!marker) return;
+  std::string name;
+  while (std::getline(marker, name)) {
+    // Only plain names of entries directly in `out`: a marker edited to name a path elsewhere removes nothing.
+    if (name.empty() || name[0] == '#' || name == "." || name == ".." || name.find('/') != std::string::npos) continue;
+    fs::remove_all(out / name, ec);
+    if (ec) throw std::runtime_error("cannot remove " + (out / name).string() + " of the earlier run: " + ec.message());
   }
-  for (const fs::directory_entry& entry : fs::directory_iterator(out, ec)) {
-    fs::remove_all(entry.path(), ec);
-    if (ec) throw std::runtime_error("cannot remove " + entry.path().string() + " of the earlier run: " + ec.message());
-  }
+  marker.close();
+  fs::remove(out / kRunMarker, ec);
 }
 
-void markRunDirectory(const fs::path& out) {
+std::set<std::string> entriesOf(const fs::path& out) {
+  std::set<std::string> names;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(out, ec)) names.insert(e.path().filename().string());
+  return names;
+}
+
+void markRunDirectory(const fs::path& out, const std::set<std::string>& before) {
   std::ofstream marker(out / kRunMarker);
-  marker << "A directory of swa_launch: the next swa_launch --out here replaces everything in it.\n";
+  marker << kMarkerHeader << "\n";
+  for (const std::string& name : entriesOf(out)) {
+    if (before.count(name) == 0 && name != kRunMarker) marker << name << "\n";
+  }
   if (!marker) throw std::runtime_error("cannot write " + (out / kRunMarker).string());
 }
 

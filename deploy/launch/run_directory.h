@@ -1,21 +1,29 @@
 #pragma once
-// swa_launch's --out: a directory of one run. An earlier launch's directory is emptied before the new run writes, so
-// no file of the old run stays beside the new one's (a reused --out kept the old swa/, standalone/ and combine.log,
-// issue #30); a directory that holds anything else is refused, since a launch never deletes what it did not write.
+// swa_launch's --out: the files of an earlier launch are removed before the new run writes, so no file of the old run
+// stays beside the new one's (a reused --out kept the old swa/, standalone/ and combine.log, issue #30). A launch
+// removes only what a launch wrote: at its end it lists, in a marker file, the entries of --out that appeared during
+// the run; the next launch into that directory removes exactly those. Files of the user's (a log the shell redirects
+// there, notes) are never touched.
 
 #include <filesystem>
+#include <set>
+#include <string>
 
 namespace swa::launch {
 
-// The file that marks a directory as swa_launch's (written by markRunDirectory).
+// The file listing what the last launch into a directory wrote.
 inline constexpr const char* kRunMarker = ".swa_launch_run";
 
-// Nothing, if `out` does not exist or is empty; empties it if it holds an earlier launch's run (the marker, or, from
-// before the marker, a logs/ folder with a scenario.yaml or report.html beside it). Throws std::runtime_error, having
-// touched nothing, if `out` is a file or a directory with anything else in it.
+// Removes what the marker in `out` lists, and the marker; nothing if `out` does not exist or has no marker (a
+// directory of a launch older than the marker keeps its files). Throws std::runtime_error if `out` is a file, or an
+// entry cannot be removed.
 void claimRunDirectory(const std::filesystem::path& out);
 
-// Writes the marker into `out` (which must exist). Throws std::runtime_error if it cannot.
-void markRunDirectory(const std::filesystem::path& out);
+// The names of the entries of `out` (none if it does not exist).
+std::set<std::string> entriesOf(const std::filesystem::path& out);
+
+// Writes the marker into `out`: every entry now in it that is not in `before` (what the run wrote). Throws
+// std::runtime_error if it cannot.
+void markRunDirectory(const std::filesystem::path& out, const std::set<std::string>& before);
 
 }  // namespace swa::launch

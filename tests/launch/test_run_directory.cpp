@@ -1,11 +1,12 @@
-// swa_launch's --out (deploy/launch/run_directory.h): an earlier run's directory is emptied, anything else refused
-// untouched (issue #30: a reused --out kept the old run's files beside the new one's).
+// swa_launch's --out (deploy/launch/run_directory.h): what an earlier launch wrote is removed, nothing else (issue #30:
+// a reused --out kept the old run's files beside the new one's).
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -31,50 +32,44 @@ class RunDirectory : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(RunDirectory, ANewOrEmptyDirectoryIsTakenAsItIs) {
+TEST_F(RunDirectory, ANewDirectoryOrOneWithoutMarkerIsLeftAsItIs) {
   EXPECT_NO_THROW(claimRunDirectory(dir_));
   EXPECT_FALSE(fs::exists(dir_));
-  fs::create_directories(dir_);
+  touch(dir_ / "notes.txt");
+  touch(dir_ / "logs" / "agent_0.log");
   EXPECT_NO_THROW(claimRunDirectory(dir_));
-  EXPECT_TRUE(fs::is_empty(dir_));
+  EXPECT_TRUE(fs::exists(dir_ / "notes.txt"));
+  EXPECT_TRUE(fs::exists(dir_ / "logs" / "agent_0.log"));
+  // AND a file given as --out is refused
+  EXPECT_THROW(claimRunDirectory(dir_ / "notes.txt"), std::runtime_error);
 }
 
-TEST_F(RunDirectory, AnEarlierRunIsRemovedWhole) {
-  // GIVEN the directory of an earlier launch with --compare: its marker, two runs and the comparison's log
-  fs::create_directories(dir_);
-  markRunDirectory(dir_);
+TEST_F(RunDirectory, WhatAnEarlierRunWroteIsRemovedAndNothingElse) {
+  // GIVEN a directory where the user's shell put a log before a --compare launch wrote two runs and a combine log
+  touch(dir_ / "launch.log");
+  const std::set<std::string> before = entriesOf(dir_);
   touch(dir_ / "swa" / "summary.json");
   touch(dir_ / "standalone" / "logs" / "sim.log");
   touch(dir_ / "combine.log");
-  // WHEN it is claimed again THEN nothing of the old run is left
-  claimRunDirectory(dir_);
-  EXPECT_TRUE(fs::is_empty(dir_));
-}
-
-TEST_F(RunDirectory, ARunOfAnOlderVersionWithoutTheMarkerIsRecognisedByItsFiles) {
-  touch(dir_ / "logs" / "agent_0.log");
-  touch(dir_ / "scenario.yaml");
-  touch(dir_ / "report.html");
-  claimRunDirectory(dir_);
-  EXPECT_TRUE(fs::is_empty(dir_));
-}
-
-TEST_F(RunDirectory, AnythingElseIsRefusedAndLeftAsItWas) {
-  // GIVEN a directory with a file of the user's, and one with a logs/ folder but nothing else of a run
+  markRunDirectory(dir_, before);
+  // AND a file the user added after the run
   touch(dir_ / "notes.txt");
-  touch(dir_ / "logs" / "mine.log");
-  // WHEN it is claimed THEN it is refused, saying why, and both files are still there
-  try {
-    claimRunDirectory(dir_);
-    FAIL() << "claimed a directory swa_launch did not write";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("is not empty and holds no earlier swa_launch run"), std::string::npos)
-        << e.what();
-  }
-  EXPECT_TRUE(fs::exists(dir_ / "notes.txt"));
-  EXPECT_TRUE(fs::exists(dir_ / "logs" / "mine.log"));
-  // AND a file given as --out is refused too
-  EXPECT_THROW(claimRunDirectory(dir_ / "notes.txt"), std::runtime_error);
+  // WHEN the next launch claims it
+  claimRunDirectory(dir_);
+  // THEN nothing of the old run is left, and the user's files are
+  EXPECT_EQ(entriesOf(dir_), (std::set<std::string>{"launch.log", "notes.txt"}));
+}
+
+TEST_F(RunDirectory, AMarkerNamingPathsOutsideTheDirectoryRemovesNothingThere) {
+  // GIVEN a marker edited to name the parent, an absolute path and a path below
+  touch(dir_ / "keep" / "file.txt");
+  touch(dir_ / "sub" / "file.txt");
+  std::ofstream(dir_ / kRunMarker) << "..\n/\nsub/file.txt\n.\n";
+  // WHEN it is claimed THEN only the marker goes
+  claimRunDirectory(dir_);
+  EXPECT_TRUE(fs::exists(dir_ / "keep" / "file.txt"));
+  EXPECT_TRUE(fs::exists(dir_ / "sub" / "file.txt"));
+  EXPECT_FALSE(fs::exists(dir_ / kRunMarker));
 }
 
 }  // namespace
