@@ -46,7 +46,7 @@ swa_batch --scenario FILE then runs the study; --sweep KEY=... replaces the file
   cli.overrides(o.overrides, "override any scenario key, e.g. --set uav_count=16 --set imu.bias_std=0.15");
   cli.integer("--seeds", "N", o.seeds, 1, 100000, "a count", "number of seeds, starting at the scenario's `seed` (a study: at every grid point)");
   cli.integer("--jobs", "J", o.jobs, 1, 256, "a count", "seeds run in parallel; this machine has 2 cores");
-  cli.path("--out", "DIR", o.out_dir, "output directory");
+  cli.path("--out", "DIR", o.out_dir, "output directory; the files an earlier run wrote there are removed first");
   cli.choice("--compare", "MODE", {agent::Mode::kStandalone, agent::Mode::kSwa, agent::Mode::kAnchored}, o.compare,
              "also run the same seeds with agent.mode = MODE and print both side by side");
   cli.list("--sweep", "KEY=V1,V2,...", o.sweeps, "sweep a scenario key over these values (a study; see above)");

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -22,6 +23,7 @@
 #include "swa/run_record/events.h"
 #include "swa/run_record/run_dir.h"
 #include "swa/sim/scenario_io.h"
+#include "swa/app/run_directory.h"
 #include "swa/app/version.h"
 
 namespace fs = std::filesystem;
@@ -138,7 +140,10 @@ int Batch::run() {
   printAggregate(results);
 
   const fs::path out(opt.out_dir);
+  // An earlier run's files go (a --compare run's standalone/ would stay beside a run without it); the user's stay.
+  app::claimRunDirectory(out);
   fs::create_directories(out);
+  const std::set<std::string> before = app::entriesOf(out);
   record::Json summary{{"scenario", opt.scenario_path},
                        {"uav_count", scenario.uav_count},
                        {"duration_s", scenario.duration_s},
@@ -166,6 +171,7 @@ int Batch::run() {
   notes.gnss_loss_s = sim::driftWindowStart(scenario) > 0.0 ? sim::driftWindowStart(scenario) : monitor::kNaN;
   notes.extra.push_back({"plots", "first seed of each mode; summary.json has every seed and the aggregate"});
   monitor::writeReport((out / "report").string(), report_runs, notes);
+  app::markRunDirectory(out, before);
   const double simulated = scenario.duration_s * opt.seeds * static_cast<double>(modes.size());
   std::printf("\n%.0f simulated s in %.2f s wall, %.2f s CPU (%.0fx real time per CPU second)\nwrote %s and %s\n",
               simulated, wall, cpu, simulated / std::max(cpu, 1e-9), (out / "summary.json").c_str(),

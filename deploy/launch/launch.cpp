@@ -10,7 +10,7 @@
 #include <set>
 
 #include "child_process.h"
-#include "run_directory.h"
+#include "swa/app/run_directory.h"
 #include "shm_janitor.h"
 
 namespace swa::launch {
@@ -19,10 +19,10 @@ namespace fs = std::filesystem;
 
 int Launch::run() {
   // What is in --out before this run is not the run's: the marker written at the end lists only what appeared since.
-  const std::set<std::string> before = entriesOf(o_.out_dir);
+  const std::set<std::string> before = app::entriesOf(o_.out_dir);
   const auto mark = [&] {
     try {
-      markRunDirectory(o_.out_dir, before);
+      app::markRunDirectory(o_.out_dir, before);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "swa_launch: %s (the next launch here will not remove this run's files)\n", e.what());
     }

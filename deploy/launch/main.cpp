@@ -17,7 +17,6 @@
 #include "child_process.h"
 #include "launch.h"
 #include "launch_options.h"
-#include "run_directory.h"
 #include "run_supervisor.h"
 #include "shm_janitor.h"
 #include "swa/agent/config_io.h"
@@ -27,6 +26,7 @@
 #include "swa/dds/options.h"
 #include "swa/monitor/output_dir.h"
 #include "swa/sim/scenario_io.h"
+#include "swa/app/run_directory.h"
 
 namespace swa::launch {
 namespace {
@@ -161,7 +161,7 @@ app::Plan prepare(const std::vector<std::string>& args) {
     throw std::runtime_error(all);
   }
   // Last: a run refused for another reason writes (and removes) nothing.
-  claimRunDirectory(o.out_dir);
+  app::claimRunDirectory(o.out_dir);
   monitor::prepareOutputDir(o.out_dir);
   return app::startWith(
       [o, runs, bin, domain, discovery_server]() -> std::unique_ptr<app::Role> {

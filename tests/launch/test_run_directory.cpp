@@ -1,4 +1,4 @@
-// swa_launch's --out (deploy/launch/run_directory.h): what an earlier launch wrote is removed, nothing else (issue #30:
+// A program's --out (swa/app/run_directory.h): what an earlier run wrote is removed, nothing else (issue #30:
 // a reused --out kept the old run's files beside the new one's).
 
 #include <gtest/gtest.h>
@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "run_directory.h"
+#include "swa/app/run_directory.h"
 
-namespace swa::launch {
+namespace swa::app {
 namespace {
 
 namespace fs = std::filesystem;
@@ -73,4 +73,4 @@ TEST_F(RunDirectory, AMarkerNamingPathsOutsideTheDirectoryRemovesNothingThere) {
 }
 
 }  // namespace
-}  // namespace swa::launch
+}  // namespace swa::app

@@ -1,14 +1,14 @@
-#include "run_directory.h"
+#include "swa/app/run_directory.h"
 
 #include <fstream>
 #include <stdexcept>
 
-namespace swa::launch {
+namespace swa::app {
 namespace fs = std::filesystem;
 
 namespace {
 constexpr const char* kMarkerHeader =
-    "# What swa_launch wrote here; the next swa_launch --out here removes these entries (and nothing else).";
+    "# What an SWA run wrote here; the next run with --out here removes these entries (and nothing else).";
 }  // namespace
 
 void claimRunDirectory(const fs::path& out) {
@@ -44,4 +44,4 @@ void markRunDirectory(const fs::path& out, const std::set<std::string>& before) 
   if (!marker) throw std::runtime_error("cannot write " + (out / kRunMarker).string());
 }
 
-}  // namespace swa::launch
+}  // namespace swa::app
