@@ -89,31 +89,10 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
     if (frames_) {
       frame_.push_back(participant_->writer<msg::SensorFramePubSubType>(dds::topics::sensors(i), "swa_frame_writer"));
       frame_seq_.push_back(0);
-      cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
-          dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
-            queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
-          }));
-      continue;
+    } else {
+      makeSampleWriters(i, autopilot, own_gnss);
     }
-    switch (scenario.agent.sensor.input) {
-      case agent::DetectionInput::kSwa:
-        det_.push_back(participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i),
-                                                                        "swa_detections_gnss_writer"));
-        break;
-      case agent::DetectionInput::kVisionMsgs:
-        vision_det_.push_back(participant_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(
-            dds::topics::visionDetections(i), "swa_detections_gnss_writer"));
-        break;
-      case agent::DetectionInput::kUvdar:
-        uvdar_det_.push_back(participant_->writer<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(
-            dds::topics::uvdarPoses(i), "swa_detections_gnss_writer"));
-        break;
-    }
-    gnss_.push_back(own_gnss ? participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i),
-                                                                            "swa_detections_gnss_writer")
-                             : dds::Writer<msg::GnssFix>());
     if (autopilot) continue;
-    imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
     cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
         dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
           queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
@@ -124,6 +103,28 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
   } else if (scenario.vehicle.interface == sim::VehicleInterface::kArdupilot) {
     autopilot_ = std::make_unique<ArdupilotVehicles>(*participant_, n_, scenario.vehicle);
   }
+}
+
+void SimPorts::makeSampleWriters(int i, bool autopilot, bool own_gnss) {
+  switch (scenario_.agent.sensor.input) {
+    case agent::DetectionInput::kSwa:
+      det_.push_back(participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i),
+                                                                      "swa_detections_gnss_writer"));
+      break;
+    case agent::DetectionInput::kVisionMsgs:
+      vision_det_.push_back(participant_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(
+          dds::topics::visionDetections(i), "swa_detections_gnss_writer"));
+      break;
+    case agent::DetectionInput::kUvdar:
+      uvdar_det_.push_back(participant_->writer<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(
+          dds::topics::uvdarPoses(i), "swa_detections_gnss_writer"));
+      break;
+  }
+  gnss_.push_back(own_gnss ? participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i),
+                                                                          "swa_detections_gnss_writer")
+                           : dds::Writer<msg::GnssFix>());
+  // With an autopilot its stand-in writes the attitude the bridge turns into swa/uav<i>/imu.
+  if (!autopilot) imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
 }
 
 SimPorts::~SimPorts() {
@@ -367,7 +368,9 @@ bool SimPorts::writeFrame(std::size_t k, const sim::UavSensors& s, std::optional
     ++summary_.write_failures;
     return false;
   }
-  if (s.imu && time_latency_) latency_.published(static_cast<int>(k), imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
+  if (s.imu && time_latency_) {
+    latency_.published(static_cast<int>(k), imu_seq_[k], s.imu->stamp_ns, published_ns, due_ns);
+  }
   return true;
 }
 

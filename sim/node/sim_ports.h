@@ -138,6 +138,9 @@ class SimPorts {
   std::vector<dds::Writer<vision_msgs::msg::Detection3DArray>> vision_det_;
   std::vector<dds::Writer<mrs_msgs::msg::PoseWithCovarianceArrayStamped>> uvdar_det_;
   int detectionsMatched(std::size_t k) const;
+  // Without frames: UAV i's writers of its sample topics (detections in the agents' type, GNSS if the simulator
+  // reports it, IMU unless an autopilot stand-in does).
+  void makeSampleWriters(int i, bool autopilot, bool own_gnss);
   // frames_: UAV k's samples of this step in one message; false if it has none or the write failed (counted).
   bool writeFrame(std::size_t k, const sim::UavSensors& s, std::optional<WallNs> due_ns);
   bool writeDetections(std::size_t k, const agent::DetectionSet& s, std::uint32_t seq);
