@@ -240,7 +240,7 @@ void Cli::overrides(std::vector<std::string>& out, const std::string& example) {
 
 void Cli::domain(std::optional<std::string>& out, int max_domain, const std::string& note) {
   impl_->value("--domain", "D",
-               "DDS domain id 0.." + std::to_string(max_domain) + " (default: $SWA_DOMAIN, else 0)" +
+               "DDS domain 0.." + std::to_string(max_domain) + " (default: $SWA_DOMAIN, else 0)" +
                    (note.empty() ? "" : "; " + note),
                "", [&out](const std::string& v, Problems&) { out = v; });
 }

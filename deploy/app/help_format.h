@@ -1,6 +1,7 @@
 #pragma once
-// How every SWA program's --help looks: CLI11's layout (options in one column, "=default", REQUIRED), with the
-// program's own usage lines and details instead of CLI11's one-line usage, and the meanings wrapped to the line.
+// How every SWA program's --help looks: the summary, the program's own usage lines instead of CLI11's one-line
+// usage, CLI11's options (one column, "=default", REQUIRED), then the details and the exit status; everything
+// wrapped to 80 columns.
 
 #include <string>
 
@@ -12,6 +13,8 @@ class HelpFormat : public CLI::Formatter {
  public:
   HelpFormat(std::string usage, std::string details);
 
+  std::string make_help(const CLI::App* app, std::string name, CLI::AppFormatMode mode) const override;
+  std::string make_description(const CLI::App* app) const override;
   std::string make_usage(const CLI::App* app, std::string name) const override;
   std::string make_option_desc(const CLI::Option* option) const override;
   // A flag that may carry a value (Cli::flagChoice) shows as "--record[=all|monitor]", not CLI11's

@@ -49,10 +49,10 @@ swa_batch --scenario FILE then runs the study; --sweep KEY=... replaces the file
   cli.path("--out", "DIR", o.out_dir, "output directory; the files an earlier run wrote there are removed first");
   cli.choice("--compare", "MODE", {agent::Mode::kStandalone, agent::Mode::kSwa, agent::Mode::kAnchored}, o.compare,
              "also run the same seeds with agent.mode = MODE and print both side by side");
-  cli.list("--sweep", "KEY=V1,V2,...", o.sweeps, "sweep a scenario key over these values (a study; see above)");
+  cli.list("--sweep", "KEY=V1,V2,...", o.sweeps, "sweep a scenario key over these values (a study; see below)");
   cli.list("--variant", "NAME:KEY=V,...", o.variants,
            "compare a named set of overrides, e.g. k3:agent.formation.neighbourhood=k_nearest,agent.formation.k=3 "
-           "(a study: one more axis; see above)");
+           "(a study: one more axis; see below)");
   cli.text("--shard", "I/N", o.shard, "run only shard I of N of the study (1 <= I <= N)", "I/N");
   cli.flag("--dry-run", o.dry_run,
            "check the scenario (a study: every grid point) and print what would run, then exit without running; "

@@ -44,10 +44,10 @@ app::Cli makeCli(ReplayOptions& o) {
               }
             },
             "only this UAV (default: every UAV of the recording)");
-  cli.flag("--check", o.check, "re-run the agent core in-process and compare its commands (see above)");
+  cli.flag("--check", o.check, "re-run the agent core in-process and compare its commands (see below)");
   cli.real("--speed", "X", o.speed, 0.0, 1000.0, "a speed factor",
            "recorded seconds per wall second; 0: as fast as possible (with --lockstep: as fast as the agents answer)");
-  cli.flag("--lockstep", o.lockstep, "wait for each replayed agent's answer to each IMU sample (see above)");
+  cli.flag("--lockstep", o.lockstep, "wait for each replayed agent's answer to each IMU sample (see below)");
   cli.scenario(o.scenario_path, "--check: the parameters to run the agents with, instead of the recorded ones");
   cli.overrides(o.overrides,
                 "--check: on top of the recorded (or --scenario) parameters, e.g. agent.formation.radius_m=12");

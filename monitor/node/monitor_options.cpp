@@ -99,12 +99,12 @@ app::Cli makeCli(MonitorOptions& o) {
   cli.real("--tolerance", "F", o.tolerance, 0.0, 1.0, "a fraction of r",
            "PASS band for the final d_NB, as a fraction of r, not 0; with --combine only the band drawn in the "
            "report, by default the first run's");
-  cli.path("--record", "FILE.mcap", o.record_path, "also record the run into this MCAP file (see above)");
+  cli.path("--record", "FILE.mcap", o.record_path, "also record the run into this MCAP file (see below)");
   const std::vector<std::string> sets = recording::recordSetNames();
   cli.choice("--record-set", "SET", sets,
              [&o, sets](std::size_t k) { o.record_set = *recording::recordSetFromName(sets[k]); },
              "what --record holds: all, every topic of the run (default; what swa_replay needs), or monitor, only "
-             "truth, events, the agents' states and the metrics (see above); needs --record");
+             "truth, events, the agents' states and the metrics (see below); needs --record");
   cli.value("--live", "[ADDR:]PORT",
             [&o](const std::string& v, app::Problems& p) {
               const std::size_t colon = v.rfind(':');
@@ -120,7 +120,7 @@ app::Cli makeCli(MonitorOptions& o) {
                 p.push_back("--live '" + v + "' is not [ADDR:]PORT with PORT in [0, 65535]");
               }
             },
-            "serve the live view (page and Foxglove WebSocket) on this port, 127.0.0.1 unless ADDR (see above)");
+            "serve the live view (page and Foxglove WebSocket) on this port, 127.0.0.1 unless ADDR (see below)");
   cli.flag("--quiet", o.quiet,
            "no status line (default: refreshed in place on a terminal, else a line every 10 s of sim time, on "
            "stderr)");
@@ -133,7 +133,7 @@ app::Cli makeCli(MonitorOptions& o) {
                 o.combine.push_back({entry.substr(0, eq), entry.substr(eq + 1)});
               }
             },
-            "offline mode: one report of these run directories, one column per LABEL (see above); the list goes "
+            "offline mode: one report of these run directories, one column per LABEL (see below); the list goes "
             "on up to the next option, and --combine may be repeated",
             true);
   cli.footer(R"(Exit status: 0 PASS; 1 FAIL; 3 INCOMPLETE; 2 bad arguments or scenario, output directory not writable, DDS

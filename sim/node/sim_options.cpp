@@ -11,7 +11,9 @@ app::Cli makeCli(SimOptions& o) {
   app::Cli cli("swa_sim",
                "the simulated world of a scenario as a Fast DDS process (the swarm's agents are swa_agent processes).");
   cli.usage("swa_sim --scenario FILE [--set key=value]... [--domain D] [--agent-timeout-s T] [options]");
-  cli.details(R"(Publishes  swa/uav<i>/imu, swa/uav<i>/detections, swa/uav<i>/gnss   (each UAV's own sensors)
+  cli.details(R"(Publishes  swa/uav<i>/sensors: each UAV's own sensors of one step (IMU sample, detections, GNSS fix)
+             in one SensorFrame; with SWA_SENSOR_FRAMES=0, an autopilot vehicle, other detection messages
+             or SWA_NAMING=ros2 each on its own topic: swa/uav<i>/imu, swa/uav<i>/detections, swa/uav<i>/gnss
            swa/truth (ground truth, monitor only), swa/events, swa/clock
 Reads      swa/uav<i>/cmd_vel
 

@@ -65,8 +65,8 @@ struct Options {
 };
 
 [[noreturn]] void usage(const char* why) {
-  std::fprintf(stderr, "study_formation: %s\nusage: study_formation [--seeds N] [--jobs J] [--sizes A-B,C,...] "
-                       "[--fov D1,D2] [--duration S] [--rules r1,r2] [--scenario FILE] [--set key=value]...\nrules:",
+  std::fprintf(stderr, "study_formation: %s\nusage: study_formation [--seeds N] [--jobs J] [--sizes A-B,C,...] [--fov D1,D2]\n"
+                       "         [--duration S] [--rules r1,r2] [--scenario FILE] [--set key=value]...\nrules:",
                why);
   for (const auto& [name, sets] : kRules) std::fprintf(stderr, " %s", name.c_str());
   std::fprintf(stderr, "\n");

@@ -69,9 +69,10 @@ int onPacket(nfq_q_handle* qh, nfgenmsg*, nfq_data* nfa, void* data) {
 void usage(FILE* to) {
   std::fputs(
       "Usage: swa_netem --queue N [--loss P] [--delay-ms D] [--jitter-ms J] [--seed S]\n"
-      "  Drops packets of NFQUEUE queue N with probability P (0 <= P < 1) and holds the others for D +- J ms\n"
-      "  (uniform; 0 <= J <= D). Seeded (default 1). Until SIGINT/SIGTERM; then prints\n"
-      "  'swa_netem: seen X dropped Y delayed Z verdict_errors E' on stdout. Needs CAP_NET_ADMIN.\n",
+      "  Drops packets of NFQUEUE queue N with probability P (0 <= P < 1) and holds\n"
+      "  the others for D +- J ms (uniform; 0 <= J <= D). Seeded (default 1). Until\n"
+      "  SIGINT/SIGTERM; then prints on stdout\n"
+      "  'swa_netem: seen X dropped Y delayed Z verdict_errors E'. Needs CAP_NET_ADMIN.\n",
       to);
 }
 

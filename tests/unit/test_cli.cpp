@@ -41,7 +41,7 @@ struct Options {
 Cli makeCli(Options& o) {
   Cli cli("tool", "a program under test.");
   cli.usage("tool --scenario FILE [options]");
-  cli.details("Details between the usage and the options.");
+  cli.details("Details after the options.");
   cli.scenario(o.scenario, "scenario YAML");
   cli.required("--scenario");
   cli.path("--out", "DIR", o.out, "output directory");
@@ -247,17 +247,17 @@ TEST(Cli, ParseOptionsRunsTheProgramsCrossChecksAndSetsHelp) {
 
 TEST(Cli, HelpListsEveryOptionWithValueNameDefaultRangeAndMeaning) {
   const std::string h = helpText(makeCli);
-  // THEN the parts come in order: summary, usage, details, options, footer
+  // THEN the parts come in order: summary, usage, options, details, footer
   const std::size_t summary = h.find("tool: a program under test.");
   const std::size_t usage = h.find("Usage: tool --scenario FILE [options]");
-  const std::size_t details = h.find("Details between the usage and the options.");
   const std::size_t options = h.find("Options:");
+  const std::size_t details = h.find("Details after the options.");
   const std::size_t footer = h.find("Exit status: 0 done.");
   EXPECT_EQ(summary, 0u);
   EXPECT_LT(summary, usage);
-  EXPECT_LT(usage, details);
-  EXPECT_LT(details, options);
-  EXPECT_LT(options, footer);
+  EXPECT_LT(usage, options);
+  EXPECT_LT(options, details);
+  EXPECT_LT(details, footer);
   EXPECT_NE(footer, std::string::npos);
   // AND each option with its value name, default, range or choices
   for (const char* must : {"-h,--help", "--scenario FILE REQUIRED", "--out DIR=out/x", "--rate R=2.5",
@@ -279,14 +279,60 @@ TEST(Cli, HelpWrapsLongMeaningsWithoutSplittingARange) {
   std::string meaning;
   for (int k = 0; k < 40; ++k) meaning += "word" + std::to_string(k) + " ";
   cli.flag("--long", flag, meaning);
-  cli.real("--x", "X", x, 0.001, 3600.0, "a time", std::string(73, 'm'));  // "[0.001," fits, "3600]" does not
+  cli.real("--x", "X", x, 0.001, 3600.0, "a time", std::string(37, 'm'));  // "[0.001," fits, "3600]" does not
   const std::string h = cli.help();
-  // THEN no line is longer than the help's width, every word is there, and the range stays on one line
+  // THEN no line is longer than an 80-column terminal, every word is there, and the range stays on one line
   std::istringstream lines(h);
   std::string line;
-  while (std::getline(lines, line)) EXPECT_LE(line.size(), 116u) << line;
+  while (std::getline(lines, line)) EXPECT_LE(line.size(), 80u) << line;
   EXPECT_TRUE(mentions(h, "word39")) << h;
   EXPECT_TRUE(mentions(h, "[0.001, 3600]")) << h;
+}
+
+// The lines of a help text after the line holding `start`, up to the next empty line.
+std::vector<std::string> linesAfter(const std::string& text, const std::string& start) {
+  std::istringstream in(text.substr(text.find(start)));
+  std::vector<std::string> out;
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line) && !line.empty()) out.push_back(line);
+  return out;
+}
+
+TEST(Cli, HelpReflowsDetailsWrittenForWiderTerminalsKeepingTheirStructure) {
+  // GIVEN details written for a 116-column terminal: a paragraph broken where that terminal ended, a numbered item
+  // with its continuation under its text, a table of terms with aligned meanings, and short lines meant as they are
+  const std::string wide(" and more words to fill a line that an eighty-column terminal would wrap again");
+  Cli cli("tool", "reflows.");
+  cli.usage("tool");
+  cli.details("Paragraph:\nThe first line of a paragraph" + wide + " itself,\ngoes on here.\n" +
+              "  1. a numbered item" + wide + " at the\n     end of its line.\n" +
+              "  TERM     the meaning of a term" + wide + ", so\n           it goes on under the meaning.\n" +
+              "  OTHER    short.\n" + "Example:\n  tool --a\n  tool --b    # aligned on purpose");
+  const std::string h = cli.help();
+  // THEN every line fits 80 columns
+  std::istringstream all(h);
+  std::string line;
+  while (std::getline(all, line)) EXPECT_LE(line.size(), 80u) << line;
+  // AND the paragraph is one flowing text again, the item's lines stay under its text, the term's under its meaning
+  const std::vector<std::string> body = linesAfter(h, "Paragraph:");
+  ASSERT_GE(body.size(), 9u) << h;
+  std::string flowing;
+  for (std::size_t k = 0; k < 3; ++k) flowing += (k ? " " : "") + body[k];
+  EXPECT_EQ(flowing.rfind("The first line", 0), 0u) << h;
+  EXPECT_TRUE(mentions(flowing, "would wrap again itself, goes on here.")) << h;
+  bool item_end = false;
+  bool term_end = false;
+  for (const std::string& l : body) {
+    if (mentions(l, "its line.")) item_end = l.rfind("     ", 0) == 0 && l[5] != ' ';
+    if (mentions(l, "meaning.")) term_end = l.rfind("           ", 0) == 0 && l[11] != ' ';
+  }
+  EXPECT_TRUE(item_end) << h;
+  EXPECT_TRUE(term_end) << h;
+  EXPECT_TRUE(mentions(h, "\n  TERM     the meaning of a term")) << h;
+  // AND lines that fit stay exactly as written, alignment included
+  EXPECT_TRUE(mentions(h, "\n  OTHER    short.\n")) << h;
+  EXPECT_TRUE(mentions(h, "\n  tool --a\n  tool --b    # aligned on purpose")) << h;
 }
 
 // A flag that may carry a value (swa_launch --record[=all|monitor]): what each spelling reads as.
