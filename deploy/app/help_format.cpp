@@ -203,8 +203,29 @@ std::string HelpFormat::make_description(const CLI::App* app) const {
   return description.empty() ? std::string() : reflow(description, kLineWidth) + '\n';
 }
 
+// Each of the program's usage forms starts a line under the first; a form too long for one goes on further in. A
+// source line that starts with an option ("[--out DIR]", "--out DIR") continues the form above it.
 std::string HelpFormat::make_usage(const CLI::App* /*app*/, std::string /*name*/) const {
-  return "\n" + fill("Usage: " + usage_, 0, 7, kLineWidth) + "\n";
+  constexpr std::size_t kForm = 7;  // under the first form, after "Usage: "
+  std::vector<std::string> forms;
+  std::istringstream lines(usage_);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const std::size_t start = line.find_first_not_of(' ');
+    if (start == std::string::npos) continue;
+    const bool continues = !forms.empty() && (line[start] == '[' || line[start] == '-');
+    if (continues) {
+      forms.back() += ' ' + line.substr(start);
+    } else {
+      forms.push_back(line.substr(start));
+    }
+  }
+  std::string out = "\nUsage: ";
+  for (std::size_t k = 0; k < forms.size(); ++k) {
+    if (k > 0) out += '\n' + std::string(kForm, ' ');
+    out += fill(forms[k], 0, kForm + 2, kLineWidth - kForm);
+  }
+  return out + "\n";
 }
 
 std::string HelpFormat::make_option_desc(const CLI::Option* option) const {
