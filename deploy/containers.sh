@@ -20,6 +20,7 @@ project=swa
 timeout_s=600
 rebuild_base=0
 vehicle=direct
+dry_run=0
 
 usage() {
   cat <<'EOF'
@@ -63,6 +64,8 @@ Options:
   --project NAME    compose project (default swa): containers are NAME_<service>_1, the network NAME_swa
   --timeout-s S     wait / run / test: give up waiting for the verdict after S seconds (default 600)
   --rebuild-base    build: rebuild the base image even if present
+  --dry-run         check the arguments, the programs in --bin-dir and the scenario with every override (up, run,
+                    test), print what COMMAND would do, and exit 0; calls neither podman nor apt
   -h, --help        this text
 
 Exit status: run / wait: 0 PASS, 1 FAIL, 3 INCOMPLETE (also: no verdict in time, simulator failed);
@@ -271,6 +274,45 @@ wait_verdict() {
   return "$verdict"
 }
 
+# What COMMAND would do, after the checks that need neither podman nor root: the programs the images carry, and the
+# scenario with every override as the simulator's image would read it (the same --export-agent-config step as up).
+dry_run() {
+  local steps
+  case $command in
+    install) steps="apt-get install what is missing of podman, runc, netavark, aardvark-dns, iptables, debootstrap, podman-compose" ;;
+    build) steps="install; the base image $base_image (once); images $(image_name '{agent,sim,monitor,bridge,batch}') from $bin_dir" ;;
+    compose) steps="print the compose file for $compose_n UAV(s)" ;;
+    up) steps="start project $project: $uavs agent(s) ($vehicle), $(basename "$scenario") with '$(swa_set)', run directory $run_dir" ;;
+    wait) steps="wait at most $timeout_s s for the verdict of project $project, save the logs into $run_dir/logs, stop it" ;;
+    down) steps="stop and remove the containers and the network of project $project" ;;
+    run | test) steps="build; down; up ($uavs agent(s), $vehicle, $(basename "$scenario") with '$(swa_set)'); wait at most $timeout_s s; down" ;;
+    *) die "unknown command '$command' (see --help)" ;;
+  esac
+  if [[ $command =~ ^(build|run|test)$ ]]; then
+    local b
+    for b in swa_agent swa_sim swa_monitor swa_px4_bridge swa_batch; do
+      [ -x "$bin_dir/$b" ] || die "$bin_dir/$b not found: build first (bash deploy/build.sh) or pass --bin-dir"
+    done
+  fi
+  if [ "$command" = compose ] || [[ $command =~ ^(up|run|test)$ && $uavs -ne 4 ]]; then
+    bash "$here/gen-compose.sh" "${compose_n:-$uavs}" --vehicle "$vehicle" > /dev/null || die "no compose file"
+  fi
+  if [[ $command =~ ^(up|run|test)$ ]]; then
+    [ -r "$scenario" ] || die "scenario $scenario not readable"
+    [ -x "$bin_dir/swa_sim" ] || die "$bin_dir/swa_sim not found: it checks the scenario (pass --bin-dir)"
+    local check set_args=() kv
+    check=$(mktemp -d)
+    temp_dirs+=("$check")
+    for kv in $(swa_set); do set_args+=(--set "$kv"); done
+    "$bin_dir/swa_sim" --scenario "$scenario" "${set_args[@]}" --export-agent-config "$check/agent.yaml" \
+      > "$check/log" 2>&1 || {
+      cat "$check/log" >&2
+      die "scenario $scenario with overrides '$(swa_set)' rejected"
+    }
+  fi
+  log "--dry-run: $command would: $steps"
+}
+
 # ------------------------------------------------------------------------------------------------------- main
 
 [ $# -ge 1 ] || {
@@ -303,6 +345,7 @@ while [ $# -gt 0 ]; do
     --project) project=$2; shift 2 ;;
     --timeout-s) timeout_s=$2; shift 2 ;;
     --rebuild-base) rebuild_base=1; shift ;;
+    --dry-run) dry_run=1; shift ;;
     -h|--help) usage; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
@@ -316,6 +359,11 @@ for kv in ${sets[@]+"${sets[@]}"}; do
   [[ $kv != uav_count=* ]] || die "--set uav_count: use --uavs N (it sets uav_count and the number of agents)"
   [[ $kv != vehicle.interface=* ]] || die "--set vehicle.interface: use --vehicle (it also starts the bridges)"
 done
+
+[ "$dry_run" -eq 0 ] || {
+  dry_run
+  exit 0
+}
 
 case $command in
   install) install_packages ;;
