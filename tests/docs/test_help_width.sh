@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
 # Every program's --help reads in an 80-column terminal with its options first (issue #30):
-#   test_help_width.sh BIN_DIR
+#   test_help_width.sh PROGRAM...
 # For each program: exit 0, no line wider than 80 columns, and (for the programs with an option list) "Options:"
 # before any other paragraph after the usage, so a reader finds the options without scrolling past the details.
 # shellcheck source-path=SCRIPTDIR source=../script_tools.sh
 source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
-bin=$1
+[ $# -gt 0 ] || fail "usage: test_help_width.sh PROGRAM..."
 width=80
 checked=0
-for program in swa_sim swa_agent swa_monitor swa_launch swa_batch swa_replay swa_px4_bridge swa_netem \
-  bench_scale bench_dds bench_agent_core study_formation formation_statistics; do
-  [[ -x $bin/$program ]] || fail "$program is not built in $bin"
+for path in "$@"; do
+  program=$(basename "$path")
+  [[ -x $path ]] || fail "$path is not built"
   # study_formation prints its usage on stderr and exits 2 for --help (a benchmark, not a user program).
   status=0
-  text=$("$bin/$program" --help 2>&1) || status=$?
+  text=$("$path" --help 2>&1) || status=$?
   [[ $status -eq 0 || $program == study_formation ]] || fail "$program --help exits $status"
   widest=$(awk '{ if (length($0) > m) { m = length($0); l = $0 } } END { print m }' <<<"$text")
   if ((widest > width)); then
