@@ -19,7 +19,8 @@ std::vector<LegendEntry> legendEntries(const PlotSpec& spec) {
   for (std::size_t i = 0; i < spec.series.size(); ++i) {
     const PlotSeries& s = spec.series[i];
     if (!s.label.empty()) {
-      entries.push_back({LegendKind::kSeries, s.label, seriesColour(s, i), seriesDashed(s, i), s.opacity, s.marker});
+      entries.push_back({LegendKind::kSeries, s.label, seriesColour(s, i), seriesDashed(s, i), s.opacity, s.marker,
+                         s.dash_pattern, s.joined});
     }
   }
   for (const PlotBand& b : spec.bands) {
@@ -43,7 +44,7 @@ std::string dashAttr(bool dashed, const char* pattern) {
 
 void renderLegendSwatch(std::string& out, const LegendEntry& e, double x, double y) {
   const std::string colour = escapeXml(e.colour);
-  if (e.kind == LegendKind::kSeries && e.marker != MarkerShape::kNone) {
+  if (e.kind == LegendKind::kSeries && e.marker != MarkerShape::kNone && !e.joined) {
     renderMarker(out, e.marker, x + 0.5 * kLegendSwatch, y, 5.0, colour, "");
     return;
   }
@@ -53,7 +54,10 @@ void renderLegendSwatch(std::string& out, const LegendEntry& e, double x, double
       out += "<line x1=\"" + px(x) + "\" y1=\"" + px(y) + "\" x2=\"" + px(x + kLegendSwatch) + "\" y2=\"" + px(y) +
              "\" stroke=\"" + colour + "\" stroke-width=\"2\"" +
              (e.opacity < 1.0 ? " stroke-opacity=\"" + formatFixed(std::max(e.opacity, 0.0), 3) + "\"" : "") +
-             dashAttr(e.dashed, e.kind == LegendKind::kSeries ? "6 4" : "5 4") + "/>\n";
+             (e.dash.empty() ? dashAttr(e.dashed, e.kind == LegendKind::kSeries ? "6 4" : "5 4")
+                             : " stroke-dasharray=\"" + escapeXml(e.dash) + "\"") +
+             "/>\n";
+      if (e.marker != MarkerShape::kNone) renderMarker(out, e.marker, x + 0.5 * kLegendSwatch, y, 5.0, colour, "");
       break;
     case LegendKind::kBand:
       out += "<rect x=\"" + px(x) + "\" y=\"" + px(y - 5.0) + "\" width=\"" + px(kLegendSwatch) +

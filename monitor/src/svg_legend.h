@@ -25,6 +25,8 @@ struct LegendEntry {
   bool dashed = false;
   double opacity = 1.0;
   MarkerShape marker = MarkerShape::kNone;  // kSeries: a marker series' swatch is its marker
+  std::string dash = "";  // kSeries: its own dash pattern (PlotSeries::dash_pattern)
+  bool joined = false;     // kSeries: a marker series joined by a line: the swatch is the line with the marker on it
 };
 
 // A series without a colour of its own takes the palette's; past the palette's 10 colours it is dashed.

@@ -15,9 +15,33 @@ void renderMarker(std::string& out, MarkerShape shape, double x, double y, doubl
            "\" stroke-width=\"1.5\"/>\n";
     return;
   }
-  // A white rim keeps a dot readable where it sits on a line or another dot.
-  out += "<circle" + attributes + " cx=\"" + px(x) + "\" cy=\"" + px(y) + "\" r=\"" + formatFixed(radius, 2) +
-         "\" fill=\"" + colour + "\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>\n";
+  // A white rim keeps a marker readable where it sits on a line or another marker.
+  const std::string rim = "\" fill=\"" + colour + "\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>\n";
+  switch (shape) {
+    case MarkerShape::kSquare: {
+      // The same area as the dot's circle would look bigger: a square of side 1.6 r looks about as heavy.
+      const double h = 0.8 * radius;
+      out += "<rect" + attributes + " x=\"" + px(x - h) + "\" y=\"" + px(y - h) + "\" width=\"" + px(2.0 * h) +
+             "\" height=\"" + px(2.0 * h) + rim;
+      return;
+    }
+    case MarkerShape::kTriangle: {
+      // Apex up, centred on the point's centroid (1/3 of the height above the base).
+      const double r = 1.1 * radius;
+      out += "<path" + attributes + " d=\"M" + px(x) + " " + px(y - r) + "L" + px(x + 0.866 * r) + " " +
+             px(y + 0.5 * r) + "L" + px(x - 0.866 * r) + " " + px(y + 0.5 * r) + "Z" + rim;
+      return;
+    }
+    case MarkerShape::kDiamond: {
+      const double r = 1.1 * radius;
+      out += "<path" + attributes + " d=\"M" + px(x) + " " + px(y - r) + "L" + px(x + r) + " " + px(y) + "L" +
+             px(x) + " " + px(y + r) + "L" + px(x - r) + " " + px(y) + "Z" + rim;
+      return;
+    }
+    default:
+      out += "<circle" + attributes + " cx=\"" + px(x) + "\" cy=\"" + px(y) + "\" r=\"" + formatFixed(radius, 2) + rim;
+      return;
+  }
 }
 
 bool renderMarkers(std::string& out, const PlotSeries& s, std::size_t index, const PlotLayout& l) {
@@ -28,7 +52,7 @@ bool renderMarkers(std::string& out, const PlotSeries& s, std::size_t index, con
   const double radius = std::max(s.marker_px, 0.5);
   bool any = false;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
-    if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+    if (!l.plottable(s.x[i], s.y[i])) continue;
     any = true;
     const double x = l.xToPx(s.x[i]);
     const double y = l.yToPx(s.y[i]);

@@ -53,7 +53,17 @@ void validateSpec(const PlotSpec& spec) {
       problems += "series " + std::to_string(i) + " has " + std::to_string(labels) + " point labels for " +
                   std::to_string(spec.series[i].x.size()) + " points; ";
     }
+    const std::size_t errors = spec.series[i].y_err.size();
+    if (errors != 0 && errors != spec.series[i].y.size()) {
+      problems += "series " + std::to_string(i) + " has " + std::to_string(errors) + " error bars for " +
+                  std::to_string(spec.series[i].y.size()) + " points; ";
+    }
   }
+  if (!spec.x_tick_labels.empty() && spec.x_tick_labels.size() != spec.x_ticks.size()) {
+    problems += std::to_string(spec.x_tick_labels.size()) + " x tick labels for " +
+                std::to_string(spec.x_ticks.size()) + " x ticks; ";
+  }
+  if (spec.equal_aspect && (spec.x_log || spec.y_log)) problems += "a log axis cannot have an equal aspect; ";
   if (spec.width_px < 200) problems += "width_px must be >= 200; ";
   if (spec.height_px < 120) problems += "height_px must be >= 120; ";
   if (spec.target_ticks < 2) problems += "target_ticks must be >= 2; ";
@@ -110,7 +120,125 @@ std::vector<std::size_t> thin(const std::vector<double>& sx, const std::vector<d
   return keep;
 }
 
+// Whether `v` can sit on an axis (finite, and positive on a log one).
+bool onAxis(double v, bool log) { return std::isfinite(v) && (!log || v > 0.0); }
+
+// The range the data, error bars, bands and lines need on each axis; counts the points a log axis drops.
+struct DataRanges {
+  Range x;
+  Range y;
+  std::size_t dropped = 0;
+};
+
+DataRanges dataRanges(const PlotSpec& spec) {
+  DataRanges r;
+  for (const PlotSeries& s : spec.series) {
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      if (!onAxis(s.x[i], spec.x_log) || !onAxis(s.y[i], spec.y_log)) {
+        ++r.dropped;
+        continue;
+      }
+      r.x.add(s.x[i]);
+      r.y.add(s.y[i]);
+      const double e = i < s.y_err.size() ? s.y_err[i] : kNan;
+      if (!(e > 0.0) || !std::isfinite(e)) continue;
+      r.y.add(s.y[i] + e);
+      if (onAxis(s.y[i] - e, spec.y_log)) r.y.add(s.y[i] - e);
+    }
+  }
+  if (spec.equal_aspect) return r;
+  for (const PlotBand& b : spec.bands) {
+    for (const double v : {b.low, b.high}) {
+      if (onAxis(v, spec.y_log)) r.y.add(v);
+    }
+  }
+  for (const PlotLine& line : spec.lines) {
+    const bool horizontal = line.orientation == LineOrientation::kHorizontal;
+    if (onAxis(line.value, horizontal ? spec.y_log : spec.x_log)) (horizontal ? r.y : r.x).add(line.value);
+  }
+  return r;
+}
+
+// Ticks of a log axis over `data`, a forced end (if positive) kept as given.
+AxisTicks logAxisTicks(const Range& data, double forced_lo, double forced_hi, int target_ticks) {
+  const bool has_lo = std::isfinite(forced_lo) && forced_lo > 0.0;
+  const bool has_hi = std::isfinite(forced_hi) && forced_hi > 0.0;
+  AxisTicks t = logTicks(has_lo ? forced_lo : data.lo, has_hi ? forced_hi : data.hi, target_ticks);
+  if (!has_lo && !has_hi) return t;
+  if (has_lo) t.lo = forced_lo;
+  if (has_hi) t.hi = forced_hi;
+  std::vector<double> inside;
+  for (const double v : t.values) {
+    if (v >= t.lo && v <= t.hi) inside.push_back(v);
+  }
+  t.values = std::move(inside);
+  return t;
+}
+
+// The caller's ticks (those within the axis) replace the automatic ones.
+void useGivenTicks(AxisTicks& t, const std::vector<double>& ticks, const std::vector<std::string>& labels) {
+  if (ticks.empty()) return;
+  constexpr double kSlack = 1e-9;  // a tick on the axis end, give or take rounding, is drawn
+  constexpr int kGivenDecimals = 6;  // an unlabelled given tick is written as the number it is (0.25, not "0")
+  t.values.clear();
+  t.labels.clear();
+  for (std::size_t i = 0; i < ticks.size(); ++i) {
+    const double f = t.fraction(ticks[i]);
+    if (!std::isfinite(f) || f < -kSlack || f > 1.0 + kSlack) continue;
+    t.values.push_back(ticks[i]);
+    t.labels.push_back(labels.empty() ? formatFixed(ticks[i], kGivenDecimals) : labels[i]);
+  }
+}
+
+// The text of tick i of `t`, escaped.
+std::string tickText(const AxisTicks& t, std::size_t i) {
+  return i < t.labels.size() ? escapeXml(t.labels[i]) : formatTick(t.values[i], t);
+}
+
+// The stroke-dasharray of a line series: its own pattern, or the default dash when dashed.
+std::string seriesDash(const PlotSeries& s, std::size_t index) {
+  if (!s.dash_pattern.empty()) return " stroke-dasharray=\"" + escapeXml(s.dash_pattern) + "\"";
+  return dashAttr(seriesDashed(s, index), "6 4");
+}
+
+// Every error bar of series `index`: a vertical stroke with short caps, in the series' colour.
+void renderErrorBars(std::string& out, const PlotSeries& s, std::size_t index, const PlotLayout& l) {
+  constexpr double kCapHalfWidth = 4.0;  // px: wide enough to see, narrower than the markers are apart
+  const std::string colour = escapeXml(seriesColour(s, index));
+  for (std::size_t i = 0; i < s.y_err.size(); ++i) {
+    const double e = s.y_err[i];
+    if (!(e > 0.0) || !std::isfinite(e) || !l.plottable(s.x[i], s.y[i])) continue;
+    const double x = l.xToPx(s.x[i]);
+    const double top = l.yToPx(s.y[i] + e);
+    const double low = s.y[i] - e;
+    // Below what a log axis shows: down to the plot's bottom edge (and no cap there, as the bar goes on).
+    const bool cut = !l.plottable(s.x[i], low);
+    const double bottom = cut ? l.bottom_px : l.yToPx(low);
+    std::string d = "M" + px(x) + " " + px(top) + "V" + px(bottom) + "M" + px(x - kCapHalfWidth) + " " + px(top) +
+                    "H" + px(x + kCapHalfWidth);
+    if (!cut) d += "M" + px(x - kCapHalfWidth) + " " + px(bottom) + "H" + px(x + kCapHalfWidth);
+    out += "<path class=\"error-bar\" data-series=\"" + std::to_string(index) + "\" d=\"" + d +
+           "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"1.25\"/>\n";
+  }
+}
+
 }  // namespace
+
+bool PlotLayout::plottable(double xv, double yv) const {
+  return std::isfinite(xv) && std::isfinite(yv) && (!x.log || xv > 0.0) && (!y.log || yv > 0.0);
+}
+
+MarkerShape markerShape(std::size_t index) {
+  static constexpr std::array<MarkerShape, 5> kShapes{MarkerShape::kDot, MarkerShape::kSquare, MarkerShape::kTriangle,
+                                                      MarkerShape::kDiamond, MarkerShape::kCross};
+  return kShapes[index % kShapes.size()];
+}
+
+const std::string& dashPattern(std::size_t index) {
+  static const std::array<std::string, 4> kPatterns{"", "6 4", "2 3", "8 3 2 3"};
+  return kPatterns[index % kPatterns.size()];
+}
 
 std::string escapeXml(std::string_view text) {
   std::string out;
@@ -169,16 +297,10 @@ PlotLayout layoutPlot(const PlotSpec& spec) {
   l.right_px = l.width_px - right_margin;
   l.bottom_px = l.height_px - kMarginBottom;
 
-  Range xr;
-  Range yr;
-  for (const PlotSeries& s : spec.series) {
-    for (std::size_t i = 0; i < s.x.size(); ++i) {
-      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
-        xr.add(s.x[i]);
-        yr.add(s.y[i]);
-      }
-    }
-  }
+  const DataRanges ranges = dataRanges(spec);
+  Range xr = ranges.x;
+  Range yr = ranges.y;
+  l.dropped_points = ranges.dropped;
 
   if (spec.equal_aspect) {
     const bool box = std::isfinite(spec.x_min) && std::isfinite(spec.x_max) && std::isfinite(spec.y_min) &&
@@ -210,15 +332,11 @@ PlotLayout layoutPlot(const PlotSpec& spec) {
     return l;
   }
 
-  for (const PlotBand& b : spec.bands) {
-    yr.add(b.low);
-    yr.add(b.high);
-  }
-  for (const PlotLine& line : spec.lines) {
-    (line.orientation == LineOrientation::kHorizontal ? yr : xr).add(line.value);
-  }
-  l.x = axisTicks(xr, spec.x_min, spec.x_max, false, spec.target_ticks);
-  l.y = axisTicks(yr, spec.y_min, spec.y_max, spec.y_include_zero, spec.target_ticks);
+  l.x = spec.x_log ? logAxisTicks(xr, spec.x_min, spec.x_max, spec.target_ticks)
+                   : axisTicks(xr, spec.x_min, spec.x_max, false, spec.target_ticks);
+  l.y = spec.y_log ? logAxisTicks(yr, spec.y_min, spec.y_max, spec.target_ticks)
+                   : axisTicks(yr, spec.y_min, spec.y_max, spec.y_include_zero, spec.target_ticks);
+  useGivenTicks(l.x, spec.x_ticks, spec.x_tick_labels);
   return l;
 }
 
@@ -264,13 +382,13 @@ std::string renderSvg(const PlotSpec& spec) {
   }
   out += "</g>\n";
   out += "<g class=\"tick-labels\" fill=\"#333333\">\n";
-  for (const double v : l.x.values) {
-    out += "<text class=\"tick-x\" x=\"" + px(l.xToPx(v)) + "\" y=\"" + px(l.bottom_px + 16.0) +
-           "\" text-anchor=\"middle\">" + formatTick(v, l.x) + "</text>\n";
+  for (std::size_t i = 0; i < l.x.values.size(); ++i) {
+    out += "<text class=\"tick-x\" x=\"" + px(l.xToPx(l.x.values[i])) + "\" y=\"" + px(l.bottom_px + 16.0) +
+           "\" text-anchor=\"middle\">" + tickText(l.x, i) + "</text>\n";
   }
-  for (const double v : l.y.values) {
-    out += "<text class=\"tick-y\" x=\"" + px(l.left_px - 7.0) + "\" y=\"" + px(l.yToPx(v)) +
-           "\" dy=\"0.35em\" text-anchor=\"end\">" + formatTick(v, l.y) + "</text>\n";
+  for (std::size_t i = 0; i < l.y.values.size(); ++i) {
+    out += "<text class=\"tick-y\" x=\"" + px(l.left_px - 7.0) + "\" y=\"" + px(l.yToPx(l.y.values[i])) +
+           "\" dy=\"0.35em\" text-anchor=\"end\">" + tickText(l.y, i) + "</text>\n";
   }
   out += "</g>\n";
   const std::string x_title = axisTitle(spec.x_label, spec.x_unit);
@@ -291,14 +409,20 @@ std::string renderSvg(const PlotSpec& spec) {
          "\" overflow=\"hidden\">\n";
   for (const PlotBand& b : spec.bands) {
     if (!std::isfinite(b.low) || !std::isfinite(b.high)) continue;
-    const double y_top = l.yToPx(std::max(b.low, b.high));
-    const double y_bottom = l.yToPx(std::min(b.low, b.high));
-    out += "<rect class=\"band\" x=\"" + px(l.left_px) + "\" y=\"" + px(y_top) + "\" width=\"" + px(w) +
-           "\" height=\"" + px(y_bottom - y_top) + "\" fill=\"" + escapeXml(b.colour) + "\" fill-opacity=\"" +
-           formatFixed(b.opacity, 3) + "\"/>\n";
+    const double top = std::max(b.low, b.high);
+    const double low = std::min(b.low, b.high);
+    if (!onAxis(top, l.y.log)) continue;
+    const double y_top = l.yToPx(top);
+    const double y_bottom = onAxis(low, l.y.log) ? l.yToPx(low) : l.bottom_px;
+    const double x_left = onAxis(b.x_low, l.x.log) ? l.xToPx(b.x_low) : l.left_px;
+    const double x_right = onAxis(b.x_high, l.x.log) ? l.xToPx(b.x_high) : l.right_px;
+    out += "<rect class=\"band\" x=\"" + px(x_left) + "\" y=\"" + px(y_top) + "\" width=\"" +
+           px(x_right - x_left) + "\" height=\"" + px(y_bottom - y_top) + "\" fill=\"" + escapeXml(b.colour) +
+           "\" fill-opacity=\"" + formatFixed(b.opacity, 3) + "\"/>\n";
   }
   for (const PlotLine& line : spec.lines) {
-    if (!std::isfinite(line.value)) continue;
+    const bool horizontal = line.orientation == LineOrientation::kHorizontal;
+    if (!onAxis(line.value, horizontal ? l.y.log : l.x.log)) continue;
     std::string coords;
     if (line.orientation == LineOrientation::kHorizontal) {
       const std::string y = px(l.yToPx(line.value));
@@ -313,7 +437,8 @@ std::string renderSvg(const PlotSpec& spec) {
   bool any_point = false;
   for (std::size_t si = 0; si < spec.series.size(); ++si) {
     const PlotSeries& s = spec.series[si];
-    if (s.marker != MarkerShape::kNone) {
+    renderErrorBars(out, s, si, l);
+    if (s.marker != MarkerShape::kNone && !s.joined) {
       any_point = renderMarkers(out, s, si, l) || any_point;
       continue;
     }
@@ -326,9 +451,9 @@ std::string renderSvg(const PlotSpec& spec) {
     std::vector<double> sx(s.x.size());
     std::vector<double> sy(s.y.size());
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]);
-      sx[i] = finite ? l.xToPx(s.x[i]) : kNan;
-      sy[i] = finite ? l.yToPx(s.y[i]) : kNan;
+      const bool shown = l.plottable(s.x[i], s.y[i]);
+      sx[i] = shown ? l.xToPx(s.x[i]) : kNan;
+      sy[i] = shown ? l.yToPx(s.y[i]) : kNan;
     }
     std::size_t i = 0;
     while (i < sx.size()) {
@@ -339,7 +464,9 @@ std::string renderSvg(const PlotSpec& spec) {
       std::size_t end = i;
       while (end < sx.size() && !std::isnan(sx[end])) ++end;
       any_point = true;
-      if (end - i == 1) {
+      if (end - i == 1 && s.marker != MarkerShape::kNone) {
+        // A joined marker series' lone point: its marker (drawn below) is the point.
+      } else if (end - i == 1) {
         out += "<circle class=\"point\" data-series=\"" + index + "\" cx=\"" + px(sx[i]) + "\" cy=\"" + px(sy[i]) +
                "\" r=\"2\" fill=\"" + colour + "\"" + opacity + "/>\n";
       } else {
@@ -350,12 +477,18 @@ std::string renderSvg(const PlotSpec& spec) {
         }
         out += "<polyline class=\"series\" data-series=\"" + index + "\" fill=\"none\" stroke=\"" + colour +
                "\" stroke-width=\"" + formatFixed(s.width_px, 2) + "\" stroke-linejoin=\"round\"" + opacity +
-               dashAttr(seriesDashed(s, si), "6 4") + " points=\"" + points + "\"/>\n";
+               seriesDash(s, si) + " points=\"" + points + "\"/>\n";
       }
       i = end;
     }
+    if (s.marker != MarkerShape::kNone) renderMarkers(out, s, si, l);
   }
   if (spec.equal_aspect && spec.track_markers) renderTrackMarkers(out, spec, l);
+  if (l.dropped_points > 0) {
+    out += "<text class=\"dropped-note\" x=\"" + px(l.left_px + 6.0) + "\" y=\"" + px(l.bottom_px - 6.0) +
+           "\" fill=\"#888888\" font-size=\"11\">" + std::to_string(l.dropped_points) +
+           " point(s) &lt;= 0 not shown on the log axis</text>\n";
+  }
   if (!any_point) {
     out += "<text class=\"no-data\" x=\"" + px(0.5 * (l.left_px + l.right_px)) + "\" y=\"" +
            px(0.5 * (l.top_px + l.bottom_px)) + "\" text-anchor=\"middle\" fill=\"#888888\">no data</text>\n";

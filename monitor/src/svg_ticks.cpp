@@ -14,6 +14,10 @@ namespace {
 
 constexpr double kTolerance = 1e-9;  // relative slack when snapping to 1-2-5 steps and tick multiples
 constexpr long long kMaxTicks = 1000;
+// A log axis spans at least a factor 3 (log10 3 decades): any such range holds two of 1..9 × 10^k, so it has ticks.
+const double kMinLogSpan = std::log10(3.0);
+// Room beside the extreme points of a log axis, as a fraction of its decades (a marker on the edge stays whole).
+constexpr double kLogPad = 0.05;
 
 
 Step next(Step s) {
@@ -172,6 +176,63 @@ AxisTicks niceTicks(double lo, double hi, int target_ticks) {
   return ticksFromStep(step, step.multiple(first), step.multiple(last));
 }
 
-std::string formatTick(double value, const AxisTicks& ticks) { return formatFixed(value, ticks.decimals); }
+std::string formatTick(double value, const AxisTicks& ticks) {
+  if (ticks.log && value > 0.0) {
+    // 0.05 needs 2 decimals, 20 none: the decimals of the value's own power of ten.
+    return formatFixed(value, std::max(0, -static_cast<int>(std::floor(std::log10(value) + kTolerance))));
+  }
+  return formatFixed(value, ticks.decimals);
+}
+
+double AxisTicks::fraction(double value) const {
+  if (!log) return (value - lo) / (hi - lo);
+  if (!(value > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return (std::log10(value) - std::log10(lo)) / (std::log10(hi) - std::log10(lo));
+}
+
+AxisTicks logTicks(double lo, double hi, int target_ticks) {
+  if (!(lo > 0.0) || !(hi > 0.0) || !std::isfinite(lo) || !std::isfinite(hi)) {
+    lo = 1.0;
+    hi = 10.0;
+  }
+  if (lo > hi) std::swap(lo, hi);
+  double a = std::log10(lo);
+  double b = std::log10(hi);
+  if (b - a < kMinLogSpan) {
+    const double mid = 0.5 * (a + b);
+    a = mid - 0.5 * kMinLogSpan;
+    b = mid + 0.5 * kMinLogSpan;
+  }
+  const double pad = kLogPad * (b - a);
+  AxisTicks t;
+  t.log = true;
+  t.step = 0.0;
+  t.lo = std::pow(10.0, a - pad);
+  t.hi = std::pow(10.0, b + pad);
+  // The first mantissa set with enough ticks inside; 1..9 always has 2 in a factor-3 range.
+  static const std::array<std::vector<int>, 3> kMantissas{
+      std::vector<int>{1}, std::vector<int>{1, 2, 5}, std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9}};
+  constexpr std::size_t kEnoughTicks = 3;
+  for (const std::vector<int>& mantissas : kMantissas) {
+    t.values.clear();
+    for (int e = static_cast<int>(std::floor(a - pad)) - 1; e <= static_cast<int>(std::ceil(b + pad)); ++e) {
+      for (const int m : mantissas) {
+        const double v = Step{m, e}.value();
+        if (v >= t.lo * (1.0 - kTolerance) && v <= t.hi * (1.0 + kTolerance)) t.values.push_back(v);
+      }
+    }
+    if (t.values.size() >= kEnoughTicks) break;
+  }
+  // Many decades: every k-th power of ten, so the labels do not run into each other.
+  const std::size_t most = 2 * static_cast<std::size_t>(std::max(target_ticks, 1));
+  if (t.values.size() > most) {
+    const std::size_t every = (t.values.size() + most - 1) / most;
+    std::vector<double> kept;
+    for (std::size_t i = 0; i < t.values.size(); i += every) kept.push_back(t.values[i]);
+    t.values = std::move(kept);
+  }
+  t.decimals = t.values.empty() ? 0 : std::max(0, -static_cast<int>(std::floor(std::log10(t.values.front()))));
+  return t;
+}
 
 }  // namespace swa::monitor
