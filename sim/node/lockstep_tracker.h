@@ -9,9 +9,13 @@
 //   - live agent, anything else (older, duplicate)  -> kIgnore;
 //   - dead agent, answer to this or the previous step's IMU -> kRejoin (apply it; the agent is live again and
 //     waited for from the next step on; it is done for this step if it answered this step);
-//   - dead agent, older answer (still catching up)  -> kIgnore.
-// complete(): every live agent with an IMU sample this step has answered. expire(): marks the live agents still
-// missing as dead and returns them. waitingForNewcomer(): one of the missing agents has never answered yet (it may
+//   - dead agent, older answer                      -> kIgnore; but if it answers a sample sent since it was
+//     declared dead, further on than any answer that did so before, it is alive and catching up: it is waited for
+//     (one agent timeout) like a live agent, so that it can reach the current step even when nobody else is alive
+//     and the steps would otherwise race ahead of it.
+// complete(): every live or catching-up agent with an IMU sample this step has answered. expire(): marks the live
+// agents still missing as dead and returns them; a catching-up agent still missing is left dead without a new event
+// (until it makes progress again). waitingForNewcomer(): one of the missing agents has never answered yet (it may
 // still be discovering the simulator: the node then waits up to the startup timeout, not the agent timeout).
 
 #include <optional>
@@ -44,6 +48,11 @@ class LockstepTracker {
   std::vector<bool> ever_answered_;
   std::vector<std::optional<agent::StampNs>> current_;
   std::vector<std::optional<agent::StampNs>> previous_;
+  std::vector<std::optional<agent::StampNs>> dead_since_;   // the stamp it did not answer
+  std::vector<std::optional<agent::StampNs>> caught_up_to_;  // the newest answer that earned a wait
+  std::vector<bool> catching_up_;
+
+  bool waitedFor(std::size_t i) const { return (alive_[i] || catching_up_[i]) && current_[i] && !answered_[i]; }
 };
 
 }  // namespace swa::sim_node

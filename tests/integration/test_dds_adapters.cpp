@@ -255,6 +255,49 @@ TEST(LockstepTracker, DeadAgentAnsweringTheCurrentStepIsDoneForIt) {
   EXPECT_TRUE(t.complete());
 }
 
+TEST(LockstepTracker, DeadAgentAnsweringAgainIsWaitedForUntilItCatchesUp) {
+  // GIVEN agent 1 declared dead at step 10, and steps going on with agent 0 alone
+  sim_node::LockstepTracker t(2);
+  t.begin({0, 0});
+  EXPECT_EQ(t.onAnswer(0, 0), sim_node::Verdict::kApply);
+  EXPECT_EQ(t.onAnswer(1, 0), sim_node::Verdict::kApply);
+  t.begin({10, 10});
+  EXPECT_EQ(t.onAnswer(0, 10), sim_node::Verdict::kApply);
+  EXPECT_EQ(t.expire(), (std::vector<int>{1}));
+  t.begin({20, 20});
+  EXPECT_EQ(t.onAnswer(0, 20), sim_node::Verdict::kApply);
+  // THEN an answer from before its death (a late packet) earns nothing: nobody is waited for
+  EXPECT_EQ(t.onAnswer(1, 0), sim_node::Verdict::kIgnore);
+  EXPECT_TRUE(t.complete());
+  t.begin({30, 30});
+  EXPECT_EQ(t.onAnswer(0, 30), sim_node::Verdict::kApply);
+  // WHEN it answers the step it missed: it runs again, two steps behind
+  EXPECT_EQ(t.onAnswer(1, 10), sim_node::Verdict::kIgnore);
+  // THEN it is still dead, but the step waits for it, as it would for a live agent
+  EXPECT_FALSE(t.alive(1));
+  EXPECT_FALSE(t.complete());
+  EXPECT_EQ(t.waitingFor(), (std::vector<int>{1}));
+  EXPECT_FALSE(t.waitingForNewcomer());  // it has answered before: the agent timeout applies
+  // AND when it does not make it within the timeout, it stays dead without being declared dead again
+  EXPECT_EQ(t.expire(), (std::vector<int>{}));
+  EXPECT_TRUE(t.complete());
+  // AND the same answer again earns no second wait; a newer one does
+  t.begin({40, 40});
+  EXPECT_EQ(t.onAnswer(0, 40), sim_node::Verdict::kApply);
+  EXPECT_EQ(t.onAnswer(1, 10), sim_node::Verdict::kIgnore);
+  EXPECT_TRUE(t.complete());
+  EXPECT_EQ(t.onAnswer(1, 20), sim_node::Verdict::kIgnore);
+  EXPECT_FALSE(t.complete());
+  // WHEN it catches up: the previous step's answer rejoins it, this step's completes the step
+  t.begin({50, 50});
+  EXPECT_EQ(t.onAnswer(0, 50), sim_node::Verdict::kApply);
+  EXPECT_EQ(t.onAnswer(1, 40), sim_node::Verdict::kRejoin);
+  EXPECT_TRUE(t.alive(1));
+  EXPECT_FALSE(t.complete());
+  EXPECT_EQ(t.onAnswer(1, 50), sim_node::Verdict::kApply);
+  EXPECT_TRUE(t.complete());
+}
+
 // ---- Command lines ---------------------------------------------------------------------------------------------
 
 TEST(AgentOptions, ParsesEveryOption) {

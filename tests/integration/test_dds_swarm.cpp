@@ -409,11 +409,24 @@ TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {
   const std::string summary = readFile(dir_ / "summary.json");
   std::cout << summary;
   // THEN both were declared dead, the stalled one rejoined, the crashed one is dead at the end and its UAV
-  // fell back to the failsafe
+  // fell back to the failsafe. On a busy host a 0.3 s timeout may also be missed by an agent that only ran late
+  // (in CI once every live agent did, right after the stalled one resumed): such an agent rejoins, so the exact
+  // claim is about the order of each agent's events, not their number.
   EXPECT_GE(monitor_->count(msg::EVENT_AGENT_DEAD, 2), 1) << logs();
   EXPECT_GE(monitor_->count(msg::EVENT_AGENT_REJOINED, 2), 1) << logs();
-  EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD, 3), 1) << logs();
-  EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_REJOINED, 3), 0);
+  for (int uav = 0; uav < 4; ++uav) {
+    // Each agent's deaths and rejoins alternate, starting with a death; only the crashed one ends dead.
+    std::vector<msg::EventKind> life;
+    for (const msg::ScenarioEvent& e : monitor_->events()) {
+      const bool about_life = e.kind() == msg::EVENT_AGENT_DEAD || e.kind() == msg::EVENT_AGENT_REJOINED;
+      if (about_life && e.uav_id() == uav) life.push_back(e.kind());
+    }
+    for (std::size_t k = 0; k < life.size(); ++k) {
+      const msg::EventKind expected = k % 2 == 0 ? msg::EVENT_AGENT_DEAD : msg::EVENT_AGENT_REJOINED;
+      EXPECT_EQ(life[k], expected) << "UAV " << uav << " event " << k;
+    }
+    EXPECT_EQ(life.size() % 2 == 1, uav == 3) << "UAV " << uav << ": " << life.size() << " event(s)\n" << logs();
+  }
   EXPECT_GE(monitor_->count(msg::EVENT_FAILSAFE, 3), 1);
   EXPECT_EQ(nlohmann::json::parse(summary)["dead_at_end"], nlohmann::json::array({3})) << summary;
   ASSERT_FALSE(monitor_->truth().empty());
