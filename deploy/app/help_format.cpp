@@ -145,8 +145,9 @@ std::string reflow(const std::string& text, std::size_t width) {
     const std::size_t marker = markerLength(line, indent);
     const std::size_t column = marker == 0 ? definitionColumn(line, indent) : 0;
     Paragraph* open = paragraphs.empty() ? nullptr : &paragraphs.back();
-    const bool new_sentence = open != nullptr && open->lines > 0 && std::isupper(static_cast<unsigned char>(line[indent])) != 0 &&
-                              (open->text.back() == '.' || open->text.back() == ':');
+    const bool capital = std::isupper(static_cast<unsigned char>(line[indent])) != 0;
+    const bool new_sentence =
+        open != nullptr && open->lines > 0 && capital && (open->text.back() == '.' || open->text.back() == ':');
     const bool wrapped = open != nullptr && open->lines > 0 && open->last_line > width &&
                          open->last_line <= kOldLineWidth && marker == 0 && column == 0 && !new_sentence;
     const bool hanging = wrapped && open->lines == 1 && indent > open->indent;
