@@ -1,13 +1,18 @@
 #!/usr/bin/env bash
-# Every command README.md and deploy/README.md give a reader runs (issue #30, "docs that run"):
+# Every command the READMEs give a reader runs (issue #30, "docs that run"):
 #   test_doc_commands.sh BIN_DIR BUILD_DIR
-# The commands are the lines of their ```sh blocks (a line ending in '\' goes on; "a; b" and "a && b" are two
-# commands; a trailing "# ..." is a comment). Each is run in order, as written, in a scratch folder that holds the
+# The READMEs: README.md, deploy/README.md, deploy/containers/README.md, deploy/dds/README.md (BENCHMARKS.md is a
+# record of measurements, each with the command that made it at its commit, not instructions). The commands are the
+# lines of their ```sh blocks (a line ending in '\' goes on; "a; b" and "a && b" are two commands; a trailing
+# "# ..." is a comment); a block with a loop or a background job ('&') is one script, run whole. Each is run in
+# order, as written, in a scratch folder that holds the
 # source tree's deploy/ and BIN_DIR as build/bin (BIN_DIR also first on PATH), so every file a command writes lands
 # there. How each command runs is decided by plan_of below; a command it does not know fails the test, so a new
 # command in the docs needs a line there. The kinds:
 #   run S      run it and expect exit status S, shortened: swa_launch and swa_batch get --set duration_s=3 (a later
 #              --set wins), --live PORT becomes --live 0 (a free port), --domain D this test's own domain
+#   script     a whole block, run as one script, expecting exit 0: duration_s=N becomes 3, SWA_DOMAIN=N this test's
+#              domain, and files under /tmp/ go into the scratch folder
 #   dry        a cluster or containers: run it with --dry-run appended (checks every argument and the scenario)
 #   ctest      the tests a ctest selection names: listed (ctest -N with the same selection), at least one
 #   ci FILE    the command is the test command or part of it: FILE must run it, and CI runs FILE
@@ -47,24 +52,45 @@ mkdir -p "$work/build"
 ln -s "$root/deploy" "$work/deploy"
 ln -s "$bin" "$work/build/bin"
 
-# The commands of one markdown file: "FILE:LINE<TAB>COMMAND" per command.
+# The commands of one markdown file: "FILE:LINE<TAB>COMMAND" per command; a script block is one record, its lines
+# joined by the ASCII unit separator (\037).
 commands_of() {
   awk -v file="$1" '
-    /^```/ { if (inside) { inside = 0 } else if ($0 ~ /^```sh[[:space:]]*$/) { inside = 1 } next }
+    function emit_block(   k, line, start, pending, n, parts, c, j, body) {
+      if (script) {
+        body = lines[1]
+        for (k = 2; k <= count; ++k) body = body "\037" lines[k]
+        printf "%s:%d\tscript:%s\n", file, first, body
+        return
+      }
+      pending = ""
+      for (k = 1; k <= count; ++k) {
+        line = lines[k]
+        if (pending != "") { line = pending " " line } else { start = first + k - 1 }
+        if (line ~ /\\[[:space:]]*$/) { sub(/\\[[:space:]]*$/, "", line); pending = line; continue }
+        pending = ""
+        sub(/[[:space:]]+#.*$/, "", line)          # a trailing comment
+        if (line ~ /^[[:space:]]*(#|$)/) continue  # a comment line or nothing
+        n = split(line, parts, /[[:space:]]*(;|&&)[[:space:]]+/)
+        for (j = 1; j <= n; ++j) {
+          c = parts[j]; gsub(/^[[:space:]]+|[[:space:]]+$/, "", c); gsub(/[[:space:]]+/, " ", c)
+          if (c != "") printf "%s:%d\t%s\n", file, start, c
+        }
+      }
+    }
+    /^```/ {
+      if (inside) { inside = 0; emit_block() }
+      else if ($0 ~ /^```sh[[:space:]]*$/) { inside = 1; script = 0; count = 0; first = NR + 1 }
+      next
+    }
     !inside { next }
     {
-      line = $0
-      if (pending != "") { line = pending " " line } else { start = NR }
-      if (line ~ /\\[[:space:]]*$/) { sub(/\\[[:space:]]*$/, "", line); pending = line; next }
-      pending = ""
-      sub(/[[:space:]]+#.*$/, "", line)          # a trailing comment
-      if (line ~ /^[[:space:]]*(#|$)/) next      # a comment line or nothing
-      n = split(line, parts, /[[:space:]]*(;|&&)[[:space:]]+/)
-      for (k = 1; k <= n; ++k) {
-        c = parts[k]; gsub(/^[[:space:]]+|[[:space:]]+$/, "", c); gsub(/[[:space:]]+/, " ", c)
-        if (c != "") printf "%s:%d\t%s\n", file, start, c
-      }
-    }' "$root/$1"
+      lines[++count] = $0
+      code = $0
+      sub(/[[:space:]]+#.*$/, "", code)
+      if (code ~ /(^|[;[:space:]])for[[:space:]]|&[[:space:]]*(done|$)/) script = 1
+    }
+  ' "$root/$1"
 }
 
 # How a command is checked (see the top of this file).
@@ -82,6 +108,9 @@ plan_of() {
     "bash deploy/security/make-credentials.sh "*) echo "run 0" ;;
     "deploy/slurm/submit-study.sh "* | "bash deploy/containers.sh "*) echo dry ;;
     "fast-discovery-server "*) echo daemon ;;
+    script:*) echo script ;;
+    "export CONTAINERS_CONF="*) echo "names containers-conf" ;;
+    "SWA_RUN_DIR="*"podman-compose "* | "podman wait "*) echo "names podman" ;;
     "squeue "*) echo "names slurm" ;;
     "podman run "*) echo "names podman" ;;
     "colcon "* | "source install/setup.bash" | "export ROS_DOMAIN_ID="* | "ros2 "*) echo "names ros2" ;;
@@ -114,10 +143,20 @@ check_names() {
   local what=$1 command=$2
   case $what in
     slurm) grep -q "squeue" "$root/deploy/slurm/submit-study.sh" || fail "submit-study.sh no longer mentions squeue" ;;
+    containers-conf) [ -f "$root/deploy/containers/containers.conf" ] || fail "'$command': no such file" ;;
     podman)
-      local image var
-      image=$(grep -oE 'localhost/swa-[a-z]+:latest' <<<"$command")
-      [[ $image =~ swa-(agent|sim|monitor|bridge|batch): ]] || fail "'$command': image $image is not one containers.sh builds"
+      local image var file
+      image=$(grep -oE 'localhost/swa-[a-z]+:latest' <<<"$command" || true)
+      if [ -n "$image" ]; then
+        [[ $image =~ swa-(agent|sim|monitor|bridge|batch): ]] || fail "'$command': image $image is not one containers.sh builds"
+      fi
+      # shellcheck disable=SC2013  # words: the paths
+      for file in $(grep -oE 'deploy/[^ ]+' <<<"$command"); do
+        [ -e "$root/$file" ] || fail "'$command': $file does not exist"
+      done
+      if [[ $command == "podman wait "* ]]; then
+        grep -q "^  monitor:" "$root/deploy/containers/compose.yaml" || fail "'$command': compose.yaml has no service monitor"
+      fi
       # shellcheck disable=SC2013  # words: the variable names
       for var in $(grep -oE -- '-e [A-Z_]+=' <<<"$command" | sed -E 's/-e ([A-Z_]+)=/\1/'); do
         grep -rq "$var" "$root/deploy/containers/swa-entrypoint" "$root/deploy/dds" "$root/deploy/README.md" ||
@@ -202,12 +241,21 @@ while IFS=$'\t' read -r -u 3 where command; do
       [ "$started" -eq 1 ] || fail "$where: '$command' did not stay up:"$'\n'"$(tail -n 20 "$work/daemon.log")"
       log "ok (up for 2 s): $run"
       ;;
+    script)
+      body=$(tr '\037' '\n' <<<"${command#script:}" |
+        sed -E "s/duration_s=[0-9]+/duration_s=3/g; s/SWA_DOMAIN=[0-9]+/SWA_DOMAIN=$TEST_DOMAIN/g; s#/tmp/#$work/tmp/#g")
+      mkdir -p "$work/tmp"
+      status=0
+      (cd "$work" && timeout 120 bash -e -c "$body") </dev/null >"$work/command.log" 2>&1 || status=$?
+      [ "$status" -eq 0 ] || fail "$where: the block exits $status:"$'\n'"$body"$'\n'"$(tail -n 20 "$work/command.log")"
+      log "ok (exit 0): the block of $where"
+      ;;
     names)
       check_names "$arg" "$command"
       log "ok (not run; the names it uses checked): $command"
       ;;
   esac
   ran=$((ran + 1))
-done 3< <(commands_of README.md; commands_of deploy/README.md)
+done 3< <(for doc in README.md deploy/README.md deploy/containers/README.md deploy/dds/README.md; do commands_of "$doc"; done)
 [ "$ran" -gt 20 ] || fail "only $ran command(s) found in the docs (the extraction is broken)"
 log "PASS: $ran documented commands"
