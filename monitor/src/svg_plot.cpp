@@ -144,7 +144,9 @@ DataRanges dataRanges(const PlotSpec& spec) {
       const double e = i < s.y_err.size() ? s.y_err[i] : kNan;
       if (!(e > 0.0) || !std::isfinite(e)) continue;
       r.y.add(s.y[i] + e);
-      if (onAxis(s.y[i] - e, spec.y_log)) r.y.add(s.y[i] - e);
+      // On a log axis a bar reaching near 0 would stretch the axis over decades no point needs: its lower end counts
+      // down to a decade below its point, and reaches on to the plot's edge.
+      if (onAxis(s.y[i] - e, spec.y_log)) r.y.add(spec.y_log ? std::max(s.y[i] - e, s.y[i] / 10.0) : s.y[i] - e);
     }
   }
   if (spec.equal_aspect) return r;

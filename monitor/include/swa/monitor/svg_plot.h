@@ -95,8 +95,8 @@ struct PlotSeries {
   bool joined = false;  // with a marker: the points are also joined by a line, as a line series' are
   std::vector<std::string> point_labels;  // with a marker: text beside point i; empty, or one per point
   // A vertical error bar y[i] ± y_err[i] at point i (NaN or <= 0: none); empty, or one per point. The bars' ends
-  // count in the automatic y range, so no bar is cut off; on a log axis a bar reaching 0 or below is drawn down to
-  // the bottom of the plot (its lower end is not a value the axis can show).
+  // count in the automatic y range, so no bar is cut off; on a log axis a lower end counts down to a decade below its
+  // point, and a bar reaching further (or to 0 or below) is drawn down to the bottom of the plot.
   std::vector<double> y_err;
 };
 
