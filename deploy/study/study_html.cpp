@@ -1,177 +1,131 @@
 #include "study_html.h"
 
-#include <cmath>
-#include <map>
-#include <optional>
+#include <string_view>
 #include <vector>
 
+#include "study_plots.h"
+#include "swa/monitor/report_html.h"
 #include "swa/monitor/svg_plot.h"
 
 namespace swa::study {
 namespace {
 
-struct Metric {
-  const char* key;
-  const char* label;
-  const char* unit;
-};
-// What a study is usually about (DESIGN §5): cohesion, drift, safety, estimator consistency.
-constexpr Metric kMetrics[] = {
-    {"mean_neighbor_distance_m", "d_NB (final)", "m"},
-    {"drift_velocity_mps", "drift velocity", "m/s"},
-    {"min_separation_m", "minimum separation", "m"},
-    {"collisions", "collisions", ""},
-    {"formation_error_m", "formation error", "m"},
-    {"anees_position", "ANEES (position)", ""},
-};
+std::string esc(std::string_view text) { return monitor::escapeXml(text); }
 
-std::optional<double> numberOf(const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  return std::nullopt;
-}
-
-double valueOf(const RunRow& run, const char* key) {
-  for (const monitor::NamedValue& m : run.metrics) {
-    if (m.key == key) return m.value;
-  }
-  return monitor::kNaN;
-}
-
-struct Stats {
-  double mean = monitor::kNaN, std = monitor::kNaN;
-};
-
-// Mean and sample standard deviation of the finite values.
-Stats stats(const std::vector<double>& values) {
-  double sum = 0.0;
-  int n = 0;
-  for (const double v : values) {
-    if (std::isfinite(v)) {
-      sum += v;
-      ++n;
-    }
-  }
-  Stats s;
-  if (n == 0) return s;
-  s.mean = sum / n;
-  double sq = 0.0;
-  for (const double v : values) {
-    if (std::isfinite(v)) sq += (v - s.mean) * (v - s.mean);
-  }
-  s.std = n > 1 ? std::sqrt(sq / (n - 1)) : 0.0;
-  return s;
-}
-
-std::string plot(const StudyRecord& s, std::size_t axis, const Metric& metric) {
-  const StudyPlan& plan = s.plan;
-  const Axis& a = plan.axes[axis];
-  bool numeric = true;
-  for (const std::string& v : a.values) numeric = numeric && numberOf(v).has_value();
-  // Values per grid point, then grouped by the other keys' values (the series) and this key's value (the x).
-  std::map<std::size_t, std::vector<double>> by_point;
-  for (const RunRow& r : s.runs) by_point[r.point].push_back(valueOf(r, metric.key));
-  // One series per combination of the other keys' values, in the order the values were given (a point's index
-  // along every other axis); each maps this key's value index to the stats there.
-  struct Series {
-    std::string label;
-    std::map<std::size_t, Stats> points;
-  };
-  std::map<std::vector<std::size_t>, Series> series;
-  for (const auto& [point, values] : by_point) {
-    std::vector<std::size_t> index(plan.axes.size());
-    std::size_t rest = point;
-    for (std::size_t k = plan.axes.size(); k-- > 0;) {
-      index[k] = rest % plan.axes[k].values.size();
-      rest /= plan.axes[k].values.size();
-    }
-    const std::size_t x = index[axis];
-    index[axis] = 0;
-    Series& line = series[index];
-    if (line.label.empty()) {
-      for (std::size_t k = 0; k < plan.axes.size(); ++k) {
-        if (k == axis) continue;
-        line.label += (line.label.empty() ? "" : ", ") + plan.axes[k].key + "=" + plan.axes[k].values[index[k]];
-      }
-      if (line.label.empty()) line.label = metric.label;
-    }
-    line.points[x] = stats(values);
-  }
-  monitor::PlotSpec spec;
-  spec.title = std::string(metric.label) + " against " + a.key;
-  spec.x_label = a.key;
-  spec.y_label = metric.label;
-  spec.y_unit = metric.unit;
-  spec.width_px = 640;
-  spec.height_px = 300;
-  std::size_t colour = 0;
-  for (const auto& [index, one] : series) {
-    const std::map<std::size_t, Stats>& points = one.points;
-    monitor::PlotSeries mean;
-    mean.label = one.label;
-    mean.colour = monitor::paletteColour(colour);
-    mean.width_px = 2.0;
-    monitor::PlotSeries high;
-    high.colour = mean.colour;
-    high.dashed = true;
-    high.width_px = 1.0;
-    high.opacity = 0.5;
-    monitor::PlotSeries low = high;
-    for (const auto& [x, st] : points) {
-      const double xv = numeric ? *numberOf(a.values[x]) : static_cast<double>(x);
-      mean.x.push_back(xv);
-      mean.y.push_back(st.mean);
-      high.x.push_back(xv);
-      high.y.push_back(st.mean + st.std);
-      low.x.push_back(xv);
-      low.y.push_back(st.mean - st.std);
-    }
-    spec.series.push_back(std::move(mean));
-    spec.series.push_back(std::move(high));
-    spec.series.push_back(std::move(low));
-    ++colour;
-  }
-  std::string out = monitor::renderSvg(spec);
-  if (!numeric) {
-    out += "<p class=\"note\">" + monitor::escapeXml(a.key) + ": ";
-    for (std::size_t j = 0; j < a.values.size(); ++j) {
-      out += (j ? ", " : "") + std::to_string(j) + " = " + monitor::escapeXml(a.values[j]);
-    }
-    out += "</p>\n";
+// "a", "a and b", "a, b and c".
+std::string listed(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) out += i + 1 == items.size() ? " and " : ", ";
+    out += items[i];
   }
   return out;
 }
 
+// The scenario file's name without its directory and extension: what a reader calls it.
+std::string scenarioName(const std::string& path) {
+  std::string name = path.substr(path.find_last_of('/') + 1);  // npos + 1 == 0: no directory
+  for (const std::string_view ext : {".yaml", ".yml"}) {
+    if (name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0) {
+      name.resize(name.size() - ext.size());
+      break;
+    }
+  }
+  return name.empty() ? path : name;
+}
+
+// A swept key as the title names it; the variants by their names.
+std::string axisName(const Axis& a) {
+  if (a.key != kVariantAxis) return a.key;
+  return "variants " + listed(a.values);
+}
+
+std::string infoTable(const StudyRecord& s) {
+  std::string html = "<table class=\"info\">\n";
+  const auto row = [&html](const std::string& key, const std::string& value) {
+    html += "<tr><th>" + esc(key) + "</th><td>" + esc(value) + "</td></tr>\n";
+  };
+  row("scenario", s.scenario);
+  row("study id", s.study_id);
+  row("version", s.version);
+  for (const Axis& a : s.plan.axes) {
+    std::string text;
+    for (const std::string& v : a.values) text += (text.empty() ? "" : ", ") + v;
+    row("swept " + a.key, text);
+  }
+  for (const Variant& v : s.plan.variants) {
+    std::string text;
+    for (const std::string& o : v.overrides) text += (text.empty() ? "" : ", ") + o;
+    row("variant " + v.name, text);
+  }
+  row("seeds", std::to_string(s.first_seed) + " .. " +
+                   std::to_string(s.first_seed + static_cast<std::uint64_t>(s.plan.seeds) - 1) + " (" +
+                   std::to_string(s.plan.seeds) + " per grid point, " + std::to_string(s.runs.size()) + " runs)");
+  return html + "</table>\n";
+}
+
+std::string figure(const StudyPlot& plot) {
+  std::string html = "<figure>\n" + monitor::renderSvg(plot.spec);
+  if (!plot.notes.empty()) {
+    std::string notes;
+    for (const std::string& n : plot.notes) notes += (notes.empty() ? "" : " ") + n;
+    html += "<figcaption class=\"note\">" + esc(notes) + "</figcaption>\n";
+  }
+  return html + "</figure>\n";
+}
+
+// Metric `m`'s numbers: one row per grid point, its values, then mean, standard deviation and seeds with a value.
+std::string numbersTable(const StudyView& view, const StudyMetric& m) {
+  const StudyPlan& plan = view.study.plan;
+  std::string html = "<h3>" + esc(m.label) + (*m.unit ? " [" + esc(m.unit) + "]" : std::string()) +
+                     "</h3>\n<table class=\"numbers\" data-metric=\"" + esc(m.key) + "\">\n<thead><tr>";
+  for (const Axis& a : plan.axes) html += "<th>" + esc(a.key) + "</th>";
+  html += "<th>mean</th><th>sd</th><th>n</th></tr></thead>\n<tbody>\n";
+  for (std::size_t point = 0; point < pointCount(plan); ++point) {
+    const Stats st = statsOf(view.values(point, m.key));
+    html += "<tr>";
+    for (const std::string& v : pointValues(plan, point)) html += "<td>" + esc(v) + "</td>";
+    html += "<td class=\"num\">" + esc(monitor::formatReportValue(st.mean)) + "</td><td class=\"num\">" +
+            esc(monitor::formatReportValue(st.n > 1 ? st.std : monitor::kNaN)) + "</td><td class=\"num\">" +
+            std::to_string(st.n) + "</td></tr>\n";
+  }
+  return html + "</tbody>\n</table>\n";
+}
+
+constexpr const char* kStyle =
+    "body{font-family:sans-serif;margin:2em;color:#1d2430;max-width:60em}h2{margin-top:2em}"
+    ".note{color:#555;font-size:90%}figure{margin:1.5em 0}figcaption{max-width:760px}\n"
+    "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;text-align:left}"
+    "td.num{text-align:right;font-variant-numeric:tabular-nums}\n";
+
 }  // namespace
 
+std::string studyTitle(const StudyRecord& s) {
+  std::vector<std::string> keys;
+  for (const Axis& a : s.plan.axes) keys.push_back(axisName(a));
+  return "Formation, drift, safety and consistency against " + listed(keys) + " — scenario " +
+         scenarioName(s.scenario);
+}
+
 std::string studyHtml(const StudyRecord& s) {
-  std::string html = R"(<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>SWA study )" +
-                     monitor::escapeXml(s.study_id) + R"(</title>
-<style>body{font-family:sans-serif;margin:2em;color:#1d2430}h2{margin-top:2em}.note{color:#555;font-size:90%}
-table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;text-align:left}</style></head><body>
-)";
-  html += "<h1>SWA study " + monitor::escapeXml(s.study_id) + "</h1>\n<table>\n";
-  html += "<tr><th>scenario</th><td>" + monitor::escapeXml(s.scenario) + "</td></tr>\n";
-  html += "<tr><th>version</th><td>" + monitor::escapeXml(s.version) + "</td></tr>\n";
-  for (const Axis& a : s.plan.axes) {
-    std::string values;
-    for (const std::string& v : a.values) values += (values.empty() ? "" : ", ") + v;
-    html += "<tr><th>swept " + monitor::escapeXml(a.key) + "</th><td>" + monitor::escapeXml(values) + "</td></tr>\n";
-  }
-  html += "<tr><th>seeds</th><td>" + std::to_string(s.first_seed) + " .. " +
-          std::to_string(s.first_seed + static_cast<std::uint64_t>(s.plan.seeds) - 1) + " (" +
-          std::to_string(s.plan.seeds) + " per grid point, " + std::to_string(s.runs.size()) + " runs)</td></tr>\n";
-  html += "</table>\n<p class=\"note\">Solid: the mean over the seeds at each value; dashed: mean ± one standard "
-          "deviation. runs.csv has every run.</p>\n";
+  const StudyView view(s);
+  const std::string title = esc(studyTitle(s));
+  std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + title +
+                     "</title>\n<style>" + kStyle + "</style></head><body>\n<h1>" + title + "</h1>\n";
+  html += infoTable(s);
+  html +=
+      "<p class=\"note\">Markers: the mean over the seeds at each grid point; bars: ± one standard deviation of the "
+      "single runs (the spread of a run, not the uncertainty of the mean). Where several series share a value, their "
+      "markers are drawn a little apart so that equal values stay visible; each belongs at the value under the "
+      "group. The numbers are at the end; runs.csv has every run, points/&lt;k&gt;/summary.json every grid point's "
+      "aggregate.</p>\n";
   for (std::size_t axis = 0; axis < s.plan.axes.size(); ++axis) {
-    html += "<h2>Against " + monitor::escapeXml(s.plan.axes[axis].key) + "</h2>\n";
-    for (const Metric& m : kMetrics) html += plot(s, axis, m);
+    html += "<h2>Against " + esc(axisName(s.plan.axes[axis])) + "</h2>\n";
+    for (const StudyMetric& m : studyMetrics()) html += figure(studyPlot(view, axis, m));
   }
+  html += "<h2 id=\"numbers\">The numbers</h2>\n<p class=\"note\">Per grid point: the mean over its seeds, the sample "
+          "standard deviation (— with fewer than two) and n, the seeds with a value.</p>\n";
+  for (const StudyMetric& m : studyMetrics()) html += numbersTable(view, m);
   html += "</body></html>\n";
   return html;
 }
