@@ -21,7 +21,8 @@ collisions, failsafe).
 
 A study: --sweep KEY=V1,V2,... (any scenario key, as --set takes it; repeat for more keys) runs every combination
 of the values (the grid) for every seed, on every core unless --jobs says otherwise, with a progress line and ETA.
-It writes into DIR: runs.csv (tidy: one row per run, the swept keys, seed, and every summary metric; pandas and R
+It writes into DIR: study.html (read it first: each key metric plotted against each swept key, and the mean ± sd
+of every grid point), runs.csv (tidy: one row per run, the swept keys, seed, and every summary metric; pandas and R
 read it as is), points/<k>/summary.json (per grid point: its values and the aggregate over its seeds), and
 study.json (the study id, version, plan, base scenario, every run). --shard I/N runs only the runs whose index
 (point * seeds + seed offset) is I - 1 modulo N and writes only study.json; `swa_batch merge SHARD_DIR... --out DIR`

@@ -197,8 +197,10 @@ int runStudy(const BatchOptions& o, const PreparedStudy& prepared, int jobs, con
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (record.shard.whole()) {
     study::writeStudy(o.out_dir, record);
+    // The page to open first, on a line of its own: the last thing the console shows.
     std::printf("swa_batch: %zu runs in %s; wrote %s/runs.csv, %s/points/, %s/study.json\n", record.runs.size(),
                 duration(wall).c_str(), o.out_dir.c_str(), o.out_dir.c_str(), o.out_dir.c_str());
+    std::printf("swa_batch: study: %s/study.html\n", o.out_dir.c_str());
   } else {
     study::writeShard(o.out_dir, record);
     std::printf("swa_batch: shard %d/%d: %zu runs in %s; wrote %s/study.json (swa_batch merge the shards)\n",
@@ -217,6 +219,7 @@ int runMerge(const BatchOptions& o) {
     study::writeStudy(o.out_dir, merged);
     std::printf("swa_batch: merged %zu shard(s) of study %s: %zu runs into %s\n", shards.size(),
                 merged.study_id.c_str(), merged.runs.size(), o.out_dir.c_str());
+    std::printf("swa_batch: study: %s/study.html\n", o.out_dir.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "swa_batch merge: %s\n", e.what());
