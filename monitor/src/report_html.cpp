@@ -37,6 +37,9 @@ const char* kStyle =
     "table.data th,table.data td{border:1px solid #ddd;padding:3px 10px;text-align:left}\n"
     "table.data thead th{background:#f2f2f2}\n"
     "table.data tbody tr:nth-child(even){background:#fafafa}\n"
+    "dl.verdicts{display:grid;grid-template-columns:max-content auto;gap:2px 16px;font-size:1.1em}\n"
+    "dl.verdicts dt{font-weight:bold}\n"
+    "dl.verdicts dd{margin:0}\n"
     "figure{margin:16px 0}\n"
     "figure>svg{max-width:100%;height:auto;border:1px solid #eee}\n"
     "figcaption{font-size:13px;color:#555;max-width:720px}\n"
@@ -79,28 +82,46 @@ void appendTable(std::string& out, const ReportTable& table, std::size_t index) 
   out += "</tbody>\n</table>\n</section>\n";
 }
 
-}  // namespace
-
-std::string formatReportValue(double value) {
-  if (!std::isfinite(value)) return "—";
-  if (value == std::floor(value) && std::fabs(value) < 1e15) return formatFixed(value, 0);
-  std::array<char, 64> buf{};
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::general, 5);
-  return r.ec == std::errc() ? std::string(buf.data(), r.ptr) : std::string("—");
+// Each run's verdict (PASS/FAIL/INCOMPLETE and its reasons), under the title.
+void appendVerdicts(std::string& out, const std::vector<RunReport>& runs) {
+  out += "<section id=\"verdict\">\n<h2>Verdict</h2>\n";
+  if (runs.empty()) {
+    out += "<p>No runs.</p>\n</section>\n";
+    return;
+  }
+  out += "<dl class=\"verdicts\">\n";
+  for (const RunReport& run : runs) {
+    out += "<dt>";
+    appendText(out, run.label);
+    out += "</dt><dd class=\"verdict\">";
+    appendText(out, orDash(run.verdict));
+    out += "</dd>\n";
+  }
+  out += "</dl>\n</section>\n";
 }
 
-std::string renderReportHtml(const std::vector<RunReport>& runs, const ReportNotes& notes) {
-  std::string out;
-  out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
-  out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>";
-  appendText(out, notes.title);
-  out += "</title>\n<style>\n";
-  out += kStyle;
-  out += "</style>\n</head>\n<body>\n<h1>";
-  appendText(out, notes.title);
-  out += "</h1>\n";
+// The time plots compare the runs; the trajectory plots sit side by side.
+void appendPlots(std::string& out, const std::vector<RunReport>& runs, const ReportNotes& notes) {
+  const std::vector<ReportPlot> plots = reportPlots(runs, notes);
+  const auto figure = [&out](const ReportPlot& p) {
+    out += "<figure id=\"plot-";
+    appendText(out, p.name);
+    out += "\">\n";
+    out += renderSvg(p.spec);
+    out += "<figcaption>";
+    appendText(out, p.caption);
+    out += "</figcaption>\n</figure>\n";
+  };
+  const std::size_t time_plots = plots.size() - runs.size();
+  out += "<section id=\"plots\">\n<h2>Time series</h2>\n";
+  for (std::size_t i = 0; i < time_plots; ++i) figure(plots[i]);
+  out += "</section>\n";
+  out += "<section id=\"trajectories\">\n<h2>Trajectories</h2>\n<div class=\"trajectories\">\n";
+  for (std::size_t i = time_plots; i < plots.size(); ++i) figure(plots[i]);
+  out += "</div>\n</section>\n";
+}
 
-  // Notes.
+void appendNotes(std::string& out, const std::vector<RunReport>& runs, const ReportNotes& notes) {
   out += "<section id=\"notes\">\n<h2>Notes</h2>\n<dl class=\"notes\">\n";
   std::string seeds;
   for (const std::uint64_t s : notes.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
@@ -124,58 +145,66 @@ std::string renderReportHtml(const std::vector<RunReport>& runs, const ReportNot
     }
   }
   out += "</dl>\n</section>\n";
+}
 
-  // Summary table: one column per run, one row per summaryFields key.
+// One column per run, one row per summaryFields key (the verdict again on top, beside the numbers it judged).
+void appendSummary(std::string& out, const std::vector<RunReport>& runs) {
   out += "<section id=\"summary\">\n<h2>Summary</h2>\n";
   if (runs.empty()) {
-    out += "<p>No runs.</p>\n";
-  } else {
-    out += "<table class=\"summary\">\n<thead><tr><th scope=\"col\">metric</th>";
-    for (const RunReport& run : runs) {
-      out += "<th scope=\"col\">";
-      appendText(out, run.label);
-      out += "</th>";
-    }
-    out += "</tr></thead>\n<tbody>\n<tr><th scope=\"row\">verdict</th>";
-    for (const RunReport& run : runs) {
-      out += "<td class=\"verdict\">";
-      appendText(out, orDash(run.verdict));
-      out += "</td>";
-    }
-    out += "</tr>\n";
-    std::vector<std::vector<NamedValue>> fields;
-    for (const RunReport& run : runs) fields.push_back(summaryFields(run.summary));
-    for (std::size_t k = 0; k < fields.front().size(); ++k) {
-      out += "<tr><th scope=\"row\">";
-      appendText(out, fields.front()[k].key);
-      out += "</th>";
-      for (const std::vector<NamedValue>& f : fields)
-        out += "<td>" + escapeXml(formatReportValue(f[k].value)) + "</td>";
-      out += "</tr>\n";
-    }
-    out += "</tbody>\n</table>\n";
+    out += "<p>No runs.</p>\n</section>\n";
+    return;
   }
-  out += "</section>\n";
-  for (std::size_t t = 0; t < notes.tables.size(); ++t) appendTable(out, notes.tables[t], t);
+  out += "<table class=\"summary\">\n<thead><tr><th scope=\"col\">metric</th>";
+  for (const RunReport& run : runs) {
+    out += "<th scope=\"col\">";
+    appendText(out, run.label);
+    out += "</th>";
+  }
+  out += "</tr></thead>\n<tbody>\n<tr><th scope=\"row\">verdict</th>";
+  for (const RunReport& run : runs) {
+    out += "<td class=\"verdict\">";
+    appendText(out, orDash(run.verdict));
+    out += "</td>";
+  }
+  out += "</tr>\n";
+  std::vector<std::vector<NamedValue>> fields;
+  for (const RunReport& run : runs) fields.push_back(summaryFields(run.summary));
+  for (std::size_t k = 0; k < fields.front().size(); ++k) {
+    out += "<tr><th scope=\"row\">";
+    appendText(out, fields.front()[k].key);
+    out += "</th>";
+    for (const std::vector<NamedValue>& f : fields) out += "<td>" + escapeXml(formatReportValue(f[k].value)) + "</td>";
+    out += "</tr>\n";
+  }
+  out += "</tbody>\n</table>\n</section>\n";
+}
 
-  // Plots: the time plots compare the runs; the trajectory plots sit side by side.
-  const std::vector<ReportPlot> plots = reportPlots(runs, notes);
-  const auto figure = [&out](const ReportPlot& p) {
-    out += "<figure id=\"plot-";
-    appendText(out, p.name);
-    out += "\">\n";
-    out += renderSvg(p.spec);
-    out += "<figcaption>";
-    appendText(out, p.caption);
-    out += "</figcaption>\n</figure>\n";
-  };
-  const std::size_t time_plots = plots.size() - runs.size();
-  out += "<section id=\"plots\">\n<h2>Time series</h2>\n";
-  for (std::size_t i = 0; i < time_plots; ++i) figure(plots[i]);
-  out += "</section>\n";
-  out += "<section id=\"trajectories\">\n<h2>Trajectories</h2>\n<div class=\"trajectories\">\n";
-  for (std::size_t i = time_plots; i < plots.size(); ++i) figure(plots[i]);
-  out += "</div>\n</section>\n";
+}  // namespace
+
+std::string formatReportValue(double value) {
+  if (!std::isfinite(value)) return "—";
+  if (value == std::floor(value) && std::fabs(value) < 1e15) return formatFixed(value, 0);
+  std::array<char, 64> buf{};
+  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::general, 5);
+  return r.ec == std::errc() ? std::string(buf.data(), r.ptr) : std::string("—");
+}
+
+std::string renderReportHtml(const std::vector<RunReport>& runs, const ReportNotes& notes) {
+  std::string out;
+  out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>";
+  appendText(out, notes.title);
+  out += "</title>\n<style>\n";
+  out += kStyle;
+  out += "</style>\n</head>\n<body>\n<h1>";
+  appendText(out, notes.title);
+  out += "</h1>\n";
+  // What a reader comes for first: the verdict and the pictures; then the facts and the long tables (issue #30).
+  appendVerdicts(out, runs);
+  appendPlots(out, runs, notes);
+  appendNotes(out, runs, notes);
+  appendSummary(out, runs);
+  for (std::size_t t = 0; t < notes.tables.size(); ++t) appendTable(out, notes.tables[t], t);
 
   out += "<footer>Written by the SWA monitor";
   if (!notes.version.empty()) {

@@ -278,6 +278,38 @@ TEST(ReportHtml, TrajectoryPlotsHaveEqualScaleAndAMarkerPairPerUav) {
   EXPECT_LT(html.find("<section id=\"trajectories\">"), html.find("id=\"plot-trajectories_swa\""));
 }
 
+TEST(ReportHtml, TheVerdictAndThePicturesComeBeforeTheLongTables) {
+  // GIVEN a passing and a failing run, and a table of events
+  RunReport pass = makeRun("swa", 10.0, true);
+  pass.verdict = "PASS: d_NB within 3 % of r";
+  RunReport fail = makeRun("standalone", 20.0, false);
+  fail.verdict = "FAIL: d_NB 20 m, outside r ± 5 %";
+  ReportNotes notes = makeNotes();
+  ReportTable events;
+  events.id = "events";
+  events.title = "Scenario events";
+  events.columns = {"time", "event"};
+  events.rows = {{"1", "gnss_lost"}};
+  notes.tables.push_back(events);
+  const std::string html = renderReportHtml({pass, fail}, notes);
+  // THEN right under the title each run's verdict with its reasons
+  const std::size_t verdict = html.find("<section id=\"verdict\">");
+  ASSERT_NE(verdict, std::string::npos);
+  EXPECT_EQ(html.find("<section"), verdict) << "the first section";
+  EXPECT_NE(html.find("<dt>swa</dt><dd class=\"verdict\">PASS: d_NB within 3 % of r</dd>", verdict), std::string::npos);
+  EXPECT_NE(html.find("<dt>standalone</dt><dd class=\"verdict\">FAIL: d_NB 20 m, outside r ± 5 %</dd>", verdict),
+            std::string::npos);
+  // AND then the plots, and only after them the notes, the summary table and the caller's tables
+  const std::size_t plots = html.find("<section id=\"plots\">");
+  const std::size_t trajectories = html.find("<section id=\"trajectories\">");
+  EXPECT_LT(verdict, plots);
+  EXPECT_LT(plots, trajectories);
+  for (const char* later : {"<section id=\"notes\">", "<section id=\"summary\">", "<section id=\"table-events\">"}) {
+    ASSERT_NE(html.find(later), std::string::npos) << later;
+    EXPECT_LT(trajectories, html.find(later)) << later;
+  }
+}
+
 TEST(ReportHtml, ALargeSwarmsTracksAreLabelledAtTheirEndsInsteadOfALegendTallerThanThePlot) {
   // GIVEN a run of 100 UAVs on a 10 x 10 lattice, and one of 16
   RunReport big = makeRun("swa", 10.0, true);

@@ -47,9 +47,10 @@ TEST(ReportTables, RenderedAfterTheSummaryEscapedAndPadded) {
   const std::string restarts = sectionOf(html, "table-restarts");
   EXPECT_NE(restarts.find("<p>No agent restart.</p>"), std::string::npos);
   EXPECT_EQ(restarts.find("<table"), std::string::npos);
-  // After the summary, before the plots.
+  // After the summary, and after the plots: the verdict and the pictures come first (issue #30).
   EXPECT_LT(html.find("id=\"summary\""), html.find("id=\"table-events\""));
-  EXPECT_LT(html.find("id=\"table-restarts\""), html.find("id=\"plots\""));
+  EXPECT_LT(html.find("id=\"plots\""), html.find("id=\"table-events\""));
+  EXPECT_LT(html.find("id=\"trajectories\""), html.find("id=\"table-restarts\""));
 }
 
 TEST(ReportTables, UnsafeIdIsReduced) {

@@ -3,12 +3,12 @@
 // script, no external resource) for one run or several runs side by side (e.g. "swa" and "standalone" on the same
 // seed), and the same plots as separate .svg files.
 //
-// Contents: notes (scenario, seeds, version, free-form extras), a summary table with one column per run and one row
-// per summaryFields() key (plus the verdicts), the caller's tables (events, restarts, ...), then the plots: d_NB over
-// time of every run with the r ± tolerance band, drift velocity, minimum separation with the collision distance,
-// position NEES per step and the running ANEES with the chi-square band of each run, and one top-down trajectory plot
-// per run. Each run keeps its palette colour in every time plot. All text is HTML-escaped. Output is deterministic
-// (no clock, no locale).
+// Contents, what a reader comes for first (issue #30): each run's verdict, then the plots: d_NB over time of every run
+// with the r ± tolerance band, drift velocity, minimum separation with the collision distance, position NEES per
+// step and the running ANEES with the chi-square band of each run, and one top-down trajectory plot per run; then
+// notes (scenario, seeds, version, free-form extras), a summary table with one column per run and one row per
+// summaryFields() key (plus the verdicts), and the caller's tables (events, restarts, ...). Each run keeps its
+// palette colour in every time plot. All text is HTML-escaped. Output is deterministic (no clock, no locale).
 
 #include <cstdint>
 #include <limits>
