@@ -37,7 +37,8 @@ ignore the section; see deploy/scenarios/study_drift_vs_n.yaml):
       uav_count: [4, 8, 16, 32]
       agent.formation.neighbourhood: [gabriel, k_nearest]
     variants:
-      gabriel: {agent.formation.neighbourhood: gabriel, agent.focal.bias_window_s: 30}
+      gabriel: {agent.formation.neighbourhood: gabriel,
+                agent.focal.bias_window_s: 30}
       k3: {agent.formation.neighbourhood: k_nearest, agent.formation.k: 3}
 Variants are one more axis, "variant", after the sweep's: named sets of overrides that each grid point runs in turn.
 swa_batch --scenario FILE then runs the study; --sweep KEY=... replaces the file's values of KEY or adds an axis,
