@@ -92,7 +92,7 @@ void MonitorNode::connect() {
   connected_at_ = std::chrono::steady_clock::now();
   handshake_.connected(connected_at_);
   state_reader_handles_.clear();
-  command_taps_.clear();
+  uav_taps_.clear();
   truth_reader_ = {};
   for (const int uav : state_readers_) createStateReader(uav);
   if (recordsEveryTopic()) tapClock(*participant_, *options_.recording);
@@ -114,18 +114,19 @@ void MonitorNode::createRunReadersWhenReady() {
   // The simulator starts once it has matched every agent and the monitor's truth reader (--wait-monitors), but
   // discovery is pairwise: the monitor could match an agent's state writer later, and the states of the steps
   // already joined and released meanwhile would be lost (measured in containers: ~45 steps per agent). So the
-  // truth reader, the simulator's signal that the monitor is ready, appears only once every state writer is
-  // matched, or after kStateMatchWait with a warning (an agent that never starts must not block the run).
+  // truth reader, the simulator's signal that the monitor is ready, appears only once every state writer (and,
+  // recording, every UAV's command writer and sensor writer: recording_taps.h, UavTaps) is matched, or after
+  // kStateMatchWait with a warning (an agent that never starts must not block the run).
   if (!run_readers_pending_) return;
   std::vector<int> unmatched;
   for (const auto& [uav, reader] : state_reader_handles_) {
-    const auto tap = command_taps_.find(uav);
-    if (reader.matched() < 1 || (tap != command_taps_.end() && tap->second.matched() < 1)) unmatched.push_back(uav);
+    const auto tap = uav_taps_.find(uav);
+    if (reader.matched() < 1 || (tap != uav_taps_.end() && !tap->second.matched())) unmatched.push_back(uav);
   }
   const auto now = std::chrono::steady_clock::now();
   const bool waited_enough = now - connected_at_ >= kStateMatchWait;
   if (!unmatched.empty() && !waited_enough) return;
-  if (!command_taps_.empty() && unmatched.empty()) {
+  if (!uav_taps_.empty() && unmatched.empty()) {
     if (!all_matched_at_) all_matched_at_ = now;
     if (now - *all_matched_at_ < kRecorderSettle) return;
   }
@@ -133,7 +134,7 @@ void MonitorNode::createRunReadersWhenReady() {
     std::string list;
     for (const int uav : unmatched) list += " " + std::to_string(uav);
     std::fprintf(stderr,
-                 "swa_monitor: no state (or, recording, command) writer of agent(s)%s after %.0f s; reading the run "
+                 "swa_monitor: no state (or, recording, command or sensor) writer of UAV(s)%s after %.0f s; reading the run "
                  "without them\n",
                  list.c_str(), std::chrono::duration<double>(kStateMatchWait).count());
   }
@@ -149,7 +150,7 @@ void MonitorNode::createStateReader(int uav) {
   state_reader_handles_[uav] = readAndRecord<msg::AgentStatePubSubType>(
       dds::topics::state(uav), kStateProfile,
       [this, uav](msg::AgentState&& m) { queue_.push(StateInput{uav, std::move(m)}); });
-  if (recordsEveryTopic()) command_taps_[uav] = tapUavTopics(*participant_, *options_.recording, uav);
+  if (recordsEveryTopic()) uav_taps_[uav] = tapUavTopics(*participant_, *options_.recording, uav);
 }
 
 void MonitorNode::reconnectIfHandshakeStalled() {

@@ -20,6 +20,7 @@
 #include "step_metrics_json.h"
 #include "live_run.h"
 #include "live_view.h"
+#include "recording_taps.h"
 #include "status_line.h"
 #include "swa/agent/config.h"
 #include "swa/dds/handshake_watch.h"
@@ -103,7 +104,7 @@ class MonitorNode {
   std::unique_ptr<dds::Participant> participant_;
   dds::Reader<dds::Payload> truth_reader_;
   std::map<int, dds::Reader<dds::Payload>> state_reader_handles_;
-  std::map<int, dds::Reader<dds::Payload>> command_taps_;  // --record: each agent's cmd_vel (recording_taps.h)
+  std::map<int, recording::UavTaps> uav_taps_;  // --record: each UAV's commands and sensors (recording_taps.h)
   bool run_readers_pending_ = false;
   std::optional<std::chrono::steady_clock::time_point> all_matched_at_;  // recording: every reader matched since
 };

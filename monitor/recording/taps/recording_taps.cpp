@@ -52,14 +52,18 @@ dds::Reader<dds::Payload> tapFrames(dds::Participant& p, Recording& recording, c
 struct TapInto {
   dds::Participant& participant;
   Recording& recording;
-  dds::Reader<dds::Payload> last;  // the last tapped: cmd_vel (forEachUavTap)
+  UavTaps taps;
 
   template <class PubSubType>
   void operator()(const std::string& topic, const char* profile) {
     if constexpr (std::is_same_v<PubSubType, msg::SensorFramePubSubType>) {
-      last = tapFrames(participant, recording, topic, profile);
+      taps.frames = tapFrames(participant, recording, topic, profile);
+    } else if constexpr (std::is_same_v<PubSubType, msg::ImuPubSubType>) {
+      taps.imu = tap<PubSubType>(participant, recording, topic, profile);
+    } else if constexpr (std::is_same_v<PubSubType, msg::VelocitySetpointPubSubType>) {
+      taps.commands = tap<PubSubType>(participant, recording, topic, profile);
     } else {
-      last = tap<PubSubType>(participant, recording, topic, profile);
+      tap<PubSubType>(participant, recording, topic, profile);
     }
   }
 };
@@ -78,10 +82,10 @@ std::string msgTypeName(const std::string& generated) {
   return colon == std::string::npos ? generated : generated.substr(colon + 2);
 }
 
-dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, Recording& recording, int uav) {
+UavTaps tapUavTopics(dds::Participant& participant, Recording& recording, int uav) {
   TapInto visitor{participant, recording, {}};
   forEachUavTap(uav, visitor);
-  return visitor.last;
+  return visitor.taps;
 }
 
 void tapClock(dds::Participant& participant, Recording& recording) {

@@ -56,12 +56,21 @@ void forEachUavTap(int uav, Visit&& visit);
 template <class Visit>
 void forEachRecordedTopic(int uav_count, Visit&& visit);
 
+// The readers a recorder waits for before it lets the simulator start (monitor_node.cpp): samples a writer sent
+// before the recorder's reader had matched it are not all repaired. cmd_vel's writer keeps only the newest command
+// (KEEP_LAST 1); the sensors' writers keep 1000 samples, but a burst of them at once overflows the reader's depth.
+// The sensors come either as frames (swa/uav<i>/sensors, from the simulator) or one by one (swa/uav<i>/imu, from the
+// simulator or an autopilot bridge): one of the two matched is enough.
+struct UavTaps {
+  dds::Reader<dds::Payload> commands;
+  dds::Reader<dds::Payload> imu;
+  dds::Reader<dds::Payload> frames;
+  bool matched() const { return commands.matched() > 0 && (imu.matched() > 0 || frames.matched() > 0); }
+};
+
 // Readers of UAV `uav`'s detections, imu, gnss, sensors (split into the first three), cmd_vel and bridge_state into
-// `recording` (which must outlive the participant's readers). Returns the cmd_vel reader: its writer keeps only the
-// newest command (KEEP_LAST 1), so a recorder that matches it after the run started misses the commands before; the
-// monitor waits for it to match before it lets the simulator start (monitor_node.cpp). The sensors' writers keep
-// 1000 samples for late readers.
-dds::Reader<dds::Payload> tapUavTopics(dds::Participant& participant, Recording& recording, int uav);
+// `recording` (which must outlive the participant's readers).
+UavTaps tapUavTopics(dds::Participant& participant, Recording& recording, int uav);
 // A reader of swa/clock into `recording`.
 void tapClock(dds::Participant& participant, Recording& recording);
 
