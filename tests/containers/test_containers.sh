@@ -40,6 +40,28 @@ timeout "$budget_s" bash "$root/deploy/containers.sh" test --bin-dir "$bin_dir" 
   --project "$project" --uavs 4 --vehicle "$vehicle" --scenario "$root/deploy/scenarios/dropout_4.yaml" \
   --set duration_s=60 --timeout-s 300 || rc=$?
 echo "containers_swarm_4 ($vehicle): exit $rc after $((SECONDS - start)) s; run directory $work/run"
+
+# deploy/containers/README.md, "By hand with podman-compose": its block, run as written once the images exist (issue
+# #30, docs that run), with this test's project and run directory for `swa` and `/abs/run`, and 20 s simulated
+# (SWA_SET in the environment, which the block leaves to the caller). `podman wait` prints the monitor's exit code.
+by_hand() {
+  local block
+  block=$(awk '/^## By hand with podman-compose/ { s = 1 } s && /^```sh/ { b = 1; next } b && /^```/ { exit } b' \
+    "$root/deploy/containers/README.md")
+  [ -n "$block" ] || fail "no sh block under 'By hand with podman-compose' in deploy/containers/README.md"
+  block=$(sed -E "s#/abs/run#$work/by_hand#g; s/-p swa /-p $project /; s/--project swa\b/--project $project/;
+    s/\bswa_monitor_1\b/${project}_monitor_1/" <<<"$block")
+  mkdir -p "$work/by_hand"
+  local status=0 out
+  out=$(cd "$root" && SWA_SET=duration_s=20 timeout 300 bash -e -c "$block" 2>&1) || status=$?
+  echo "$out" | tail -n 5
+  [ "$status" -eq 0 ] || fail "the README's by-hand block exits $status:"$'\n'"$block"$'\n'"$out"
+  # The monitor's exit code, printed by `podman wait`: 0 PASS.
+  grep -qx 0 <<<"$out" || fail "the README's by-hand block: the monitor did not exit 0 (PASS):"$'\n'"$out"
+  [ -s "$work/by_hand/monitor/summary.json" ] || fail "the README's by-hand block wrote no monitor/summary.json"
+  echo "containers_swarm_4: the README's by-hand block: PASS"
+}
+if [ "$rc" -eq 0 ] && [ "$vehicle" = direct ]; then by_hand; fi
 if [ "$rc" -eq 124 ]; then
   echo "containers_swarm_4: FAILED: not finished within $budget_s s" >&2
 fi

@@ -18,6 +18,7 @@
 #   ci FILE    the command is the test command or part of it: FILE must run it, and CI runs FILE
 #   daemon     a server: started on a free port, it must still be up after 2 s; then stopped
 #   after C    needs something running first: C is started in the background, stopped afterwards
+#   by-test F  run as written by the test script F, which has what it needs (the container images)
 #   names R    not run here: ROS 2 tools, Slurm's squeue (not on this machine), a container started by hand on a
 #              drone; instead the names it uses (image, variables, topics, package) are checked against the project
 # Everything runs in a mount namespace of its own with a private /dev/shm, so no shared-memory file of a stopped
@@ -109,8 +110,10 @@ plan_of() {
     "deploy/slurm/submit-study.sh "* | "bash deploy/containers.sh "*) echo dry ;;
     "fast-discovery-server "*) echo daemon ;;
     script:*) echo script ;;
-    "export CONTAINERS_CONF="*) echo "names containers-conf" ;;
-    "SWA_RUN_DIR="*"podman-compose "* | "podman wait "*) echo "names podman" ;;
+    # deploy/containers/README.md, "By hand with podman-compose": run as written by the containers test, which has
+    # the images (a drone's own `podman run -d --network host` stays a names check below).
+    "export CONTAINERS_CONF="* | "podman run --rm "* | "SWA_RUN_DIR="*"podman-compose "* | "podman wait "*)
+      echo "by-test tests/containers/test_containers.sh" ;;
     "squeue "*) echo "names slurm" ;;
     "podman run "*) echo "names podman" ;;
     "colcon "* | "source install/setup.bash" | "export ROS_DOMAIN_ID="* | "ros2 "*) echo "names ros2" ;;
@@ -143,7 +146,6 @@ check_names() {
   local what=$1 command=$2
   case $what in
     slurm) grep -q "squeue" "$root/deploy/slurm/submit-study.sh" || fail "submit-study.sh no longer mentions squeue" ;;
-    containers-conf) [ -f "$root/deploy/containers/containers.conf" ] || fail "'$command': no such file" ;;
     podman)
       local image var file
       image=$(grep -oE 'localhost/swa-[a-z]+:latest' <<<"$command" || true)
@@ -190,6 +192,10 @@ while IFS=$'\t' read -r -u 3 where command; do
       grep -qF "$script" "$root/$arg" || fail "$where: '$command' is not run by $arg"
       [ "$arg" = .ci/run ] || grep -qF "$arg" "$root/.ci/run" || fail "$arg is not run by .ci/run"
       log "ok (CI runs it through $arg): $command"
+      ;;
+    by-test)
+      grep -q "By hand with podman-compose" "$root/$arg" || fail "$where: '$command' is not run by $arg"
+      log "ok (run as written by $arg): $command"
       ;;
     ctest)
       selection=$(sed -E 's/^(bash deploy\/test.sh|ctest --test-dir build)//; s/ -V//' <<<"$command")
