@@ -22,17 +22,7 @@ constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 using testing::attr;
 using testing::elements;
 using testing::num;
-
-// The text content of each <text class="cls"> element.
-std::vector<std::string> texts(const std::string& svg, const std::string& cls) {
-  std::vector<std::string> out;
-  const std::string marker = "<text class=\"" + cls + "\"";
-  for (std::size_t pos = svg.find(marker); pos != std::string::npos; pos = svg.find(marker, pos + 1)) {
-    const std::size_t begin = svg.find('>', pos) + 1;
-    out.push_back(svg.substr(begin, svg.find("</text>", begin) - begin));
-  }
-  return out;
-}
+using testing::texts;
 
 std::vector<std::pair<double, double>> points(const std::string& polyline) {
   std::vector<std::pair<double, double>> out;

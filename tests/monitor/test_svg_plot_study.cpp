@@ -20,17 +20,7 @@ using testing::attr;
 using testing::elements;
 using testing::num;
 using testing::occurrences;
-
-// The text content of each <text class="cls"> element.
-std::vector<std::string> textsOf(const std::string& svg, const std::string& cls) {
-  std::vector<std::string> out;
-  const std::string marker = "<text class=\"" + cls + "\"";
-  for (std::size_t pos = svg.find(marker); pos != std::string::npos; pos = svg.find(marker, pos + 1)) {
-    const std::size_t begin = svg.find('>', pos) + 1;
-    out.push_back(svg.substr(begin, svg.find("</text>", begin) - begin));
-  }
-  return out;
-}
+using testing::texts;
 
 PlotSeries markerSeries(std::vector<double> x, std::vector<double> y, MarkerShape shape = MarkerShape::kDot) {
   PlotSeries s;
@@ -81,14 +71,14 @@ TEST(SvgPlot, LogAxesPlaceDecadesEvenlyAndDropAndCountWhatTheyCannotShow) {
   EXPECT_EQ(l.dropped_points, 1u);
   const std::string svg = renderSvg(spec);
   EXPECT_EQ(elements(svg, "circle", "marker").size(), 4u);
-  ASSERT_EQ(textsOf(svg, "dropped-note").size(), 1u);
-  EXPECT_NE(textsOf(svg, "dropped-note")[0].find("1 point(s)"), std::string::npos);
+  ASSERT_EQ(texts(svg, "dropped-note").size(), 1u);
+  EXPECT_NE(texts(svg, "dropped-note")[0].find("1 point(s)"), std::string::npos);
   EXPECT_EQ(svg.find("nan"), std::string::npos) << "no coordinate of a value the axis cannot show";
   // AND a linear plot of the same data draws all five and has no note
   spec.x_log = spec.y_log = false;
   const std::string linear = renderSvg(spec);
   EXPECT_EQ(elements(linear, "circle", "marker").size(), 5u);
-  EXPECT_TRUE(textsOf(linear, "dropped-note").empty());
+  EXPECT_TRUE(texts(linear, "dropped-note").empty());
 }
 
 TEST(SvgPlot, GivenXTicksAreDrawnWithTheirLabelsAtTheirPositions) {
@@ -102,7 +92,7 @@ TEST(SvgPlot, GivenXTicksAreDrawnWithTheirLabelsAtTheirPositions) {
   const std::string svg = renderSvg(spec);
   const PlotLayout l = layoutPlot(spec);
   // THEN the x tick labels are exactly the names (escaped), each at its category, and no number
-  EXPECT_EQ(textsOf(svg, "tick-x"), (std::vector<std::string>{"gabriel", "k_&lt;nearest&gt;"}));
+  EXPECT_EQ(texts(svg, "tick-x"), (std::vector<std::string>{"gabriel", "k_&lt;nearest&gt;"}));
   const std::vector<std::string> ticks = elements(svg, "text", "tick-x");
   ASSERT_EQ(ticks.size(), 2u);
   EXPECT_NEAR(num(ticks[0], "x"), l.xToPx(0.0), 0.01);
@@ -110,7 +100,7 @@ TEST(SvgPlot, GivenXTicksAreDrawnWithTheirLabelsAtTheirPositions) {
   // AND unlabelled given ticks are their numbers; a tick outside the axis is left out
   spec.x_tick_labels.clear();
   spec.x_ticks = {0.25, 1.0, 7.0};
-  EXPECT_EQ(textsOf(renderSvg(spec), "tick-x"), (std::vector<std::string>{"0.25", "1"}));
+  EXPECT_EQ(texts(renderSvg(spec), "tick-x"), (std::vector<std::string>{"0.25", "1"}));
   // AND labels must be one per tick
   spec.x_tick_labels = {"a"};
   EXPECT_THROW(layoutPlot(spec), std::invalid_argument);

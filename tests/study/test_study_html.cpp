@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "markup_support.h"
 #include "study_html.h"
 #include "study_plots.h"
 #include "study_record.h"
@@ -58,17 +59,6 @@ const StudyMetric& metric(const std::string& key) {
   throw std::invalid_argument("no metric " + key);
 }
 
-// The text of every <text class="cls"> in `markup`.
-std::vector<std::string> textsOfClass(const std::string& markup, const std::string& cls) {
-  std::vector<std::string> out;
-  const std::string open = "<text class=\"" + cls + "\"";
-  for (std::size_t at = markup.find(open); at != std::string::npos; at = markup.find(open, at + 1)) {
-    const std::size_t begin = markup.find('>', at) + 1;
-    out.push_back(markup.substr(begin, markup.find("</text>", begin) - begin));
-  }
-  return out;
-}
-
 // The <figure> of study.html whose plot has this title.
 std::string figureTitled(const std::string& html, const std::string& title) {
   const std::size_t at = html.find(">" + title + "</text>");
@@ -103,7 +93,7 @@ TEST(StudyHtml, ACategoricalAxisHasItsNamesAsTicksAndMarkersNotALine) {
   const std::string d_nb =
       figureTitled(section, "d_NB (final) against agent.formation.neighbourhood, by uav_count");
   ASSERT_FALSE(d_nb.empty());
-  EXPECT_EQ(textsOfClass(d_nb, "tick-x"), (std::vector<std::string>{"gabriel", "k_nearest"}));
+  EXPECT_EQ(monitor::testing::texts(d_nb, "tick-x"), (std::vector<std::string>{"gabriel", "k_nearest"}));
   EXPECT_EQ(html.find("0 = gabriel"), std::string::npos) << "no footnote decoding numbers into names";
   EXPECT_EQ(section.find("class=\"series\""), std::string::npos) << "no line joins two categories";
   EXPECT_NE(d_nb.find("class=\"error-bar\""), std::string::npos);

@@ -1,6 +1,6 @@
 #pragma once
-// Shared by the monitor's text-output tests (CSV, JSON, SVG plots, report.html): counting a part of a text, and
-// finding elements and reading their attributes in the SVG and HTML the monitor writes.
+// Shared by the tests of text output (CSV, JSON, SVG plots, report.html, study.html): counting a part of a text, and
+// finding elements and reading their attributes and texts in the SVG and HTML the monitor and the studies write.
 
 #include <cstddef>
 #include <string>
@@ -38,5 +38,16 @@ inline std::string attr(const std::string& tag, const std::string& name) {
 
 // A numeric attribute (std::invalid_argument when the tag has none).
 inline double num(const std::string& tag, const std::string& name) { return std::stod(attr(tag, name)); }
+
+// The text content of each <text class="cls"> element in `markup`, in document order.
+inline std::vector<std::string> texts(const std::string& markup, const std::string& cls) {
+  std::vector<std::string> out;
+  const std::string open = "<text class=\"" + cls + "\"";
+  for (std::size_t at = markup.find(open); at != std::string::npos; at = markup.find(open, at + 1)) {
+    const std::size_t begin = markup.find('>', at) + 1;
+    out.push_back(markup.substr(begin, markup.find("</text>", begin) - begin));
+  }
+  return out;
+}
 
 }  // namespace swa::monitor::testing
