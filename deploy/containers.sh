@@ -288,12 +288,7 @@ dry_run() {
     run | test) steps="build; down; up ($uavs agent(s), $vehicle, $(basename "$scenario") with '$(swa_set)'); wait at most $timeout_s s; down" ;;
     *) die "unknown command '$command' (see --help)" ;;
   esac
-  if [[ $command =~ ^(build|run|test)$ ]]; then
-    local b
-    for b in swa_agent swa_sim swa_monitor swa_px4_bridge swa_batch; do
-      [ -x "$bin_dir/$b" ] || die "$bin_dir/$b not found: build first (bash deploy/build.sh) or pass --bin-dir"
-    done
-  fi
+  if [[ $command =~ ^(build|run|test)$ ]]; then require_binaries; fi
   if [ "$command" = compose ] || [[ $command =~ ^(up|run|test)$ && $uavs -ne 4 ]]; then
     bash "$here/gen-compose.sh" "${compose_n:-$uavs}" --vehicle "$vehicle" > /dev/null || die "no compose file"
   fi

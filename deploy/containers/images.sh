@@ -26,13 +26,18 @@ install_packages() {
 
 image_name() { echo "localhost/swa-$1:latest"; }
 
-build_images() {
-  install_packages
-  [ "$(id -u)" -eq 0 ] || die "build needs root (debootstrap, rootful podman)"
+# The programs the images carry, all present in --bin-dir (build, and containers.sh --dry-run).
+require_binaries() {
   local b
   for b in swa_agent swa_sim swa_monitor swa_px4_bridge swa_batch; do
     [ -x "$bin_dir/$b" ] || die "$bin_dir/$b not found: build first (bash deploy/build.sh) or pass --bin-dir"
   done
+}
+
+build_images() {
+  install_packages
+  [ "$(id -u)" -eq 0 ] || die "build needs root (debootstrap, rootful podman)"
+  require_binaries
   # Inside a container only SWA_TRANSPORT=network keeps shared memory out; binaries from before it would try
   # shared memory between containers and silently test something else.
   # The help captured first: `grep -q` stops reading at the match, and the rest of a help longer than one pipe write

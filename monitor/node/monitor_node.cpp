@@ -134,8 +134,8 @@ void MonitorNode::createRunReadersWhenReady() {
     std::string list;
     for (const int uav : unmatched) list += " " + std::to_string(uav);
     std::fprintf(stderr,
-                 "swa_monitor: no state (or, recording, command or sensor) writer of UAV(s)%s after %.0f s; reading the run "
-                 "without them\n",
+                 "swa_monitor: no state (or, recording, command or sensor) writer of UAV(s)%s after %.0f s; reading "
+                 "the run without them\n",
                  list.c_str(), std::chrono::duration<double>(kStateMatchWait).count());
   }
   run_readers_pending_ = false;

@@ -82,13 +82,17 @@ void appendTable(std::string& out, const ReportTable& table, std::size_t index) 
   out += "</tbody>\n</table>\n</section>\n";
 }
 
+// Opens a section about the runs; without runs it says so and closes it (false: nothing more to write).
+bool openRunSection(std::string& out, const char* id, const char* title, const std::vector<RunReport>& runs) {
+  out += std::string("<section id=\"") + id + "\">\n<h2>" + title + "</h2>\n";
+  if (!runs.empty()) return true;
+  out += "<p>No runs.</p>\n</section>\n";
+  return false;
+}
+
 // Each run's verdict (PASS/FAIL/INCOMPLETE and its reasons), under the title.
 void appendVerdicts(std::string& out, const std::vector<RunReport>& runs) {
-  out += "<section id=\"verdict\">\n<h2>Verdict</h2>\n";
-  if (runs.empty()) {
-    out += "<p>No runs.</p>\n</section>\n";
-    return;
-  }
+  if (!openRunSection(out, "verdict", "Verdict", runs)) return;
   out += "<dl class=\"verdicts\">\n";
   for (const RunReport& run : runs) {
     out += "<dt>";
@@ -149,11 +153,7 @@ void appendNotes(std::string& out, const std::vector<RunReport>& runs, const Rep
 
 // One column per run, one row per summaryFields key (the verdict again on top, beside the numbers it judged).
 void appendSummary(std::string& out, const std::vector<RunReport>& runs) {
-  out += "<section id=\"summary\">\n<h2>Summary</h2>\n";
-  if (runs.empty()) {
-    out += "<p>No runs.</p>\n</section>\n";
-    return;
-  }
+  if (!openRunSection(out, "summary", "Summary", runs)) return;
   out += "<table class=\"summary\">\n<thead><tr><th scope=\"col\">metric</th>";
   for (const RunReport& run : runs) {
     out += "<th scope=\"col\">";
