@@ -1,5 +1,7 @@
 #include "swa/wire/ros_detections.h"
 
+#include <limits>
+
 #include "swa/wire/ros_types.h"
 
 namespace swa::wire {
@@ -76,7 +78,10 @@ agent::ForeignDetectionSet foreignOf(const mrs_msgs::msg::PoseWithCovarianceArra
   for (const mrs_msgs::msg::PoseWithCovarianceIdentified& p : m.poses()) {
     agent::ForeignDetection f = foreignAt(p.pose().position());
     f.covariance = p.covariance();
-    f.id = static_cast<long long>(p.id());
+    // An id beyond long long (the sentinel among them) is no UAV's: anonymous, not a wrapped negative number.
+    if (p.id() <= static_cast<std::uint64_t>(std::numeric_limits<long long>::max())) {
+      f.id = static_cast<long long>(p.id());
+    }
     out.detections.push_back(f);
   }
   return out;
@@ -106,7 +111,7 @@ mrs_msgs::msg::PoseWithCovarianceArrayStamped poseArray(const agent::DetectionSe
   m.header(headerOf(s, uav_id));
   for (const agent::Detection& d : s.detections) {
     mrs_msgs::msg::PoseWithCovarianceIdentified p;
-    p.id(d.target_id == agent::kAnonymousId ? kUvdarNoId : static_cast<std::uint32_t>(d.target_id));
+    p.id(d.target_id == agent::kAnonymousId ? kUvdarNoId : static_cast<std::uint64_t>(d.target_id));
     p.pose(poseOf(d));
     p.covariance(covarianceOf(d.covariance_m2));
     m.poses().push_back(p);

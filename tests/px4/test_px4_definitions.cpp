@@ -1,5 +1,5 @@
-// SWA's PX4 messages against PX4's own definitions of every supported release (tests/px4/msg/<tag>/, PX4's .msg
-// files without their comments): for each release and each message the bridge or the stand-in uses, the IDL the
+// SWA's PX4 messages against PX4's own definitions of every supported release (tests/upstream/px4_msgs/<tag>/, PX4's
+// .msg files byte for byte, their sources in tests/upstream/README.md): for each release and each message the bridge or the stand-in uses, the IDL the
 // bridge picks for that release (swa/px4/release.h) has PX4's fields with PX4's types, array sizes and order; the
 // generated type's bytes on the wire are as long as XCDR1 makes PX4's field list, and the fields SWA reads sit at the
 // offsets that list gives them; the constants SWA mirrors and the topics' message versions are the release's.
@@ -34,7 +34,7 @@
 namespace swa::px4::definitions_test {
 namespace {
 
-const std::string kMsgDir = std::string(SWA_SOURCE_DIR) + "/tests/px4/msg/";
+const std::string kMsgDir = std::string(SWA_SOURCE_DIR) + "/tests/upstream/px4_msgs/";
 const std::string kIdlDir = std::string(SWA_SOURCE_DIR) + "/idl/px4/";
 
 struct ReleaseDir {
@@ -83,6 +83,7 @@ MsgDef parseMsg(const std::string& path) {
   MsgDef def;
   std::istringstream in(readText(path));
   for (std::string line; std::getline(in, line);) {
+    line = line.substr(0, line.find('#'));  // PX4's comments (and its "# TOPICS" lines)
     const std::size_t eq = line.find('=');
     std::istringstream words(line.substr(0, eq));
     std::string type, name;

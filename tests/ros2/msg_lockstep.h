@@ -5,9 +5,13 @@
 // Mapping: int32/uint32/int64/uint64 as such, double -> float64, boolean -> bool, string -> string, an enum -> uint32
 // (IDL enums are 32-bit on the wire), sequence<T> -> T[], sequence<T, N> -> T[<=N], a struct -> its name.
 // A parser for exactly the IDL SWA writes (modules, @annotations, structs, enums, consts, sequences, comments), not
-// for IDL at large; anything else it meets is a problem it reports.
+// for IDL at large; anything else it meets is a problem it reports. The foreign types (idl/ros: ROS 2 packages) are
+// read by the same parser: a qualified type `pkg::msg::Name` becomes `pkg/Name`, and each struct records its package
+// (its outermost module), so that test_foreign_definitions.cpp can hold them against the upstream .msg files.
 
 #include <cctype>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -29,11 +33,26 @@ struct Constant {
 };
 
 struct Message {
+  std::string package;  // the struct's outermost module (IDL) or the package it was read as (.msg)
   std::vector<Field> fields;
   std::set<Constant> constants;
 };
 
 using Messages = std::map<std::string, Message>;  // by message (struct) name
+
+inline std::string readFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Problems one per line, for a failure message.
+inline std::string lines(const std::vector<std::string>& problems) {
+  std::string s;
+  for (const std::string& p : problems) s += "  " + p + "\n";
+  return s;
+}
 
 namespace detail {
 
@@ -57,9 +76,11 @@ inline std::vector<std::string> tokens(const std::string& text, std::vector<std:
       if (k < text.size() && text[k] == '(') k = text.find(')', k) + 1;
     } else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') {
       std::size_t e = k + 1;
-      while (e < text.size() && (std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '_' || text[e] == '.')) {
-        ++e;
-      }
+      // a qualified name (a::b::C) and a fixed array's declarator (name[36]) are one token each
+      const auto word = [&](std::size_t i) {
+        return std::isalnum(static_cast<unsigned char>(text[i])) || std::string("_.[]").find(text[i]) != std::string::npos;
+      };
+      while (e < text.size() && (word(e) || text.compare(e, 2, "::") == 0)) e += text.compare(e, 2, "::") == 0 ? 2 : 1;
       out.push_back(text.substr(k, e - k));
       k = e;
     } else if (std::string("{};<>,=").find(c) != std::string::npos) {
@@ -82,6 +103,13 @@ inline std::string rosPrimitive(const std::string& idl) {
   return it == kMap.end() ? "" : it->second;
 }
 
+// "geometry_msgs::msg::Pose" -> "geometry_msgs/Pose" (the ROS spelling of another package's type); a bare name stays.
+inline std::string rosQualified(const std::string& idl) {
+  const std::size_t first = idl.find("::");
+  if (first == std::string::npos) return idl;
+  return idl.substr(0, first) + "/" + idl.substr(idl.rfind("::") + 2);
+}
+
 }  // namespace detail
 
 // Parses one IDL file named `file_stem` (e.g. "Detections") into `out`; returns the problems found.
@@ -96,13 +124,19 @@ inline std::vector<std::string> parseIdl(const std::string& file_stem, const std
   const auto mapType = [&](const std::string& idl) {
     if (const std::string p = detail::rosPrimitive(idl); !p.empty()) return p;
     if (enums.count(idl) != 0) return std::string("uint32");
-    return idl;  // a struct of the same package
+    return detail::rosQualified(idl);  // a struct: bare of the same package, qualified of another
   };
+  std::vector<std::string> modules;  // open modules, outermost first (a struct's or enum's "}" is read with it)
+
   while (k < t.size()) {
     const std::string& w = t[k];
     if (w == "module") {
+      modules.push_back(at(k + 1));
       k += 3;  // module NAME {
-    } else if (w == "}" || w == ";") {
+    } else if (w == "}") {
+      if (!modules.empty()) modules.pop_back();
+      ++k;
+    } else if (w == ";") {
       ++k;
     } else if (w == "const") {  // const TYPE NAME = VALUE ;
       file_constants.insert({mapType(at(k + 1)), at(k + 2), at(k + 4)});
@@ -115,10 +149,12 @@ inline std::vector<std::string> parseIdl(const std::string& file_stem, const std
         if (t[k] != ",") file_constants.insert({"uint32", t[k], std::to_string(value++)});
         ++k;
       }
+      ++k;  // its "}"
     } else if (w == "struct") {  // struct NAME { fields } ;
       const std::string name = at(k + 1);
       structs.push_back(name);
       Message& m = out[name];
+      m.package = modules.empty() ? std::string() : modules.front();
       k += 3;
       while (k < t.size() && t[k] != "}") {
         if (t[k] == "sequence") {  // sequence < T [, N] > name ;
@@ -131,12 +167,16 @@ inline std::vector<std::string> parseIdl(const std::string& file_stem, const std
           }
           m.fields.push_back({element + "[" + bound + "]", at(k + 1)});
           k += 3;
-        } else {
-          m.fields.push_back({mapType(t[k]), at(k + 1)});
+        } else {  // TYPE NAME ; or TYPE NAME[N] ; (a fixed array: ROS spells it TYPE[N] NAME)
+          const std::string declarator = at(k + 1);
+          const std::size_t bracket = declarator.find('[');
+          m.fields.push_back({mapType(t[k]) + (bracket == std::string::npos ? "" : declarator.substr(bracket)),
+                              declarator.substr(0, bracket)});
           if (at(k + 2) != ";") problems.push_back(file_stem + ": cannot read the field after " + t[k]);
           k += 3;
         }
       }
+      ++k;  // its "}"
     } else {
       problems.push_back(file_stem + ".idl: unexpected '" + w + "'");
       ++k;
@@ -153,7 +193,8 @@ inline std::vector<std::string> parseIdl(const std::string& file_stem, const std
   return problems;
 }
 
-// Parses one .msg file into `out`; returns the problems found.
+// Parses one .msg file into `out`; returns the problems found. Types are kept as written (a bare name is of the
+// message's own package).
 inline std::vector<std::string> parseMsg(const std::string& name, const std::string& text, Message& out) {
   std::vector<std::string> problems;
   std::istringstream lines(text);
@@ -171,10 +212,10 @@ inline std::vector<std::string> parseMsg(const std::string& name, const std::str
       cname.erase(cname.find_last_not_of(" \t") + 1);
       value.erase(0, value.find_first_not_of(" \t"));
       out.constants.insert({type, cname, value});
-    } else if (rest.empty() || rest.find_first_of(" \t") != std::string::npos) {
+    } else if (rest.empty()) {
       problems.push_back(name + ".msg: cannot read '" + line + "'");
-    } else {
-      out.fields.push_back({type, rest});
+    } else {  // NAME, or NAME DEFAULT (ROS 2: a default value, which is not on the wire)
+      out.fields.push_back({type, rest.substr(0, rest.find_first_of(" \t"))});
     }
   }
   return problems;

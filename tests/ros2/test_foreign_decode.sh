@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The other systems' messages SWA speaks (vision_msgs, UVDAR's mrs_msgs, PX4's per release, ArduPilot's), checked both
-# ways with an independent ROS 2 CDR implementation against the official definitions (issue #27, no ROS installation):
+# ways with an independent ROS 2 CDR implementation against the upstream definitions in tests/upstream (issues #27 and
+# #42, no ROS installation):
 #   test_foreign_decode.sh FOREIGN_PAYLOADS_BINARY WORK_DIR
 # 1. installs Node.js and npm from Debian if missing, and the decoder's npm packages (package-lock.json) into WORK_DIR;
 # 2. foreign_payloads write: SWA's payloads of every type, with the values set;
@@ -15,6 +16,6 @@ rm -rf "$work"
 install_npm_folder "$here/decoder" "$work/decoder"
 
 "$payloads" write "$work/capture.json"
-node "$work/decoder/foreign_check.mjs" "$work/capture.json" "$root/tests/px4/msg" "$work/independent.json"
+node "$work/decoder/foreign_check.mjs" "$work/capture.json" "$root/tests/upstream" "$work/independent.json"
 "$payloads" check "$work/independent.json"
 rm -rf "$work"

@@ -15,19 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string lines(const std::vector<std::string>& problems) {
-  std::string s;
-  for (const std::string& p : problems) s += "  " + p + "\n";
-  return s;
-}
-
 struct Tree {
   Messages idl, msg;
   std::vector<std::string> problems;

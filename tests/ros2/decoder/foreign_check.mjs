@@ -1,13 +1,14 @@
 // The other systems' messages SWA speaks, checked with an independent ROS 2 CDR implementation (@foxglove/rosmsg +
 // @foxglove/rosmsg2-serialization, no code of SWA's) against the official definitions (issue #27):
-//   node foreign_check.mjs CAPTURE.json PX4_MSG_DIR OUT.json
+//   node foreign_check.mjs CAPTURE.json UPSTREAM_DIR OUT.json
 // 1. decodes every payload SWA serialised (tests/ros2/foreign_payloads.cpp write) and compares it field for field
 //    with the values SWA set: vision_msgs, mrs_msgs and ArduPilot's messages completely, PX4's messages on the fields
-//    the stand-in sets and zero everywhere else, each against the release's own .msg file
-//    (PX4_MSG_DIR/<tag>/<Name>.msg);
+//    the stand-in sets and zero everywhere else, each with upstream's own .msg/.srv texts as its definition
+//    (UPSTREAM_DIR: tests/upstream, never a definition typed here);
 // 2. serialises the same values of every payload but PX4's itself and writes them to OUT.json, for foreign_payloads
 //    check to read as the agent, the bridge or the stand-in does.
-// It first checks that it can fail: a Point definition with x and y swapped must not match.
+// It first checks that it can fail: a Point definition with x and y swapped must not match; and that the decoder's
+// built-in builtin_interfaces/Time (it reads stamps itself, not from a .msg) is upstream's Time.msg.
 // Exit 0: everything matched; 1: a difference (each printed); 2: bad usage.
 
 import { readFileSync, writeFileSync } from "node:fs";
@@ -17,56 +18,27 @@ import { MessageReader, MessageWriter } from "@foxglove/rosmsg2-serialization";
 
 import { differences, fullDefinition, hexBytes } from "./ros_cdr.mjs";
 
-const [capturePath, px4Dir, outPath] = process.argv.slice(2);
-if (!capturePath || !px4Dir || !outPath) {
-  console.error("usage: node foreign_check.mjs CAPTURE.json PX4_MSG_DIR OUT.json");
+const [capturePath, upstreamDir, outPath] = process.argv.slice(2);
+if (!capturePath || !upstreamDir || !outPath) {
+  console.error("usage: node foreign_check.mjs CAPTURE.json UPSTREAM_DIR OUT.json");
   process.exit(2);
 }
 
-// The official definitions (fields only): std_msgs and geometry_msgs of ROS 2's common_interfaces, vision_msgs 4.x
-// (ros-perception/vision_msgs, branch ros2), mrs_msgs (ctu-mrs/mrs_msgs, msg/general).
-const STANDARD = {
-  "std_msgs/Header": "builtin_interfaces/Time stamp\nstring frame_id\n",
-  "geometry_msgs/Point": "float64 x\nfloat64 y\nfloat64 z\n",
-  "geometry_msgs/Quaternion": "float64 x\nfloat64 y\nfloat64 z\nfloat64 w\n",
-  "geometry_msgs/Vector3": "float64 x\nfloat64 y\nfloat64 z\n",
-  "geometry_msgs/Pose": "Point position\nQuaternion orientation\n",
-  "geometry_msgs/PoseWithCovariance": "Pose pose\nfloat64[36] covariance\n",
-  "vision_msgs/Detection3DArray": "std_msgs/Header header\nDetection3D[] detections\n",
-  "vision_msgs/Detection3D":
-    "std_msgs/Header header\nObjectHypothesisWithPose[] results\nBoundingBox3D bbox\nstring id\n",
-  "vision_msgs/ObjectHypothesisWithPose": "ObjectHypothesis hypothesis\ngeometry_msgs/PoseWithCovariance pose\n",
-  "vision_msgs/ObjectHypothesis": "string class_id\nfloat64 score\n",
-  "vision_msgs/BoundingBox3D": "geometry_msgs/Pose center\ngeometry_msgs/Vector3 size\n",
-  "mrs_msgs/PoseWithCovarianceArrayStamped": "std_msgs/Header header\nPoseWithCovarianceIdentified[] poses\n",
-  "mrs_msgs/PoseWithCovarianceIdentified": "uint32 id\ngeometry_msgs/Pose pose\nfloat64[36] covariance\n",
-  // ArduPilot's DDS interface: sensor_msgs/Imu and geometry_msgs/Twist(Stamped) of common_interfaces, and
-  // ardupilot_msgs (ArduPilot's Tools/ros2/ardupilot_msgs: msg/Status.msg, srv/ArmMotors.srv, srv/ModeSwitch.srv;
-  // constants left out, they are not on the wire).
-  "sensor_msgs/Imu":
-    "std_msgs/Header header\ngeometry_msgs/Quaternion orientation\nfloat64[9] orientation_covariance\n" +
-    "geometry_msgs/Vector3 angular_velocity\nfloat64[9] angular_velocity_covariance\n" +
-    "geometry_msgs/Vector3 linear_acceleration\nfloat64[9] linear_acceleration_covariance\n",
-  "sensor_msgs/NavSatFix":
-    "std_msgs/Header header\nNavSatStatus status\nfloat64 latitude\nfloat64 longitude\nfloat64 altitude\n" +
-    "float64[9] position_covariance\nuint8 position_covariance_type\n",
-  "sensor_msgs/NavSatStatus": "int8 status\nuint16 service\n",
-  "geometry_msgs/TwistStamped": "std_msgs/Header header\nTwist twist\n",
-  "geometry_msgs/Twist": "Vector3 linear\nVector3 angular\n",
-  "ardupilot_msgs/Status":
-    "std_msgs/Header header\nuint8 vehicle_type\nbool armed\nuint8 mode\nbool flying\nbool external_control\n" +
-    "uint8[] failsafe\n",
-  "ardupilot_msgs/srv/ArmMotors_Request": "bool arm\n",
-  "ardupilot_msgs/srv/ArmMotors_Response": "bool result\n",
-  "ardupilot_msgs/srv/ModeSwitch_Request": "uint8 mode\n",
-  "ardupilot_msgs/srv/ModeSwitch_Response": "bool status\nuint8 curr_mode\n",
-};
+// The definitions are upstream's own files (UPSTREAM_DIR = tests/upstream, each with its source in its README):
+// <pkg>/msg/<Name>.msg, a service's halves from <pkg>/srv/<Service>.srv, PX4's px4_msgs/<tag>/<Name>.msg.
+function upstreamText(full, tag) {
+  const [pkg, name] = full.split("/").filter((part) => part !== "msg" && part !== "srv");
+  if (pkg === "px4_msgs") return readFileSync(join(upstreamDir, "px4_msgs", tag, `${name}.msg`), "utf8");
+  const half = name.match(/^(.*)_(Request|Response)$/);
+  if (full.includes("/srv/") && half) {
+    const [request, response] = readFileSync(join(upstreamDir, pkg, "srv", `${half[1]}.srv`), "utf8").split(/^---$/m);
+    return half[2] === "Request" ? request : response;
+  }
+  return readFileSync(join(upstreamDir, pkg, "msg", `${name}.msg`), "utf8");
+}
 function definitionText(full, tag, overrides) {
   if (overrides && overrides[full] !== undefined) return overrides[full];
-  if (STANDARD[full] !== undefined) return STANDARD[full];
-  const [pkg, name] = full.split("/");
-  if (pkg === "px4_msgs") return readFileSync(join(px4Dir, tag, `${name}.msg`), "utf8");
-  throw new Error(`no definition of ${full}`);
+  return upstreamText(full, tag);
 }
 
 function fullDefinitionOf(rosType, tag, overrides) {
@@ -74,6 +46,19 @@ function fullDefinitionOf(rosType, tag, overrides) {
 }
 
 const hexOf = (bytes) => Buffer.from(bytes).toString("hex");
+
+// The expected JSON as the writer takes it: 64-bit integers (strings in the JSON, which has no exact 64-bit number)
+// as BigInt, found by the definition's field types.
+function writable(value, definitions, definition = definitions[0]) {
+  const out = {};
+  for (const f of definition.definitions) {
+    if (f.isConstant) continue;
+    const one = (v) => f.isComplex ? writable(v, definitions, definitions.find((d) => d.name === f.type))
+                                   : /int64$/.test(f.type) ? BigInt(v) : v;
+    out[f.name] = f.isArray ? Array.from(value[f.name], one) : one(value[f.name]);
+  }
+  return out;
+}
 
 // PX4: the fields given must hold their values, every other one must be zero (false, 0, 0n, zeros).
 function px4Differences(actual, expected, path) {
@@ -111,6 +96,17 @@ if (differences(reader(vision, swapped).readMessage(hexBytes(vision.cdr_hex)), v
   process.exit(1);
 }
 
+// Stamps: the decoder reads builtin_interfaces/Time as its own primitive (int32 sec, uint32 nanosec); upstream's
+// Time.msg must say the same, or every header above would be checked against the decoder's belief.
+const spelling = (f) => `${f.type}${f.isArray ? `[${f.arrayLength ?? ""}]` : ""} ${f.name}`;
+const time = parse(upstreamText("builtin_interfaces/Time"), { ros2: true })[0].definitions
+  .filter((f) => !f.isConstant).map(spelling).join(", ");
+if (time !== "int32 sec, uint32 nanosec") {
+  console.error(`foreign_check: upstream's builtin_interfaces/Time is '${time}', not the decoder's ` +
+    "int32 sec, uint32 nanosec");
+  process.exit(1);
+}
+
 let failures = 0;
 const written = [];
 for (const entry of capture) {
@@ -130,8 +126,10 @@ for (const entry of capture) {
     console.log(`${name}: decoded field for field`);
   }
   if (!entry.px4_release) {
-    const writer = new MessageWriter(parse(fullDefinitionOf(entry.ros_type), { ros2: true }));
-    written.push({ ros_type: entry.ros_type, cdr_hex: hexOf(writer.writeMessage(entry.expected)) });
+    const definitions = parse(fullDefinitionOf(entry.ros_type), { ros2: true });
+    const writer = new MessageWriter(definitions);
+    const bytes = writer.writeMessage(writable(entry.expected, definitions));
+    written.push({ ros_type: entry.ros_type, cdr_hex: hexOf(bytes) });
   }
 }
 writeFileSync(outPath, JSON.stringify(written, null, 1));

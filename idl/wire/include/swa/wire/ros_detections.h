@@ -14,7 +14,9 @@
 
 namespace swa::wire {
 
-constexpr std::uint32_t kUvdarNoId = 0xFFFFFFFFu;
+// The id SWA's stand-in gives an anonymous UVDAR pose (upstream's id is a uint64; any id beyond the agent's limit reads
+// as anonymous, this one as well).
+constexpr std::uint64_t kUvdarNoId = 0xFFFFFFFFFFFFFFFFull;
 
 // The body frame SWA's simulator names UAV `uav_id`'s detections in (x forward, y left, z up).
 std::string bodyFrameId(std::uint32_t uav_id);
