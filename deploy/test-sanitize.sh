@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # The sanitizer stage of the README's test command (deploy/test.sh runs it): everything the ctest labels unit,
 # closedloop and fuzz need, built with AddressSanitizer + UndefinedBehaviorSanitizer (-DSWA_SANITIZE=ON: any finding
-# aborts the process, so the test fails), and the check that every header compiles on its own; then those labels.
+# aborts the process, so the test fails); then those labels. The closed-loop tests run two seeds of each case here, to
+# find memory and undefined-behaviour errors on every code path; their statistics are the Release suite's
+# (tests/closedloop/closed_loop_support.h). The check that every header compiles on its own is the Release build's
+# (deploy/test.sh builds swa_headers_alone there, once).
 # Leaks are checked too (LeakSanitizer, part of ASan), with the suppressions in deploy/sanitizers/lsan.supp for
 # Debian's uninstrumented libraries.
 #   bash deploy/test-sanitize.sh [ctest args...]     build, then run, e.g. bash deploy/test-sanitize.sh -R Fuzz
@@ -37,13 +40,12 @@ esac
 if [ "$do_build" = 1 ]; then
   bash "$root/deploy/install-deps.sh"
   # Only what those labels run (the target swa_sanitized_tests: their test executables and the programs they start),
-  # in batches like the Release build, and the check that every header includes what it uses (swa_headers_alone,
-  # tests/headers: each header compiled on its own, which the batches would hide).
+  # in batches like the Release build.
   generator=()
   if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
   cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSWA_WERROR=ON -DSWA_SANITIZE=ON \
     -DSWA_BUILD_BENCHMARKS=OFF -DSWA_UNITY_BUILD=ON
-  cmake --build "$build" -j "$(nproc)" --target swa_sanitized_tests swa_headers_alone
+  cmake --build "$build" -j "$(nproc)" --target swa_sanitized_tests
 fi
 [ "$do_test" = 1 ] || exit 0
 if [ ! -f "$build/CTestTestfile.cmake" ]; then

@@ -28,8 +28,9 @@ if [ $# -gt 0 ]; then
   exit 0
 fi
 
-# The sanitizer stage beside the Release tests: its build, then its labels unit and closedloop (in-process runs,
-# nothing on the wall clock), in a session of their own (setsid, so that a failure here ends all of it, compilers and
+# Beside the Release tests: the check that every header compiles on its own (swa_headers_alone, in the Release build
+# tree, once), then the sanitizer stage: its build, then its labels unit and closedloop (in-process runs, nothing on
+# the wall clock), all in a session of their own (setsid, so that a failure here ends all of it, compilers and
 # tests included). A new session is a new scheduler autogroup where the kernel has them (sched_autogroup_enabled):
 # autogroups share the CPU evenly whatever their members' nice, so the group itself gets nice 19 too. Its label fuzz
 # runs after the Release tests: its rogue publisher drives an agent in realtime, which is not for nice 19 on a busy
@@ -38,10 +39,12 @@ san_log=$(mktemp /tmp/swa-sanitize.XXXXXX.log)
 san_times=$(mktemp /tmp/swa-sanitize.XXXXXX.times)
 setsid bash -c '{ echo 19 >/proc/self/autogroup; } 2>/dev/null
   date +%s >"$2"
+  nice -n 19 ionice -c 3 cmake --build "$3" --target swa_headers_alone || exit 3
+  date +%s >>"$2"
   nice -n 19 ionice -c 3 bash "$1" --build-only || exit 1
   date +%s >>"$2"
   nice -n 19 ionice -c 3 bash "$1" --test-only --in-process || exit 2
-  date +%s >>"$2"' _ "$root/deploy/test-sanitize.sh" "$san_times" >"$san_log" 2>&1 &
+  date +%s >>"$2"' _ "$root/deploy/test-sanitize.sh" "$san_times" "$build" >"$san_log" 2>&1 &
 san_pid=$!
 trap 'kill -TERM -- "-$san_pid" 2>/dev/null || true; rm -f "$san_log" "$san_times"' EXIT
 trap 'exit 130' INT  # so that the EXIT trap above also runs on Ctrl-C and on a CI job's SIGTERM
@@ -52,14 +55,19 @@ suite_end=$(date +%s)
 san_rc=0
 wait "$san_pid" || san_rc=$?
 if [ "$san_rc" -ne 0 ]; then
-  what=$([ "$san_rc" = 1 ] && echo build || echo "tests (labels unit and closedloop)")
-  echo "test.sh: the sanitizer $what failed; its output:" >&2
+  case "$san_rc" in
+    3) what="the header check (swa_headers_alone)" ;;
+    1) what="the sanitizer build" ;;
+    *) what="the sanitizer tests (labels unit and closedloop)" ;;
+  esac
+  echo "test.sh: $what failed; its output:" >&2
   cat "$san_log" >&2
   exit 1
 fi
 grep -E "tests passed|Total Test time" "$san_log" || true
-mapfile -t at <"$san_times"  # start, build done, tests done (epoch seconds)
-after=$((at[2] > suite_end ? at[2] - suite_end : 0))
-stages+=("sanitizer build $(duration $((at[1] - at[0]))) and tests $(duration $((at[2] - at[1]))), beside the Release tests ($(duration "$after") after them)")
+mapfile -t at <"$san_times"  # start, header check done, build done, tests done (epoch seconds)
+after=$((at[3] > suite_end ? at[3] - suite_end : 0))
+beside="header check $(duration $((at[1] - at[0]))), sanitizer build $(duration $((at[2] - at[1])))"
+stages+=("$beside and tests $(duration $((at[3] - at[2]))), beside the Release tests ($(duration "$after") after them)")
 timed "sanitizer fuzz" bash "$root/deploy/test-sanitize.sh" --test-only --fuzz
 summary

@@ -1,5 +1,7 @@
 // DESIGN §5 / issues #3 and #10: SWA holds the formation after GNSS is lost, standalone UAVs drift apart. The
-// targets of the neighbourhood rules over every swarm size are in formation_statistics.cpp (a benchmark).
+// targets of the neighbourhood rules over every swarm size are in formation_statistics.cpp (a benchmark). The
+// assertions over the seeds are the Release suite's (kStatistics, closed_loop_support.h); the sanitizer stage runs
+// two seeds of each case and asserts what holds of every run.
 
 #include <gtest/gtest.h>
 
@@ -12,11 +14,14 @@ using namespace testing;  // closed_loop_support.h
 
 void expectCohesive(const Stats& s, double tolerance_fraction, const char* what) {
   SCOPED_TRACE(what);
-  EXPECT_NEAR(s.mean("mean_neighbor_distance_m"), kR, tolerance_fraction * kR);
+  // every run: no collision, one group, nothing rejected
   EXPECT_EQ(s.max("collisions"), 0.0);
-  EXPECT_LE(s.mean("drift_velocity_mps"), 0.08);
   EXPECT_EQ(s.max("groups"), 1.0);
   for (const RunResult& r : s.runs) EXPECT_EQ(r.rejected_inputs, 0u) << "seed " << r.seed;
+  if (!kStatistics) return;
+  // over the seeds: d_NB within the tolerance of r, drift <= 0.08 m/s
+  EXPECT_NEAR(s.mean("mean_neighbor_distance_m"), kR, tolerance_fraction * kR);
+  EXPECT_LE(s.mean("drift_velocity_mps"), 0.08);
 }
 
 TEST(ClosedLoopCohesion, FourUavsHoldFormationWithin3Percent) {
@@ -44,7 +49,9 @@ TEST(ClosedLoopBaseline, StandaloneUavsDriftApart) {
   // GIVEN the same 8-UAV scenario and seeds, once with SWA and once with the standalone baseline
   const Stats standalone = runSeeds(shipped("dropout_8", {"agent.mode=standalone"}));
   // THEN without SWA the neighbour distance grows to >= 1.3 r
-  EXPECT_GE(standalone.mean("mean_neighbor_distance_m"), 1.3 * kR);
+  if (kStatistics) {
+    EXPECT_GE(standalone.mean("mean_neighbor_distance_m"), 1.3 * kR);
+  }
 }
 
 TEST(ClosedLoopBaseline, StandaloneDisplacementIsAtLeastThreeTimesSwa) {
@@ -54,7 +61,9 @@ TEST(ClosedLoopBaseline, StandaloneDisplacementIsAtLeastThreeTimesSwa) {
   // THEN each standalone UAV moves >= 3x as far as a SWA UAV after GNSS loss (measured 22.0 m vs 3.55 m, 6.2x; it
   // was 3.0x with the k = 3 rule before issue #10). The standalone baseline is the paper's dead reckoning: the
   // IMU-bias removal feeds the floating-frame filter only.
-  EXPECT_GE(standalone.mean("uav_displacement_m"), 3.0 * swa.mean("uav_displacement_m"));
+  if (kStatistics) {
+    EXPECT_GE(standalone.mean("uav_displacement_m"), 3.0 * swa.mean("uav_displacement_m"));
+  }
 }
 
 TEST(ClosedLoopScaling, DriftFallsAsTheSwarmGrows) {
@@ -63,7 +72,9 @@ TEST(ClosedLoopScaling, DriftFallsAsTheSwarmGrows) {
   const Stats four = runSeeds(shipped("dropout_4"));
   const Stats sixteen = runSeeds(shipped("swarm_16"));
   // THEN the swarm of 16 drifts slower (the paper's headline; disturbances average out over members)
-  EXPECT_LT(sixteen.mean("drift_velocity_mps"), four.mean("drift_velocity_mps"));
+  if (kStatistics) {
+    EXPECT_LT(sixteen.mean("drift_velocity_mps"), four.mean("drift_velocity_mps"));
+  }
 }
 
 TEST(ClosedLoopFit, PapersAlgebraicFitCollapsesTheFormation) {
@@ -74,15 +85,19 @@ TEST(ClosedLoopFit, PapersAlgebraicFitCollapsesTheFormation) {
   const Stats s = runSeeds(shipped("dropout_8", {"agent.formation.neighbourhood=k_nearest", "agent.formation.k=3",
                                                  "agent.focal.bias_window_s=0", "agent.circle_fit=algebraic"}));
   // THEN they collapse onto each other, which is why fixed_radius is the default
-  EXPECT_LT(s.mean("mean_neighbor_distance_m"), 0.3 * kR);
-  EXPECT_GT(s.mean("collisions"), 0.0);
+  if (kStatistics) {
+    EXPECT_LT(s.mean("mean_neighbor_distance_m"), 0.3 * kR);
+    EXPECT_GT(s.mean("collisions"), 0.0);
+  }
 }
 
 TEST(ClosedLoopAnchored, OneUavKeepingGnssStopsTheSwarmDrifting) {
   // GIVEN anchored agents and UAV 0 keeping GNSS while the others lose it at 10 s (400 s, see the scenario file)
   const Stats s = runSeeds(shipped("anchored_8"));
   // THEN the centroid's net drift is <= 0.01 m/s and the formation still holds
-  EXPECT_LE(s.mean("drift_velocity_mps"), 0.01);
+  if (kStatistics) {
+    EXPECT_LE(s.mean("drift_velocity_mps"), 0.01);
+  }
   expectCohesive(s, 0.03, "anchored");
 }
 
@@ -97,7 +112,9 @@ TEST(ClosedLoopConsistency, FocalAneesInsideTheChi2BandOnTheDefaultScenario) {
   }
   // AND at least 80 % of the steps are inside the band, averaged over the seeds (issue #10; R_c and Q_f were tuned
   // on seeds 101-120, these are 1-10; measured ANEES 2.33, 86 % of steps). Before: 3.4 with 60 %.
-  EXPECT_GE(s.mean("anees_position_in_band"), 0.80);
+  if (kStatistics) {
+    EXPECT_GE(s.mean("anees_position_in_band"), 0.80);
+  }
 }
 
 }  // namespace
