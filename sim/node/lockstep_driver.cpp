@@ -11,6 +11,8 @@ namespace {
 // How long an unanswered step's samples wait before they are sent again, where that is needed (repeatWhileWaiting):
 // far longer than an answer takes (about a millisecond), far shorter than the agent timeout.
 constexpr auto kRepeatPeriod = std::chrono::milliseconds(50);
+// How many steps the monitors may fall behind in lockstep (awaitSensorAcks): the truth period, 0.1 s of simulated time.
+constexpr std::int64_t kMonitorLagSteps = 10;
 }  // namespace
 
 LockstepDriver::LockstepDriver(const DriverContext& context) : Driver(context), lockstep_(n_) {}
@@ -67,29 +69,41 @@ void LockstepDriver::awaitSensorAcks(Clock::time_point& deadline) {
   // detections and GNSS fix are in its queue before the next step's IMU sample. DDS orders samples per topic, not
   // across topics (a repaired loss on one topic, or another transport path, lets the next IMU overtake them), so
   // wait until each live agent has acknowledged them: an RTPS acknowledgment follows the reader's listener call.
-  // Bounded by the step's deadline, so a stalled agent costs at most one agent timeout per step. Waited in slices of
-  // one poll period, so a stall of the simulator here is seen and moves the deadline like in the answer wait.
-  const auto acknowledged = [&](int uav) {
-    const auto slice_s = [&] {
-      const auto left = std::min<Clock::duration>(deadline - Clock::now(), kPollPeriod);
-      return std::max(0.0, std::chrono::duration<double>(left).count());
-    };
-    while (!stop_) {
-      if (ports_.detectionsAcknowledged(uav, slice_s()) && ports_.gnssAcknowledged(uav, slice_s())) return true;
-      const auto now = Clock::now();
-      const Clock::duration lost = stall_.check(now);
-      if (lost > Clock::duration::zero()) {
-        deadline += lost;
-        noteStall(lost, now);
-      }
-      if (now >= deadline) return false;
-    }
-    return false;
-  };
   for (int i = 0; i < n_; ++i) {
     if (!ports_.sideWritten(i) || !lockstep_.alive(i)) continue;
-    if (!acknowledged(i)) ++summary_.unacknowledged_sensor_steps;
+    const bool acknowledged = awaitAck(deadline, [&](double wait_s) {
+      return ports_.detectionsAcknowledged(i, wait_s) && ports_.gnssAcknowledged(i, wait_s);
+    });
+    if (!acknowledged) ++summary_.unacknowledged_sensor_steps;
   }
+  // The monitors (every reader of the clock) may fall kMonitorLagSteps steps behind, no more. Nothing else makes the
+  // simulator wait for them, and a lockstep run outpaces the wall clock many times: a monitor that lost the CPU for
+  // half a second came back to a backlog larger than its transport holds, and its recording lost most of the run's
+  // commands (KEEP_LAST 1: a lost one is not repaired) and sensor frames, while its verdict still passed.
+  if (world_.step_index() % kMonitorLagSteps == 0 &&
+      !awaitAck(deadline, [&](double wait_s) { return ports_.clockAcknowledged(wait_s); })) {
+    ++summary_.unacknowledged_clock_steps;
+  }
+}
+
+bool LockstepDriver::awaitAck(Clock::time_point& deadline, const std::function<bool(double)>& acknowledged) {
+  // Bounded by the step's deadline, so a stalled reader costs at most one agent timeout per step. Waited in slices of
+  // one poll period, so a stall of the simulator here is seen and moves the deadline like in the answer wait.
+  const auto slice_s = [&] {
+    const auto left = std::min<Clock::duration>(deadline - Clock::now(), kPollPeriod);
+    return std::max(0.0, std::chrono::duration<double>(left).count());
+  };
+  while (!stop_) {
+    if (acknowledged(slice_s())) return true;
+    const auto now = Clock::now();
+    const Clock::duration lost = stall_.check(now);
+    if (lost > Clock::duration::zero()) {
+      deadline += lost;
+      noteStall(lost, now);
+    }
+    if (now >= deadline) return false;
+  }
+  return false;
 }
 
 void LockstepDriver::drain(Clock::duration wait) {

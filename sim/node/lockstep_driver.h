@@ -1,8 +1,9 @@
 #pragma once
 // Lockstep: every step's sensor samples are published, then the world waits for each live agent's answer to its IMU
-// sample (lockstep_tracker.h) up to the agent timeout, and for the acknowledgment of its detections and GNSS fix, before it
-// steps. Deterministic: the same scenario and seed give the same run as the in-process loop (deploy/batch).
+// sample (lockstep_tracker.h) up to the agent timeout, and for the acknowledgment of its detections and GNSS fix (and,
+// every tenth step, the monitors' of the clock), before it steps. Deterministic: the same scenario and seed give the same run as the in-process loop (deploy/batch).
 
+#include <functional>
 #include <vector>
 
 #include "driver.h"
@@ -21,6 +22,8 @@ class LockstepDriver : public Driver {
   void drain(Clock::duration wait);
   // Moves `deadline` by any stall of the simulator seen while waiting.
   void awaitSensorAcks(Clock::time_point& deadline);
+  // Polls `acknowledged(wait_s)` until it holds (true) or `deadline` passes (false), moving `deadline` the same way.
+  bool awaitAck(Clock::time_point& deadline, const std::function<bool(double)>& acknowledged);
 
   LockstepTracker lockstep_;
 };

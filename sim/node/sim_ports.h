@@ -90,6 +90,7 @@ class SimPorts {
   bool sideWritten(int uav) const { return side_written_[static_cast<std::size_t>(uav)]; }
   bool detectionsAcknowledged(int uav, double wait_s);
   bool gnssAcknowledged(int uav, double wait_s);
+  bool clockAcknowledged(double wait_s) { return clock_.waitForAcknowledgments(wait_s); }
 
  private:
   // Whether `a` comes from the UAV's current commander (admitted at `at`); refusals counted and reported.

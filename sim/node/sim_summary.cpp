@@ -28,6 +28,7 @@ std::string summaryJson(const SimSummary& summary, const sim::Scenario& scenario
       {"refused_writers", summary.refused_writers},
       {"command_handovers", summary.command_handovers},
       {"unacknowledged_sensor_steps", summary.unacknowledged_sensor_steps},
+      {"unacknowledged_clock_steps", summary.unacknowledged_clock_steps},
       {"agent_dead_events", summary.agent_dead_events},
       {"agent_rejoined_events", summary.agent_rejoined_events},
       {"stalls", summary.stalls},

@@ -28,6 +28,7 @@ struct SimSummary {
   std::uint64_t command_handovers = 0;
   bool refused_as_twin = false;  // an older simulator runs in this swarm: this one did not start
   std::uint64_t unacknowledged_sensor_steps = 0;  // lockstep: detections / GNSS not acknowledged in time
+  std::uint64_t unacknowledged_clock_steps = 0;   // lockstep: a monitor more than 10 steps behind at the deadline
   std::uint64_t agent_dead_events = 0;
   std::uint64_t agent_rejoined_events = 0;
   // Times the simulator itself did not run for longer than its loop explains (swa/app/stall_watch.h), and for how
