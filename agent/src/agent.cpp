@@ -35,6 +35,12 @@ Agent::Agent(const AgentConfig& config)
 }
 
 bool Agent::acceptStamp(StreamClock& clock, StampNs stamp) {
+  // Detections and GNSS are applied on the IMU's timeline (the filters predict to their stamps): a stream whose
+  // clock disagrees with it by more than the window would throw the estimates into another time.
+  const bool on_imu_timeline = &clock != &imu_clock_ && imu_clock_.started();
+  const StampNs window = toNs(config_.limits.max_stamp_jump_s);
+  StampNs offset = 0;
+  const bool offset_known = on_imu_timeline && !__builtin_sub_overflow(stamp, imu_clock_.last(), &offset);
   switch (clock.check(stamp)) {
     case StreamClock::Verdict::kAccept:
       break;
@@ -46,15 +52,18 @@ bool Agent::acceptStamp(StreamClock& clock, StampNs stamp) {
       ++diag_.rejected.out_of_order;
       return false;
     case StreamClock::Verdict::kFuture:
+      // Far ahead of the stream's own last stamp, but not of the IMU's: the stream was silent (ArduPilot sends no
+      // GNSS while its receiver is unhealthy, a detector may send nothing) and is back. Before, its first
+      // resync_samples - 1 samples were rejected as future ones, and a regained GNSS was used 0.3 s late.
+      if (offset_known && offset <= window && offset >= -window) {
+        clock.resume(stamp);
+        break;
+      }
       ++diag_.rejected.future;
       return false;
   }
-  if (&clock == &imu_clock_ || !imu_clock_.started()) return true;
-  // Detections and GNSS are applied on the IMU's timeline (the filters predict to their stamps): a stream whose
-  // clock disagrees with it by more than the window would throw the estimates into another time.
-  StampNs offset = 0;
-  const StampNs window = toNs(config_.limits.max_stamp_jump_s);
-  if (__builtin_sub_overflow(stamp, imu_clock_.last(), &offset) || offset > window) {
+  if (!on_imu_timeline) return true;
+  if (!offset_known || offset > window) {
     ++diag_.rejected.future;
     return false;
   }

@@ -46,4 +46,10 @@ StreamClock::Verdict StreamClock::check(StampNs stamp_ns) {
   return stamp_ns <= last_ns_ ? Verdict::kOutOfOrder : Verdict::kFuture;
 }
 
+void StreamClock::resume(StampNs stamp_ns) {
+  started_ = true;
+  last_ns_ = stamp_ns;
+  candidate_count_ = 0;
+}
+
 }  // namespace swa::agent

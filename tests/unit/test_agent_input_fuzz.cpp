@@ -85,6 +85,8 @@ struct Verdict {
 
 // The stamp rules of the spec: each stream's own clock (stream_clock.h, tested on its own in test_stream_clock.cpp),
 // detections and GNSS within the window of the IMU's clock, and a restart of the IMU's clock restarting the others.
+// A detection or GNSS stamp too far ahead of its own stream but within the IMU's window resumes that stream (it was
+// silent, as ArduPilot's GNSS is while its receiver is unhealthy).
 struct FuzzOracle {
   explicit FuzzOracle(const LimitsConfig& lim)
       : window(static_cast<StampNs>(lim.max_stamp_jump_s * 1e9)),
@@ -97,7 +99,11 @@ struct FuzzOracle {
   Stamp judge(int stream, StampNs st) {
     const StreamClock::Verdict v = clock[stream].check(st);
     if (v == StreamClock::Verdict::kOutOfOrder) return Stamp::kOutOfOrder;
-    if (v == StreamClock::Verdict::kFuture) return Stamp::kFuture;
+    StampNs to_imu = 0;
+    const bool near_imu = stream != 0 && clock[0].started() && !__builtin_sub_overflow(st, clock[0].last(), &to_imu) &&
+                          to_imu <= window && to_imu >= -window;
+    if (v == StreamClock::Verdict::kFuture && near_imu) clock[stream].resume(st);
+    if (v == StreamClock::Verdict::kFuture && !near_imu) return Stamp::kFuture;
     if (v == StreamClock::Verdict::kResync && stream == 0) {
       clock[1] = fresh();
       clock[2] = fresh();

@@ -167,5 +167,43 @@ TEST(AgentInputGnss, AbsurdStdDoesNotPoisonTheAbsoluteEstimator) {
   }
 }
 
+// ArduPilot sends no GNSS while its receiver is unhealthy: the stream falls silent for longer than the stamp window
+// and comes back on the IMU's timeline. Its first fixes are news, not future stamps (before: the first three were
+// rejected as such, and the regained GNSS used 0.3 s late).
+TEST(AgentInputGnss, AFixAfterASilenceIsUsedAtOnceWhenItIsOnTheImusTimeline) {
+  // GIVEN an anchored agent with IMU at 100 Hz and fixes at 10 Hz for 1 s, then a loss, then 2.5 s without any fix
+  Agent agent(configFor(Mode::kAnchored));
+  StampNs t = kT0;
+  GnssSample g;
+  g.valid = true;
+  g.std_m = 0.5;
+  for (int i = 0; i < 100; ++i) {
+    ImuSample s;
+    s.stamp_ns = t += 10 * kMs;
+    agent.onImu(s);
+    g.stamp_ns = t;
+    if (i % 10 == 0) agent.onGnss(g);
+  }
+  GnssSample lost;
+  lost.stamp_ns = t;
+  agent.onGnss(lost);
+  for (int i = 0; i < 250; ++i) {
+    ImuSample s;
+    s.stamp_ns = t += 10 * kMs;
+    agent.onImu(s);
+  }
+  ASSERT_FALSE(agent.diagnostics().gnss_valid);
+  // WHEN a fix comes at the IMU's time
+  g.stamp_ns = t;
+  agent.onGnss(g);
+  // THEN it is used at once, and nothing is counted as rejected
+  EXPECT_TRUE(agent.diagnostics().gnss_valid);
+  expectCounters(agent.diagnostics().rejected, RejectCounters{});
+  // AND a fix further ahead of the IMU than the window is still a future one
+  g.stamp_ns = t + 2 * kSec;
+  agent.onGnss(g);
+  EXPECT_EQ(agent.diagnostics().rejected.future, 1u);
+}
+
 }  // namespace
 }  // namespace swa::agent

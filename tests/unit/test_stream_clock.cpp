@@ -126,6 +126,20 @@ TEST(StreamClock, InterruptedCandidateTimelineStartsOver) {
   EXPECT_EQ(c.check(40 * kMs), V::kResync);
 }
 
+TEST(StreamClock, AResumedStreamGoesOnFromTheResumedStampAtItsOldRate) {
+  // GIVEN a 100 Hz stream, silent for 3 s, whose next stamp another clock vouches for
+  StreamClock c = at100Hz(10);
+  const StampNs back = c.last() + 3000 * kMs;
+  EXPECT_EQ(c.check(back), V::kFuture);
+  // WHEN it resumes there
+  c.resume(back);
+  // THEN it goes on from it at 100 Hz, and the silence was no resynchronisation
+  EXPECT_EQ(c.last(), back);
+  EXPECT_EQ(c.check(back + 10 * kMs), V::kAccept);
+  EXPECT_EQ(c.check(back + 5 * kMs), V::kOutOfOrder);
+  EXPECT_EQ(c.resyncs(), 0u);
+}
+
 TEST(StreamClock, ExtremeStampsDoNotOverflow) {
   StreamClock c(kWindow, 3);
   EXPECT_EQ(c.check(std::numeric_limits<StampNs>::min()), V::kAccept);

@@ -27,6 +27,10 @@ class StreamClock {
 
   // Judges the next sample's stamp and, when accepted (kAccept, kResync), makes it the stream's last stamp.
   Verdict check(StampNs stamp_ns);
+  // The stream goes on from `stamp_ns`, further ahead than max_jump, when another clock vouches for the stamp: a
+  // stream that fell silent for a while (ArduPilot sends no GNSS while its receiver is unhealthy) and came back on
+  // the IMU's timeline. The period is kept: the silence was no step of the stream.
+  void resume(StampNs stamp_ns);
 
   bool started() const { return started_; }
   StampNs last() const { return last_ns_; }
