@@ -170,12 +170,13 @@ TEST(NavSat, AFixIsValidTheLossComesAsNoFixOrAsSilenceAndOnlyOnce) {
   ASSERT_TRUE(second && second->valid);
   EXPECT_NEAR(second->position_m.x(), 3.0, 1e-3);
   EXPECT_NEAR(second->position_m.y(), 0.0, 1e-3);
-  // WHEN the vehicle's time goes on for 0.5 s without a fix THEN nothing; past it, one loss, once
-  EXPECT_FALSE(f.onVehicleTime(1'600'000));
-  const auto lost = f.onVehicleTime(1'610'000);
+  // WHEN the vehicle's time goes on without a fix THEN nothing before 0.5 s; at 0.5 s, one loss, once
+  EXPECT_FALSE(f.onVehicleTime(1'599'999));
+  const auto lost = f.onVehicleTime(1'600'000);
   ASSERT_TRUE(lost);
   EXPECT_FALSE(lost->valid);
-  EXPECT_EQ(lost->stamp_ns, 1'610'000'000);
+  EXPECT_EQ(lost->stamp_ns, 1'600'000'000);
+  EXPECT_FALSE(f.onVehicleTime(1'610'000));
   EXPECT_FALSE(f.onVehicleTime(3'000'000));
   // WHEN fixes come again THEN valid at once; a report of no fix is a loss at once; an older report is dropped
   ASSERT_TRUE(fixAt(3'100'000, agent::Vec2(13.0, 21.0))->valid);

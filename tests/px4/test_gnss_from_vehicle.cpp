@@ -3,6 +3,8 @@
 // layout, through the bridge's GnssForward into an anchored agent. The agent must stop using GNSS at the first report
 // after the scenario drops it, and use it again at the first report after the regain: its GNSS state is the
 // vehicle's at every report, so the switch happens in the IMU period the report arrives in.
+// ArduPilot signals no loss (issue #42: the owner accepted "within --gnss-silence-s"): its stand-in sends no
+// NavSatFix while GNSS is lost, and the agent must switch within --gnss-silence-s of the last fix on the IMU's clock.
 
 #include <gtest/gtest.h>
 
@@ -14,11 +16,13 @@
 #include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
 
 #include "swa/agent/agent.h"
+#include "swa/autopilot/navsat.h"
 #include "swa/px4/gnss.h"
 #include "swa/px4/release.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/sim/timing.h"
 #include "swa/sim/world.h"
+#include "swa/wire/ardupilot.h"
 #include "swa/wire/px4.h"
 
 namespace swa::px4::gnss_vehicle_test {
@@ -89,6 +93,53 @@ TEST(GnssFromVehicle, AnAnchoredAgentFollowsTheVehiclesGnssStateAtEveryReportInE
     EXPECT_NEAR(*switched_off_s, 3.0, 1e-9);  // the first report at the loss, not a rate-limited later one
     EXPECT_NEAR(*switched_on_s, 6.0, 1e-9);
     EXPECT_EQ(forward.counters().forwarded + forward.counters().invalid_forwarded, static_cast<std::uint64_t>(reports));
+  }
+}
+
+TEST(GnssFromVehicle, AnAnchoredAgentOnArdupilotSwitchesWithinTheSilenceOfTheLastFixAndBackAtTheFirstFix) {
+  for (const double silence_s : {0.5, 0.25, 1.2}) {
+    SCOPED_TRACE(silence_s);
+    // GIVEN 4 UAVs that lose GNSS at 3 s and regain it at 6 s, GNSS at 10 Hz, IMU at 100 Hz, an anchored agent on
+    // UAV 1 and the bridge's NavSatForward with --gnss-silence-s = silence_s
+    const sim::Scenario s = sim::loadScenario(std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml",
+                                              {"duration_s=9", "gnss.dropout_start_s=3", "gnss.dropout_end_s=6",
+                                               "agent.mode=anchored"});
+    sim::World world(s);
+    agent::Agent agent(s.agent);
+    ardupilot::NavSatForward navsat(ardupilot::NavSatForwardConfig{silence_s, 2.5});
+    const ardupilot::LocalTangent home{47.397742, 8.545594};
+    std::optional<double> last_fix_s, switched_off_s, switched_on_s;
+    while (!world.finished()) {
+      const sim::UavSensors& in = world.sensors()[1];
+      const bool was = agent.diagnostics().gnss_valid;
+      // WHEN the IMU sample arrives, the bridge reads the vehicle's time off it (loss by silence), and a NavSatFix
+      // arrives only while the stand-in has a fix, through the wire as ArduPilot's message
+      if (in.imu) {
+        agent.onImu(*in.imu);
+        if (const auto g = navsat.onVehicleTime(*timestampUsOf(in.imu->stamp_ns))) agent.onGnss(*g);
+      }
+      if (in.gnss && in.gnss->valid) {
+        double lat = 0.0, lon = 0.0;
+        home.latLonOf(in.gnss->position_m, lat, lon);
+        const sensor_msgs::msg::NavSatFix m =
+            wire::navSatFix(*timestampUsOf(in.gnss->stamp_ns), lat, lon, in.gnss->std_m);
+        if (const auto g = navsat.onNavSat(wire::navSatReportOf(m))) agent.onGnss(*g);
+        if (!switched_off_s) last_fix_s = sim::stampSeconds(in.gnss->stamp_ns);
+      }
+      if (in.imu) {  // every step (100 Hz): the instant of this step's samples
+        const double t = sim::stampSeconds(in.imu->stamp_ns);
+        if (was && !agent.diagnostics().gnss_valid && !switched_off_s) switched_off_s = t;
+        if (!was && agent.diagnostics().gnss_valid && switched_off_s && !switched_on_s) switched_on_s = t;
+      }
+      world.step();
+    }
+    // THEN the agent stopped using GNSS silence_s after the last fix (2.9 s) on the IMU's clock, not later
+    ASSERT_TRUE(last_fix_s && switched_off_s && switched_on_s);
+    EXPECT_NEAR(*last_fix_s, 2.9, 1e-9);
+    EXPECT_GT(*switched_off_s, *last_fix_s);
+    EXPECT_LE(*switched_off_s - *last_fix_s, silence_s + 1e-9);
+    // AND used it again at the first fix after the regain
+    EXPECT_NEAR(*switched_on_s, 6.0, 1e-9);
   }
 }
 

@@ -56,7 +56,8 @@ std::optional<agent::GnssSample> NavSatForward::onNavSat(const NavSatReport& r) 
 
 std::optional<agent::GnssSample> NavSatForward::onVehicleTime(std::uint64_t now_us) {
   if (!valid_ || !last_us_ || now_us <= *last_us_) return std::nullopt;
-  if (static_cast<double>(now_us - *last_us_) * 1e-6 <= config_.silence_s) return std::nullopt;
+  // At silence_s of silence exactly, not a sample later: the agent's switch is due within silence_s of the last fix.
+  if (static_cast<double>(now_us - *last_us_) * 1e-6 < config_.silence_s) return std::nullopt;
   valid_ = false;
   agent::GnssSample g;
   g.stamp_ns = stampOf(now_us);

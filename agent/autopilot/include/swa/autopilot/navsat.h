@@ -47,7 +47,7 @@ class NavSatForward {
   // A NavSatFix: the GNSS sample for the agent (valid or not), or nullopt if it is older than the last one.
   std::optional<agent::GnssSample> onNavSat(const NavSatReport& r);
   // The vehicle's time (every attitude sample): a loss (a valid=false sample) once, when the last sample said valid
-  // and no NavSatFix came for silence_s.
+  // and no NavSatFix came for silence_s: at the first attitude sample at least silence_s after the last fix.
   std::optional<agent::GnssSample> onVehicleTime(std::uint64_t now_us);
 
  private:
