@@ -134,16 +134,10 @@ void ArdupilotVehicles::apply(const Answer& a) {
 }
 
 void ArdupilotVehicles::step(sim::World& world, const EventFn& event) {
-  const agent::StampNs now = world.time_ns();
   for (std::size_t k = 0; k < vehicles_.size(); ++k) {
     Vehicle& v = vehicles_[k];
-    const int uav = static_cast<int>(k);
-    const sim::ArdupilotStandin::Decision d = v.standin.step(now);
-    commandWorld(world, uav, d.velocity_mps, d.following, v.yaw_rate_radps);
-    for (const std::string& text : v.standin.takeEvents()) {
-      event(uav, v.standin.timedOut() ? v.standin.silentForS() : 0.0, "ArduPilot stand-in " + v.ns + ": " + text);
-    }
-    publishStatus(v, now);
+    stepVehicle(world, static_cast<int>(k), v.standin, v.yaw_rate_radps, "ArduPilot stand-in " + v.ns, event);
+    publishStatus(v, world.time_ns());
   }
 }
 

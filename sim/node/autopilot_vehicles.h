@@ -106,4 +106,14 @@ void markAnswered(Answer& a, agent::StampNs stamp_ns, std::uint32_t seq);
 // the bridge (holding: the heading too).
 void commandWorld(sim::World& world, int uav, const agent::Vec2& velocity_mps, bool following, double yaw_rate_radps);
 
+// One vehicle's part of step(), either stand-in: its decision now commanded to the world with the yaw rate of its
+// newest command, and its events raised as "`who`: text" with the stand-in's value.
+template <class Standin>
+void stepVehicle(sim::World& world, int uav, Standin& standin, double yaw_rate_radps, const std::string& who,
+                 const AutopilotVehicles::EventFn& event) {
+  const typename Standin::Decision d = standin.step(world.time_ns());
+  commandWorld(world, uav, d.velocity_mps, d.following, yaw_rate_radps);
+  for (const std::string& text : standin.takeEvents()) event(uav, standin.eventValue(), who + ": " + text);
+}
+
 }  // namespace swa::sim_node

@@ -164,16 +164,10 @@ void Px4Vehicles::apply(const Answer& a) {
 }
 
 void Px4Vehicles::step(sim::World& world, const EventFn& event) {
-  const agent::StampNs now = world.time_ns();
   for (std::size_t k = 0; k < vehicles_.size(); ++k) {
     Vehicle& v = vehicles_[k];
-    const int uav = static_cast<int>(k);
-    const sim::Px4Standin::Decision d = v.standin.step(now);
-    commandWorld(world, uav, d.velocity_mps, d.following, v.yaw_rate_radps);
-    for (const std::string& text : v.standin.takeEvents()) {
-      event(uav, v.standin.failsafe() ? v.standin.lostAfterS() : 0.0, "PX4 stand-in " + v.ns + ": " + text);
-    }
-    publishStatus(uav, v, now);
+    stepVehicle(world, static_cast<int>(k), v.standin, v.yaw_rate_radps, "PX4 stand-in " + v.ns, event);
+    publishStatus(static_cast<int>(k), v, world.time_ns());
   }
 }
 

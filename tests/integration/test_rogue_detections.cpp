@@ -20,12 +20,8 @@
 #include <swa/ros/Detection3DArrayPubSubTypes.h>
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 
-#include "process_test.h"
-#include "swa/agent/samples.h"
-#include "swa/dds/options.h"
-#include "swa/dds/participant.h"
+#include "rogue_agent_test.h"
 #include "swa/dds/sample_queue.h"
-#include "swa/dds/topics.h"
 #include "swa/wire/ros_detections.h"
 #include "swa/wire/ros_types.h"
 
@@ -43,8 +39,8 @@ agent::DetectionSet detections(agent::StampNs t, int kind, std::mt19937_64& rng)
   s.stamp_ns = t;
   for (int j = 0; j < 3; ++j) {
     agent::Detection d;
-    d.target_id = 10 + j;
-    d.position_body_m = agent::Vec2(10.0 * std::cos(2.1 * j) + 1.0, 10.0 * std::sin(2.1 * j));
+    d.target_id = ringNeighbourId(j);
+    d.position_body_m = ringNeighbour(j);
     agent::Mat2 c;
     c << 0.04, 0.0, 0.0, 0.04;
     d.covariance_m2 = c;
@@ -64,17 +60,11 @@ agent::DetectionSet detections(agent::StampNs t, int kind, std::mt19937_64& rng)
   return s;
 }
 
-class RogueDetections : public ::testing::TestWithParam<std::string> {
+class RogueDetections : public RogueAgentTest, public ::testing::WithParamInterface<std::string> {
  protected:
   void SetUp() override {
-    dir_ = freshTestDir("swa_rogue_detections", /*per_test=*/true);
-    domain_ = testDomain(41);
-    useOwnSwarm();
-    const fs::path config = dir_ / "agent.yaml";
-    std::ofstream(config) << "sensor:\n  input: " << GetParam() << "\n";
-    agent_ = std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, kUav, domain_, config), dir_ / "agent.log");
-    rogue_ = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
-    imu_ = rogue_->writer<msg::ImuPubSubType>(dds::topics::imu(kUav), "swa_sensor_writer");
+    startAgentAndRogue("swa_rogue_detections", /*dir_per_test=*/true, 41, kUav,
+                       "sensor:\n  input: " + GetParam() + "\n");
     if (GetParam() == "vision_msgs") {
       vision_ = rogue_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(dds::topics::visionDetections(kUav),
                                                                             "ros2_default_writer");
@@ -82,14 +72,6 @@ class RogueDetections : public ::testing::TestWithParam<std::string> {
       uvdar_ = rogue_->writer<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(dds::topics::uvdarPoses(kUav),
                                                                                         "ros2_default_writer");
     }
-    rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(kUav), "swa_command_reader", cmds_.listener());
-  }
-
-  void TearDown() override {
-    agent_.reset();
-    rogue_.reset();
-    janitor_.clean();
-    if (!HasFailure()) fs::remove_all(dir_);
   }
 
   int detectionsMatched() const { return vision_ ? vision_.matched() : uvdar_.matched(); }
@@ -108,13 +90,6 @@ class RogueDetections : public ::testing::TestWithParam<std::string> {
     }
   }
 
-  fs::path dir_;
-  int domain_ = 0;
-  ShmJanitor janitor_;
-  std::unique_ptr<Child> agent_;
-  Received<msg::VelocitySetpoint> cmds_;
-  std::unique_ptr<dds::Participant> rogue_;
-  dds::Writer<msg::Imu> imu_;
   dds::Writer<vision_msgs::msg::Detection3DArray> vision_;
   dds::Writer<mrs_msgs::msg::PoseWithCovarianceArrayStamped> uvdar_;
 };

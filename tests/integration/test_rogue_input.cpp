@@ -24,12 +24,8 @@
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "process_test.h"
-#include "swa/agent/samples.h"
-#include "swa/dds/options.h"
-#include "swa/dds/participant.h"
+#include "rogue_agent_test.h"
 #include "swa/dds/sample_queue.h"
-#include "swa/dds/topics.h"
 
 namespace swa::testing {
 namespace {
@@ -54,26 +50,13 @@ long rssKb(pid_t pid) {
   return 0;
 }
 
-class RogueInput : public ::testing::Test {
+class RogueInput : public RogueAgentTest {
  protected:
   void SetUp() override {
-    dir_ = freshTestDir("swa_rogue");
-    domain_ = testDomain(37);
-    useOwnSwarm();
-    agent_ = std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, kUav, domain_), dir_ / "agent.log");
-    rogue_ = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
-    imu_ = rogue_->writer<msg::ImuPubSubType>(dds::topics::imu(kUav), "swa_sensor_writer");
+    startAgentAndRogue("swa_rogue", /*dir_per_test=*/false, 37, kUav);
     det_ = rogue_->writer<msg::DetectionsPubSubType>(dds::topics::detections(kUav), "swa_detections_gnss_writer");
     gnss_ = rogue_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(kUav), "swa_detections_gnss_writer");
-    rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(kUav), "swa_command_reader", cmds_.listener());
     rogue_->reader<msg::AgentStatePubSubType>(dds::topics::state(kUav), "swa_state_reader", states_.listener());
-  }
-
-  void TearDown() override {
-    agent_.reset();
-    rogue_.reset();
-    janitor_.clean();
-    if (!HasFailure()) fs::remove_all(dir_);
   }
 
   bool waitMatched(double bound_s) {
@@ -99,9 +82,9 @@ class RogueInput : public ::testing::Test {
       d.observer_id(kUav);
       for (int j = 0; j < 3; ++j) {
         msg::Detection x;
-        x.target_id(10 + j);
-        x.x_m(10.0 * std::cos(2.1 * j) + 1.0);
-        x.y_m(10.0 * std::sin(2.1 * j));
+        x.target_id(ringNeighbourId(j));
+        x.x_m(ringNeighbour(j).x());
+        x.y_m(ringNeighbour(j).y());
         d.items().push_back(x);
       }
       det_.write(d);
@@ -126,14 +109,7 @@ class RogueInput : public ::testing::Test {
     }));
   }
 
-  fs::path dir_;
-  int domain_ = 0;
-  ShmJanitor janitor_;
-  std::unique_ptr<Child> agent_;
-  Received<msg::VelocitySetpoint> cmds_;
   Received<msg::AgentState> states_;
-  std::unique_ptr<dds::Participant> rogue_;
-  dds::Writer<msg::Imu> imu_;
   dds::Writer<msg::Detections> det_;
   dds::Writer<msg::GnssFix> gnss_;
 };

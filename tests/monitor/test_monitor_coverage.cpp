@@ -5,6 +5,7 @@
 
 #include "truth_coverage.h"
 #include "swa/run_record/verdict.h"
+#include "verdict_input.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -55,12 +56,7 @@ TEST(TruthCoverage, GapsUpToASecondAndRepeatsAreNotMissed) {
 
 TEST(MonitorVerdict, MissedPartOfTheRunIsIncompleteAndNamed) {
   // GIVEN a completed run that would pass, seen from 28 s on
-  VerdictInput in;
-  in.completed = true;
-  in.end_reason = "completed";
-  in.saw_truth = true;
-  in.summary.mean_neighbor_distance_m = 10.0;
-  in.summary.groups = 1;
+  VerdictInput in = record::testing::passingRun();
   in.missed = {{0.0, 28.0}};
   // THEN INCOMPLETE, saying what was missed
   const Verdict v = judge(in);

@@ -7,22 +7,12 @@
 
 #include "monitor_options.h"
 #include "swa/run_record/verdict.h"
+#include "verdict_input.h"
 
 namespace swa::record {
 namespace {
 
-VerdictInput good() {
-  VerdictInput in;
-  in.completed = true;
-  in.end_reason = "completed";
-  in.saw_truth = true;
-  in.summary.mean_neighbor_distance_m = 10.3;
-  in.summary.collisions = 0;
-  in.summary.groups = 1;
-  in.scoring.formation.radius_m = 10.0;
-  in.scoring.radius_tolerance = 0.10;
-  return in;
-}
+VerdictInput good() { return testing::passingRun(); }
 
 bool mentions(const Verdict& v, const std::string& what) {
   for (const std::string& r : v.reasons) {

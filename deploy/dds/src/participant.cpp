@@ -310,13 +310,14 @@ fdds::DataWriter* Participant::createWriter(fdds::Topic* topic, const std::strin
 }
 
 fdds::DataReader* Participant::createReader(fdds::Topic* topic, const std::string& profile,
-                                            fdds::DataReaderListener* listener) {
+                                            std::unique_ptr<fdds::DataReaderListener> listener) {
   fdds::DataReaderQos qos;
   if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
     throw DdsError("data_reader profile '" + profile + "' missing in the DDS XML profiles");
   }
-  fdds::DataReader* r = subscriber_->create_datareader(topic, qos, listener);
+  fdds::DataReader* r = subscriber_->create_datareader(topic, qos, listener.get());
   if (r == nullptr) throw DdsError("cannot create reader on " + topic->get_name() + " with profile " + profile);
+  listeners_.push_back(std::move(listener));
   return r;
 }
 

@@ -54,6 +54,8 @@ class ArdupilotStandin {
   bool timedOut() const { return timed_out_; }
   // How long cmd_vel had been silent when the vehicle last stopped [s] (the value of the timeout event).
   double silentForS() const { return silent_for_s_; }
+  // The value of this step's events: silentForS() while timed out, else 0 (as PX4's stand-in).
+  double eventValue() const { return timed_out_ ? silent_for_s_ : 0.0; }
 
  private:
   agent::StampNs timeout_ns_;

@@ -51,6 +51,8 @@ class Px4Standin {
   bool failsafe() const { return failsafe_; }
   // How long the offboard signal had been silent when it was last lost [s] (the value of the failsafe event).
   double lostAfterS() const { return lost_after_s_; }
+  // The value of this step's events: lostAfterS() while in failsafe, else 0 (as ArduPilot's stand-in).
+  double eventValue() const { return failsafe_ ? lost_after_s_ : 0.0; }
 
  private:
   bool signalFresh(agent::StampNs now) const;

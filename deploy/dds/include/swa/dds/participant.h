@@ -222,10 +222,8 @@ class Participant {
       const std::string& topic_name, const std::string& profile,
       std::function<void(typename PubSubType::type&&, const WriterGuid&)> on_sample) {
     using Msg = typename PubSubType::type;
-    auto listener = std::make_unique<detail::CallbackListener<Msg>>(std::move(on_sample));
-    eprosima::fastdds::dds::DataReader* r = createReader(topic(topic_name, new PubSubType()), profile, listener.get());
-    listeners_.push_back(std::move(listener));
-    return Reader<Msg>(r);
+    return Reader<Msg>(createReader(topic(topic_name, new PubSubType()), profile,
+                                    std::make_unique<detail::CallbackListener<Msg>>(std::move(on_sample))));
   }
 
   // The same, with each sample's identities (a ROS 2 service's requests or replies).
@@ -234,10 +232,8 @@ class Participant {
       const std::string& topic_name, const std::string& profile,
       std::function<void(typename PubSubType::type&&, const SampleIds&)> on_sample) {
     using Msg = typename PubSubType::type;
-    auto listener = std::make_unique<detail::IdentityListener<Msg>>(std::move(on_sample));
-    eprosima::fastdds::dds::DataReader* r = createReader(topic(topic_name, new PubSubType()), profile, listener.get());
-    listeners_.push_back(std::move(listener));
-    return Reader<Msg>(r);
+    return Reader<Msg>(createReader(topic(topic_name, new PubSubType()), profile,
+                                    std::make_unique<detail::IdentityListener<Msg>>(std::move(on_sample))));
   }
 
   // A writer of ready-made payloads on `topic_name`, announced as PubSubType (a replay's: raw_type.h). Same rule.
@@ -254,11 +250,8 @@ class Participant {
   template <class PubSubType>
   Reader<Payload> rawReader(const std::string& topic_name, const std::string& profile,
                             std::function<void(RawSample&&)> on_sample) {
-    auto listener = std::make_unique<detail::RawListener>(std::move(on_sample));
-    eprosima::fastdds::dds::DataReader* r =
-        createReader(topic(topic_name, rawTypeOf<PubSubType>()), profile, listener.get());
-    listeners_.push_back(std::move(listener));
-    return Reader<Payload>(r);
+    return Reader<Payload>(createReader(topic(topic_name, rawTypeOf<PubSubType>()), profile,
+                                       std::make_unique<detail::RawListener>(std::move(on_sample))));
   }
 
   const std::string& name() const { return name_; }
@@ -298,8 +291,9 @@ class Participant {
   std::unique_ptr<PeerListener> peer_listener_;
   bool writerReadBy(const eprosima::fastdds::dds::DataWriter* w, const PeerKey& peer) const;
   eprosima::fastdds::dds::DataWriter* createWriter(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
+  // A reader of `topic` whose samples go to `listener`, which is kept here for as long as the participant lives.
   eprosima::fastdds::dds::DataReader* createReader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
-                                                   eprosima::fastdds::dds::DataReaderListener* listener);
+                                                   std::unique_ptr<eprosima::fastdds::dds::DataReaderListener> listener);
 
   // Declared first, destroyed last: the listeners outlive the readers that call them.
   std::vector<std::unique_ptr<eprosima::fastdds::dds::DataReaderListener>> listeners_;
