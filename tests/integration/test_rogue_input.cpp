@@ -131,12 +131,19 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   // #11: held forever by the stamp orderer, +43 MB/s). Each set is acknowledged by the agent's reader before the next
   // is written: every one of them reaches the agent, however busy the host (written as fast as the writer could,
   // a busy host's agent received 2952 of 6000 before its reader history overflowed), so each must be counted.
-  // A genuine IMU sample every 100 sets: an agent whose IMU falls silent for 6 s while its writer stays matched
-  // re-creates its participant (silence_watch.h), and the sets sent meanwhile are lost to it (sanitizer CI: the attack
-  // took over 6 s under ASan, 5379 of 6000 counted).
+  // A genuine IMU sample (and no detections, which would move the detection stream's clock past the sets below)
+  // every 100 sets: an agent whose IMU falls silent for 6 s while its writer stays matched re-creates its participant
+  // (silence_watch.h), and the sets sent meanwhile are lost to it (sanitizer CI: the attack took over 6 s under ASan,
+  // 5379 of 6000 counted).
   const auto oversizeAttack = [&] {
     for (int i = 0; i < 2000; ++i) {
-      if (i % 100 == 0) genuineStep(t += 10 * kMs, seq);
+      if (i % 100 == 0) {
+        msg::Imu m;
+        m.header().stamp_ns(t += 10 * kMs);
+        m.header().seq(++seq);
+        m.uav_id(kUav);
+        imu_.write(m);
+      }
       msg::Detections d;
       d.header().stamp_ns(i % 2 == 0 ? t + 3600 * kSec : std::numeric_limits<agent::StampNs>::max());
       d.observer_id(kUav);
