@@ -6,6 +6,7 @@
 // ArduPilot has no offboard heartbeat: its liveness is the command stream itself, and when that stops its GUIDED
 // velocity timeout (GUID_TIMEOUT) stops the vehicle (the core, told so, puts no heartbeat in the outbox).
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include <swa/ros/ArdupilotStatusPubSubTypes.h>
 #include <swa/ros/ImuPubSubTypes.h>
 #include <swa/ros/NavSatFixPubSubTypes.h>
+#include <swa/ros/TFMessagePubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/autopilot/ardupilot.h"
@@ -39,6 +41,9 @@ class ArdupilotLink : public VehicleLink {
 
   void connect(dds::Participant& p) override {
     cmd_vel_ = p.writer<geometry_msgs::msg::TwistStampedPubSubType>(topics::apTopic(ns_, "cmd_vel"), "ap_in_writer");
+    if (options_.odometry.mode != autopilot::OdometryMode::kOff) {
+      tf_ = p.writer<tf2_msgs::msg::TFMessagePubSubType>(odometryTopic(), "ap_in_writer");
+    }
     if (options_.core.engage) {
       arm_request_ = p.writer<srv::ArmMotors_RequestPubSubType>(topics::apRequest(ns_, "arm_motors"),
                                                                 "ap_service_writer");
@@ -72,6 +77,8 @@ class ArdupilotLink : public VehicleLink {
         [this](ardupilot_msgs::msg::Status&& m) {
           disarmed_ = !m.armed();
           events_.status(m.armed(), m.mode());
+          const auto& failsafes = m.failsafe();
+          events_.estimator(std::find(failsafes.begin(), failsafes.end(), ardupilot::kFailsafeEkf) != failsafes.end());
         });
     imu_reader_ = p.reader<sensor_msgs::msg::ImuPubSubType>(
         topics::apTopic(ns_, "imu/experimental/data"), "ap_out_reader", [this](sensor_msgs::msg::Imu&& m) {
@@ -97,6 +104,18 @@ class ArdupilotLink : public VehicleLink {
   bool requestsMatched() const override {
     return arm_request_.matched() > 0 && mode_request_.matched() > 0 && arm_reply_.matched() > 0 &&
            mode_reply_.matched() > 0;
+  }
+
+  void sendOdometry(const autopilot::Odometry& o, const px4::Quaternion& attitude) override {
+    if (!tf_) return;
+    tf2_msgs::msg::TFMessage m = wire::externalOdometry(o, attitude);
+    tf_.write(m);
+  }
+  std::string odometryTopic() const override { return topics::apTopic(ns_, "tf"); }
+  std::string odometryHint() const override {
+    return "set VISO_TYPE = 1, EK3_SRC2_POSXY = 6 with EK3_SRC2_POSZ = 1, and switch to source set 2 when GPS is "
+           "lost (RC function 90 or the source-switching Lua script); VISO_DELAY_MS = 50 (deploy/README.md, "
+           "\"External odometry\")";
   }
 
   void send(const autopilot::Outbox& out) override {
@@ -184,6 +203,7 @@ class ArdupilotLink : public VehicleLink {
   std::size_t next_ = 0;
 
   dds::Writer<geometry_msgs::msg::TwistStamped> cmd_vel_;
+  dds::Writer<tf2_msgs::msg::TFMessage> tf_;  // not with --odometry off
   dds::Writer<srv::ArmMotors_Request> arm_request_;    // --engage only
   dds::Writer<srv::ModeSwitch_Request> mode_request_;  // --engage only
   dds::Reader<srv::ArmMotors_Response> arm_reply_;

@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/BridgeStatePubSubTypes.h>
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
@@ -16,6 +17,7 @@
 #include "swa/app/signals.h"
 #include "swa/autopilot/ardupilot.h"
 #include "swa/dds/topics.h"
+#include "swa/wire/agent_state.h"
 #include "swa/wire/px4.h"
 #include "swa/wire/samples.h"
 
@@ -57,9 +59,11 @@ BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::s
                         VehicleEvents{[this](std::uint64_t t, const px4::Quaternion& q) { onAttitude({t, q}); },
                                       [this](bool armed, std::uint8_t mode) { onStatus(armed, mode); },
                                       [this](const agent::GnssSample& g) { onGnss(g); },
-                                      [this](const std::string& line) { onVehicleLog(line); }})),
+                                      [this](const std::string& line) { onVehicleLog(line); },
+                                      [this](bool unaided) { onEstimator(unaided); }})),
       core_(options.core),
       gate_(1, kCommandHandover),
+      odometry_(options.odometry),
       handshake_(isSecure()),
       requests_handshake_(isSecure() && options.core.engage) {
   connect();
@@ -84,6 +88,10 @@ void BridgeNode::connect() {
   cmd_reader_ = p.readerWithOrigin<msg::VelocitySetpointPubSubType>(
       topics::cmdVel(id_), "swa_command_reader",
       [this](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) { onCommand(std::move(m), w); });
+  if (options_.odometry.mode != autopilot::OdometryMode::kOff) {
+    state_reader_ = p.reader<msg::AgentStatePubSubType>(topics::state(id_), "swa_state_reader",
+                                                        [this](msg::AgentState&& m) { onAgentState(std::move(m)); });
+  }
 }
 
 BridgeNode::~BridgeNode() { closeParticipant(); }
@@ -118,6 +126,7 @@ void BridgeNode::onAttitude(const Attitude& a) {
   const auto received = std::chrono::steady_clock::now();
   const std::lock_guard<std::mutex> lock(mutex_);
   if (!participant_) return;  // closing (closeParticipant)
+  if (!newest_attitude_ || a.timestamp_us >= newest_attitude_->timestamp_us) newest_attitude_ = a;
   if (!vehicle_reads_) {
     pending_ = a;
     pending_at_ = received;
@@ -186,6 +195,66 @@ void BridgeNode::onGnss(const agent::GnssSample& g) {
   }
   msg::GnssFix m = wire::toMsg(g, static_cast<std::uint32_t>(id_), ++gnss_seq_);
   gnss_.write(m);
+}
+
+void BridgeNode::onAgentState(msg::AgentState&& m) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!participant_ || !newest_attitude_ || m.uav_id() != static_cast<std::uint32_t>(id_)) return;
+  const agent::Diagnostics d = wire::fromMsg(m).diagnostics;
+  autopilot::AgentEstimate e;
+  e.stamp_ns = d.stamp_ns;
+  e.tracking = m.stage() == msg::STAGE_TRACKING;
+  e.gnss_valid = d.gnss_valid;
+  e.position_m = d.position_m;
+  e.velocity_mps = d.velocity_mps;
+  e.position_cov_m2 = d.position_cov_m2;
+  e.velocity_cov_m2ps2 = d.velocity_cov_m2ps2;
+  e.stamp_resyncs = d.stamp_resyncs;
+  const bool was_feeding = odometry_.feeding();
+  const std::uint64_t vehicle_us = newest_attitude_->timestamp_us;
+  const std::optional<autopilot::Odometry> o =
+      odometry_.onState(e, px4::stampNsOf(vehicle_us).value_or(0));
+  if (o) vehicle_->sendOdometry(*o, newest_attitude_->q);
+  if (odometry_.feeding() == was_feeding) return;
+  if (odometry_.feeding()) {
+    feeding_since_us_ = vehicle_us;
+    not_fusing_reported_ = false;
+    std::fprintf(stderr, "swa_px4_bridge %d: feeding the agent's estimate to %s as external odometry on %s (%s)\n", id_,
+                 core_.autopilot().name, vehicle_->odometryTopic().c_str(),
+                 e.gnss_valid ? "--odometry always" : "the agent has no GNSS");
+  } else {
+    feeding_since_us_.reset();
+    const autopilot::OdometryCounters& c = odometry_.counters();
+    std::fprintf(stderr, "swa_px4_bridge %d: odometry to %s stopped: %s (%llu sent)\n", id_, core_.autopilot().name,
+                 e.gnss_valid && options_.odometry.mode != autopilot::OdometryMode::kAlways
+                     ? "the agent has GNSS again, the autopilot's own is used"
+                     : "the agent's estimate is stale or not valid (not tracking, not finite, too uncertain)",
+                 static_cast<unsigned long long>(c.sent));
+  }
+}
+
+void BridgeNode::onEstimator(bool unaided) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!participant_) return;
+  if (!unaided) {
+    not_fusing_reported_ = false;
+    return;
+  }
+  // Fed for a second and more (PX4 starts external vision within 0.2 s, ArduPilot's EKF failsafe needs 8 s of no
+  // position): the autopilot does not fuse what it gets.
+  if (not_fusing_reported_ || !feeding_since_us_ || !newest_attitude_ ||
+      newest_attitude_->timestamp_us < *feeding_since_us_ + 1'000'000) {
+    return;
+  }
+  not_fusing_reported_ = true;
+  std::fprintf(stderr,
+               "swa_px4_bridge %d: %s reports no aiding (%s) although this bridge has fed it the agent's estimate on "
+               "%s for %.1f s: it is not fusing it; %s\n",
+               id_, core_.autopilot().name,
+               options_.autopilot == AutopilotKind::kArdupilot ? "EKF failsafe" : "vehicle_local_position.dead_reckoning",
+               vehicle_->odometryTopic().c_str(),
+               static_cast<double>(newest_attitude_->timestamp_us - *feeding_since_us_) * 1e-6,
+               vehicle_->odometryHint().c_str());
 }
 
 void BridgeNode::onVehicleLog(const std::string& line) {

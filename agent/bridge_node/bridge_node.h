@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include <swa/msg/AgentState.h>
 #include <swa/msg/BridgeState.h>
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
@@ -26,6 +27,7 @@
 #include "swa/app/log_histogram.h"
 #include "swa/app/program.h"
 #include "swa/autopilot/bridge_core.h"
+#include "swa/autopilot/odometry_feed.h"
 #include "swa/dds/command_gate.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
@@ -61,6 +63,9 @@ class BridgeNode : public app::Role {
   void onStatus(bool armed, std::uint8_t mode);
   void onGnss(const agent::GnssSample& g);
   void onVehicleLog(const std::string& line);
+  void onEstimator(bool unaided);
+  // From the agent's state reader: its estimate as the vehicle's external odometry (odometry_feed.h).
+  void onAgentState(msg::AgentState&& m);
   void onCommand(msg::VelocitySetpoint&& m, const dds::WriterGuid& writer);
   // With mutex_ held.
   void forward(const Attitude& a, std::chrono::steady_clock::time_point received);
@@ -87,6 +92,10 @@ class BridgeNode : public app::Role {
   bool gnss_reported_ = false, last_gnss_valid_ = false;
   dds::CommandGate gate_;
   std::optional<Attitude> pending_;  // before the vehicle reads our stream
+  std::optional<Attitude> newest_attitude_;  // the vehicle's clock and attitude for the odometry
+  autopilot::OdometryFeed odometry_;
+  std::optional<std::uint64_t> feeding_since_us_;  // vehicle time the feed last started
+  bool not_fusing_reported_ = false;
   std::chrono::steady_clock::time_point pending_at_{};
   bool vehicle_reads_ = false;
   bool status_seen_ = false;
@@ -117,6 +126,7 @@ class BridgeNode : public app::Role {
   dds::Writer<msg::BridgeState> state_;
   dds::Writer<msg::GnssFix> gnss_;  // not with --no-gnss
   dds::Reader<msg::VelocitySetpoint> cmd_reader_;
+  dds::Reader<msg::AgentState> state_reader_;  // not with --odometry off
 };
 
 }  // namespace swa::bridge_node

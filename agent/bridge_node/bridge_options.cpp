@@ -27,7 +27,11 @@ Reads
       -> swa/uav<I>/gnss: valid while the fix is 3D or better and PX4 says xy_valid; the loss (and the regain) at once, valid fixes at 10 Hz; position = PX4's local x, y turned to east, north; std = eph. From v1.17 the second topic is vehicle_local_position_v1.
   swa/uav<I>/cmd_vel
       the agent's velocity setpoints (one writer at a time)
+  swa/uav<I>/state
+      the agent's own estimate, for --odometry
 Writes
+  rt/NS/fmu/in/vehicle_visual_odometry
+      --odometry (by default while the agent has no GNSS): the agent's position and velocity as external vision, NED, at the agent's state rate (10 Hz), stamped on PX4's clock, reset_counter bumped when the agent's estimate restarts; EKF2 fuses it with EKF2_EV_CTRL = 5 (deploy/README.md, "External odometry")
   rt/NS/fmu/in/trajectory_setpoint
       velocity in NED, the yaw rate as yawspeed (clockwise: the opposite sign of SWA's); position, acceleration, yaw NaN; vertical speed 0
   rt/NS/fmu/in/offboard_control_mode
@@ -51,6 +55,8 @@ Reads
 Writes
   rt/NS/cmd_vel
       TwistStamped in frame "map": ENU velocity, angular.z the yaw rate (counter-clockwise, SWA's sense), stamped with the answered sample's time
+  rt/NS/tf
+      --odometry: the agent's position as an "odom" -> "base_link" transform (north, west, up; the vehicle's attitude), stamped 0: ArduPilot fuses it as current less VISO_DELAY_MS (VISO_TYPE 1, EK3 source set 2 = external navigation: deploy/README.md, "External odometry")
   rq/NS/arm_motorsRequest, rq/NS/mode_switchRequest
       only with --engage: arm, then GUIDED
 The same rules as for PX4, but ArduPilot has no heartbeat: when the stream stops, its GUIDED velocity timeout (GUID_TIMEOUT) stops the vehicle. ArduPilot accepts velocity commands only when armed and in GUIDED.)";
@@ -148,6 +154,16 @@ app::Cli makeCli(BridgeOptions& o) {
       },
       "ArduPilot: no fix on navsat for this long (its IMU's time) is a GNSS loss (default 0.5: a GPS at 5 Hz or "
       "more; above 1 for firmware that sends navsat at 1 Hz)");
+  cli.choice(
+      "--odometry", "WHEN", {"gnss-loss", "always", "off"},
+      [&o](std::size_t k) {
+        o.odometry.mode = k == 0 ? autopilot::OdometryMode::kWhileGnssLost
+                                 : k == 1 ? autopilot::OdometryMode::kAlways : autopilot::OdometryMode::kOff;
+      },
+      "when the agent's estimate goes to the autopilot as external odometry, which keeps its estimator valid without "
+      "GNSS: gnss-loss (default: while the agent has no GNSS, so the autopilot's own GNSS is never fought), always, "
+      "or off (a real autopilot then leaves SWA's control seconds after GNSS is lost)");
+  cli.flag("--no-odometry", o.no_odometry, "the same as --odometry off");
   cli.flag("--engage", o.core.engage,
            "arm and switch to PX4's offboard or ArduPilot's GUIDED once the agent's stream has run for 1 s (bench tests, simulation; "
            "never on a flight without a pilot who can take over)");
@@ -163,6 +179,7 @@ Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials re
 }
 
 void finish(BridgeOptions& o, const app::Cli&, app::Problems& problems) {
+  if (o.no_odometry) o.odometry.mode = autopilot::OdometryMode::kOff;
   if (o.core.stale_after_s >= o.core.agent_lost_after_s) {
     problems.push_back("--stale-after-s must be below --agent-lost-after-s");
   }

@@ -8,6 +8,7 @@
 #include "swa/autopilot/ardupilot.h"
 #include "swa/autopilot/navsat.h"
 #include "swa/autopilot/bridge_core.h"
+#include "swa/autopilot/odometry_feed.h"
 #include "swa/px4/release.h"
 
 namespace swa::bridge_node {
@@ -28,6 +29,8 @@ struct BridgeOptions {
   bool gnss_silence_given = false;
   int target_system = 0;                // --target-system N: VehicleCommand.target_system (0: any)
   autopilot::BridgeConfig core;               // --stale-after-s, --agent-lost-after-s, ... and --engage
+  autopilot::OdometryFeedConfig odometry;     // --odometry gnss-loss|always|off
+  bool no_odometry = false;                   // --no-odometry: --odometry off
   std::optional<std::string> domain;    // --domain D (else SWA_DOMAIN, else 0)
   std::string summary_out;              // --summary-out FILE: counters and latency as JSON at exit
   bool help = false;

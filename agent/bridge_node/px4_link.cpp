@@ -14,6 +14,7 @@
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
+#include <swa/px4/VehicleOdometry_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
@@ -45,6 +46,9 @@ class Px4Link : public VehicleLink {
     if (options_.core.engage) {
       vehicle_command_ =
           p.writer<px4_msgs::msg::VehicleCommandPubSubType>(topics::px4In(ns_, "vehicle_command"), "px4_in_writer");
+    }
+    if (options_.odometry.mode != autopilot::OdometryMode::kOff) {
+      odometry_ = p.writer<px4_msgs::msg::VehicleOdometryPubSubType>(odometryTopic(), "px4_in_writer");
     }
     const auto status = [this](bool armed, std::uint8_t nav_state) { events_.status(armed, nav_state); };
     if (px4::hasV116VehicleStatus(options_.px4_release)) {
@@ -97,6 +101,17 @@ class Px4Link : public VehicleLink {
   std::string noReaderHint() const override {
     return "is PX4's uXRCE-DDS agent on this domain, with namespace '" + ns_ + "'?";
   }
+  void sendOdometry(const autopilot::Odometry& o, const px4::Quaternion&) override {
+    if (!odometry_) return;
+    px4_msgs::msg::VehicleOdometry m = wire::vehicleOdometry(o);
+    odometry_.write(m);
+  }
+  std::string odometryTopic() const override { return topics::px4In(ns_, "vehicle_visual_odometry"); }
+  std::string odometryHint() const override {
+    return "set EKF2_EV_CTRL = 5 (horizontal position and velocity; PX4's default is 0 from v1.16) and keep "
+           "EKF2_HGT_REF on the barometer (deploy/README.md, \"External odometry\")";
+  }
+
   std::string noStatusHint() const override {
     return "no " + topics::px4Out(ns_, status_topic_) + ": is the vehicle PX4 " +
            px4::releaseName(options_.px4_release) +
@@ -135,6 +150,7 @@ class Px4Link : public VehicleLink {
   void onLocalPosition(const px4::LocalPositionReport& position) {
     const std::lock_guard<std::mutex> lock(gnss_mutex_);
     if (const std::optional<agent::GnssSample> g = gnss_forward_.onLocalPosition(position)) events_.gnss(*g);
+    events_.estimator(position.dead_reckoning);
   }
 
   void onAck(const px4_msgs::msg::VehicleCommandAck& m) {
@@ -156,6 +172,7 @@ class Px4Link : public VehicleLink {
   dds::Writer<px4_msgs::msg::TrajectorySetpoint> setpoint_;
   dds::Writer<px4_msgs::msg::OffboardControlMode> offboard_;
   dds::Writer<px4_msgs::msg::VehicleCommand> vehicle_command_;  // --engage only
+  dds::Writer<px4_msgs::msg::VehicleOdometry> odometry_;        // not with --odometry off
   dds::Reader<px4_msgs::msg::VehicleAttitude> attitude_reader_;
   dds::Reader<px4_msgs::msg::VehicleStatus> status_reader_;                   // v1.15
   dds::Reader<px4_v1_16::px4_msgs::msg::VehicleStatus> status_reader_v1_16_;  // v1.16 and later

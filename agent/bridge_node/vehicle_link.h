@@ -12,6 +12,7 @@
 #include "bridge_options.h"
 #include "swa/agent/samples.h"
 #include "swa/autopilot/bridge_core.h"
+#include "swa/autopilot/odometry_feed.h"
 #include "swa/dds/participant.h"
 
 namespace swa::bridge_node {
@@ -22,6 +23,9 @@ struct VehicleEvents {
   std::function<void(bool armed, std::uint8_t mode)> status;
   std::function<void(const agent::GnssSample& gnss)> gnss;  // the vehicle's fix, in SWA's terms (PX4 only so far)
   std::function<void(const std::string& line)> log;          // an answer to a request, for the log
+  // The vehicle's estimator says it has no aiding (PX4: vehicle_local_position.dead_reckoning, read with GNSS
+  // forwarding; ArduPilot: the EKF failsafe in its status): with odometry fed, it is not fusing it.
+  std::function<void(bool unaided)> estimator;
 };
 
 class VehicleLink {
@@ -36,6 +40,12 @@ class VehicleLink {
   // With --engage: the requests (arm, mode) reach the vehicle (ArduPilot: and its answers come back).
   virtual bool requestsMatched() const = 0;
   virtual void send(const autopilot::Outbox& out) = 0;
+  // The agent's estimate as the autopilot's external odometry (PX4: vehicle_visual_odometry; ArduPilot: ap/tf, which
+  // also carries the vehicle's own attitude).
+  virtual void sendOdometry(const autopilot::Odometry& o, const px4::Quaternion& attitude) = 0;
+  virtual std::string odometryTopic() const = 0;
+  // What to set on the vehicle when it does not fuse the odometry (the pre-flight table, for the log).
+  virtual std::string odometryHint() const = 0;
 
   // For the log.
   virtual std::string description() const = 0;    // the autopilot, its namespace and topics

@@ -196,6 +196,11 @@ class Supervisor {
       argv.insert(argv.end(), {"--px4-release", px4::releaseName(vehicle.px4_release)});
     }
     if (p.bridge && vehicle.gnss_source != sim::GnssSource::kAutopilot) argv.emplace_back("--no-gnss");
+    if (p.bridge) {
+      argv.insert(argv.end(), {"--odometry", vehicle.odometry == autopilot::OdometryMode::kOff      ? "off"
+                                             : vehicle.odometry == autopilot::OdometryMode::kAlways ? "always"
+                                                                                                    : "gnss-loss"});
+    }
     p.process = std::make_unique<ChildProcess>(argv, log.string());
   }
 

@@ -58,13 +58,16 @@ px4_out() {
        "rt/$1/fmu/out/vehicle_command_ack rt/$1/fmu/out/vehicle_gps_position rt/$1/fmu/out/vehicle_local_position" \
        "rt/$1/fmu/out/vehicle_local_position_v1"
 }
-px4_in() { echo "rt/$1/fmu/in/trajectory_setpoint rt/$1/fmu/in/offboard_control_mode rt/$1/fmu/in/vehicle_command"; }
+px4_in() {
+  echo "rt/$1/fmu/in/trajectory_setpoint rt/$1/fmu/in/offboard_control_mode rt/$1/fmu/in/vehicle_command" \
+       "rt/$1/fmu/in/vehicle_visual_odometry"
+}
 # ArduPilot (AP_DDS): UAV I's vehicle is ap/v<I+1> (DDS_USE_NS 1, MAV_SYSID I+1); its services' requests and replies
 # are topics of their own (rq/, rr/).
 ap_out() {
   echo "rt/$1/imu/experimental/data rt/$1/status rt/$1/navsat rr/$1/arm_motorsReply rr/$1/mode_switchReply"
 }
-ap_in() { echo "rt/$1/cmd_vel rq/$1/arm_motorsRequest rq/$1/mode_switchRequest"; }
+ap_in() { echo "rt/$1/cmd_vel rt/$1/tf rq/$1/arm_motorsRequest rq/$1/mode_switchRequest"; }
 # Detections as real detectors publish them (agent sensor.input vision_msgs / uvdar), ROS names already.
 detector_topics() { echo "rt/uav$1/detections rt/uav$1/uvdar/measuredPoses"; }
 
@@ -104,7 +107,8 @@ subscribes() {
       ;;
     swa_bridge_*)
       local i=${1#swa_bridge_}
-      echo "${r}uav$i/cmd_vel $(px4_out "$PX4_PREFIX$i") $(ap_out "ap/v$((i + 1))")"
+      # its own agent's state: the estimate it feeds its autopilot as external odometry (issue #43)
+      echo "${r}uav$i/cmd_vel ${r}uav$i/state $(px4_out "$PX4_PREFIX$i") $(ap_out "ap/v$((i + 1))")"
       ;;
   esac
 }

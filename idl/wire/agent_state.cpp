@@ -85,6 +85,7 @@ msg::AgentState toMsg(const agent::Diagnostics& d, std::uint32_t uav_id, std::ui
   m.rejected_future_stamp(d.rejected.future);
   m.stamp_resyncs(d.stamp_resyncs);
   m.commands_sent(d.commands);
+  m.gnss_valid(d.gnss_valid);
   return m;
 }
 
@@ -118,6 +119,7 @@ AgentStateSample fromMsg(const msg::AgentState& m) {
   d.rejected.future = m.rejected_future_stamp();
   d.stamp_resyncs = m.stamp_resyncs();
   d.commands = m.commands_sent();
+  d.gnss_valid = m.gnss_valid();
   return s;
 }
 

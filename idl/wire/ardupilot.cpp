@@ -115,4 +115,33 @@ CmdVel cmdVelOf(const geometry_msgs::msg::TwistStamped& m) {
   return c;
 }
 
+tf2_msgs::msg::TFMessage externalOdometry(const autopilot::Odometry& o, const px4::Quaternion& attitude) {
+  geometry_msgs::msg::TransformStamped t;
+  t.header().frame_id("odom");
+  t.child_frame_id("base_link");
+  t.transform().translation().x(o.position_m.y());   // north
+  t.transform().translation().y(-o.position_m.x());  // west
+  t.transform().translation().z(0.0);
+  t.transform().rotation().w(attitude.w);
+  t.transform().rotation().x(attitude.x);
+  t.transform().rotation().y(-attitude.y);
+  t.transform().rotation().z(-attitude.z);
+  tf2_msgs::msg::TFMessage m;
+  m.transforms().push_back(t);
+  return m;
+}
+
+std::optional<ExternalOdomReport> externalOdomOf(const tf2_msgs::msg::TFMessage& m) {
+  for (const geometry_msgs::msg::TransformStamped& t : m.transforms()) {
+    if (t.header().frame_id() != "odom" || t.child_frame_id() != "base_link") continue;
+    ExternalOdomReport r;
+    r.stamp_ns = static_cast<agent::StampNs>(t.header().stamp().sec()) * 1'000'000'000 +
+                 static_cast<agent::StampNs>(t.header().stamp().nanosec());
+    r.north_m = t.transform().translation().x();
+    r.east_m = -t.transform().translation().y();
+    return r;
+  }
+  return std::nullopt;
+}
+
 }  // namespace swa::wire

@@ -1,5 +1,6 @@
 #include "swa/wire/px4.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -114,6 +115,39 @@ msg::BridgeState bridgeState(const autopilot::BridgeCore& core, std::uint32_t ua
   m.requests_out(c.requests_out);
   m.last_event(last_event);
   return m;
+}
+
+px4_msgs::msg::VehicleOdometry vehicleOdometry(const autopilot::Odometry& o) {
+  constexpr std::uint8_t kNed = 1;                    // POSE_FRAME_NED, VELOCITY_FRAME_NED
+  constexpr float kUnknownVariance = 1e4f;            // [m^2], [m^2/s^2]: down is not SWA's
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::uint64_t t = px4::timestampUsOf(o.stamp_ns).value_or(0);
+  px4_msgs::msg::VehicleOdometry m;
+  m.timestamp(t);
+  m.timestamp_sample(t);
+  m.pose_frame(kNed);
+  m.position({static_cast<float>(o.position_m.y()), static_cast<float>(o.position_m.x()), 0.0f});
+  m.q({nan, nan, nan, nan});
+  m.velocity_frame(kNed);
+  m.velocity({static_cast<float>(o.velocity_mps.y()), static_cast<float>(o.velocity_mps.x()), 0.0f});
+  m.angular_velocity({nan, nan, nan});
+  m.position_variance({static_cast<float>(o.position_var_m2.y()), static_cast<float>(o.position_var_m2.x()),
+                       kUnknownVariance});
+  m.orientation_variance({nan, nan, nan});
+  m.velocity_variance({static_cast<float>(o.velocity_var_m2ps2.y()), static_cast<float>(o.velocity_var_m2ps2.x()),
+                       kUnknownVariance});
+  m.reset_counter(o.reset_counter);
+  m.quality(0);
+  return m;
+}
+
+VisionReport visionReportOf(const px4_msgs::msg::VehicleOdometry& m) {
+  const auto finite = [](const std::array<float, 3>& v) {
+    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+  };
+  const std::uint8_t pose = m.pose_frame(), velocity = m.velocity_frame();
+  return {finite(m.position()) && (pose == 1 || pose == 2),
+          finite(m.velocity()) && (velocity == 1 || velocity == 2 || velocity == 3)};
 }
 
 }  // namespace swa::wire

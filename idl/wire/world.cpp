@@ -16,7 +16,7 @@ namespace {
 
 namespace kind = record::event_kind;
 
-constexpr std::array<std::pair<msg::EventKind, const char*>, 7> kKinds{{
+constexpr std::array<std::pair<msg::EventKind, const char*>, 9> kKinds{{
     {msg::EVENT_GNSS_LOST, kind::kGnssLost},
     {msg::EVENT_GNSS_RESTORED, kind::kGnssRestored},
     {msg::EVENT_AGENT_DEAD, kind::kAgentDead},
@@ -24,6 +24,8 @@ constexpr std::array<std::pair<msg::EventKind, const char*>, 7> kKinds{{
     {msg::EVENT_COLLISION, kind::kCollision},
     {msg::EVENT_FAILSAFE, kind::kFailsafe},
     {msg::EVENT_SCENARIO_END, kind::kScenarioEnd},
+    {msg::EVENT_CONTROL_LOST, kind::kControlLost},
+    {msg::EVENT_CONTROL_REGAINED, kind::kControlRegained},
 }};
 
 }  // namespace

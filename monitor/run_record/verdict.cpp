@@ -42,6 +42,10 @@ Verdict judge(const VerdictInput& in) {
     v.reasons.push_back(std::string(in.failsafe_at_end.size() == 1 ? "UAV " : "UAVs ") + uavs +
                         " on failsafe at the end (agent declared dead, never rejoined)");
   }
+  for (const ControlLoss& c : in.out_of_control_at_end) {
+    v.reasons.push_back("UAV " + std::to_string(c.uav) + " out of SWA's control since " + fixed(c.t_s, 1) +
+                        " s: " + c.text);
+  }
 
   if (!in.missed.empty()) {
     double total = 0.0;

@@ -1,6 +1,7 @@
 #include "live_run.h"
 
 #include <algorithm>
+#include <map>
 #include <stdexcept>
 #include <utility>
 
@@ -38,6 +39,20 @@ void LiveRun::onEvent(EventRecord event) {
   }
   if (event.kind == event_kind::kScenarioEnd && !end_event_) end_event_ = event;
   events_.push_back(std::move(event));
+}
+
+std::vector<record::ControlLoss> LiveRun::outOfControlNow() const {
+  std::map<int, const EventRecord*> last;  // each UAV's newest control event
+  for (const EventRecord& e : events_) {
+    if (e.kind != event_kind::kControlLost && e.kind != event_kind::kControlRegained) continue;
+    const EventRecord*& newest = last[e.uav];
+    if (newest == nullptr || e.t_s >= newest->t_s) newest = &e;
+  }
+  std::vector<record::ControlLoss> out;
+  for (const auto& [uav, e] : last) {
+    if (e->kind == event_kind::kControlLost) out.push_back({uav, e->t_s, e->text});
+  }
+  return out;
 }
 
 void LiveRun::finish() {

@@ -74,6 +74,8 @@ class LiveRun {
   const LiveStatus& status() const { return status_; }
   // The UAVs whose agent the last scored step's truth calls dead (on failsafe), by id.
   const std::vector<int>& failsafeNow() const { return failsafe_now_; }
+  // The vehicles whose last control event is a loss (record::ControlLoss), by UAV.
+  std::vector<record::ControlLoss> outOfControlNow() const;
   // The first EVENT_SCENARIO_END received.
   const std::optional<EventRecord>& endEvent() const { return end_event_; }
 

@@ -6,6 +6,7 @@
 #include <swa/ros/ArdupilotStatusPubSubTypes.h>
 #include <swa/ros/ImuPubSubTypes.h>
 #include <swa/ros/NavSatFixPubSubTypes.h>
+#include <swa/ros/TFMessagePubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/dds/topics.h"
@@ -26,7 +27,10 @@ const ardupilot::LocalTangent kHome{47.397742, 8.545594};
 ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup) {
   vehicles_.reserve(static_cast<std::size_t>(uav_count));
   for (int i = 0; i < uav_count; ++i) {
-    Vehicle& v = vehicles_.emplace_back(setup.guid_timeout_s);
+    Vehicle& v = vehicles_.emplace_back(
+        setup.guid_timeout_s, setup.estimator ? std::optional<sim::ArdupilotEstimatorParams>(
+                                                    sim::ArdupilotEstimatorParams{setup.ap_external_nav})
+                                              : std::nullopt);
     v.ns = topics::apNamespace(i);
     v.imu.writer = participant.writer<sensor_msgs::msg::ImuPubSubType>(topics::apTopic(v.ns, "imu/experimental/data"),
                                                                  "ap_out_writer");
@@ -43,6 +47,10 @@ ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_coun
     v.cmd_vel = participant.readerWithOrigin<geometry_msgs::msg::TwistStampedPubSubType>(
         topics::apTopic(v.ns, "cmd_vel"), "ap_in_reader",
         [this, i](geometry_msgs::msg::TwistStamped&& m, const dds::WriterGuid& w) {
+          queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
+        });
+    v.tf = participant.readerWithOrigin<tf2_msgs::msg::TFMessagePubSubType>(
+        topics::apTopic(v.ns, "tf"), "ap_in_reader", [this, i](tf2_msgs::msg::TFMessage&& m, const dds::WriterGuid& w) {
           queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
         });
     v.arm_request = participant.readerWithIds<srv::ArmMotors_RequestPubSubType>(
@@ -122,6 +130,10 @@ void ArdupilotVehicles::drain(std::vector<Answer>& answers, Clock::duration wait
       reply.status(r.status);
       reply.curr_mode(r.curr_mode);
       v.mode_reply.writeReply(reply, mode->id);
+    } else if (const auto* tf = std::get_if<tf2_msgs::msg::TFMessage>(&a.message)) {
+      if (const std::optional<wire::ExternalOdomReport> r = wire::externalOdomOf(*tf)) {
+        v.standin.externalOdometry(now, r->stamp_ns);
+      }
     }
   }
 }
@@ -147,13 +159,17 @@ std::string ArdupilotVehicles::commandTopic(int uav) const {
 
 void ArdupilotVehicles::publishStatus(Vehicle& v, agent::StampNs now) {
   const sim::ArdupilotStandin& s = v.standin;
-  if (v.status_sent && s.armed() == v.status_armed && s.mode() == v.status_mode) return;
+  if (v.status_sent && s.armed() == v.status_armed && s.mode() == v.status_mode &&
+      s.ekfFailsafe() == v.status_ekf_failsafe) {
+    return;
+  }
   const std::uint64_t timestamp = px4::timestampUsOf(now).value_or(0);
-  ardupilot_msgs::msg::Status m = wire::statusMessage(timestamp, s.armed(), s.mode(), false);
+  ardupilot_msgs::msg::Status m = wire::statusMessage(timestamp, s.armed(), s.mode(), s.ekfFailsafe());
   v.status.write(m);
   v.status_sent = true;
   v.status_armed = s.armed();
   v.status_mode = s.mode();
+  v.status_ekf_failsafe = s.ekfFailsafe();
 }
 
 }  // namespace swa::sim_node

@@ -17,6 +17,7 @@
 #include <swa/ros/ArdupilotStatus.h>
 #include <swa/ros/Imu.h>
 #include <swa/ros/NavSatFix.h>
+#include <swa/ros/TFMessage.h>
 #include <swa/ros/TwistStamped.h>
 
 #include "autopilot_vehicles.h"
@@ -52,7 +53,7 @@ class ArdupilotVehicles : public AutopilotVehicles {
     ardupilot_msgs::srv::ModeSwitch_Request request;
     dds::SampleId id;
   };
-  using Input = std::variant<geometry_msgs::msg::TwistStamped, ArmRequest, ModeRequest>;
+  using Input = std::variant<geometry_msgs::msg::TwistStamped, ArmRequest, ModeRequest, tf2_msgs::msg::TFMessage>;
   struct Arrival {
     int uav = 0;
     Input message;
@@ -60,7 +61,8 @@ class ArdupilotVehicles : public AutopilotVehicles {
     dds::WriterGuid writer{};
   };
   struct Vehicle {
-    explicit Vehicle(double guid_timeout_s) : standin(guid_timeout_s) {}
+    Vehicle(double guid_timeout_s, const std::optional<sim::ArdupilotEstimatorParams>& ekf)
+        : standin(guid_timeout_s, ekf) {}
     sim::ArdupilotStandin standin;
     std::string ns;
     AttitudeStream<sensor_msgs::msg::Imu> imu;  // imu/experimental/data
@@ -69,10 +71,11 @@ class ArdupilotVehicles : public AutopilotVehicles {
     dds::Writer<ardupilot_msgs::srv::ArmMotors_Response> arm_reply;
     dds::Writer<ardupilot_msgs::srv::ModeSwitch_Response> mode_reply;
     dds::Reader<geometry_msgs::msg::TwistStamped> cmd_vel;
+    dds::Reader<tf2_msgs::msg::TFMessage> tf;  // ap/tf: the bridge's external odometry
     dds::Reader<ardupilot_msgs::srv::ArmMotors_Request> arm_request;
     dds::Reader<ardupilot_msgs::srv::ModeSwitch_Request> mode_request;
     double yaw_rate_radps = 0.0;   // of the newest cmd_vel given to the stand-in
-    bool status_sent = false, status_armed = false;
+    bool status_sent = false, status_armed = false, status_ekf_failsafe = false;
     std::uint8_t status_mode = 0;
   };
 

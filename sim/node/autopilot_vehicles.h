@@ -18,6 +18,7 @@
 #include "swa/dds/participant.h"
 #include "swa/px4/frames.h"
 #include "swa/agent/samples.h"
+#include "swa/sim/standin_event.h"
 #include "swa/sim/world.h"
 
 namespace swa::sim_node {
@@ -27,8 +28,9 @@ class AutopilotVehicles {
   using Clock = std::chrono::steady_clock;
   // Whether a command comes from its UAV's one commander (command_gate.h), counted by the caller.
   using AdmitFn = std::function<bool(const Answer&)>;
-  // A stand-in's event (failsafe, engaged, ...): UAV, value, text.
-  using EventFn = std::function<void(int uav, double value, const std::string& text)>;
+  // A stand-in's event (failsafe, engaged, ...): UAV, value, what it means for SWA's control and its text (the text
+  // names the stand-in).
+  using EventFn = std::function<void(int uav, double value, const sim::StandinEvent& event)>;
 
   virtual ~AutopilotVehicles() = default;
 
@@ -106,14 +108,18 @@ void markAnswered(Answer& a, agent::StampNs stamp_ns, std::uint32_t seq);
 // the bridge (holding: the heading too).
 void commandWorld(sim::World& world, int uav, const agent::Vec2& velocity_mps, bool following, double yaw_rate_radps);
 
-// One vehicle's part of step(), either stand-in: its decision now commanded to the world with the yaw rate of its
-// newest command, and its events raised as "`who`: text" with the stand-in's value.
+// One vehicle's part of step(), either stand-in: its GNSS as the world has it now, its decision commanded to the
+// world with the yaw rate of its newest command, and its events raised as "`who`: text" with the stand-in's value.
 template <class Standin>
 void stepVehicle(sim::World& world, int uav, Standin& standin, double yaw_rate_radps, const std::string& who,
                  const AutopilotVehicles::EventFn& event) {
+  standin.gnss(world.time_ns(), world.truth().at(static_cast<std::size_t>(uav)).gnss_valid);
   const typename Standin::Decision d = standin.step(world.time_ns());
   commandWorld(world, uav, d.velocity_mps, d.following, yaw_rate_radps);
-  for (const std::string& text : standin.takeEvents()) event(uav, standin.eventValue(), who + ": " + text);
+  for (sim::StandinEvent& e : standin.takeEvents()) {
+    e.text = who + ": " + e.text;
+    event(uav, standin.eventValue(), e);
+  }
 }
 
 }  // namespace swa::sim_node

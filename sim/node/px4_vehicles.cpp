@@ -12,6 +12,7 @@
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
+#include <swa/px4/VehicleOdometry_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
@@ -36,7 +37,10 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
   const std::string position_topic = px4::topicName(setup.px4_release, "vehicle_local_position");
   const bool gnss = setup.gnss_source == sim::GnssSource::kAutopilot;
   for (int i = 0; i < uav_count; ++i) {
-    Vehicle& v = vehicles_.emplace_back(setup.com_of_loss_t_s);
+    Vehicle& v = vehicles_.emplace_back(
+        setup.com_of_loss_t_s, setup.estimator ? std::optional<sim::Px4EstimatorParams>(sim::Px4EstimatorParams{
+                                                     setup.ekf2_noaid_tout_s, setup.ekf2_ev_ctrl})
+                                               : std::nullopt);
     v.ns = topics::px4Namespace(i);
     v.attitude.writer = participant.writer<px4_msgs::msg::VehicleAttitudePubSubType>(
         topics::px4Out(v.ns, "vehicle_attitude"), "px4_out_writer");
@@ -71,6 +75,8 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
         topics::px4In(v.ns, "offboard_control_mode"), "px4_in_reader", arrive);
     v.command = participant.readerWithOrigin<px4_msgs::msg::VehicleCommandPubSubType>(
         topics::px4In(v.ns, "vehicle_command"), "px4_in_reader", arrive);
+    v.odometry = participant.readerWithOrigin<px4_msgs::msg::VehicleOdometryPubSubType>(
+        topics::px4In(v.ns, "vehicle_visual_odometry"), "px4_in_reader", arrive);
     publishStatus(i, v, 0);  // TRANSIENT_LOCAL: a bridge that starts later learns the state at once
   }
 }
@@ -105,11 +111,18 @@ bool Px4Vehicles::publishGnss(int uav, const agent::GnssSample& g) {
     auto m = wire::sensorGps<px4_msgs::msg::SensorGps>(*timestamp, g);
     ok = v.gps.write(m);
   }
+  // The local position's validity is EKF2's (px4_estimator.h), with this fix fused: with external vision fused it
+  // outlives the fix.
+  v.standin.gnss(g.stamp_ns, g.valid);
+  const std::optional<bool> valid =
+      v.standin.modelsEstimator() ? std::optional<bool>(v.standin.localPositionValid()) : std::nullopt;
+  const bool dead_reckoning = v.standin.deadReckoning();
   if (v.position_v1_16) {
-    auto m = wire::vehicleLocalPosition<px4_v1_16::px4_msgs::msg::VehicleLocalPosition>(*timestamp, g);
+    auto m = wire::vehicleLocalPosition<px4_v1_16::px4_msgs::msg::VehicleLocalPosition>(*timestamp, g, valid,
+                                                                                        dead_reckoning);
     ok = v.position_v1_16.write(m) && ok;
   } else if (v.position) {
-    auto m = wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(*timestamp, g);
+    auto m = wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(*timestamp, g, valid, dead_reckoning);
     ok = v.position.write(m) && ok;
   }
   return ok;
@@ -153,6 +166,9 @@ void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agen
       ack.from_external(false);
       v.ack.write(ack);
       ++acks_;
+    } else if (const auto* odometry = std::get_if<px4_msgs::msg::VehicleOdometry>(&a.message)) {
+      const wire::VisionReport r = wire::visionReportOf(*odometry);
+      v.standin.visualOdometry(now, r.position, r.velocity);
     }
   }
 }

@@ -28,6 +28,7 @@
 #include <swa/px4/VehicleCommand_v1_15.h>
 #include <swa/px4/VehicleLocalPosition_v1_15.h>
 #include <swa/px4/VehicleLocalPosition_v1_16.h>
+#include <swa/px4/VehicleOdometry_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_16.h>
 
@@ -72,7 +73,7 @@ class Px4Vehicles : public AutopilotVehicles {
 
  private:
   using Input = std::variant<px4_msgs::msg::TrajectorySetpoint, px4_msgs::msg::OffboardControlMode,
-                             px4_msgs::msg::VehicleCommand>;
+                             px4_msgs::msg::VehicleCommand, px4_msgs::msg::VehicleOdometry>;
   struct Arrival {
     int uav = 0;
     Input message;
@@ -80,7 +81,8 @@ class Px4Vehicles : public AutopilotVehicles {
     dds::WriterGuid writer{};
   };
   struct Vehicle {
-    explicit Vehicle(double com_of_loss_t_s) : standin(com_of_loss_t_s) {}
+    Vehicle(double com_of_loss_t_s, const std::optional<sim::Px4EstimatorParams>& ekf)
+        : standin(com_of_loss_t_s, ekf) {}
     sim::Px4Standin standin;
     AttitudeStream<px4_msgs::msg::VehicleAttitude> attitude;
     dds::Writer<px4_msgs::msg::VehicleStatus> status;                // v1.15
@@ -94,6 +96,7 @@ class Px4Vehicles : public AutopilotVehicles {
     dds::Reader<px4_msgs::msg::TrajectorySetpoint> setpoint;
     dds::Reader<px4_msgs::msg::OffboardControlMode> mode;
     dds::Reader<px4_msgs::msg::VehicleCommand> command;
+    dds::Reader<px4_msgs::msg::VehicleOdometry> odometry;  // vehicle_visual_odometry: the bridge's external vision
     std::string ns;
     double yaw_rate_radps = 0.0;  // of the newest setpoint given to the stand-in (which knows only the velocity)
     std::uint8_t status_sent_nav = 255, status_sent_arming = 255;

@@ -313,9 +313,12 @@ void SimPorts::repeatWhileWaiting(const std::vector<int>& uavs) {
 
 void SimPorts::vehiclesStep() {
   if (!autopilot_) return;
-  autopilot_->step(world_, [this](int uav, double value, const std::string& text) {
-    std::fprintf(stderr, "swa_sim: t = %.2f s: UAV %d: %s\n", sim::stampSeconds(world_.time_ns()), uav, text.c_str());
-    publishEvent(record::event_kind::kFailsafe, uav, value, text);
+  autopilot_->step(world_, [this](int uav, double value, const sim::StandinEvent& e) {
+    std::fprintf(stderr, "swa_sim: t = %.2f s: UAV %d: %s\n", sim::stampSeconds(world_.time_ns()), uav, e.text.c_str());
+    const char* kind = e.control == sim::StandinEvent::Control::kLost       ? record::event_kind::kControlLost
+                       : e.control == sim::StandinEvent::Control::kRegained ? record::event_kind::kControlRegained
+                                                                            : record::event_kind::kFailsafe;
+    publishEvent(kind, uav, value, e.text);
   });
 }
 

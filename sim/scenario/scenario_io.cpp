@@ -242,6 +242,29 @@ params::Table<Scenario> makeTable() {
             "its fix on vehicle_gps_position and vehicle_local_position, losing both when the scenario drops GNSS; "
             "each ArduPilot stand-in on navsat, silent while GNSS is dropped; the bridges forward them as "
             "swa/uav<i>/gnss)");
+  SWA_PARAM(t, choice, vehicle.odometry,
+            std::vector<std::pair<autopilot::OdometryMode, std::string>>{
+                {autopilot::OdometryMode::kWhileGnssLost, "gnss-loss"},
+                {autopilot::OdometryMode::kAlways, "always"},
+                {autopilot::OdometryMode::kOff, "off"}},
+            "px4, ardupilot: when swa_launch's bridges feed their agent's estimate to the autopilot as external "
+            "odometry (swa_px4_bridge --odometry): gnss-loss (while the agent has no GNSS), always, or off");
+  SWA_PARAM(t, flag, vehicle.estimator,
+            "px4, ardupilot: true: the stand-ins model the autopilot's estimator, as a real one leaves SWA's control "
+            "once GNSS is lost unless it fuses the bridge's odometry (PX4: EKF2 invalid after EKF2_NOAID_TOUT, "
+            "offboard refused, failsafe Altitude mode; ArduPilot: EKF3 without a position 7 s after the last one, EKF "
+            "failsafe LAND 1 s later, GUIDED refused); false: an estimate that is always valid");
+  SWA_PARAM(t, number, vehicle.ekf2_noaid_tout_s, "s", closed(0.5, 10),
+            "px4: PX4's EKF2_NOAID_TOUT, dead reckoning without GNSS or external vision this long -> local "
+            "position and velocity invalid (PX4's default 5 s)");
+  SWA_PARAM(t, number, vehicle.ekf2_ev_ctrl, "", closed(0, 15),
+            "px4: PX4's EKF2_EV_CTRL, what EKF2 fuses of vehicle_visual_odometry: bit 0 horizontal position, 1 "
+            "vertical position, 2 velocity, 3 yaw; 5 as the pre-flight table asks (PX4's default: 15 in v1.15, 0 "
+            "from v1.16, which fuses nothing)");
+  SWA_PARAM(t, flag, vehicle.ap_external_nav,
+            "ardupilot: whether EKF3 takes the bridge's ap/tf odometry once GPS is lost (VISO_TYPE 1, source set 2 "
+            "with EK3_SRC2_POSXY 6, switched to on GPS loss: the pre-flight table); false: ArduPilot's defaults, "
+            "VISO_TYPE 0");
 
   t.mount(
       "agent", agent::configTable(), [](auto& s) -> auto& { return s.agent; },
@@ -258,6 +281,11 @@ params::Table<Scenario> makeTable() {
       {"vehicle.px4_release", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.gnss_source", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
       {"vehicle.guid_timeout_s", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
+      {"vehicle.estimator", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
+      {"vehicle.odometry", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
+      {"vehicle.ekf2_noaid_tout_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.ekf2_ev_ctrl", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.ap_external_nav", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
   });
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"},

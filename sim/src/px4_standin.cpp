@@ -8,10 +8,30 @@
 
 namespace swa::sim {
 
-Px4Standin::Px4Standin(double offboard_loss_timeout_s)
+Px4Standin::Px4Standin(double offboard_loss_timeout_s, const std::optional<Px4EstimatorParams>& ekf)
     : loss_timeout_ns_(static_cast<agent::StampNs>(std::llround(offboard_loss_timeout_s * 1e9))),
       arming_state_(px4::kArmingStateArmed),
-      nav_state_(px4::kNavStateAutoLoiter) {}
+      nav_state_(px4::kNavStateAutoLoiter) {
+  if (ekf) ekf_.emplace(*ekf);
+}
+
+void Px4Standin::gnss(agent::StampNs now, bool fix) {
+  if (!ekf_) return;
+  ekf_->gnss(now, fix);
+  // At once, not at the next step: the local position published with this fix carries what EKF2 makes of it (the
+  // first one too, or a vehicle flying on GNSS since its takeoff would say invalid at the run's start).
+  ekf_->update(now);
+}
+
+void Px4Standin::visualOdometry(agent::StampNs now, bool position, bool velocity) {
+  if (ekf_) ekf_->externalVision(now, position, velocity);
+}
+
+void Px4Standin::lose(std::uint8_t nav_state, const char* text) {
+  events_.push_back({StandinEvent::Control::kLost, text});
+  nav_state_ = nav_state;
+  failsafe_ = true;
+}
 
 bool Px4Standin::signalFresh(agent::StampNs now) const {
   return last_heartbeat_ns_ && now - *last_heartbeat_ns_ <= loss_timeout_ns_;
@@ -38,8 +58,10 @@ std::uint8_t Px4Standin::vehicleCommand(agent::StampNs now, std::uint32_t comman
     return kUnsupported;
   }
   if (!signalFresh(now)) return kTemporarilyRejected;  // PX4 refuses offboard without the stream
+  // ... and velocity setpoints without a valid local velocity (offboardCheck.cpp)
+  if (velocity_control_ && !localPositionValid()) return kTemporarilyRejected;
   if (nav_state_ != px4::kNavStateOffboard) {
-    events_.push_back("OFFBOARD on request (offboard_control_mode streaming)");
+    events_.push_back({StandinEvent::Control::kRegained, "OFFBOARD on request (offboard_control_mode streaming)"});
     unsimulated_reported_ = false;
   }
   nav_state_ = px4::kNavStateOffboard;
@@ -49,23 +71,36 @@ std::uint8_t Px4Standin::vehicleCommand(agent::StampNs now, std::uint32_t comman
 
 Px4Standin::Decision Px4Standin::step(agent::StampNs now) {
   Decision d;
+  if (ekf_) {
+    ekf_->update(now);
+    if (!ekf_->deadReckoning()) dead_reckoning_since_ns_.reset();
+    if (ekf_->deadReckoning() && !dead_reckoning_since_ns_) dead_reckoning_since_ns_ = now;
+  }
   if (nav_state_ != px4::kNavStateOffboard) return d;
+  char text[200];
   if (!signalFresh(now)) {
     lost_after_s_ = last_heartbeat_ns_ ? static_cast<double>(now - *last_heartbeat_ns_) * 1e-9 : 0.0;
-    char text[160];
     std::snprintf(text, sizeof text,
                   "offboard lost: no offboard_control_mode for %.2f s (COM_OF_LOSS_T): failsafe, holding (Hold)",
                   lost_after_s_);
-    events_.emplace_back(text);
-    nav_state_ = px4::kNavStateAutoLoiter;
-    failsafe_ = true;
+    lose(px4::kNavStateAutoLoiter, text);
+    return d;
+  }
+  if (velocity_control_ && !localPositionValid()) {
+    lost_after_s_ = dead_reckoning_since_ns_ ? static_cast<double>(now - *dead_reckoning_since_ns_) * 1e-9 : 0.0;
+    std::snprintf(text, sizeof text,
+                  "offboard lost: local velocity invalid after %.2f s of dead reckoning without GNSS or external "
+                  "vision (EKF2_NOAID_TOUT): failsafe, Altitude mode (COM_OBL_RC_ACT Position needs a position)",
+                  lost_after_s_);
+    lose(px4::kNavStateAltctl, text);
     return d;
   }
   if (!setpoint_) return d;  // in OFFBOARD before the first setpoint: hold
   if (!velocity_control_ || !setpoint_velocity_only_) {
     if (!unsimulated_reported_) {
-      events_.emplace_back("a setpoint other than velocity-only (position set, or control mode not velocity) is not "
-                           "simulated: holding");
+      events_.push_back({StandinEvent::Control::kNone,
+                         "a setpoint other than velocity-only (position set, or control mode not velocity) is not "
+                         "simulated: holding"});
       unsimulated_reported_ = true;
     }
     return d;
@@ -76,6 +111,6 @@ Px4Standin::Decision Px4Standin::step(agent::StampNs now) {
   return d;
 }
 
-std::vector<std::string> Px4Standin::takeEvents() { return std::exchange(events_, {}); }
+std::vector<StandinEvent> Px4Standin::takeEvents() { return std::exchange(events_, {}); }
 
 }  // namespace swa::sim

@@ -189,15 +189,18 @@ inline VehicleTopics px4Topics(std::function<std::string(int)> ns) {
       }};
 }
 
-// ArduPilot: bridge I reads rt/<ns_I>/... but cmd_vel and its services' replies rr/<ns_I>/..., writes rt/<ns_I>/cmd_vel
-// and the requests rq/<ns_I>/...
+// ArduPilot: bridge I reads rt/<ns_I>/... but cmd_vel and tf, and its services' replies rr/<ns_I>/..., writes
+// rt/<ns_I>/cmd_vel, rt/<ns_I>/tf (the external odometry) and the requests rq/<ns_I>/...
 inline VehicleTopics ardupilotTopics(std::function<std::string(int)> ns) {
   return VehicleTopics{
       "ArduPilot", std::move(ns),
       [](const std::string& n, EndpointKind kind, const std::string& topic) {
         const std::string cmd_vel = dds::topics::apTopic(n, "cmd_vel");
-        if (kind == EndpointKind::kWriter) return topic == cmd_vel || detail::startsWith(topic, "rq/" + n + "/");
-        return (detail::startsWith(topic, "rt/" + n + "/") && topic != cmd_vel) ||
+        const std::string tf = dds::topics::apTopic(n, "tf");
+        if (kind == EndpointKind::kWriter) {
+          return topic == cmd_vel || topic == tf || detail::startsWith(topic, "rq/" + n + "/");
+        }
+        return (detail::startsWith(topic, "rt/" + n + "/") && topic != cmd_vel && topic != tf) ||
                detail::startsWith(topic, "rr/" + n + "/");
       },
       [](const std::string& n) {
@@ -213,7 +216,7 @@ inline VehicleTopics ardupilotTopics(std::function<std::string(int)> ns) {
 }
 
 // The autopilot bridges (swa_px4_bridge, participants swa_bridge_<I>) of a run through an autopilot: bridge I reads
-// only its vehicle's topics (`vehicle`) and swa/uav<I>/cmd_vel, writes only its vehicle's and swa/uav<I>/{imu,
+// only its vehicle's topics (`vehicle`) and swa/uav<I>/{cmd_vel,state}, writes only its vehicle's and swa/uav<I>/{imu,
 // bridge_state}; exactly one participant per bridge 0..bridge_count-1; and no agent reads or writes any vehicle's
 // topic. Every breach and every gap, one line each.
 inline std::vector<std::string> auditBridges(const std::vector<Endpoint>& endpoints, int bridge_count,
@@ -232,8 +235,9 @@ inline std::vector<std::string> auditBridges(const std::vector<Endpoint>& endpoi
     if (!id) continue;
     guids[*id].insert(e.participant_guid);
     seen[*id].insert({e.kind, e.topic});
+    // its own agent's commands and state (the estimate it feeds its vehicle as external odometry, issue #43)
     const bool own_uav = e.kind == EndpointKind::kReader
-                             ? e.topic == dds::topics::cmdVel(*id)
+                             ? e.topic == dds::topics::cmdVel(*id) || e.topic == dds::topics::state(*id)
                              : e.topic == dds::topics::imu(*id) || e.topic == dds::topics::bridgeState(*id);
     if (!own_uav && !vehicle.allowed(vehicle.ns(*id), e.kind, e.topic)) {
       problems.push_back(detail::who(e) + (e.kind == EndpointKind::kReader ? " reads " : " writes ") + e.topic +

@@ -201,7 +201,8 @@ TEST(MonitorConvert, EveryEventKindHasAName) {
       {msg::EVENT_GNSS_LOST, "gnss_lost"},      {msg::EVENT_GNSS_RESTORED, "gnss_restored"},
       {msg::EVENT_AGENT_DEAD, "agent_dead"},    {msg::EVENT_AGENT_REJOINED, "agent_rejoined"},
       {msg::EVENT_COLLISION, "collision"},      {msg::EVENT_FAILSAFE, "failsafe"},
-      {msg::EVENT_SCENARIO_END, "scenario_end"}};
+      {msg::EVENT_SCENARIO_END, "scenario_end"}, {msg::EVENT_CONTROL_LOST, "control_lost"},
+      {msg::EVENT_CONTROL_REGAINED, "control_regained"}};
   for (const auto& [kind, name] : kinds) {
     // WHEN an event of that kind with every field set is converted
     msg::ScenarioEvent m;

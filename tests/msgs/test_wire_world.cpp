@@ -96,7 +96,8 @@ TEST(WireWorld, EveryEventKindSurvivesTheBridgeAndTheWire) {
   namespace kind = record::event_kind;
   int k = 0;
   for (const char* name : {kind::kGnssLost, kind::kGnssRestored, kind::kAgentDead, kind::kAgentRejoined,
-                           kind::kCollision, kind::kFailsafe, kind::kScenarioEnd}) {
+                           kind::kCollision, kind::kFailsafe, kind::kScenarioEnd,
+                           kind::kControlLost, kind::kControlRegained}) {
     for (const std::int64_t stamp_ns : {std::int64_t{0}, std::int64_t{10'000'000}, std::int64_t{12'340'000'000},
                                         std::int64_t{86'399'990'000'000}}) {
       const record::EventRecord in{static_cast<double>(stamp_ns) * 1e-9, name, k, k + 1, 0.1 * k, "event " + std::to_string(k)};

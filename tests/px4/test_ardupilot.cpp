@@ -200,7 +200,7 @@ TEST(NavSat, AFixIsValidTheLossComesAsNoFixOrAsSilenceAndOnlyOnce) {
 namespace swa::sim {
 namespace {
 
-constexpr agent::StampNs kStepNs = 10'000'000;
+constexpr agent::StampNs kApStepNs = 10'000'000;
 const ardupilot::EnuTwist kEast{1.0, 0.0, 0.0, 0.2};
 
 TEST(ArdupilotStandin, FliesCmdVelOnlyInGuidedAndArmed) {
@@ -210,27 +210,28 @@ TEST(ArdupilotStandin, FliesCmdVelOnlyInGuidedAndArmed) {
   EXPECT_EQ(s.mode(), ardupilot::kModeLoiter);
   // WHEN cmd_vel arrives in LOITER THEN it is dropped: the vehicle holds
   s.cmdVel(0, true, kEast);
-  EXPECT_FALSE(s.step(kStepNs).following);
+  EXPECT_FALSE(s.step(kApStepNs).following);
   // WHEN GUIDED is requested THEN it switches, and the next cmd_vel is flown, yaw rate included
   const ArdupilotStandin::ModeReply r = s.modeSwitch(ardupilot::kModeGuided);
   EXPECT_TRUE(r.status);
   EXPECT_EQ(r.curr_mode, ardupilot::kModeGuided);
-  EXPECT_FALSE(s.step(2 * kStepNs).following);  // GUIDED starts from a stop
-  s.cmdVel(2 * kStepNs, true, kEast);
-  const ArdupilotStandin::Decision d = s.step(3 * kStepNs);
+  EXPECT_FALSE(s.step(2 * kApStepNs).following);  // GUIDED starts from a stop
+  s.cmdVel(2 * kApStepNs, true, kEast);
+  const ArdupilotStandin::Decision d = s.step(3 * kApStepNs);
   EXPECT_TRUE(d.following);
   EXPECT_EQ(d.velocity_mps, agent::Vec2(1.0, 0.0));
   EXPECT_DOUBLE_EQ(d.yaw_rate_radps, 0.2);
   // WHEN it is disarmed THEN it no longer follows; a mode it does not simulate is refused and the mode kept
   EXPECT_TRUE(s.armMotors(false));
-  EXPECT_FALSE(s.step(4 * kStepNs).following);
+  EXPECT_FALSE(s.step(4 * kApStepNs).following);
   const ArdupilotStandin::ModeReply refused = s.modeSwitch(ardupilot::kModeRtl);
   EXPECT_FALSE(refused.status);
   EXPECT_EQ(refused.curr_mode, ardupilot::kModeGuided);
-  const std::vector<std::string> events = s.takeEvents();
+  const std::vector<StandinEvent> events = s.takeEvents();
   ASSERT_EQ(events.size(), 2u);
-  EXPECT_EQ(events[0], "GUIDED on request");
-  EXPECT_EQ(events[1], "disarmed on request");
+  EXPECT_EQ(events[0].text, "GUIDED on request");
+  EXPECT_EQ(events[0].control, StandinEvent::Control::kRegained);
+  EXPECT_EQ(events[1].text, "disarmed on request");
 }
 
 TEST(ArdupilotStandin, StopsAfterGuidTimeoutAndMovesAgainOnTheNextCmdVel) {
@@ -239,22 +240,24 @@ TEST(ArdupilotStandin, StopsAfterGuidTimeoutAndMovesAgainOnTheNextCmdVel) {
   s.cmdVel(0, true, kEast);
   s.takeEvents();
   // GIVEN cmd_vel silent: it follows the last one up to GUID_TIMEOUT, then stops once, holding in GUIDED
-  EXPECT_TRUE(s.step(100 * kStepNs).following);
-  EXPECT_FALSE(s.step(101 * kStepNs).following);
+  EXPECT_TRUE(s.step(100 * kApStepNs).following);
+  EXPECT_FALSE(s.step(101 * kApStepNs).following);
   EXPECT_TRUE(s.timedOut());
   EXPECT_NEAR(s.silentForS(), 1.01, 1e-9);
   EXPECT_EQ(s.mode(), ardupilot::kModeGuided);
-  std::vector<std::string> events = s.takeEvents();
+  std::vector<StandinEvent> events = s.takeEvents();
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_NE(events[0].find("no cmd_vel for 1.01 s (GUID_TIMEOUT)"), std::string::npos) << events[0];
-  EXPECT_FALSE(s.step(150 * kStepNs).following);
+  EXPECT_NE(events[0].text.find("no cmd_vel for 1.01 s (GUID_TIMEOUT)"), std::string::npos) << events[0].text;
+  EXPECT_EQ(events[0].control, StandinEvent::Control::kLost);
+  EXPECT_FALSE(s.step(150 * kApStepNs).following);
   EXPECT_TRUE(s.takeEvents().empty());
   // WHEN cmd_vel comes again THEN it follows at once
-  s.cmdVel(200 * kStepNs, true, kEast);
-  EXPECT_TRUE(s.step(201 * kStepNs).following);
+  s.cmdVel(200 * kApStepNs, true, kEast);
+  EXPECT_TRUE(s.step(201 * kApStepNs).following);
   events = s.takeEvents();
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0], "cmd_vel again: following it");
+  EXPECT_EQ(events[0].text, "cmd_vel again: following it");
+  EXPECT_EQ(events[0].control, StandinEvent::Control::kRegained);
 }
 
 TEST(ArdupilotStandin, OtherFramesAndNonFiniteCommandsAreNotFlown) {
@@ -263,12 +266,12 @@ TEST(ArdupilotStandin, OtherFramesAndNonFiniteCommandsAreNotFlown) {
   s.takeEvents();
   // GIVEN cmd_vel in base_link (body frame), twice THEN dropped, said once
   s.cmdVel(0, false, kEast);
-  s.cmdVel(kStepNs, false, kEast);
-  EXPECT_FALSE(s.step(2 * kStepNs).following);
+  s.cmdVel(kApStepNs, false, kEast);
+  EXPECT_FALSE(s.step(2 * kApStepNs).following);
   EXPECT_EQ(s.takeEvents().size(), 1u);
   // GIVEN a NaN velocity THEN the vehicle holds instead of flying it
-  s.cmdVel(3 * kStepNs, true, ardupilot::EnuTwist{std::nan(""), 0.0, 0.0, 0.0});
-  const ArdupilotStandin::Decision d = s.step(4 * kStepNs);
+  s.cmdVel(3 * kApStepNs, true, ardupilot::EnuTwist{std::nan(""), 0.0, 0.0, 0.0});
+  const ArdupilotStandin::Decision d = s.step(4 * kApStepNs);
   EXPECT_FALSE(d.following);
   EXPECT_EQ(d.velocity_mps, agent::Vec2::Zero());
 }

@@ -24,6 +24,7 @@
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
+#include <swa/px4/VehicleOdometry_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
@@ -195,6 +196,8 @@ std::vector<Used> usedIn(Release r) {
        "vehicle_local_position",
        new_position ? wire<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>({})
                     : wire<px4_msgs::msg::VehicleLocalPositionPubSubType>({})},
+      {"VehicleOdometry", "VehicleOdometry_v1_15", "vehicle_visual_odometry",
+       wire<px4_msgs::msg::VehicleOdometryPubSubType>({})},
   };
 }
 
@@ -248,12 +251,13 @@ TEST(Px4Definitions, TheFieldsSwaReadsOfVehicleStatusSitWherePx4PutsThemInEveryR
 TEST(Px4Definitions, MirroredConstantsAndTopicVersionsAreEveryReleases) {
   const std::vector<std::string> messages = {"VehicleAttitude",   "VehicleStatus",   "OffboardControlMode",
                                              "TrajectorySetpoint", "VehicleCommand", "VehicleCommandAck",
-                                             "SensorGps",          "VehicleLocalPosition"};
+                                             "SensorGps",          "VehicleLocalPosition", "VehicleOdometry"};
   const std::map<std::string, std::string> topic = {
       {"VehicleAttitude", "vehicle_attitude"},     {"VehicleStatus", "vehicle_status"},
       {"OffboardControlMode", "offboard_control_mode"}, {"TrajectorySetpoint", "trajectory_setpoint"},
       {"VehicleCommand", "vehicle_command"},       {"VehicleCommandAck", "vehicle_command_ack"},
-      {"SensorGps", "vehicle_gps_position"},       {"VehicleLocalPosition", "vehicle_local_position"}};
+      {"SensorGps", "vehicle_gps_position"},       {"VehicleLocalPosition", "vehicle_local_position"},
+      {"VehicleOdometry", "vehicle_visual_odometry"}};
   for (const ReleaseDir& rd : kReleaseDirs) {
     SCOPED_TRACE(rd.tag);
     // GIVEN the release's definitions
@@ -262,6 +266,7 @@ TEST(Px4Definitions, MirroredConstantsAndTopicVersionsAreEveryReleases) {
     // THEN the vehicle constants SWA mirrors are the release's
     EXPECT_EQ(status.constants.at("ARMING_STATE_DISARMED"), kArmingStateDisarmed);
     EXPECT_EQ(status.constants.at("ARMING_STATE_ARMED"), kArmingStateArmed);
+    EXPECT_EQ(status.constants.at("NAVIGATION_STATE_ALTCTL"), kNavStateAltctl);
     EXPECT_EQ(status.constants.at("NAVIGATION_STATE_POSCTL"), kNavStatePosctl);
     EXPECT_EQ(status.constants.at("NAVIGATION_STATE_AUTO_LOITER"), kNavStateAutoLoiter);
     EXPECT_EQ(status.constants.at("NAVIGATION_STATE_OFFBOARD"), kNavStateOffboard);

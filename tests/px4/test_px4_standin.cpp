@@ -72,7 +72,8 @@ TEST_F(Px4StandinTest, LosingTheHeartbeatForComOfLossTIsTheFailsafe) {
   EXPECT_EQ(px4.navState(), px4::kNavStateAutoLoiter);
   const auto events = px4.takeEvents();
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_NE(events[0].find("offboard lost"), std::string::npos) << events[0];
+  EXPECT_NE(events[0].text.find("offboard lost"), std::string::npos) << events[0].text;
+  EXPECT_EQ(events[0].control, StandinEvent::Control::kLost);
   EXPECT_NEAR(px4.lostAfterS(), 1.01, 1e-9);
   // AND it does not return to OFFBOARD by itself when the stream comes back, only when asked again
   EXPECT_FALSE(stream(300, 400).following);

@@ -139,6 +139,11 @@ void expectAsCohesiveAsDirectAndEveryVehicleEngaged(const LaunchedRun& run, doub
   std::size_t count = 0;
   for (std::size_t at = events.find(engaged); at != std::string::npos; at = events.find(engaged, at + 1)) ++count;
   EXPECT_EQ(count, static_cast<std::size_t>(jsonNumber(run.summary, "uav_count"))) << events;
+  // AND with the autopilots' estimators modelled (vehicle.estimator, issue #43), no vehicle left SWA's control after
+  // GNSS was lost at 10 s: each bridge fed its agent's estimate as external odometry from then on
+  EXPECT_EQ(events.find("control_lost"), std::string::npos) << events;
+  const std::string bridge_log = readFile(run.dir / "logs" / "bridge_0.log");
+  EXPECT_NE(bridge_log.find("feeding the agent's estimate to"), std::string::npos) << bridge_log;
 }
 
 void Px4SwarmTest::expectAsCohesiveAsDirect(const std::string& scenario, const std::vector<px4::Release>& releases) {
@@ -231,6 +236,40 @@ TEST_F(Px4SwarmTest, EightUavsFlyThroughPx4V116AndV117AsCohesivelyAsDirect) {
   expectAsCohesiveAsDirect("dropout_8.yaml", {px4::Release::kV1_16, px4::Release::kV1_17});
 }
 
+// Without the external odometry (vehicle.odometry = off: swa_px4_bridge --odometry off) a real autopilot leaves SWA's
+// control a few seconds after GNSS is lost (issue #43): PX4 once EKF2 has dead-reckoned for EKF2_NOAID_TOUT (5 s after
+// the last fix), ArduPilot once EKF3 has had no position for 7 s and the EKF failsafe has waited 1 s. 4 UAVs, GNSS lost
+// at 10 s, 25 s: every vehicle leaves within that time of the loss plus 1 s, and the verdict FAILs and says why.
+std::vector<std::pair<double, double>> eventsOf(const fs::path& run, int uav, const std::string& what);
+
+void expectEveryVehicleLeavesSwaWithoutOdometry(const LaunchedRun& run, double leave_after_s, const char* how) {
+  EXPECT_EQ(run.status, 1) << run.summary;
+  const std::string reasons = run.summary.substr(std::min(run.summary.size(), run.summary.find("verdict_reasons")));
+  for (int i = 0; i < 4; ++i) {
+    SCOPED_TRACE("UAV " + std::to_string(i));
+    const auto lost = eventsOf(run.dir, i, how);
+    ASSERT_EQ(lost.size(), 1u) << readFile(run.dir / "events.csv");
+    EXPECT_GE(lost[0].first, 10.0 + leave_after_s - 1.0);
+    EXPECT_LE(lost[0].first, 10.0 + leave_after_s + 1.0);
+    EXPECT_NE(reasons.find("UAV " + std::to_string(i) + " out of SWA's control"), std::string::npos) << reasons;
+  }
+}
+
+TEST_F(Px4SwarmTest, WithoutOdometryEveryPx4LeavesOffboardAfterEkf2NoaidToutAndTheRunFails) {
+  const LaunchedRun run = launch("dropout_4.yaml", "px4", {"duration_s=25", "vehicle.odometry=off"}, "no_odometry");
+  ASSERT_NE(run.status, -1) << "still running after " << kRunBoundS << " s";
+  expectEveryVehicleLeavesSwaWithoutOdometry(run, 5.0, "local velocity invalid");
+  expectNothingLeft();
+}
+
+TEST_F(Px4SwarmTest, WithoutOdometryEveryArdupilotLandsOnItsEkfFailsafeAndTheRunFails) {
+  const LaunchedRun run =
+      launch("dropout_4.yaml", "ardupilot", {"duration_s=25", "vehicle.odometry=off"}, "no_odometry");
+  ASSERT_NE(run.status, -1) << "still running after " << kRunBoundS << " s";
+  expectEveryVehicleLeavesSwaWithoutOdometry(run, 8.0, "EKF failsafe");
+  expectNothingLeft();
+}
+
 // 4 anchored agents whose GNSS comes from their (simulated) autopilots (`vehicle`, named `name` in the bridges' logs),
 // lost from 10 s to 20 s of 30.
 void Px4SwarmTest::expectGnssLostAndRegainedThroughTheBridges(const std::string& vehicle, const std::string& name) {
@@ -258,7 +297,16 @@ void Px4SwarmTest::expectGnssLostAndRegainedThroughTheBridges(const std::string&
     EXPECT_NE(regained, std::string::npos) << log;
     EXPECT_TRUE(valid < lost && lost < regained) << log;
     EXPECT_EQ(log.find(lost_text, lost + 1), std::string::npos) << log;
+    // AND it fed its agent's estimate to the autopilot while GNSS was lost, and stopped when it returned, the
+    // autopilot flying on its own GNSS again: never out of SWA's control (issue #43)
+    const std::size_t feeding = log.find("feeding the agent's estimate to " + name);
+    const std::size_t stopped = log.find("stopped: the agent has GNSS again");
+    EXPECT_NE(feeding, std::string::npos) << log;
+    EXPECT_NE(stopped, std::string::npos) << log;
+    EXPECT_LT(feeding, stopped) << log;
   }
+  EXPECT_EQ(readFile(run.dir / "events.csv").find("control_lost"), std::string::npos)
+      << readFile(run.dir / "events.csv");
   expectNothingLeft();
 }
 

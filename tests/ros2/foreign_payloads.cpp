@@ -22,6 +22,7 @@
 #include <swa/px4/SensorGps_v1_17PubSubTypes.h>
 #include <swa/px4/VehicleLocalPosition_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleLocalPosition_v1_16PubSubTypes.h>
+#include <swa/px4/VehicleOdometry_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 #include <swa/ros/ArdupilotServicesPubSubTypes.h>
@@ -30,6 +31,7 @@
 #include <swa/ros/ImuPubSubTypes.h>
 #include <swa/ros/NavSatFixPubSubTypes.h>
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
+#include <swa/ros/TFMessagePubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/wire/ardupilot.h"
@@ -201,6 +203,48 @@ json cmdVelExpected() {
           {"twist", {{"linear", vector3(1.5, -0.5, 0.0)}, {"angular", vector3(0.0, 0.0, 0.25)}}}};
 }
 
+// External odometry (issue #43): the agent's estimate as the bridge writes it. PX4: every field set to a distinct
+// finite value (the bridge's own leaves q NaN, which JSON cannot carry), so that the whole layout is compared.
+swa::autopilot::Odometry odometry() {
+  swa::autopilot::Odometry o;
+  o.stamp_ns = 12'345'678'000;
+  o.position_m = swa::agent::Vec2(3.0, -4.0);
+  o.velocity_mps = swa::agent::Vec2(0.5, 0.25);
+  o.position_var_m2 = swa::agent::Vec2(0.25, 0.125);
+  o.velocity_var_m2ps2 = swa::agent::Vec2(0.0625, 0.03125);
+  o.reset_counter = 3;
+  return o;
+}
+
+px4_msgs::msg::VehicleOdometry px4Odometry() {
+  px4_msgs::msg::VehicleOdometry m = swa::wire::vehicleOdometry(odometry());
+  m.timestamp(42'000'001);
+  m.q({0.5f, 0.5f, -0.5f, 0.5f});
+  m.angular_velocity({0.125f, -0.25f, 0.375f});
+  m.orientation_variance({0.01171875f, 0.0234375f, 0.046875f});
+  m.quality(-7);
+  return m;
+}
+
+json px4OdometryExpected() {
+  return {{"timestamp", "42000001"}, {"timestamp_sample", "12345678"}, {"pose_frame", 1},
+          {"position", {-4.0, 3.0, 0.0}}, {"q", {0.5, 0.5, -0.5, 0.5}}, {"velocity_frame", 1},
+          {"velocity", {0.25, 0.5, 0.0}}, {"angular_velocity", {0.125, -0.25, 0.375}},
+          {"position_variance", {0.125, 0.25, 10000.0}}, {"orientation_variance", {0.01171875, 0.0234375, 0.046875}},
+          {"velocity_variance", {0.03125, 0.0625, 10000.0}}, {"reset_counter", 3}, {"quality", -7}};
+}
+
+const swa::px4::Quaternion kOdomAttitude{0.5, 0.5, 0.5, 0.5};
+
+json tfExpected() {
+  return {{"transforms",
+           json::array({{{"header", {{"stamp", {{"sec", 0}, {"nanosec", 0}}}, {"frame_id", "odom"}}},
+                         {"child_frame_id", "base_link"},
+                         {"transform",
+                          {{"translation", ap::vector3(-4.0, -3.0, 0.0)},
+                           {"rotation", {{"x", 0.5}, {"y", -0.5}, {"z", -0.5}, {"w", 0.5}}}}}}})}};
+}
+
 }  // namespace ap
 
 int write(const std::string& path) {
@@ -240,6 +284,7 @@ int write(const std::string& path) {
   addPx4("v1.17.0", "SensorGps", serialise<px4_17::SensorGpsPubSubType>(swa::wire::sensorGps<px4_17::SensorGps>(t, g)),
          gps);
   const json position = {{"timestamp", "42000000"}, {"timestamp_sample", "42000000"}, {"xy_valid", true},
+                         {"v_xy_valid", true},
                          {"x", -7.25}, {"y", 12.5}, {"eph", 0.75}};
   addPx4("v1.15.4", "VehicleLocalPosition",
          serialise<px4::VehicleLocalPositionPubSubType>(swa::wire::vehicleLocalPosition<px4::VehicleLocalPosition>(t, g)),
@@ -250,8 +295,17 @@ int write(const std::string& path) {
                swa::wire::vehicleLocalPosition<px4_16::VehicleLocalPosition>(t, g)),
            position);
   }
+  for (const char* tag : {"v1.15.4", "v1.16.0", "v1.17.0"}) {  // one layout in all three
+    out.push_back({{"ros_type", "px4_msgs/msg/VehicleOdometry"}, {"px4_release", tag},
+                   {"cdr_hex", serialise<px4::VehicleOdometryPubSubType>(ap::px4Odometry())},
+                   {"expected", ap::px4OdometryExpected()}, {"zero_elsewhere", true}});
+  }
   // ArduPilot's, complete: the decoder must give exactly these.
   namespace srv = ardupilot_msgs::srv;
+  out.push_back({{"ros_type", "tf2_msgs/msg/TFMessage"},
+                 {"cdr_hex", serialise<tf2_msgs::msg::TFMessagePubSubType>(
+                                 swa::wire::externalOdometry(ap::odometry(), ap::kOdomAttitude))},
+                 {"expected", ap::tfExpected()}});
   out.push_back({{"ros_type", "sensor_msgs/msg/Imu"},
                  {"cdr_hex",
                   serialise<sensor_msgs::msg::ImuPubSubType>(swa::wire::imuMessage(ap::kStampUs, ap::kAttitude))},
@@ -317,6 +371,11 @@ std::optional<bool> checkArdupilot(const std::string& type, const std::string& h
     const swa::wire::CmdVel c = swa::wire::cmdVelOf(deserialise<geometry_msgs::msg::TwistStampedPubSubType>(hex));
     return c.map_frame && c.timestamp_us == ap::kStampUs && c.twist.east_mps == 1.5 && c.twist.north_mps == -0.5 &&
            c.twist.up_mps == 0.0 && c.twist.yaw_rate_radps == 0.25;
+  }
+  if (type == "tf2_msgs/msg/TFMessage") {
+    const std::optional<swa::wire::ExternalOdomReport> r =
+        swa::wire::externalOdomOf(deserialise<tf2_msgs::msg::TFMessagePubSubType>(hex));
+    return r && r->stamp_ns == 0 && r->north_m == -4.0 && r->east_m == 3.0;
   }
   if (type == "ardupilot_msgs/srv/ArmMotors_Request") return deserialise<srv::ArmMotors_RequestPubSubType>(hex).arm();
   if (type == "ardupilot_msgs/srv/ArmMotors_Response") {
@@ -389,7 +448,7 @@ int check(const std::string& path) {
   }
   std::cout << "foreign_payloads: " << checked - failures << " of " << checked
             << " payloads serialised independently read as written\n";
-  return failures == 0 && checked >= 10 ? 0 : 1;
+  return failures == 0 && checked >= 11 ? 0 : 1;
 }
 
 }  // namespace

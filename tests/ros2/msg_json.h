@@ -93,7 +93,8 @@ inline json toJson(const msg::AgentState& m) {
           {"rejected_no_heading", big(m.rejected_no_heading())},
           {"rejected_future_stamp", big(m.rejected_future_stamp())},
           {"stamp_resyncs", big(m.stamp_resyncs())},
-          {"commands_sent", big(m.commands_sent())}};
+          {"commands_sent", big(m.commands_sent())},
+          {"gnss_valid", m.gnss_valid()}};
 }
 
 inline json toJson(const msg::Clock& m) {

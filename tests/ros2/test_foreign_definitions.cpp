@@ -109,7 +109,7 @@ TEST(ForeignDefinitions, EveryForeignTypeOfOursHasUpstreamsFieldsTypesAndOrder) 
   for (const char* name : {"std_msgs/Header", "builtin_interfaces/Time", "geometry_msgs/PoseWithCovariance",
                            "sensor_msgs/Imu", "sensor_msgs/NavSatFix", "vision_msgs/Detection3DArray",
                            "mrs_msgs/PoseWithCovarianceIdentified", "ardupilot_msgs/Status",
-                           "ardupilot_msgs/ModeSwitch_Response"}) {
+                           "ardupilot_msgs/ModeSwitch_Response", "tf2_msgs/TFMessage"}) {
     ASSERT_EQ(idl.messages.count(name), 1u) << name;
     ASSERT_EQ(up.messages.count(name), 1u) << name;
     EXPECT_FALSE(up.messages.at(name).fields.empty()) << name;

@@ -138,8 +138,8 @@ test_layout_and_documents() {
   check "sim subscribes commands and the inputs of PX4 and ArduPilot only" \
     test "$(granted "$d/swa_sim/permissions.xml" subscribe)" = \
     "$(sorted 'swa/uav*/cmd_vel' 'rt/px4_*/fmu/in/trajectory_setpoint' 'rt/px4_*/fmu/in/offboard_control_mode' \
-      'rt/px4_*/fmu/in/vehicle_command' 'rt/ap/v*/cmd_vel' 'rq/ap/v*/arm_motorsRequest' \
-      'rq/ap/v*/mode_switchRequest')"
+      'rt/px4_*/fmu/in/vehicle_command' 'rt/px4_*/fmu/in/vehicle_visual_odometry' 'rt/ap/v*/cmd_vel' 'rt/ap/v*/tf' \
+      'rq/ap/v*/arm_motorsRequest' 'rq/ap/v*/mode_switchRequest')"
   check "monitor publishes nothing" test -z "$(granted "$d/swa_monitor/permissions.xml" publish)"
   check "monitor subscribes every topic (to record it)" \
     test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = "$(sorted swa/truth swa/events swa/clock \
@@ -191,14 +191,15 @@ test_overwrite_rules() {
 test_bridges_and_naming() {
   local d=$WORK/bridges
   expect_status 0 "--bridges --px4-prefix drone_" bash "$SCRIPT" --bridges --px4-prefix drone_ "$d" 2
-  check "bridge 1 publishes UAV 1's sensors, its diagnostics and its own vehicle's inputs (PX4, ArduPilot ap/v2)" \
+  check "bridge 1 publishes UAV 1's sensors, its diagnostics and its own vehicle's inputs, odometry included" \
     test "$(granted "$d/swa_bridge_1/permissions.xml" publish)" = \
     "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/uav1/bridge_state \
       rt/drone_1/fmu/in/trajectory_setpoint rt/drone_1/fmu/in/offboard_control_mode rt/drone_1/fmu/in/vehicle_command \
-      rt/ap/v2/cmd_vel rq/ap/v2/arm_motorsRequest rq/ap/v2/mode_switchRequest)"
-  check "bridge 1 subscribes UAV 1's commands and its own vehicle's outputs (PX4, ArduPilot ap/v2)" \
+      rt/drone_1/fmu/in/vehicle_visual_odometry rt/ap/v2/cmd_vel rt/ap/v2/tf rq/ap/v2/arm_motorsRequest \
+      rq/ap/v2/mode_switchRequest)"
+  check "bridge 1 subscribes UAV 1's commands, its agent's state and its own vehicle's outputs (PX4, ArduPilot ap/v2)" \
     test "$(granted "$d/swa_bridge_1/permissions.xml" subscribe)" = \
-    "$(sorted swa/uav1/cmd_vel rt/drone_1/fmu/out/vehicle_attitude rt/drone_1/fmu/out/vehicle_status \
+    "$(sorted swa/uav1/cmd_vel swa/uav1/state rt/drone_1/fmu/out/vehicle_attitude rt/drone_1/fmu/out/vehicle_status \
       rt/drone_1/fmu/out/vehicle_status_v1 rt/drone_1/fmu/out/vehicle_command_ack \
       rt/drone_1/fmu/out/vehicle_gps_position rt/drone_1/fmu/out/vehicle_local_position \
       rt/drone_1/fmu/out/vehicle_local_position_v1 rt/ap/v2/imu/experimental/data rt/ap/v2/status \

@@ -35,9 +35,11 @@
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
+#include <swa/px4/VehicleOdometry_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 #include <swa/ros/ArdupilotServicesPubSubTypes.h>
+#include <swa/ros/TFMessagePubSubTypes.h>
 #include <swa/ros/ArdupilotStatusPubSubTypes.h>
 #include <swa/ros/ImuPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
@@ -137,6 +139,9 @@ void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
     if (endsWith(topic, "/cmd_vel")) {
       return createWith<geometry_msgs::msg::TwistStampedPubSubType>(p, kind, topic, "ap_in_writer", "ap_in_reader");
     }
+    if (endsWith(topic, "/tf")) {
+      return createWith<tf2_msgs::msg::TFMessagePubSubType>(p, kind, topic, "ap_in_writer", "ap_in_reader");
+    }
     if (endsWith(topic, "/arm_motorsRequest")) {
       return createWith<srv::ArmMotors_RequestPubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
     }
@@ -196,6 +201,9 @@ void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
   }
   if (endsWith(topic, "/trajectory_setpoint")) {
     return createWith<px4_msgs::msg::TrajectorySetpointPubSubType>(p, kind, topic, writer, reader);
+  }
+  if (endsWith(topic, "/vehicle_visual_odometry")) {
+    return createWith<px4_msgs::msg::VehicleOdometryPubSubType>(p, kind, topic, writer, reader);
   }
   if (endsWith(topic, "/offboard_control_mode")) {
     return createWith<px4_msgs::msg::OffboardControlModePubSubType>(p, kind, topic, writer, reader);
@@ -409,17 +417,18 @@ TEST_F(SecurityTest, EachRoleCreatesExactlyTheEndpointsItsPermissionsGrant) {
        {{R, imu(0)}, {R, detections(0)}, {R, sensors(0)}, {W, cmdVel(0)}, {W, state(0)}, {R, state(0)}, {R, truth},
         {R, clock},
         {R, px4Out(px4Namespace(0), "vehicle_attitude")}, {W, px4In(px4Namespace(0), "trajectory_setpoint")}}},
-      // The autopilot bridge of UAV 1: its sensors out, its commands in, its own PX4's topics, nothing of another UAV
-      // or vehicle.
+      // The autopilot bridge of UAV 1: its sensors out, its commands and its agent's state in, its own PX4's topics
+      // (its odometry included: issue #43), nothing of another UAV or vehicle.
       {"swa_bridge_1",
-       {{W, imu(1)}, {W, detections(1)}, {W, gnss(1)}, {R, cmdVel(1)}, {W, bridgeState(1)},
+       {{W, imu(1)}, {W, detections(1)}, {W, gnss(1)}, {R, cmdVel(1)}, {R, state(1)}, {W, bridgeState(1)},
         {R, px4Out(px4Namespace(1), "vehicle_attitude")}, {R, px4Out(px4Namespace(1), "vehicle_status")},
         {R, px4Out(px4Namespace(1), "vehicle_status_v1")}, {W, px4In(px4Namespace(1), "trajectory_setpoint")},
-        {W, px4In(px4Namespace(1), "offboard_control_mode")}, {R, apTopic(apNamespace(1), "imu/experimental/data")},
-        {R, apTopic(apNamespace(1), "status")}, {W, apTopic(apNamespace(1), "cmd_vel")},
+        {W, px4In(px4Namespace(1), "offboard_control_mode")}, {W, px4In(px4Namespace(1), "vehicle_visual_odometry")},
+        {R, apTopic(apNamespace(1), "imu/experimental/data")}, {R, apTopic(apNamespace(1), "status")},
+        {W, apTopic(apNamespace(1), "cmd_vel")}, {W, apTopic(apNamespace(1), "tf")},
         {W, apRequest(apNamespace(1), "arm_motors")}, {R, apReply(apNamespace(1), "arm_motors")}},
-       {{W, imu(2)}, {W, detections(0)}, {W, sensors(1)}, {R, imu(1)}, {R, cmdVel(2)}, {W, cmdVel(1)}, {R, state(1)},
-        {W, state(1)},
+       {{W, imu(2)}, {W, detections(0)}, {W, sensors(1)}, {R, imu(1)}, {R, cmdVel(2)}, {W, cmdVel(1)}, {R, state(2)},
+        {W, state(1)}, {W, px4In(px4Namespace(2), "vehicle_visual_odometry")}, {W, apTopic(apNamespace(0), "tf")},
         {R, truth}, {W, truth}, {W, clock}, {W, bridgeState(2)}, {R, px4Out(px4Namespace(2), "vehicle_attitude")},
         {W, px4In(px4Namespace(0), "trajectory_setpoint")}, {W, px4Out(px4Namespace(1), "vehicle_attitude")},
         {R, px4In(px4Namespace(1), "trajectory_setpoint")}, {R, px4Out(px4Namespace(2), "vehicle_status_v1")},

@@ -13,6 +13,11 @@
 //   - no cmd_vel for GUID_TIMEOUT in GUIDED: the vehicle stops and holds (zero velocity and yaw rate), still in GUIDED;
 //     the next cmd_vel moves it again. ArduPilot has no offboard mode to fall out of.
 // "Hold" is zero velocity command, the simulator's own hover.
+// With the EKF modelled (ardupilot_estimator.h, issue #43), the vehicle's position decides too (ArduCopter/mode.cpp,
+// ekf_check.cpp): GUIDED is refused while armed without a position ("requires position"), and in GUIDED the EKF
+// failsafe (FS_EKF_ACTION default 1) lands the vehicle: LAND, no horizontal control (here a zero velocity command),
+// cmd_vel ignored, out of SWA's control until GUIDED is requested again with a position. Without it (no EKF given)
+// the position is always good, as before issue #43.
 
 #include <cstdint>
 #include <optional>
@@ -21,13 +26,19 @@
 
 #include "swa/agent/samples.h"
 #include "swa/autopilot/ardupilot.h"
+#include "swa/sim/ardupilot_estimator.h"
+#include "swa/sim/standin_event.h"
 
 namespace swa::sim {
 
 class ArdupilotStandin {
  public:
-  // `guid_timeout_s`: ArduPilot's GUID_TIMEOUT.
-  explicit ArdupilotStandin(double guid_timeout_s);
+  // `guid_timeout_s`: ArduPilot's GUID_TIMEOUT; `ekf`: EKF3's setup, none to leave its position always good.
+  explicit ArdupilotStandin(double guid_timeout_s, const std::optional<ArdupilotEstimatorParams>& ekf = std::nullopt);
+
+  // The vehicle's GPS at `now` (every step), and an ap/tf odometry transform stamped `stamp_ns`: whether it was fused.
+  void gnss(agent::StampNs now, bool fix);
+  bool externalOdometry(agent::StampNs now, agent::StampNs stamp_ns);
 
   // A cmd_vel arriving at `now`.
   void cmdVel(agent::StampNs now, bool map_frame, const ardupilot::EnuTwist& twist);
@@ -47,9 +58,11 @@ class ArdupilotStandin {
   // What the vehicle flies at `now`, and what changed since the last call (timed out, engaged, ...), for the
   // scenario's events.
   Decision step(agent::StampNs now);
-  std::vector<std::string> takeEvents();
+  std::vector<StandinEvent> takeEvents();
 
   bool armed() const { return armed_; }
+  bool positionOk() const { return !ekf_ || ekf_->positionOk(); }
+  bool ekfFailsafe() const { return ekf_ && ekf_->ekfFailsafe(); }
   std::uint8_t mode() const { return mode_; }
   bool timedOut() const { return timed_out_; }
   // How long cmd_vel had been silent when the vehicle last stopped [s] (the value of the timeout event).
@@ -66,7 +79,8 @@ class ArdupilotStandin {
   bool timed_out_ = false;
   bool other_frame_reported_ = false;
   double silent_for_s_ = 0.0;
-  std::vector<std::string> events_;
+  std::optional<ArdupilotEstimator> ekf_;
+  std::vector<StandinEvent> events_;
 };
 
 }  // namespace swa::sim

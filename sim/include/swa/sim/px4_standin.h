@@ -16,6 +16,14 @@
 //     offboard is requested again (the vehicle does not return to OFFBOARD by itself).
 // "Hold" here is zero velocity command, the simulator's own hover (PX4's COM_OBL_RC_ACT default, Position mode, also
 // holds position when the sticks are centred).
+// With the EKF modelled (px4_estimator.h, issue #43), its horizontal validity decides too, as commander does
+// (HealthAndArmingChecks/checks/offboardCheck.cpp, failsafe/failsafe.cpp checkModeFallback):
+//   - offboard with velocity setpoints needs a valid local velocity: DO_SET_MODE to OFFBOARD is temporarily rejected
+//     while v_xy_valid is false;
+//   - in OFFBOARD, v_xy_valid turning false is an offboard loss at once: the fallback COM_OBL_RC_ACT = Position cannot
+//     run without a position, so the vehicle is in Altitude mode (nav_state ALTCTL, failsafe set): no horizontal
+//     control, here a zero velocity command like Hold, but out of SWA's control until offboard is requested again.
+// Without it (no EKF given) the estimate is always valid, as before issue #43.
 
 #include <cstdint>
 #include <optional>
@@ -24,13 +32,19 @@
 
 #include "swa/agent/samples.h"
 #include "swa/px4/frames.h"
+#include "swa/sim/px4_estimator.h"
+#include "swa/sim/standin_event.h"
 
 namespace swa::sim {
 
 class Px4Standin {
  public:
-  // `offboard_loss_timeout_s`: PX4's COM_OF_LOSS_T.
-  explicit Px4Standin(double offboard_loss_timeout_s);
+  // `offboard_loss_timeout_s`: PX4's COM_OF_LOSS_T; `ekf`: EKF2's parameters, none to leave its estimate always valid.
+  explicit Px4Standin(double offboard_loss_timeout_s, const std::optional<Px4EstimatorParams>& ekf = std::nullopt);
+
+  // The vehicle's GNSS at `now` (every step), and a vehicle_visual_odometry sample (usable position / velocity).
+  void gnss(agent::StampNs now, bool fix);
+  void visualOdometry(agent::StampNs now, bool position, bool velocity);
 
   void offboardControlMode(agent::StampNs now, bool velocity_control);
   void trajectorySetpoint(const px4::NedVelocity& velocity, bool velocity_only);
@@ -44,11 +58,15 @@ class Px4Standin {
   // What the vehicle flies at `now`, and what changed (offboard lost, engaged, an unsimulated setpoint) since the
   // last call, for the scenario's events.
   Decision step(agent::StampNs now);
-  std::vector<std::string> takeEvents();
+  std::vector<StandinEvent> takeEvents();
 
   std::uint8_t armingState() const { return arming_state_; }
   std::uint8_t navState() const { return nav_state_; }
   bool failsafe() const { return failsafe_; }
+  // vehicle_local_position's xy_valid and v_xy_valid (one flag in EKF2), and dead_reckoning.
+  bool localPositionValid() const { return !ekf_ || ekf_->xyValid(); }
+  bool modelsEstimator() const { return ekf_.has_value(); }
+  bool deadReckoning() const { return ekf_ && ekf_->deadReckoning(); }
   // How long the offboard signal had been silent when it was last lost [s] (the value of the failsafe event).
   double lostAfterS() const { return lost_after_s_; }
   // The value of this step's events: lostAfterS() while in failsafe, else 0 (as ArduPilot's stand-in).
@@ -56,6 +74,7 @@ class Px4Standin {
 
  private:
   bool signalFresh(agent::StampNs now) const;
+  void lose(std::uint8_t nav_state, const char* text);
 
   agent::StampNs loss_timeout_ns_;
   std::uint8_t arming_state_;
@@ -67,7 +86,9 @@ class Px4Standin {
   bool setpoint_velocity_only_ = true;
   bool unsimulated_reported_ = false;
   double lost_after_s_ = 0.0;
-  std::vector<std::string> events_;
+  std::optional<Px4Estimator> ekf_;
+  std::optional<agent::StampNs> dead_reckoning_since_ns_;  // for the failsafe event's value
+  std::vector<StandinEvent> events_;
 };
 
 }  // namespace swa::sim

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "swa/agent/config.h"
+#include "swa/autopilot/odometry_feed.h"
 #include "swa/px4/release.h"
 
 namespace swa::sim {
@@ -93,6 +94,15 @@ struct VehicleSetup {
   double guid_timeout_s = 3.0;     // ArduPilot's GUID_TIMEOUT (Copter default 3 s): no cmd_vel this long -> stop
   px4::Release px4_release = px4::kNewestRelease;  // the layouts and topic names the PX4 stand-in speaks
   GnssSource gnss_source = GnssSource::kSwa;
+  // Issue #43: whether the stand-ins model the autopilot's estimator (PX4's EKF2, ArduPilot's EKF3 and EKF failsafe),
+  // which leaves SWA's control a few seconds after GNSS is lost unless external odometry is fused; false: an estimate
+  // always valid, as before.
+  bool estimator = true;
+  double ekf2_noaid_tout_s = 5.0;  // PX4's EKF2_NOAID_TOUT (5 s in v1.15 to v1.17)
+  int ekf2_ev_ctrl = 5;            // PX4's EKF2_EV_CTRL as the pre-flight table sets it (PX4: 15 in v1.15, 0 after)
+  bool ap_external_nav = true;     // ArduPilot: external navigation once GPS is lost (the pre-flight table's setup)
+  // When swa_launch's bridges feed their agent's estimate as external odometry (swa_px4_bridge --odometry).
+  autopilot::OdometryMode odometry = autopilot::OdometryMode::kWhileGnssLost;
 };
 
 struct ClockSetup {

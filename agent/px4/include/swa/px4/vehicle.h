@@ -11,6 +11,7 @@ namespace swa::px4 {
 constexpr std::uint8_t kArmingStateDisarmed = 1;
 constexpr std::uint8_t kArmingStateArmed = 2;
 
+constexpr std::uint8_t kNavStateAltctl = 1;  // Altitude mode: the fallback without a position
 constexpr std::uint8_t kNavStatePosctl = 2;
 constexpr std::uint8_t kNavStateAutoLoiter = 4;  // Hold
 constexpr std::uint8_t kNavStateOffboard = 14;

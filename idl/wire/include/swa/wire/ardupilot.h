@@ -9,11 +9,13 @@
 #include <swa/ros/ArdupilotStatus.h>
 #include <swa/ros/Imu.h>
 #include <swa/ros/NavSatFix.h>
+#include <swa/ros/TFMessage.h>
 #include <swa/ros/TwistStamped.h>
 
 #include "swa/autopilot/ardupilot.h"
 #include "swa/autopilot/bridge_core.h"
 #include "swa/autopilot/navsat.h"
+#include "swa/autopilot/odometry_feed.h"
 #include "swa/autopilot/quaternion_order.h"
 
 namespace swa::wire {
@@ -45,5 +47,21 @@ struct CmdVel {
   ardupilot::EnuTwist twist;
 };
 CmdVel cmdVelOf(const geometry_msgs::msg::TwistStamped& m);
+
+// The agent's estimate as ArduPilot's external odometry (rt/ap/tf, issue #43): one "odom" -> "base_link" transform,
+// the only pair AP_DDS_External_Odom.cpp takes. It turns the translation (x, y, z) into NED as (x, -y, -z) and the
+// rotation (w, x, y, z) as (w, x, -y, -z), so odom's axes are north, west, up: SWA's east and north go in as (north,
+// -east), up is 0 (the pre-flight table keeps height on the barometer), and the rotation is the vehicle's own attitude
+// turned back. No velocity: AP_DDS has no path for one. Stamped 0: ArduPilot reads the stamp as its own boot time in
+// milliseconds with no offset, fuses a stamp not after its time as current (less VISO_DELAY_MS) and never one after
+// it, such as a UTC stamp; so the estimate's age goes in VISO_DELAY_MS.
+tf2_msgs::msg::TFMessage externalOdometry(const autopilot::Odometry& o, const px4::Quaternion& attitude);
+// What ArduPilot takes of a TFMessage: the odom -> base_link transform's stamp [ns] and its north, east position; none
+// when there is no such transform.
+struct ExternalOdomReport {
+  agent::StampNs stamp_ns = 0;
+  double north_m = 0.0, east_m = 0.0;
+};
+std::optional<ExternalOdomReport> externalOdomOf(const tf2_msgs::msg::TFMessage& m);
 
 }  // namespace swa::wire

@@ -5,6 +5,7 @@
 // PX4's side).
 
 #include <cstdint>
+#include <optional>
 
 #include <swa/msg/BridgeState.h>
 #include <swa/px4/OffboardControlMode_v1_15.h>
@@ -12,10 +13,12 @@
 #include <swa/px4/VehicleAttitude_v1_15.h>
 #include <swa/px4/VehicleCommandAck_v1_15.h>
 #include <swa/px4/VehicleCommand_v1_15.h>
+#include <swa/px4/VehicleOdometry_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_15.h>
 #include <swa/px4/VehicleStatus_v1_16.h>
 
 #include "swa/autopilot/bridge_core.h"
+#include "swa/autopilot/odometry_feed.h"
 #include "swa/px4/frames.h"
 #include "swa/px4/gnss.h"
 
@@ -74,12 +77,17 @@ Gps sensorGps(std::uint64_t timestamp_us, const agent::GnssSample& g) {
   return m;
 }
 
+// The estimator's own word (`xy_valid`, which is also v_xy_valid, and `dead_reckoning`) when the stand-in models EKF2
+// (px4_estimator.h); without it, xy_valid is the fix's.
 template <class Position>
-Position vehicleLocalPosition(std::uint64_t timestamp_us, const agent::GnssSample& g) {
+Position vehicleLocalPosition(std::uint64_t timestamp_us, const agent::GnssSample& g,
+                              std::optional<bool> xy_valid = std::nullopt, bool dead_reckoning = false) {
   Position m;
   m.timestamp(timestamp_us);
   m.timestamp_sample(timestamp_us);
-  m.xy_valid(g.valid);
+  m.xy_valid(xy_valid.value_or(g.valid));
+  m.v_xy_valid(xy_valid.value_or(g.valid));
+  m.dead_reckoning(dead_reckoning);
   m.x(static_cast<float>(g.position_m.y()));  // north
   m.y(static_cast<float>(g.position_m.x()));  // east
   m.eph(static_cast<float>(g.std_m));
@@ -95,6 +103,20 @@ template <class Position>
 px4::LocalPositionReport localPositionOf(const Position& m) {
   return {m.timestamp(), m.xy_valid(), m.dead_reckoning(), m.x(), m.y(), m.eph()};
 }
+
+// The agent's estimate as external vision (fmu/in/vehicle_visual_odometry, issue #43), stamped on the vehicle's
+// clock like the setpoints: position and velocity in NED (SWA's east and north as PX4's y and x). Down is not SWA's:
+// 0 with a variance no filter trusts (1e4), since EKF2 takes a position only with all three components finite and the
+// pre-flight table leaves EKF2_EV_CTRL's vertical bit off. q NaN: the attitude is the vehicle's own. No reset of the
+// agent is hidden: reset_counter is the feed's.
+px4_msgs::msg::VehicleOdometry vehicleOdometry(const autopilot::Odometry& o);
+// What EKF2 could fuse of a sample (EKF2.cpp UpdateExtVisionSample): a position with all three components finite in
+// frame NED or FRD, a velocity likewise in NED, FRD or body FRD.
+struct VisionReport {
+  bool position = false;
+  bool velocity = false;
+};
+VisionReport visionReportOf(const px4_msgs::msg::VehicleOdometry& m);
 
 msg::BridgeState bridgeState(const autopilot::BridgeCore& core, std::uint32_t uav_id, std::uint32_t seq,
                              std::uint64_t commands_refused, const std::string& last_event);

@@ -28,6 +28,14 @@ struct Verdict {
   std::vector<std::string> reasons;  // empty for PASS
 };
 
+// A vehicle its stand-in autopilot took out of SWA's control and never gave back (EVENT_CONTROL_LOST, no
+// EVENT_CONTROL_REGAINED after it): since when, and the stand-in's words.
+struct ControlLoss {
+  int uav = 0;
+  double t_s = 0.0;
+  std::string text;
+};
+
 struct VerdictInput {
   bool completed = false;  // EVENT_SCENARIO_END "completed" received
   std::string end_reason;  // why the run ended, when not completed
@@ -39,6 +47,8 @@ struct VerdictInput {
   // UAVs whose agent the last truth calls dead (declared dead, never rejoined): their UAVs ended on the failsafe, so
   // the swarm did not end whole, however well the others held the formation.
   std::vector<int> failsafe_at_end;
+  // Vehicles out of SWA's control at the end (a PX4 or ArduPilot failsafe): the swarm did not end under SWA either.
+  std::vector<ControlLoss> out_of_control_at_end;
 };
 
 Verdict judge(const VerdictInput& input);
