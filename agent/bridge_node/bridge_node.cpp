@@ -201,19 +201,10 @@ void BridgeNode::onAgentState(msg::AgentState&& m) {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (!participant_ || !newest_attitude_ || m.uav_id() != static_cast<std::uint32_t>(id_)) return;
   const agent::Diagnostics d = wire::fromMsg(m).diagnostics;
-  autopilot::AgentEstimate e;
-  e.stamp_ns = d.stamp_ns;
-  e.tracking = m.stage() == msg::STAGE_TRACKING;
-  e.gnss_valid = d.gnss_valid;
-  e.position_m = d.position_m;
-  e.velocity_mps = d.velocity_mps;
-  e.position_cov_m2 = d.position_cov_m2;
-  e.velocity_cov_m2ps2 = d.velocity_cov_m2ps2;
-  e.stamp_resyncs = d.stamp_resyncs;
   const bool was_feeding = odometry_.feeding();
   const std::uint64_t vehicle_us = newest_attitude_->timestamp_us;
   const std::optional<autopilot::Odometry> o =
-      odometry_.onState(e, px4::stampNsOf(vehicle_us).value_or(0));
+      odometry_.onState(d, px4::stampNsOf(vehicle_us).value_or(0));
   if (o) vehicle_->sendOdometry(*o, newest_attitude_->q);
   if (odometry_.feeding() == was_feeding) return;
   if (odometry_.feeding()) {
@@ -221,12 +212,12 @@ void BridgeNode::onAgentState(msg::AgentState&& m) {
     not_fusing_reported_ = false;
     std::fprintf(stderr, "swa_px4_bridge %d: feeding the agent's estimate to %s as external odometry on %s (%s)\n", id_,
                  core_.autopilot().name, vehicle_->odometryTopic().c_str(),
-                 e.gnss_valid ? "--odometry always" : "the agent has no GNSS");
+                 d.gnss_valid ? "--odometry always" : "the agent has no GNSS");
   } else {
     feeding_since_us_.reset();
     const autopilot::OdometryCounters& c = odometry_.counters();
     std::fprintf(stderr, "swa_px4_bridge %d: odometry to %s stopped: %s (%llu sent)\n", id_, core_.autopilot().name,
-                 e.gnss_valid && options_.odometry.mode != autopilot::OdometryMode::kAlways
+                 d.gnss_valid && options_.odometry.mode != autopilot::OdometryMode::kAlways
                      ? "the agent has GNSS again, the autopilot's own is used"
                      : "the agent's estimate is stale or not valid (not tracking, not finite, too uncertain)",
                  static_cast<unsigned long long>(c.sent));

@@ -2,6 +2,7 @@
 // the wire bridge (swa/wire/agent_state.h) and the wire and come back as the monitor reads them.
 
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -43,6 +44,7 @@ agent::Diagnostics everyFieldSet() {
   d.rejected.future = 16;
   d.stamp_resyncs = 17;
   d.commands = 77;
+  d.gnss_valid = true;
   return d;
 }
 
@@ -104,6 +106,30 @@ TEST(WireAgentState, DiagnosticsSurviveTheBridgeAndTheWire) {
   EXPECT_EQ(r.rejected.future, d.rejected.future);
   EXPECT_EQ(r.stamp_resyncs, d.stamp_resyncs);
   EXPECT_EQ(r.commands, d.commands);
+  EXPECT_EQ(r.gnss_valid, d.gnss_valid);
+}
+
+TEST(WireAgentState, TheGnssFlagOfMessageSet4IsTheLastByteSoASet3StateIsRefusedNotMisread) {
+  // GIVEN a set-4 state of an agent without GNSS, serialised as a DataWriter does
+  agent::Diagnostics d = everyFieldSet();
+  d.gnss_valid = false;
+  msg::AgentState m = toMsg(d, 3, 8);
+  msg::AgentStatePubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t p(type.getSerializedSizeProvider(&m)());
+  ASSERT_TRUE(type.serialize(&m, &p));
+  // THEN gnss_valid is the body's last byte, after commands_sent: set 3's fields keep their offsets
+  ASSERT_GT(p.length, 4u + 9u);
+  EXPECT_EQ(p.data[p.length - 1], 0u);
+  std::uint64_t commands = 0;
+  std::memcpy(&commands, p.data + p.length - 9, sizeof commands);
+  EXPECT_EQ(commands, 77u);
+  // AND a set-3 agent's state (the same bytes without it) is refused, never read as "no GNSS": a set-4 bridge feeds
+  // nothing from an agent it cannot read (deploy/README.md, message set 4)
+  eprosima::fastrtps::rtps::SerializedPayload_t set3(p.length - 1);
+  std::memcpy(set3.data, p.data, p.length - 1);
+  set3.length = p.length - 1;
+  msg::AgentState out;
+  EXPECT_FALSE(type.deserialize(&set3, &out));
 }
 
 TEST(WireAgentState, MoreNeighboursThanTheArrayAreCutNeverReadPastIt) {

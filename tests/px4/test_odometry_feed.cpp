@@ -16,10 +16,10 @@ namespace {
 
 constexpr agent::StampNs kMs = 1'000'000;
 
-AgentEstimate tracking(agent::StampNs stamp_ns, bool gnss) {
-  AgentEstimate e;
+agent::Diagnostics tracking(agent::StampNs stamp_ns, bool gnss) {
+  agent::Diagnostics e;
   e.stamp_ns = stamp_ns;
-  e.tracking = true;
+  e.stage = agent::Stage::kTracking;
   e.gnss_valid = gnss;
   e.position_m = agent::Vec2(3.0, -4.0);  // east, north
   e.velocity_mps = agent::Vec2(0.5, 0.25);
@@ -58,13 +58,13 @@ TEST(OdometryFeed, AStaleOrInvalidEstimateIsNeverSent) {
   EXPECT_FALSE(feed.onState(tracking(1'000 * kMs, false), 1'310 * kMs));
   EXPECT_FALSE(feed.onState(tracking(2'000 * kMs, false), 1'000 * kMs));
   // not tracking, not finite, too uncertain
-  AgentEstimate lost = tracking(3'000 * kMs, false);
-  lost.tracking = false;
+  agent::Diagnostics lost = tracking(3'000 * kMs, false);
+  lost.stage = agent::Stage::kLost;
   EXPECT_FALSE(feed.onState(lost, 3'000 * kMs));
-  AgentEstimate nan = tracking(3'100 * kMs, false);
+  agent::Diagnostics nan = tracking(3'100 * kMs, false);
   nan.velocity_mps.x() = std::nan("");
   EXPECT_FALSE(feed.onState(nan, 3'100 * kMs));
-  AgentEstimate vague = tracking(3'200 * kMs, false);
+  agent::Diagnostics vague = tracking(3'200 * kMs, false);
   vague.position_cov_m2(1, 1) = 21.0 * 21.0;
   EXPECT_FALSE(feed.onState(vague, 3'200 * kMs));
   EXPECT_EQ(feed.counters().skipped_stale, 2u);
@@ -76,12 +76,12 @@ TEST(OdometryFeed, TheResetCounterCountsTheEstimatesRestarts) {
   OdometryFeed feed(OdometryFeedConfig{});
   const std::uint8_t first = feed.onState(tracking(1'000 * kMs, false), 1'000 * kMs)->reset_counter;
   // tracking again after not tracking
-  AgentEstimate lost = tracking(1'100 * kMs, false);
-  lost.tracking = false;
+  agent::Diagnostics lost = tracking(1'100 * kMs, false);
+  lost.stage = agent::Stage::kLost;
   feed.onState(lost, 1'100 * kMs);
   EXPECT_EQ(feed.onState(tracking(1'200 * kMs, false), 1'200 * kMs)->reset_counter, first + 1);
   // the agent's timeline restarted
-  AgentEstimate resynced = tracking(1'300 * kMs, false);
+  agent::Diagnostics resynced = tracking(1'300 * kMs, false);
   resynced.stamp_resyncs = 1;
   EXPECT_EQ(feed.onState(resynced, 1'300 * kMs)->reset_counter, first + 2);
   // nothing new: the same counter

@@ -6,15 +6,16 @@ namespace swa::autopilot {
 
 OdometryFeed::OdometryFeed(const OdometryFeedConfig& config) : config_(config) {}
 
-std::optional<Odometry> OdometryFeed::onState(const AgentEstimate& s, agent::StampNs vehicle_now_ns) {
+std::optional<Odometry> OdometryFeed::onState(const agent::Diagnostics& s, agent::StampNs vehicle_now_ns) {
   // A reset: tracking again after not tracking, or the agent's timeline restarted. Counted whether or not this state
   // is sent, so that the first one sent after it carries it.
+  const bool tracking = s.stage == agent::Stage::kTracking;
   const bool resynced = resyncs_ && s.stamp_resyncs != *resyncs_;
-  if ((s.tracking && !was_tracking_) || resynced) {
+  if ((tracking && !was_tracking_) || resynced) {
     ++reset_counter_;
     ++counters_.resets;
   }
-  was_tracking_ = s.tracking;
+  was_tracking_ = tracking;
   resyncs_ = s.stamp_resyncs;
 
   feeding_ = false;
@@ -30,7 +31,7 @@ std::optional<Odometry> OdometryFeed::onState(const AgentEstimate& s, agent::Sta
   const bool finite = agent::isFinite(s.position_m) && agent::isFinite(s.velocity_mps) &&
                       s.position_cov_m2.allFinite() && s.velocity_cov_m2ps2.allFinite();
   const double max_var = config_.max_position_std_m * config_.max_position_std_m;
-  if (!s.tracking || !finite || s.position_cov_m2(0, 0) > max_var || s.position_cov_m2(1, 1) > max_var ||
+  if (!tracking || !finite || s.position_cov_m2(0, 0) > max_var || s.position_cov_m2(1, 1) > max_var ||
       s.position_cov_m2(0, 0) < 0.0 || s.position_cov_m2(1, 1) < 0.0 || s.velocity_cov_m2ps2(0, 0) < 0.0 ||
       s.velocity_cov_m2ps2(1, 1) < 0.0) {
     ++counters_.skipped_invalid;

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "swa/agent/diagnostics.h"
 #include "swa/agent/samples.h"
 
 namespace swa::autopilot {
@@ -28,18 +29,6 @@ struct OdometryFeedConfig {
   OdometryMode mode = OdometryMode::kWhileGnssLost;
   double stale_after_s = 0.3;        // the agent publishes its state at 10 Hz of sample time
   double max_position_std_m = 20.0;  // beyond it the estimate is no better than none
-};
-
-// What the bridge reads of the agent's state (swa/uav<I>/state).
-struct AgentEstimate {
-  agent::StampNs stamp_ns = 0;  // on the vehicle's clock (the IMU sample it follows)
-  bool tracking = false;        // stage TRACKING
-  bool gnss_valid = false;      // the agent has GNSS now
-  agent::Vec2 position_m = agent::Vec2::Zero();    // floating frame, x east, y north
-  agent::Vec2 velocity_mps = agent::Vec2::Zero();
-  agent::Mat2 position_cov_m2 = agent::Mat2::Zero();
-  agent::Mat2 velocity_cov_m2ps2 = agent::Mat2::Zero();
-  std::uint64_t stamp_resyncs = 0;
 };
 
 // What goes to the autopilot.
@@ -64,9 +53,10 @@ class OdometryFeed {
  public:
   explicit OdometryFeed(const OdometryFeedConfig& config);
 
-  // The agent's newest state, with the vehicle's newest attitude timestamp [ns on the vehicle's clock]: what to send,
-  // if anything.
-  std::optional<Odometry> onState(const AgentEstimate& s, agent::StampNs vehicle_now_ns);
+  // The agent's newest state (swa/uav<I>/state as the agent reports it: its stamp is on the vehicle's clock, the IMU
+  // sample it follows), with the vehicle's newest attitude timestamp [ns on the vehicle's clock]: what to send, if
+  // anything.
+  std::optional<Odometry> onState(const agent::Diagnostics& s, agent::StampNs vehicle_now_ns);
   const OdometryCounters& counters() const { return counters_; }
   // Whether the last state was sent (for the log: the feed started or stopped).
   bool feeding() const { return feeding_; }
