@@ -171,6 +171,14 @@ void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_poin
     ++answers_repeated_;
   }
   vehicle_->send(core_.tick(now));
+  if (const std::optional<agent::StampNs> t = px4::stampNsOf(a.timestamp_us); t && odometry_.expire(*t)) {
+    feeding_since_us_.reset();
+    std::fprintf(stderr,
+                 "swa_px4_bridge %d: odometry to %s stopped: no fresh state from the agent for %.1f s (%llu sent); "
+                 "nothing more is fed, the autopilot's own failsafe decides\n",
+                 id_, core_.autopilot().name, options_.odometry.stale_after_s,
+                 static_cast<unsigned long long>(odometry_.counters().sent));
+  }
   report();
 }
 

@@ -76,8 +76,17 @@ Px4Standin::Decision Px4Standin::step(agent::StampNs now) {
     if (!ekf_->deadReckoning()) dead_reckoning_since_ns_.reset();
     if (ekf_->deadReckoning() && !dead_reckoning_since_ns_) dead_reckoning_since_ns_ = now;
   }
-  if (nav_state_ != px4::kNavStateOffboard) return d;
   char text[200];
+  if (nav_state_ == px4::kNavStateAutoLoiter && failsafe_ && !localPositionValid()) {
+    lost_after_s_ = dead_reckoning_since_ns_ ? static_cast<double>(now - *dead_reckoning_since_ns_) * 1e-9 : 0.0;
+    std::snprintf(text, sizeof text,
+                  "Hold without a position after %.2f s of dead reckoning without GNSS or external vision "
+                  "(EKF2_NOAID_TOUT): failsafe, Descend (RTL and Land need a position)",
+                  lost_after_s_);
+    lose(px4::kNavStateDescend, text);
+    return d;
+  }
+  if (nav_state_ != px4::kNavStateOffboard) return d;
   if (!signalFresh(now)) {
     lost_after_s_ = last_heartbeat_ns_ ? static_cast<double>(now - *last_heartbeat_ns_) * 1e-9 : 0.0;
     std::snprintf(text, sizeof text,

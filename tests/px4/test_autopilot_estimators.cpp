@@ -188,6 +188,48 @@ TEST(Px4StandinWithEkf, ExternalVisionKeepsTheVehicleInOffboardWithoutGnss) {
   EXPECT_FALSE(px4.deadReckoning());
 }
 
+TEST(Px4StandinWithEkf, WhenTheVisionStopsTheOffboardLossHoldDescendsOnceThePositionIsGone) {
+  Px4Standin px4(1.0, Px4EstimatorParams{});
+  agent::StampNs t = 0;
+  const auto fly = [&](agent::StampNs until, bool gnss, bool vision, bool offboard) {
+    for (; t <= until; t += kStep) {
+      px4.gnss(t, gnss);
+      if (vision && t % (100 * kMs) == 0) px4.visualOdometry(t, true, true);
+      if (offboard) {
+        px4.offboardControlMode(t, true);
+        px4.trajectorySetpoint(px4::NedVelocity{1.0, 0.0, 0.0}, true);
+      }
+      px4.step(t);
+    }
+  };
+  // GIVEN a vehicle in offboard on external vision after GNSS was lost at 2 s
+  fly(1'000 * kMs, true, false, true);
+  ASSERT_EQ(px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled, px4::kCustomMainModeOffboard), 0);
+  fly(2'000 * kMs, true, false, true);
+  fly(10'000 * kMs, false, true, true);
+  px4.takeEvents();
+  // WHEN everything stops at 10 s (the agent killed: no command, no odometry)
+  // THEN COM_OF_LOSS_T later the offboard-loss failsafe holds ...
+  fly(11'200 * kMs, false, false, false);
+  EXPECT_EQ(px4.navState(), px4::kNavStateAutoLoiter);
+  EXPECT_TRUE(px4.localPositionValid());
+  // ... and once EKF2 has dead-reckoned EKF2_NOAID_TOUT past its last aiding, Hold cannot run: Descend
+  fly(14'300 * kMs, false, false, false);
+  EXPECT_EQ(px4.navState(), px4::kNavStateAutoLoiter);
+  fly(14'600 * kMs, false, false, false);
+  EXPECT_FALSE(px4.localPositionValid());
+  EXPECT_EQ(px4.navState(), px4::kNavStateDescend);
+  EXPECT_TRUE(px4.failsafe());
+  const std::vector<StandinEvent> events = px4.takeEvents();
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_NE(events[0].text.find("COM_OF_LOSS_T"), std::string::npos) << events[0].text;
+  EXPECT_EQ(events[1].control, StandinEvent::Control::kLost);
+  EXPECT_NE(events[1].text.find("Descend"), std::string::npos) << events[1].text;
+  // AND once descending, it stays so: one event
+  fly(20'000 * kMs, false, false, false);
+  EXPECT_TRUE(px4.takeEvents().empty());
+}
+
 TEST(ArdupilotStandinWithEkf, GuidedNeedsAPositionAndTheEkfFailsafeLandsTheVehicle) {
   ArdupilotStandin ap(3.0, ArdupilotEstimatorParams{false});  // ArduPilot's defaults: no external navigation
   agent::StampNs t = 0;

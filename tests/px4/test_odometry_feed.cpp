@@ -72,6 +72,24 @@ TEST(OdometryFeed, AStaleOrInvalidEstimateIsNeverSent) {
   EXPECT_EQ(feed.counters().sent, 0u);
 }
 
+TEST(OdometryFeed, ItStopsWhenTheAgentsStatesStopComing) {
+  OdometryFeed feed(OdometryFeedConfig{});
+  // GIVEN a feed in progress
+  ASSERT_TRUE(feed.onState(tracking(1'000 * kMs, false), 1'000 * kMs));
+  // WHEN no state follows THEN it still counts as feeding for stale_after_s of the vehicle's time ...
+  EXPECT_FALSE(feed.expire(1'300 * kMs));
+  EXPECT_TRUE(feed.feeding());
+  // ... and has stopped after it, said once
+  EXPECT_TRUE(feed.expire(1'310 * kMs));
+  EXPECT_FALSE(feed.feeding());
+  EXPECT_FALSE(feed.expire(2'000 * kMs));
+  EXPECT_EQ(feed.counters().silences, 1u);
+  EXPECT_EQ(feed.counters().sent, 1u);
+  // AND a feed that never started never expires
+  OdometryFeed idle(OdometryFeedConfig{});
+  EXPECT_FALSE(idle.expire(5'000 * kMs));
+}
+
 TEST(OdometryFeed, TheResetCounterCountsTheEstimatesRestarts) {
   OdometryFeed feed(OdometryFeedConfig{});
   const std::uint8_t first = feed.onState(tracking(1'000 * kMs, false), 1'000 * kMs)->reset_counter;

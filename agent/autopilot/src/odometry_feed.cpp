@@ -3,6 +3,15 @@
 #include <cmath>
 
 namespace swa::autopilot {
+namespace {
+
+// In whole nanoseconds as doubles (exact below 2^53 ns, 104 days): 0.3 s is 300 000 000 ns, not 0.30000000000000004 s
+// of a product, and no int64 subtraction overflows on a stamp off the wire.
+double ageNs(agent::StampNs now, agent::StampNs stamp) { return static_cast<double>(now) - static_cast<double>(stamp); }
+
+}  // namespace
+
+double OdometryFeed::staleNs() const { return std::round(config_.stale_after_s * 1e9); }
 
 OdometryFeed::OdometryFeed(const OdometryFeedConfig& config) : config_(config) {}
 
@@ -23,8 +32,7 @@ std::optional<Odometry> OdometryFeed::onState(const agent::Diagnostics& s, agent
     ++counters_.skipped_gnss;
     return std::nullopt;
   }
-  const double age_s = static_cast<double>(vehicle_now_ns - s.stamp_ns) * 1e-9;
-  if (!(std::fabs(age_s) <= config_.stale_after_s)) {  // NaN-safe; a state from the future is no fresher
+  if (!(std::fabs(ageNs(vehicle_now_ns, s.stamp_ns)) <= staleNs())) {  // NaN-safe; a state from the future is no fresher
     ++counters_.skipped_stale;
     return std::nullopt;
   }
@@ -46,7 +54,16 @@ std::optional<Odometry> OdometryFeed::onState(const agent::Diagnostics& s, agent
   o.reset_counter = reset_counter_;
   ++counters_.sent;
   feeding_ = true;
+  last_sent_ns_ = s.stamp_ns;
   return o;
+}
+
+bool OdometryFeed::expire(agent::StampNs vehicle_now_ns) {
+  if (!feeding_) return false;
+  if (ageNs(vehicle_now_ns, last_sent_ns_) <= staleNs()) return false;
+  feeding_ = false;
+  ++counters_.silences;
+  return true;
 }
 
 }  // namespace swa::autopilot

@@ -22,7 +22,11 @@
 //     while v_xy_valid is false;
 //   - in OFFBOARD, v_xy_valid turning false is an offboard loss at once: the fallback COM_OBL_RC_ACT = Position cannot
 //     run without a position, so the vehicle is in Altitude mode (nav_state ALTCTL, failsafe set): no horizontal
-//     control, here a zero velocity command like Hold, but out of SWA's control until offboard is requested again.
+//     control, here a zero velocity command like Hold, but out of SWA's control until offboard is requested again;
+//   - in the offboard-loss failsafe's Hold, the position turning invalid (nothing aids EKF2 any more: GNSS gone and no
+//     external vision, e.g. SWA's agent killed) leaves a mode that cannot run: checkModeFallback's RTL needs a global
+//     position and Land a local one, so the vehicle descends (nav_state DESCEND, a second "control lost" event). The
+//     Hold the vehicle starts in, before the swarm engages it, is left alone: the scenario has no take-off.
 // Without it (no EKF given) the estimate is always valid, as before issue #43.
 
 #include <cstdint>

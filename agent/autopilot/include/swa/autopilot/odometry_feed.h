@@ -47,6 +47,7 @@ struct OdometryCounters {
   std::uint64_t skipped_stale = 0;    // older than stale_after_s against the vehicle's newest attitude
   std::uint64_t skipped_invalid = 0;  // not tracking, a non-finite number, too uncertain
   std::uint64_t resets = 0;
+  std::uint64_t silences = 0;  // the feed stopped because no fresh state came (expire)
 };
 
 class OdometryFeed {
@@ -57,17 +58,24 @@ class OdometryFeed {
   // sample it follows), with the vehicle's newest attitude timestamp [ns on the vehicle's clock]: what to send, if
   // anything.
   std::optional<Odometry> onState(const agent::Diagnostics& s, agent::StampNs vehicle_now_ns);
+  // No new state by the vehicle's time `vehicle_now_ns`: true once, when the last state sent has become stale (the
+  // agent stopped or its states stopped arriving), so that the bridge says the feed stopped and knows it is not
+  // feeding. Nothing is ever re-sent: the autopilot's own failsafe decides.
+  bool expire(agent::StampNs vehicle_now_ns);
   const OdometryCounters& counters() const { return counters_; }
   // Whether the last state was sent (for the log: the feed started or stopped).
   bool feeding() const { return feeding_; }
 
  private:
+  double staleNs() const;
+
   OdometryFeedConfig config_;
   OdometryCounters counters_;
   std::uint8_t reset_counter_ = 0;
   bool was_tracking_ = false;
   std::optional<std::uint64_t> resyncs_;
   bool feeding_ = false;
+  agent::StampNs last_sent_ns_ = 0;
 };
 
 }  // namespace swa::autopilot

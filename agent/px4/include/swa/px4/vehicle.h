@@ -14,6 +14,7 @@ constexpr std::uint8_t kArmingStateArmed = 2;
 constexpr std::uint8_t kNavStateAltctl = 1;  // Altitude mode: the fallback without a position
 constexpr std::uint8_t kNavStatePosctl = 2;
 constexpr std::uint8_t kNavStateAutoLoiter = 4;  // Hold
+constexpr std::uint8_t kNavStateDescend = 12;    // the fallback of a failsafe mode that cannot run without a position
 constexpr std::uint8_t kNavStateOffboard = 14;
 
 constexpr std::uint32_t kCmdDoSetMode = 176;        // param1 = base mode flags, param2 = custom main mode
