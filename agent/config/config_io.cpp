@@ -124,6 +124,9 @@ params::Table<AgentConfig> makeTable() {
             "weight of the absolute (GNSS) hold added to the relative command in anchored mode");
   SWA_PARAM(t, number, anchor.gnss_min_std_m, "m", openClosed(0, 100),
             "floor for the standard deviation a GNSS fix claims");
+  SWA_PARAM(t, number, anchor.regain_ramp_s, "s", closed(0, 600),
+            "anchored mode: when GNSS returns after an outage, the GNSS hold is blended in linearly over this time, "
+            "so that its return is no step in the command (0: at once)");
 
   SWA_PARAM(t, number, limits.max_detections, "", closed(1, 1024),
             "a detection set larger than this is rejected whole");
@@ -154,6 +157,7 @@ params::Table<AgentConfig> makeTable() {
       {"formation.max_edge_factor", "formation.neighbourhood", {"gabriel"}, "the gabriel rule"},
       {"formation.far_neighbour_weight", "formation.circle_fit", {"fixed_radius"}, "the fixed_radius fit"},
       {"anchor.gain", "mode", {"anchored"}, "anchored mode"},
+      {"anchor.regain_ramp_s", "mode", {"anchored"}, "anchored mode"},
       {"anchor.gnss_min_std_m", "mode", {"standalone", "anchored"}, "the modes that use GNSS"},
       {"focal.bias_freeze_speed_mps", "focal.bias_window_s", {}, "IMU-bias removal"},
       {"focal.bias_freeze_hold_s", "focal.bias_window_s", {}, "IMU-bias removal"},

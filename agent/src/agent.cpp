@@ -87,6 +87,7 @@ void Agent::restartTimeline() {
   det_clock_ = StreamClock(toNs(config_.limits.max_stamp_jump_s), config_.limits.resync_samples);
   gnss_clock_ = StreamClock(toNs(config_.limits.max_stamp_jump_s), config_.limits.resync_samples);
   gnss_valid_ = false;
+  anchor_on_ = false;  // the hold's first fix after the restart is a return: blended in
 }
 
 VelocityCommand Agent::onImu(const ImuSample& imu) {
@@ -296,8 +297,16 @@ Vec2 Agent::computeCommand(StampNs stamp) {
     case Mode::kAnchored: {
       if (frame_fresh) v = formationVelocity(focal_.position(), focal_.velocity(), cc);
       const bool gnss_fresh = gnss_valid_ && secondsBetween(last_valid_gnss_ns_, stamp) <= kGnssFreshS;
-      if (gnss_fresh && absolute_.initialized()) {
-        v += config_.anchor.gain * formationVelocity(absolute_.position(), absolute_.velocity(), cc);
+      const bool anchor_on = gnss_fresh && absolute_.initialized();
+      if (anchor_on && !anchor_on_ && anchor_ever_on_) anchor_ramp_from_ns_ = stamp;
+      anchor_on_ = anchor_on;
+      anchor_ever_on_ = anchor_ever_on_ || anchor_on;
+      if (anchor_on) {
+        double weight = 1.0;
+        if (anchor_ramp_from_ns_ && config_.anchor.regain_ramp_s > 0.0) {
+          weight = std::min(1.0, secondsBetween(*anchor_ramp_from_ns_, stamp) / config_.anchor.regain_ramp_s);
+        }
+        v += weight * config_.anchor.gain * formationVelocity(absolute_.position(), absolute_.velocity(), cc);
       }
       break;
     }

@@ -10,6 +10,9 @@
 # --odometry off). A run without the feed lasts 30 s: the autopilots take over within 9 s of the loss.
 # Per case, over the seeds: the verdict (runs that PASS), the largest |d_NB - d_NB direct| of the same seed, the
 # collisions, the vehicles that left SWA's control (events.csv control_lost) and the latest time from the loss to it.
+# Then, once per autopilot, a killed agent (realtime, 30 s, 4 UAVs, GNSS lost at 10 s, agent 2 killed about 16 s in,
+# no restart): its bridge's odometry lines and UAV 2's events, to show that nothing is fed after the agent's last
+# state and that the autopilot's own failsafes take the vehicle.
 # shellcheck source-path=SCRIPTDIR source=../script_tools.sh
 source "$(dirname "${BASH_SOURCE[0]}")/../script_tools.sh"
 bin=${1:-$root/build/bin}
@@ -73,3 +76,18 @@ for n in (4, 8):
                   f"{collisions:>10}  {left:>5}/{n * len(seeds):<6}  {'-' if latest != latest else f'{latest:.2f}':>23}")
 print(f"(seeds {' '.join(seeds)}; GNSS lost at 10 s; runs with the feed off last 30 s)")
 EOF
+
+# A killed agent, in real time (the kill is a wall-clock event); the swarm's own partition keeps other runs out.
+for v in px4 ardupilot; do
+  out=$work/killed_$v
+  "$bin/swa_launch" --scenario "$root/deploy/scenarios/dropout_4.yaml" --vehicle "$v" --set clock.mode=realtime \
+    --set duration_s=30 --max-restarts 0 --domain "$TEST_DOMAIN" --out "$out" > "$out.log" 2>&1 &
+  launcher=$!
+  sleep 17
+  pkill -f -- "swa_agent --id 2 --domain $TEST_DOMAIN " || log "no agent 2 to kill ($v)"
+  wait "$launcher" || true
+  echo "killed agent 2 through $v: bridge 2's odometry, UAV 2's events"
+  grep -E "feeding the agent|odometry to .* stopped|not fusing" "$out/logs/bridge_2.log" | sed 's/^/  /'
+  awk -F, 'NR > 1 && $3 == 2 && $2 != "gnss_lost" && $2 != "gnss_regained" && $2 != "control_regained"' \
+    "$out/events.csv" | sed 's/^/  /'
+done

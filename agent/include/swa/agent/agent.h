@@ -7,6 +7,9 @@
 // Across streams, a sample older than the focal filter (e.g. detections with sensor latency) is applied at the
 // filter's time; the error is neighbour velocity x latency, well below R_c for the 10-100 ms latencies of MPS.
 
+#include <optional>
+#include <vector>
+
 #include "swa/agent/config.h"
 #include "swa/agent/diagnostics.h"
 #include "swa/agent/focal_estimator.h"
@@ -71,6 +74,11 @@ class Agent {
   Vec2 hold_point_ = Vec2::Zero();  // take-off position: the first valid GNSS fix
   StampNs last_valid_gnss_ns_ = 0;
   bool gnss_valid_ = false;
+  // Anchored mode's hold: whether it pulled at the last command, whether it ever did, and since when it is blended in
+  // again after an outage (anchor.regain_ramp_s).
+  bool anchor_on_ = false;
+  bool anchor_ever_on_ = false;
+  std::optional<StampNs> anchor_ramp_from_ns_;
 
   Vec2 command_ = Vec2::Zero();
   double yaw_rate_ = 0.0;

@@ -138,6 +138,10 @@ struct AnchorConfig {
   // Weight of the absolute (GNSS) hold added to the relative command in `anchored` mode.
   double gain = 0.2;
   double gnss_min_std_m = 0.05;   // floor for the std a fix reports: a receiver claiming 1 mm is not believed
+  // After GNSS returns, the hold is blended in linearly over this time: during the outage the swarm drifted off the
+  // hold point, and switching the hold's pull back on at once is a step in the command (issue #43: 0.4-0.5 m/s in one
+  // IMU period with 10 s of outage). 0: at once. The first fix of a flight is not a return (the hold starts there).
+  double regain_ramp_s = 2.0;
 };
 
 struct LimitsConfig {
