@@ -166,6 +166,10 @@ params::Table<Scenario> makeTable() {
   SWA_PARAM(t, number, imu.noise_std, "m/s^2", closed(0, 100),
             "std of the white noise of the tilt-derived acceleration");
   SWA_PARAM(t, number, imu.heading_noise_std_rad, "rad", closed(0, 1), "std of the heading (magnetometer) noise");
+  SWA_PARAM(t, number, imu.heading_bias_std_rad, "rad", closed(0, 1),
+            "std of the compass's constant per-UAV heading bias (0: none); a magnetometer's several degrees");
+  SWA_PARAM(t, number, imu.heading_bias_walk_radps, "rad/sqrt(s)", closed(0, 0.1),
+            "random walk of the compass's heading bias: the std of its change over one second (0: none)");
 
   SWA_PARAM(t, number, mps.rate_hz, "Hz", openClosed(0, 10000),
             "mutual-perception sensor scan rate; must divide dynamics.rate_hz");

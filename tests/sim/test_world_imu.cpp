@@ -37,7 +37,7 @@ TEST(WorldImu, TiltRoundTripThroughTheAgentConventionRecoversAccelerationPlusBia
   setup.noise_std = 0.0;
   setup.heading_noise_std_rad = 0.0;
   setup.bias_std = 0.05;
-  ImuModel imu(setup, 6.35, Rng(1, 0, Stream::kImuBias), Rng(1, 0, Stream::kImuNoise));
+  ImuModel imu(setup, 6.35, Rng(1, 0, Stream::kImuBias), Rng(1, 0, Stream::kImuNoise), Rng(1, 0, Stream::kHeadingWalk));
   ASSERT_GT(imu.bias_body_mps2().norm(), 0.0);
   for (const double heading : {0.0, 0.7, M_PI / 2, -2.5, M_PI}) {
     // WHEN the UAV accelerates at (0.8, -0.3) m/s^2 in the world with that heading
@@ -53,7 +53,8 @@ TEST(WorldImu, TiltRoundTripThroughTheAgentConventionRecoversAccelerationPlusBia
   // AND pitch is body-x, roll body-y: heading east, accelerating north is a positive roll only
   setup.bias_std = 0.0;
   const agent::ImuSample north =
-      ImuModel(setup, 6.35, Rng(1, 0, Stream::kImuBias), Rng(1, 0, Stream::kImuNoise)).sample(0, Vec2(0, 0.635), 0.0);
+      ImuModel(setup, 6.35, Rng(1, 0, Stream::kImuBias), Rng(1, 0, Stream::kImuNoise), Rng(1, 0, Stream::kHeadingWalk))
+          .sample(0, Vec2(0, 0.635), 0.0);
   EXPECT_NEAR(north.roll_rad, 0.1, 1e-15);
   EXPECT_NEAR(north.pitch_rad, 0.0, 1e-15);
 }
@@ -138,6 +139,72 @@ TEST(WorldImu, ImuAtHalfTheDynamicsRateSamplesEveryOtherStep) {
     }
   }
   EXPECT_EQ(samples, 50);
+}
+
+// The compass's bias (issue #44): constant per UAV with the configured spread, and a random walk whose change over t
+// has std walk x sqrt(t).
+TEST(WorldImu, TheCompassBiasIsConstantPerUavWithTheConfiguredSpread) {
+  // GIVEN 400 noise-free IMUs with heading bias std 0.087 rad (5 deg)
+  Scenario s = windyHover(400);
+  s.imu.noise_std = 0.0;
+  s.imu.heading_noise_std_rad = 0.0;
+  s.imu.heading_bias_std_rad = 0.087;
+  World world(s);
+  std::vector<double> first(400);
+  double sum = 0.0, sum2 = 0.0;
+  for (int k = 0; k < 20; ++k) {
+    world.step();
+    for (std::size_t i = 0; i < 400; ++i) {
+      const double bias = std::remainder(world.sensors()[i].imu->heading_rad - world.truth()[i].heading_rad, 2 * M_PI);
+      // THEN each UAV's heading is off by the same angle at every sample
+      if (k == 0) {
+        first[i] = bias;
+        sum += bias;
+        sum2 += bias * bias;
+      } else {
+        ASSERT_NEAR(bias, first[i], 1e-12) << "UAV " << i;
+      }
+    }
+  }
+  // AND across UAVs the offsets are centred on 0 with std 0.087 (+-10 %; 4 sigma of the mean: 0.017)
+  EXPECT_LT(std::abs(sum / 400.0), 0.017);
+  EXPECT_NEAR(std::sqrt(sum2 / 400.0), 0.087, 0.0087);
+}
+
+TEST(WorldImu, TheCompassBiasWalksWithStdGrowingAsTheSquareRootOfTime) {
+  // GIVEN 200 noise-free IMUs whose compass bias walks at 0.002 rad/sqrt(s), from 0
+  Scenario s = windyHover(200);
+  s.imu.noise_std = 0.0;
+  s.imu.heading_noise_std_rad = 0.0;
+  s.imu.heading_bias_walk_radps = 0.002;
+  World world(s);
+  // WHEN 100 s go by (10 000 IMU samples)
+  for (int k = 0; k < 10000; ++k) world.step();
+  double sum2 = 0.0;
+  for (std::size_t i = 0; i < 200; ++i) {
+    sum2 += std::pow(std::remainder(world.sensors()[i].imu->heading_rad - world.truth()[i].heading_rad, 2 * M_PI), 2);
+  }
+  // THEN the biases' spread is 0.002 x sqrt(100) = 0.02 rad (+-15 % for 200 draws: 3 sigma of a std estimate is 15 %)
+  EXPECT_NEAR(std::sqrt(sum2 / 200.0), 0.02, 0.003);
+}
+
+TEST(WorldImu, TheCompassBiasTurnsTheHeadingAndNothingElse) {
+  // GIVEN the default world and the same with a biased compass
+  Scenario a = windyHover(3);
+  Scenario c = a;
+  c.imu.heading_bias_std_rad = 0.05;
+  World wa(a), wc(c);
+  for (int k = 0; k < 300; ++k) {
+    wa.step();
+    wc.step();
+    for (std::size_t i = 0; i < 3; ++i) {
+      const agent::ImuSample &ia = *wa.sensors()[i].imu, &ic = *wc.sensors()[i].imu;
+      // THEN the tilt is the same bits (the bias has its own draw, after the acceleration bias's), the heading not
+      ASSERT_EQ(ia.pitch_rad, ic.pitch_rad);
+      ASSERT_EQ(ia.roll_rad, ic.roll_rad);
+      ASSERT_NE(ia.heading_rad, ic.heading_rad);
+    }
+  }
 }
 
 }  // namespace

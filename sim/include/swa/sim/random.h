@@ -25,6 +25,7 @@ enum class Stream : std::uint32_t {
   kMpsClutter = 8,
   kMpsOrder = 9,   // order of detections within a scan
   kGnssNoise = 10,
+  kHeadingWalk = 11,  // the compass bias's random walk
 };
 
 // Owner of the streams that belong to the whole world rather than one UAV (the common gust).

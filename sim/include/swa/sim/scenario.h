@@ -53,6 +53,10 @@ struct ImuSetup {
   double bias_std = 0.05;          // m/s^2 of derived acceleration, constant per UAV
   double noise_std = 1.5;          // m/s^2 white (sqrt of R_a)
   double heading_noise_std_rad = 0.005;
+  // The compass's own error (issue #44): a constant per-UAV offset (a magnetometer calibrated on another airframe,
+  // the motors' field) and a slow random walk on top (temperature, currents), both 0 by default: an ideal compass.
+  double heading_bias_std_rad = 0.0;
+  double heading_bias_walk_radps = 0.0;  // rad/sqrt(s): the std of the walk's change over one second
 };
 
 struct MpsSetup {
