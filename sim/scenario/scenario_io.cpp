@@ -192,6 +192,9 @@ params::Table<Scenario> makeTable() {
             "mean number of false detections per scan, uniform in the sensing disc");
   SWA_PARAM(t, flag, mps.ids, "true: detections carry the target's ID (UVDAR-like); false: anonymous (LiDAR-like)");
   SWA_PARAM(t, number, mps.latency_s, "s", closed(0, 10), "delay between a scan and the delivery of its detections");
+  SWA_PARAM(t, number, mps.latency_jitter_s, "s", closed(0, 10),
+            "each detection set's delay is latency_s plus a uniform draw in +-this (never below 0): sets can arrive "
+            "out of order");
 
   SWA_PARAM(t, number, gnss.rate_hz, "Hz", openClosed(0, 10000), "GNSS fix rate; must divide dynamics.rate_hz");
   SWA_PARAM(t, number, gnss.std_m, "m", closed(0, 100), "std of each horizontal coordinate of a fix");

@@ -31,14 +31,15 @@ std::uint32_t owner(int id) { return static_cast<std::uint32_t>(id); }
 }  // namespace
 
 World::Uav::Uav(const KinematicState& initial, double heading_rad, double turn_rate, OuProcess2 own_gust,
-                ImuModel imu_model, MpsModel mps_model, GnssModel gnss_model)
+                ImuModel imu_model, MpsModel mps_model, GnssModel gnss_model, Rng latency_stream)
     : state(initial),
       initial_heading_rad(heading_rad),
       turn_rate_radps(turn_rate),
       gust(std::move(own_gust)),
       imu(std::move(imu_model)),
       mps(std::move(mps_model)),
-      gnss(std::move(gnss_model)) {}
+      gnss(std::move(gnss_model)),
+      latency_rng(latency_stream) {}
 
 World::Uav World::makeUav(const Scenario& scenario, int id, const agent::Vec2& slot_m, double dt_s) {
   const std::uint64_t seed = scenario.seed;
@@ -63,7 +64,7 @@ World::Uav World::makeUav(const Scenario& scenario, int id, const agent::Vec2& s
                       Rng(seed, me, Stream::kImuNoise), Rng(seed, me, Stream::kHeadingWalk)),
              MpsModel(scenario.mps, MpsStreams{Rng(seed, me, Stream::kMpsMiss), Rng(seed, me, Stream::kMpsNoise),
                                                Rng(seed, me, Stream::kMpsClutter), Rng(seed, me, Stream::kMpsOrder)}),
-             GnssModel(scenario.gnss, id, Rng(seed, me, Stream::kGnssNoise)));
+             GnssModel(scenario.gnss, id, Rng(seed, me, Stream::kGnssNoise)), Rng(seed, me, Stream::kMpsLatency));
 }
 
 World::World(const Scenario& scenario)
@@ -73,6 +74,7 @@ World::World(const Scenario& scenario)
       duration_ns_(durationNs(scenario.duration_s)),
       failsafe_timeout_ns_(durationNs(scenario.dynamics.failsafe_timeout_s)),
       mps_latency_ns_(scenario.mps.latency_s > 0.0 ? durationNs(scenario.mps.latency_s) : 0),
+      mps_latency_jitter_s_(scenario.mps.latency_jitter_s),
       imu_period_steps_(sensorPeriodSteps(scenario.imu.rate_hz, scenario.dynamics.rate_hz)),
       mps_period_steps_(sensorPeriodSteps(scenario.mps.rate_hz, scenario.dynamics.rate_hz)),
       gnss_period_steps_(sensorPeriodSteps(scenario.gnss.rate_hz, scenario.dynamics.rate_hz)),
@@ -185,12 +187,19 @@ void World::generateSensors() {
     const double heading = truth_[i].heading_rad;
     if (sensorDue(step_, imu_period_steps_)) out.imu = u.imu.sample(time_ns_, u.state.acceleration_mps2, heading);
     if (sensorDue(step_, mps_period_steps_) && mps_latency_ns_ != kNever) {
-      u.in_flight.push_back(u.mps.scan(time_ns_, static_cast<int>(i), positions_, heading));
+      agent::StampNs delay_ns = mps_latency_ns_;
+      if (mps_latency_jitter_s_ > 0.0) {  // drawn only then: without jitter the stream is never touched
+        const double jitter_s = u.latency_rng.uniform(-mps_latency_jitter_s_, mps_latency_jitter_s_);
+        delay_ns = std::max<agent::StampNs>(0, delay_ns + std::llround(jitter_s * 1e9));
+      }
+      u.in_flight.push_back({time_ns_ + delay_ns, u.mps.scan(time_ns_, static_cast<int>(i), positions_, heading)});
     }
-    // Scans are at least one step apart and share one latency, so at most one set falls due per step.
-    while (!u.in_flight.empty() && time_ns_ - u.in_flight.front().stamp_ns >= mps_latency_ns_) {
-      out.detections = std::move(u.in_flight.front());
-      u.in_flight.pop_front();
+    // The set due first, if it is due (the earlier scan of two due at once: min_element keeps the first minimum).
+    const auto first = std::min_element(u.in_flight.begin(), u.in_flight.end(),
+                                        [](const Uav::InFlight& a, const Uav::InFlight& b) { return a.due_ns < b.due_ns; });
+    if (first != u.in_flight.end() && first->due_ns <= time_ns_) {
+      out.detections = std::move(first->set);
+      u.in_flight.erase(first);
     }
     if (sensorDue(step_, gnss_period_steps_)) out.gnss = u.gnss.sample(time_ns_, u.state.position_m);
   }

@@ -26,6 +26,7 @@ enum class Stream : std::uint32_t {
   kMpsOrder = 9,   // order of detections within a scan
   kGnssNoise = 10,
   kHeadingWalk = 11,  // the compass bias's random walk
+  kMpsLatency = 12,   // the detection sets' latency jitter
 };
 
 // Owner of the streams that belong to the whole world rather than one UAV (the common gust).

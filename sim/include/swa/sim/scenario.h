@@ -72,6 +72,9 @@ struct MpsSetup {
   double clutter_rate = 0.0;       // mean false positives per scan, uniform in the sensing disc
   bool ids = true;
   double latency_s = 0.0;
+  // Each set's delay is latency_s plus a uniform draw in [-latency_jitter_s, +latency_jitter_s] (never below 0), so a
+  // later scan can arrive before an earlier one (issue #44).
+  double latency_jitter_s = 0.0;
 };
 
 // An extra GNSS outage of one UAV: no fix in [start_s, end_s); end_s = +inf means never restored.

@@ -13,7 +13,6 @@
 // below; sample stamps are k * round(1e9 / dynamics.rate_hz) ns (timing.h, which also documents sensor rates).
 
 #include <cstdint>
-#include <deque>
 #include <optional>
 #include <vector>
 
@@ -23,6 +22,7 @@
 #include "swa/sim/gnss_model.h"
 #include "swa/sim/imu_model.h"
 #include "swa/sim/mps_model.h"
+#include "swa/sim/random.h"
 #include "swa/sim/ou_process.h"
 #include "swa/sim/scenario.h"
 #include "swa/sim/uav_dynamics.h"
@@ -55,7 +55,9 @@ struct Event {
 
 // What UAV i's sensors deliver at one step; an empty optional means "no sample from that sensor now". Detection sets
 // are stamped at measurement time and delivered mps.latency_s later (rounded up to the next step), so with latency
-// the stamp of a delivered set is older than time_ns().
+// the stamp of a delivered set is older than time_ns(). With mps.latency_jitter_s each set's delay varies and sets can
+// arrive out of stamp order; at most one set is delivered per step, the one due first (a second one due in the same
+// step waits for the next).
 struct UavSensors {
   std::optional<agent::ImuSample> imu;
   std::optional<agent::DetectionSet> detections;
@@ -98,7 +100,7 @@ class World {
  private:
   struct Uav {
     Uav(const KinematicState& initial, double heading_rad, double turn_rate, OuProcess2 own_gust, ImuModel imu_model,
-        MpsModel mps_model, GnssModel gnss_model);
+        MpsModel mps_model, GnssModel gnss_model, Rng latency_stream);
 
     KinematicState state;
     double initial_heading_rad = 0.0;
@@ -107,7 +109,12 @@ class World {
     ImuModel imu;
     MpsModel mps;
     GnssModel gnss;
-    std::deque<agent::DetectionSet> in_flight;  // measured, waiting for the MPS latency to pass
+    Rng latency_rng;
+    struct InFlight {
+      agent::StampNs due_ns = 0;
+      agent::DetectionSet set;
+    };
+    std::vector<InFlight> in_flight;  // measured, waiting for their latency to pass; in scan order
     agent::Vec2 setpoint_mps = agent::Vec2::Zero();
     double yaw_rate_setpoint_radps = 0.0;  // clamped to dynamics.max_yaw_rate_radps
     double yaw_rate_radps = 0.0;           // the lagged response
@@ -131,6 +138,7 @@ class World {
   agent::StampNs duration_ns_;
   agent::StampNs failsafe_timeout_ns_;
   agent::StampNs mps_latency_ns_;
+  double mps_latency_jitter_s_;
   std::int64_t imu_period_steps_;
   std::int64_t mps_period_steps_;
   std::int64_t gnss_period_steps_;
