@@ -27,6 +27,10 @@ void Px4Standin::visualOdometry(agent::StampNs now, bool position, bool velocity
   if (ekf_) ekf_->externalVision(now, position, velocity);
 }
 
+double Px4Standin::deadReckoningS(agent::StampNs now) const {
+  return dead_reckoning_since_ns_ ? static_cast<double>(now - *dead_reckoning_since_ns_) * 1e-9 : 0.0;
+}
+
 void Px4Standin::lose(std::uint8_t nav_state, const char* text) {
   events_.push_back({StandinEvent::Control::kLost, text});
   nav_state_ = nav_state;
@@ -78,7 +82,7 @@ Px4Standin::Decision Px4Standin::step(agent::StampNs now) {
   }
   char text[200];
   if (nav_state_ == px4::kNavStateAutoLoiter && failsafe_ && !localPositionValid()) {
-    lost_after_s_ = dead_reckoning_since_ns_ ? static_cast<double>(now - *dead_reckoning_since_ns_) * 1e-9 : 0.0;
+    lost_after_s_ = deadReckoningS(now);
     std::snprintf(text, sizeof text,
                   "Hold without a position after %.2f s of dead reckoning without GNSS or external vision "
                   "(EKF2_NOAID_TOUT): failsafe, Descend (RTL and Land need a position)",
@@ -96,7 +100,7 @@ Px4Standin::Decision Px4Standin::step(agent::StampNs now) {
     return d;
   }
   if (velocity_control_ && !localPositionValid()) {
-    lost_after_s_ = dead_reckoning_since_ns_ ? static_cast<double>(now - *dead_reckoning_since_ns_) * 1e-9 : 0.0;
+    lost_after_s_ = deadReckoningS(now);
     std::snprintf(text, sizeof text,
                   "offboard lost: local velocity invalid after %.2f s of dead reckoning without GNSS or external "
                   "vision (EKF2_NOAID_TOUT): failsafe, Altitude mode (COM_OBL_RC_ACT Position needs a position)",

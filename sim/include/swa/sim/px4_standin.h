@@ -78,6 +78,8 @@ class Px4Standin {
 
  private:
   bool signalFresh(agent::StampNs now) const;
+  // How long EKF2 has been dead-reckoning at `now` [s] (0 while aided): the value of the estimator's failsafe events.
+  double deadReckoningS(agent::StampNs now) const;
   void lose(std::uint8_t nav_state, const char* text);
 
   agent::StampNs loss_timeout_ns_;
