@@ -282,5 +282,68 @@ TEST(WorldMps, LatencyDelaysDeliveryByExactlyLatencyKeepingTheMeasurementStamp) 
   EXPECT_EQ(delivered, 28);  // scans at 0.0 .. 2.7 s delivered by 3.0 s
 }
 
+TEST(WorldMps, LatencyJitterDeliversEverySetOnceWithinItsBoundsSomeOutOfOrder) {
+  // GIVEN a world with 0.2 s +- 0.1 s of MPS latency (scans every 0.1 s, so neighbouring scans can swap)
+  Scenario s = perfectSensing(4);
+  s.mps.latency_s = 0.2;
+  s.mps.latency_jitter_s = 0.1;
+  World w(s);
+  std::vector<agent::StampNs> stamps;
+  int out_of_order = 0;
+  for (int k = 0; k <= 3000; ++k) {
+    if (k > 0) w.step();
+    const auto& got = w.sensors()[1].detections;
+    if (!got) continue;
+    // THEN each set arrives between 0.1 and 0.3 s after its stamp (one 10 ms step of slack: one set per step)
+    const agent::StampNs delay_ns = w.time_ns() - got->stamp_ns;
+    EXPECT_GE(delay_ns, 100'000'000);
+    EXPECT_LE(delay_ns, 310'000'000);
+    if (!stamps.empty() && got->stamp_ns < stamps.back()) ++out_of_order;
+    stamps.push_back(got->stamp_ns);
+  }
+  // AND every scan up to 29.7 s is delivered exactly once, none lost or doubled
+  std::sort(stamps.begin(), stamps.end());
+  EXPECT_EQ(std::adjacent_find(stamps.begin(), stamps.end()), stamps.end());
+  for (agent::StampNs t = 0; t <= 29'700'000'000; t += 100'000'000) {
+    EXPECT_TRUE(std::binary_search(stamps.begin(), stamps.end(), t)) << "scan at " << t << " ns never arrived";
+  }
+  // AND some arrive after a later scan: with uniform delays in +-0.1 s, one pair in eight (about 37 of 300) swaps
+  EXPECT_GE(out_of_order, 15);
+  EXPECT_LE(out_of_order, 70);
+}
+
+TEST(WorldMps, JitterMovesOnlyTheArrivalsNotTheOtherSensors) {
+  // GIVEN two worlds with 0.2 s of MPS latency, alike but for 0.05 s of jitter in one
+  Scenario s = perfectSensing(3);
+  s.mps.noise_var_m2 = 0.1;
+  s.mps.latency_s = 0.2;
+  World plain(s);
+  s.mps.latency_jitter_s = 0.05;
+  World jittered(s);
+  // WHEN both run 5 s
+  int plain_sets = 0;
+  int differing_arrivals = 0;
+  for (int k = 1; k <= 500; ++k) {
+    plain.step();
+    jittered.step();
+    const auto& a = plain.sensors()[0].detections;
+    const auto& b = jittered.sensors()[0].detections;
+    if (a) {
+      ++plain_sets;
+      EXPECT_EQ(plain.time_ns() - a->stamp_ns, 200'000'000);
+    }
+    if (a.has_value() != b.has_value() || (a && b && a->stamp_ns != b->stamp_ns)) ++differing_arrivals;
+    const auto& imu_a = plain.sensors()[0].imu;
+    const auto& imu_b = jittered.sensors()[0].imu;
+    ASSERT_EQ(imu_a.has_value(), imu_b.has_value());
+    if (imu_a) {
+      EXPECT_EQ(imu_a->pitch_rad, imu_b->pitch_rad);
+    }
+  }
+  // THEN the jitter changes when sets arrive, not what the IMU and GNSS see
+  EXPECT_EQ(plain_sets, 49);  // scans at 0.0 .. 4.8 s delivered by 5.0 s
+  EXPECT_GT(differing_arrivals, 0);
+}
+
 }  // namespace
 }  // namespace swa::sim
