@@ -90,7 +90,7 @@ class ArdupilotLink : public VehicleLink {
             return;
           }
           if (const std::optional<ardupilot::QuaternionLayout> layout = layoutOf(m)) {
-            events_.attitude(*t, wire::attitudeOf(m, *layout));
+            events_.attitude(*t, wire::attitudeOf(m, *layout), wire::specificForceOf(m));
           }
           if (!options_.no_gnss) {  // ArduPilot goes silent when its GPS does: the IMU's time tells how long
             const std::lock_guard<std::mutex> lock(gnss_mutex_);

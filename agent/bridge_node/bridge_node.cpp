@@ -56,7 +56,8 @@ BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::s
       profiles_file_(profiles_file),
       started_(std::chrono::steady_clock::now()),
       vehicle_(makeLink(options,
-                        VehicleEvents{[this](std::uint64_t t, const px4::Quaternion& q) { onAttitude({t, q}); },
+                        VehicleEvents{[this](std::uint64_t t, const px4::Quaternion& q,
+                                             const std::optional<ardupilot::SpecificForce>& f) { onAttitude({t, q, f}); },
                                       [this](bool armed, std::uint8_t mode) { onStatus(armed, mode); },
                                       [this](const agent::GnssSample& g) { onGnss(g); },
                                       [this](const std::string& line) { onVehicleLog(line); },
@@ -137,7 +138,7 @@ void BridgeNode::onAttitude(const Attitude& a) {
 
 void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_point received) {
   const double now = nowS();
-  if (const std::optional<agent::ImuSample> imu = core_.onAttitude(a.timestamp_us, a.q, now)) {
+  if (const std::optional<agent::ImuSample> imu = core_.onAttitude(a.timestamp_us, a.q, now, a.force_frd)) {
     if (imu_seq_ == 0) {
       std::fprintf(stderr, "swa_px4_bridge %d: first attitude from %s (timestamp %llu us), forwarding to %s\n", id_,
                    core_.autopilot().name, static_cast<unsigned long long>(a.timestamp_us),

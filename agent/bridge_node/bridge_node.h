@@ -50,6 +50,7 @@ class BridgeNode : public app::Role {
   struct Attitude {
     std::uint64_t timestamp_us = 0;
     px4::Quaternion q;
+    std::optional<ardupilot::SpecificForce> force_frd;
   };
 
   void connect();  // creates the participant, the agent's endpoints and the vehicle's

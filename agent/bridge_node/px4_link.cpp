@@ -1,11 +1,13 @@
 // PX4's side of the bridge: its uXRCE-DDS topics of one release under the namespace NS (vehicle_link.h).
 
+#include <array>
 #include <cstdio>
 #include <mutex>
 #include <optional>
 #include <utility>
 
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/SensorCombined_v1_15PubSubTypes.h>
 #include <swa/px4/SensorGps_v1_15PubSubTypes.h>
 #include <swa/px4/SensorGps_v1_17PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
@@ -19,6 +21,7 @@
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
 #include "swa/dds/topics.h"
+#include "swa/px4/accelerometer.h"
 #include "swa/px4/gnss.h"
 #include "swa/px4/release.h"
 #include "swa/px4/vehicle.h"
@@ -67,9 +70,23 @@ class Px4Link : public VehicleLink {
         topics::px4Out(ns_, "vehicle_command_ack"), "px4_out_reader",
         [this](px4_msgs::msg::VehicleCommandAck&& m) { onAck(m); });
     if (!options_.no_gnss) connectGnss(p);
+    // The accelerometer first: each attitude takes the reading of its instant, if there is one (accelerometer.h).
+    accel_reader_ = p.reader<px4_msgs::msg::SensorCombinedPubSubType>(
+        topics::px4Out(ns_, "sensor_combined"), "px4_out_reader", [this](px4_msgs::msg::SensorCombined&& m) {
+          const std::array<float, 3>& a = m.accelerometer_m_s2();
+          const float accel[3] = {a[0], a[1], a[2]};
+          const std::lock_guard<std::mutex> lock(accel_mutex_);
+          accel_.onSensorCombined(m.timestamp(), m.accelerometer_timestamp_relative(), accel);
+        });
     attitude_reader_ = p.reader<px4_msgs::msg::VehicleAttitudePubSubType>(
-        topics::px4Out(ns_, "vehicle_attitude"), "px4_out_reader",
-        [this](px4_msgs::msg::VehicleAttitude&& m) { events_.attitude(m.timestamp(), wire::quaternionOf(m)); });
+        topics::px4Out(ns_, "vehicle_attitude"), "px4_out_reader", [this](px4_msgs::msg::VehicleAttitude&& m) {
+          std::optional<ardupilot::SpecificForce> force;
+          {
+            const std::lock_guard<std::mutex> lock(accel_mutex_);
+            if (const auto r = accel_.pairWith(m.timestamp_sample())) force = ardupilot::SpecificForce{r->x, r->y, r->z};
+          }
+          events_.attitude(m.timestamp(), wire::quaternionOf(m), force);
+        });
   }
 
   bool readsCommands() const override { return setpoint_.matched() > 0 && offboard_.matched() > 0; }
@@ -168,12 +185,15 @@ class Px4Link : public VehicleLink {
 
   std::mutex gnss_mutex_;
   px4::GnssForward gnss_forward_;
+  std::mutex accel_mutex_;
+  px4::AccelerometerPairing accel_;
 
   dds::Writer<px4_msgs::msg::TrajectorySetpoint> setpoint_;
   dds::Writer<px4_msgs::msg::OffboardControlMode> offboard_;
   dds::Writer<px4_msgs::msg::VehicleCommand> vehicle_command_;  // --engage only
   dds::Writer<px4_msgs::msg::VehicleOdometry> odometry_;        // not with --odometry off
   dds::Reader<px4_msgs::msg::VehicleAttitude> attitude_reader_;
+  dds::Reader<px4_msgs::msg::SensorCombined> accel_reader_;  // sensor_combined: the accelerometer
   dds::Reader<px4_msgs::msg::VehicleStatus> status_reader_;                   // v1.15
   dds::Reader<px4_v1_16::px4_msgs::msg::VehicleStatus> status_reader_v1_16_;  // v1.16 and later
   dds::Reader<px4_msgs::msg::VehicleCommandAck> ack_reader_;

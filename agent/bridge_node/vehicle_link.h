@@ -7,19 +7,25 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "bridge_options.h"
 #include "swa/agent/samples.h"
 #include "swa/autopilot/bridge_core.h"
 #include "swa/autopilot/odometry_feed.h"
+#include "swa/autopilot/quaternion_order.h"
 #include "swa/dds/participant.h"
 
 namespace swa::bridge_node {
 
 // What a link reports, on the middleware's threads (the node serialises them).
 struct VehicleEvents {
-  std::function<void(std::uint64_t timestamp_us, const px4::Quaternion& attitude)> attitude;
+  // The attitude, with the accelerometer's specific force read at the same time when the vehicle gives one (PX4:
+  // sensor_combined; ArduPilot: the same IMU message), FRD body, m/s^2.
+  std::function<void(std::uint64_t timestamp_us, const px4::Quaternion& attitude,
+                     const std::optional<ardupilot::SpecificForce>& force_frd)>
+      attitude;
   std::function<void(bool armed, std::uint8_t mode)> status;
   std::function<void(const agent::GnssSample& gnss)> gnss;  // the vehicle's fix, in SWA's terms (PX4 only so far)
   std::function<void(const std::string& line)> log;          // an answer to a request, for the log

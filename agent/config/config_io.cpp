@@ -78,6 +78,10 @@ params::Table<AgentConfig> makeTable() {
   SWA_PARAM(t, number, focal.r_acc_m2ps4, "m^2/s^4", openClosed(0, 1000),
             "R_a: noise of the tilt-derived acceleration measurement");
   SWA_PARAM(t, number, focal.q_c_mps2, "m/s^2/rad", openClosed(0, 50), "q_c: lateral acceleration per radian of tilt");
+  SWA_PARAM(t, choice, focal.imu_source, named(kImuSourceNames),
+            "the acceleration the focal filter fuses: tilt (q_c x the attitude: the thrust's push only, the paper's) "
+            "or accelerometer (the specific force turned by the attitude, gravity removed: every push, drag and "
+            "wind included; needs IMU samples that carry it)");
   SWA_PARAM(t, number, focal.frame_timeout_s, "s", openClosed(0, 600),
             "without a floating frame for this long, dead reckoning is no longer trusted");
   SWA_PARAM(t, number, focal.bias_window_s, "s", closed(0, 3600),

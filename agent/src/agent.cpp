@@ -93,11 +93,22 @@ void Agent::restartTimeline() {
 VelocityCommand Agent::onImu(const ImuSample& imu) {
   const bool finite = std::isfinite(imu.roll_rad) && std::isfinite(imu.pitch_rad) && std::isfinite(imu.heading_rad);
   const LimitsConfig& lim = config_.limits;
+  const bool use_accelerometer = config_.focal.imu_source == ImuSource::kAccelerometer;
+  const AccelerometerSample* acc = imu.accelerometer ? &*imu.accelerometer : nullptr;
+  const bool acc_finite = acc == nullptr || (acc->specific_force_body_mps2.allFinite() &&
+                                             std::isfinite(acc->roll_rad) && std::isfinite(acc->pitch_rad));
   bool accepted = false;
-  if (!finite) {
+  if (!finite || !acc_finite) {
     ++diag_.rejected.nonfinite;
   } else if (std::abs(imu.roll_rad) > lim.max_tilt_rad || std::abs(imu.pitch_rad) > lim.max_tilt_rad ||
              std::abs(imu.heading_rad) > lim.max_abs_heading_rad) {
+    ++diag_.rejected.implausible;
+  } else if (use_accelerometer &&
+             (acc == nullptr || std::abs(acc->roll_rad) > lim.max_tilt_rad ||
+              std::abs(acc->pitch_rad) > lim.max_tilt_rad ||
+              acc->specific_force_body_mps2.norm() > kMaxSpecificForce_mps2)) {
+    // Without the accelerometer it is told to use, the agent must not fall back on the tilt unannounced: the
+    // sample is refused and counted, and the node says why.
     ++diag_.rejected.implausible;
   } else {
     accepted = acceptStamp(imu_clock_, imu.stamp_ns);
@@ -109,8 +120,10 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
   if (accepted) {
     heading_rad_ = imu.heading_rad;
     have_heading_ = true;
-    // DESIGN §3.4: pitch gives body-x and roll body-y acceleration, rotated into the stable frame by heading.
-    const Vec2 acc_body = config_.focal.q_c_mps2 * Vec2(imu.pitch_rad, imu.roll_rad);
+    // DESIGN §3.4: pitch gives body-x and roll body-y acceleration, rotated into the stable frame by heading; or
+    // the accelerometer's specific force, turned level by its attitude (issue #44).
+    const Vec2 acc_body = use_accelerometer ? levelAcceleration(*acc)
+                                            : Vec2(config_.focal.q_c_mps2 * Vec2(imu.pitch_rad, imu.roll_rad));
     const Mat2 to_stable = rotation(imu.heading_rad);
     const Vec2 unbiased_body = imu_bias_.correct(acc_body, imu.stamp_ns, command_);
     focal_.predictTo(imu.stamp_ns, command_);

@@ -17,5 +17,6 @@ std::string toString(Mode mode) { return nameIn(kModeNames, mode); }
 std::string toString(CircleFit fit) { return nameIn(kCircleFitNames, fit); }
 std::string toString(NeighbourhoodRule rule) { return nameIn(kNeighbourhoodRuleNames, rule); }
 std::string toString(DetectionInput input) { return nameIn(kDetectionInputNames, input); }
+std::string toString(ImuSource source) { return nameIn(kImuSourceNames, source); }
 
 }  // namespace swa::agent

@@ -3,11 +3,20 @@
 #include <algorithm>
 #include <tuple>
 
+#include <swa/msg/ImuPubSubTypes.h>
+
+#include "swa/dds/raw_type.h"
 #include "swa/recording/mcap_reader.h"
 #include "swa/recording/record_set.h"
 #include "swa/recording/recording.h"
 
 namespace swa::replay {
+namespace {
+
+// A message set 4 Imu on the wire: 4 bytes of encapsulation, the header's 12, uav_id's 4 and three doubles.
+constexpr std::size_t kImuSet4Bytes = 44;
+
+}  // namespace
 
 std::optional<std::string> swaTopicOf(const std::string& recorded_topic) {
   if (recorded_topic.rfind("/swa/", 0) == 0) return recorded_topic.substr(1);
@@ -48,6 +57,9 @@ RecordedRun readRecordedRun(const std::string& path, std::optional<int> only_uav
           ++run.unstamped;
           continue;
         }
+        // A recording of message set 4 has shorter IMU samples than today's agents read (set 5 appended the
+        // accelerometer): read as set 5 without one, so that old recordings still replay.
+        if (*input == Input::kImu) m->data = dds::upgradeAppended<msg::ImuPubSubType>(m->data, kImuSet4Bytes);
         run.uavs[uav].inputs.push_back({static_cast<std::int64_t>(stamp->stamp_ns), *input, order, std::move(m->data)});
       } else if (leaf == "cmd_vel") {
         run.uavs[uav].commands.push_back(std::move(m->data));

@@ -54,7 +54,8 @@ topics_xml() {
 # The topics of each role, from deploy/dds/include/swa/dds/topics.h and the nodes (sim/node, agent/node,
 # agent/bridge_node, monitor/node). fnmatch patterns: uav* stands for every UAV index, $PX4_PREFIX* for every vehicle.
 px4_out() {
-  echo "rt/$1/fmu/out/vehicle_attitude rt/$1/fmu/out/vehicle_status rt/$1/fmu/out/vehicle_status_v1" \
+  echo "rt/$1/fmu/out/vehicle_attitude rt/$1/fmu/out/sensor_combined rt/$1/fmu/out/vehicle_status" \
+       "rt/$1/fmu/out/vehicle_status_v1" \
        "rt/$1/fmu/out/vehicle_command_ack rt/$1/fmu/out/vehicle_gps_position rt/$1/fmu/out/vehicle_local_position" \
        "rt/$1/fmu/out/vehicle_local_position_v1"
 }

@@ -33,7 +33,7 @@ Permissions (default DENY, nothing else is allowed):
   swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/sensors, swa/truth,
                  swa/events, swa/clock, rt/uav*/detections, rt/uav*/uvdar/measuredPoses;
                  reads swa/uav*/cmd_vel; as every UAV's PX4 stand-in (vehicle.interface=px4) writes
-                 rt/<P>*/fmu/out/vehicle_attitude, vehicle_status(_v1), vehicle_command_ack,
+                 rt/<P>*/fmu/out/vehicle_attitude, sensor_combined, vehicle_status(_v1), vehicle_command_ack,
                  vehicle_gps_position, vehicle_local_position(_v1) and reads
                  rt/<P>*/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command; as every UAV's
                  ArduPilot stand-in (vehicle.interface=ardupilot) writes rt/ap/v*/imu/experimental/data,
@@ -45,7 +45,7 @@ Permissions (default DENY, nothing else is allowed):
   swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I (swa_px4_bridge, or a bridge of your own):
                  writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and
                  rt/<P><I>/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command;
-                 reads swa/uav<I>/cmd_vel and rt/<P><I>/fmu/out/vehicle_attitude, vehicle_status(_v1),
+                 reads swa/uav<I>/cmd_vel and rt/<P><I>/fmu/out/vehicle_attitude, sensor_combined, vehicle_status(_v1),
                  vehicle_command_ack, vehicle_gps_position, vehicle_local_position(_v1); for an ArduPilot
                  vehicle (namespace ap/v<I+1>) writes rt/ap/v<I+1>/cmd_vel and the requests
                  rq/ap/v<I+1>/arm_motorsRequest, mode_switchRequest, and reads rt/ap/v<I+1>/imu/experimental/data,

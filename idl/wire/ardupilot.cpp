@@ -35,7 +35,8 @@ ardupilot::SpecificForce specificForceOf(const sensor_msgs::msg::Imu& m) {
 }
 
 sensor_msgs::msg::Imu imuMessage(std::uint64_t timestamp_us, const px4::Quaternion& q,
-                                 ardupilot::QuaternionLayout layout) {
+                                 ardupilot::QuaternionLayout layout,
+                                 const std::optional<ardupilot::SpecificForce>& force_frd) {
   sensor_msgs::msg::Imu m;
   m.header().stamp(timeOf(timestamp_us));
   m.header().frame_id(ardupilot::kImuFrame);
@@ -44,7 +45,7 @@ sensor_msgs::msg::Imu imuMessage(std::uint64_t timestamp_us, const px4::Quaterni
   m.orientation().y(f.y);
   m.orientation().z(f.z);
   m.orientation().w(f.w);
-  const ardupilot::SpecificForce a = ardupilot::restingForceOf(q);
+  const ardupilot::SpecificForce a = force_frd ? *force_frd : ardupilot::restingForceOf(q);
   m.linear_acceleration().x(a.x);
   m.linear_acceleration().y(a.y);
   m.linear_acceleration().z(a.z);

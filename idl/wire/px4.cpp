@@ -38,6 +38,17 @@ px4_msgs::msg::VehicleAttitude vehicleAttitude(std::uint64_t timestamp_us, const
   return m;
 }
 
+px4_msgs::msg::SensorCombined sensorCombined(std::uint64_t timestamp_us, const agent::Vec3& specific_force_frd) {
+  px4_msgs::msg::SensorCombined m;
+  m.timestamp(timestamp_us);
+  m.gyro_integral_dt(10'000);
+  m.accelerometer_timestamp_relative(0);
+  m.accelerometer_m_s2({static_cast<float>(specific_force_frd.x()), static_cast<float>(specific_force_frd.y()),
+                        static_cast<float>(specific_force_frd.z())});
+  m.accelerometer_integral_dt(10'000);
+  return m;
+}
+
 px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const autopilot::Setpoint& s) {
   px4_msgs::msg::TrajectorySetpoint m;
   m.timestamp(s.timestamp_us);

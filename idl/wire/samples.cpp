@@ -15,6 +15,13 @@ agent::ImuSample fromMsg(const msg::Imu& m) {
   s.roll_rad = m.roll_rad();
   s.pitch_rad = m.pitch_rad();
   s.heading_rad = m.heading_rad();
+  if (m.has_accelerometer()) {
+    agent::AccelerometerSample a;
+    a.specific_force_body_mps2 = agent::Vec3(m.accel_x_mps2(), m.accel_y_mps2(), m.accel_z_mps2());
+    a.roll_rad = m.accel_roll_rad();
+    a.pitch_rad = m.accel_pitch_rad();
+    s.accelerometer = a;
+  }
   return s;
 }
 
@@ -62,6 +69,15 @@ msg::Imu toMsg(const agent::ImuSample& s, std::uint32_t uav_id, std::uint32_t se
   m.roll_rad(s.roll_rad);
   m.pitch_rad(s.pitch_rad);
   m.heading_rad(s.heading_rad);
+  m.has_accelerometer(s.accelerometer.has_value());
+  if (s.accelerometer) {
+    const agent::Vec3& f = s.accelerometer->specific_force_body_mps2;
+    m.accel_x_mps2(f.x());
+    m.accel_y_mps2(f.y());
+    m.accel_z_mps2(f.z());
+    m.accel_roll_rad(s.accelerometer->roll_rad);
+    m.accel_pitch_rad(s.accelerometer->pitch_rad);
+  }
   return m;
 }
 

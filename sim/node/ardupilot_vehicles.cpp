@@ -24,7 +24,8 @@ const ardupilot::LocalTangent kHome{47.397742, 8.545594};
 
 }  // namespace
 
-ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup) {
+ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup,
+                                     agent::ImuSource source) {
   vehicles_.reserve(static_cast<std::size_t>(uav_count));
   for (int i = 0; i < uav_count; ++i) {
     Vehicle& v = vehicles_.emplace_back(
@@ -34,6 +35,7 @@ ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_coun
     v.ns = topics::apNamespace(i);
     v.imu.writer = participant.writer<sensor_msgs::msg::ImuPubSubType>(topics::apTopic(v.ns, "imu/experimental/data"),
                                                                  "ap_out_writer");
+    v.imu.accelerometer_attitude = source == agent::ImuSource::kAccelerometer;
     v.status = participant.writer<ardupilot_msgs::msg::StatusPubSubType>(topics::apTopic(v.ns, "status"),
                                                                           "ap_status_writer");
     if (setup.gnss_source == sim::GnssSource::kAutopilot) {
@@ -76,8 +78,17 @@ void ArdupilotVehicles::unmatched(int uav, std::vector<std::string>& missing) co
 }
 
 bool ArdupilotVehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) {
-  return vehicles_.at(static_cast<std::size_t>(uav))
-      .imu.publish(s, seq, [](std::uint64_t t_us, const px4::Quaternion& q) { return wire::imuMessage(t_us, q); });
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  // The accelerometer as it flies, once the motors run; disarmed on the ground it reads gravity alone, without the
+  // motors' vibration (what --ap-quaternion auto votes on).
+  std::optional<ardupilot::SpecificForce> force;
+  if (s.accelerometer && v.standin.armed()) {
+    const agent::Vec3 f = px4::flippedBody(s.accelerometer->specific_force_body_mps2);
+    force = ardupilot::SpecificForce{f.x(), f.y(), f.z()};
+  }
+  return v.imu.publish(s, seq, [&force](std::uint64_t t_us, const px4::Quaternion& q) {
+    return wire::imuMessage(t_us, q, ardupilot::QuaternionLayout::kRos, force);
+  });
 }
 
 bool ArdupilotVehicles::publishGnss(int uav, const agent::GnssSample& g) {

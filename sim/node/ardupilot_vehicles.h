@@ -31,7 +31,8 @@ namespace swa::sim_node {
 class ArdupilotVehicles : public AutopilotVehicles {
  public:
   // Creates every UAV's ArduPilot endpoints on `participant` (which must outlive this). Throws swa::dds::DdsError.
-  ArdupilotVehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup);
+  ArdupilotVehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup,
+                    agent::ImuSource source);
 
   void unmatched(int uav, std::vector<std::string>& missing) const override;
   bool publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) override;

@@ -81,6 +81,10 @@ struct AttitudeStream {
   dds::Writer<Message> writer;
   std::optional<Message> last;
   RecentSamples published;
+  // The attitude the autopilot reports: the accelerometer part's (its estimate of the true attitude) when the agents
+  // fuse the accelerometer, else the tilt's (whose error model is the tilt source's, imu_model.h), so that an agent
+  // behind a bridge reads what one reading the simulator directly does.
+  bool accelerometer_attitude = false;
 
   // The IMU sample `s` as `make(timestamp_us, quaternion)`, the autopilot's message. False when the sample has no
   // autopilot timestamp (negative) or the middleware refused it.
@@ -88,7 +92,10 @@ struct AttitudeStream {
   bool publish(const agent::ImuSample& s, std::uint32_t seq, Make make) {
     const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(s.stamp_ns);
     if (!timestamp) return false;
-    const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({s.roll_rad, s.pitch_rad, s.heading_rad}));
+    const bool acc = accelerometer_attitude && s.accelerometer;
+    const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({acc ? s.accelerometer->roll_rad : s.roll_rad,
+                                                              acc ? s.accelerometer->pitch_rad : s.pitch_rad,
+                                                              s.heading_rad}));
     last = make(*timestamp, q);
     published.add(s.stamp_ns, seq);
     return writer.write(*last);

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/SensorCombined_v1_15PubSubTypes.h>
 #include <swa/px4/SensorGps_v1_15PubSubTypes.h>
 #include <swa/px4/SensorGps_v1_17PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
@@ -30,7 +31,8 @@ constexpr agent::StampNs kStatusPeriodNs = 200'000'000;  // vehicle_status at 5 
 
 }  // namespace
 
-Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup) {
+Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup,
+                         agent::ImuSource source) {
   vehicles_.reserve(static_cast<std::size_t>(uav_count));
   const std::string status_topic = px4::topicName(setup.px4_release, "vehicle_status");
   const std::string gps_topic = px4::topicName(setup.px4_release, "vehicle_gps_position");
@@ -44,6 +46,9 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
     v.ns = topics::px4Namespace(i);
     v.attitude.writer = participant.writer<px4_msgs::msg::VehicleAttitudePubSubType>(
         topics::px4Out(v.ns, "vehicle_attitude"), "px4_out_writer");
+    v.attitude.accelerometer_attitude = source == agent::ImuSource::kAccelerometer;
+    v.accelerometer = participant.writer<px4_msgs::msg::SensorCombinedPubSubType>(
+        topics::px4Out(v.ns, "sensor_combined"), "px4_out_writer");
     if (px4::hasV116VehicleStatus(setup.px4_release)) {
       v.status_v1_16 = participant.writer<px4_v1_16::px4_msgs::msg::VehicleStatusPubSubType>(
           topics::px4Out(v.ns, status_topic), "px4_out_writer");
@@ -95,7 +100,16 @@ void Px4Vehicles::unmatched(int uav, std::vector<std::string>& missing) const {
 }
 
 bool Px4Vehicles::publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) {
-  return vehicles_.at(static_cast<std::size_t>(uav)).attitude.publish(s, seq, wire::vehicleAttitude);
+  Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
+  bool ok = true;
+  // The accelerometer first, so that the bridge has it when the attitude of the same instant arrives.
+  const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(s.stamp_ns);
+  if (s.accelerometer && timestamp) {
+    px4_msgs::msg::SensorCombined m =
+        wire::sensorCombined(*timestamp, px4::flippedBody(s.accelerometer->specific_force_body_mps2));
+    ok = v.accelerometer.write(m);
+  }
+  return v.attitude.publish(s, seq, wire::vehicleAttitude) && ok;
 }
 
 bool Px4Vehicles::publishGnss(int uav, const agent::GnssSample& g) {

@@ -23,6 +23,7 @@
 #include <swa/px4/SensorGps_v1_15.h>
 #include <swa/px4/SensorGps_v1_17.h>
 #include <swa/px4/TrajectorySetpoint_v1_15.h>
+#include <swa/px4/SensorCombined_v1_15.h>
 #include <swa/px4/VehicleAttitude_v1_15.h>
 #include <swa/px4/VehicleCommandAck_v1_15.h>
 #include <swa/px4/VehicleCommand_v1_15.h>
@@ -45,12 +46,14 @@ class Px4Vehicles : public AutopilotVehicles {
  public:
 
   // Creates every UAV's PX4 endpoints on `participant` (which must outlive this). Throws swa::dds::DdsError.
-  Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup);
+  // `source`: what the agents fuse, which decides the attitude vehicle_attitude reports (AttitudeStream).
+  Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup, agent::ImuSource source);
 
   // UAV `uav`'s PX4 endpoints the bridge has not matched yet, appended to `missing`.
   void unmatched(int uav, std::vector<std::string>& missing) const override;
 
-  // UAV `uav`'s IMU sample as PX4's vehicle_attitude. False if the middleware refused it.
+  // UAV `uav`'s IMU sample as PX4's sensor_combined (its accelerometer) and vehicle_attitude. False if the middleware
+  // refused either.
   bool publishAttitude(int uav, const agent::ImuSample& s, std::uint32_t seq) override;
   // UAV `uav`'s GNSS sample as its PX4 reports it (vehicle.gnss_source = autopilot): vehicle_gps_position and
   // vehicle_local_position. False if the middleware refused either (or the source is not the autopilot).
@@ -85,6 +88,7 @@ class Px4Vehicles : public AutopilotVehicles {
         : standin(com_of_loss_t_s, ekf) {}
     sim::Px4Standin standin;
     AttitudeStream<px4_msgs::msg::VehicleAttitude> attitude;
+    dds::Writer<px4_msgs::msg::SensorCombined> accelerometer;  // sensor_combined
     dds::Writer<px4_msgs::msg::VehicleStatus> status;                // v1.15
     dds::Writer<px4_v1_16::px4_msgs::msg::VehicleStatus> status_v1_16;  // v1.16 and later
     // vehicle.gnss_source = autopilot only, in the release's layouts.

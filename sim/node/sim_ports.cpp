@@ -99,9 +99,9 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
         }));
   }
   if (scenario.vehicle.interface == sim::VehicleInterface::kPx4) {
-    autopilot_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle);
+    autopilot_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle, scenario.imu.source);
   } else if (scenario.vehicle.interface == sim::VehicleInterface::kArdupilot) {
-    autopilot_ = std::make_unique<ArdupilotVehicles>(*participant_, n_, scenario.vehicle);
+    autopilot_ = std::make_unique<ArdupilotVehicles>(*participant_, n_, scenario.vehicle, scenario.imu.source);
   }
 }
 

@@ -153,6 +153,15 @@ params::Table<Scenario> makeTable() {
   SWA_PARAM(t, number, dynamics.max_yaw_rate_radps, "rad/s", openClosed(0, 100),
             "commanded yaw rates are clamped to +- this (the vehicle's limit)");
 
+  SWA_PARAM(t, number, dynamics.drag_per_s, "1/s", closed(0, 5),
+            "linear drag per unit mass on the air-relative velocity, -k (v - wind); the velocity loop holds the path "
+            "against it, so it changes the attitude flown (what the tilt shows). Default: PX4's EKF2_MCOEF, a small "
+            "multirotor's rotor momentum drag");
+  SWA_PARAM(t, number, wind.mean_mps, "m/s", closed(0, 30), "speed of the mean wind, the same for every UAV (0: calm)");
+  SWA_PARAM(t, number, wind.direction_deg, "deg", closed(-360, 360),
+            "where the mean wind blows from, clockwise from north (270: a westerly, blowing east)");
+  SWA_PARAM(t, number, wind.turn_rate_dps, "deg/s", closed(-10, 10),
+            "the mean wind's direction turns at this rate, clockwise positive (0: steady)");
   SWA_PARAM(t, number, wind.gust_std, "m/s^2", closed(0, 100),
             "std of the per-UAV Ornstein-Uhlenbeck gust acceleration");
   SWA_PARAM(t, number, wind.gust_corr_s, "s", openClosed(0, 3600), "correlation time of the per-UAV gust");
@@ -162,14 +171,29 @@ params::Table<Scenario> makeTable() {
 
   SWA_PARAM(t, number, imu.rate_hz, "Hz", openClosed(0, 10000), "IMU sample rate; must divide dynamics.rate_hz");
   SWA_PARAM(t, number, imu.bias_std, "m/s^2", closed(0, 100),
-            "std of the constant per-UAV bias of the tilt-derived acceleration");
+            "std of the constant per-UAV bias of the tilt-derived acceleration (what an imu.source tilt agent reads)");
   SWA_PARAM(t, number, imu.noise_std, "m/s^2", closed(0, 100),
-            "std of the white noise of the tilt-derived acceleration");
+            "std of the white noise of the tilt-derived acceleration (what an imu.source tilt agent reads)");
   SWA_PARAM(t, number, imu.heading_noise_std_rad, "rad", closed(0, 1), "std of the heading (magnetometer) noise");
   SWA_PARAM(t, number, imu.heading_bias_std_rad, "rad", closed(0, 1),
             "std of the compass's constant per-UAV heading bias (0: none); a magnetometer's several degrees");
   SWA_PARAM(t, number, imu.heading_bias_walk_radps, "rad/sqrt(s)", closed(0, 0.1),
             "random walk of the compass's heading bias: the std of its change over one second (0: none)");
+  SWA_PARAM(t, choice, imu.source,
+            std::vector<std::pair<agent::ImuSource, std::string>>{{agent::ImuSource::kTilt, "tilt"},
+                                                                  {agent::ImuSource::kAccelerometer, "accelerometer"}},
+            "the acceleration the agents fuse (also agent.focal.imu_source unless that is given): tilt (the attitude "
+            "x q_c: the thrust only) or accelerometer (the specific force turned by the attitude: every push); the "
+            "simulator publishes both");
+  SWA_PARAM(t, number, imu.attitude_error_std_rad, "rad", closed(0, 0.2),
+            "std of the constant per-UAV error of the attitude the accelerometer is read with (an acceleration bias "
+            "of g x it)");
+  SWA_PARAM(t, number, imu.accel_bias_std_mps2, "m/s^2", closed(0, 10),
+            "std of the accelerometer's constant per-UAV bias, per axis (default: ICM-20948's zero-g drift over "
+            "20 degC)");
+  SWA_PARAM(t, number, imu.accel_noise_std_mps2, "m/s^2", closed(0, 10),
+            "std of the accelerometer's white noise per axis and sample (default: PX4's EKF2_ACC_NOISE, vibration "
+            "included)");
 
   SWA_PARAM(t, number, mps.rate_hz, "Hz", openClosed(0, 10000),
             "mutual-perception sensor scan rate; must divide dynamics.rate_hz");
@@ -293,11 +317,17 @@ params::Table<Scenario> makeTable() {
       {"vehicle.ekf2_noaid_tout_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.ekf2_ev_ctrl", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.ap_external_nav", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
+      {"wind.direction_deg", "wind.mean_mps", {}, "a mean wind"},
+      {"wind.turn_rate_dps", "wind.mean_mps", {}, "a mean wind"},
+      {"imu.attitude_error_std_rad", "imu.source", {"accelerometer"}, "the accelerometer source"},
+      {"imu.accel_bias_std_mps2", "imu.source", {"accelerometer"}, "the accelerometer source"},
+      {"imu.accel_noise_std_mps2", "imu.source", {"accelerometer"}, "the accelerometer source"},
   });
   schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"},
                     {"agent.sensor.fov_deg", "mps.fov_deg"},
-                    {"agent.sensor.mount_deg", "mps.mount_deg"}};
+                    {"agent.sensor.mount_deg", "mps.mount_deg"},
+                    {"agent.focal.imu_source", "imu.source"}};
   schema.foreign_sections = {"study"};
   return t;
 }

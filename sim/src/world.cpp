@@ -60,8 +60,10 @@ World::Uav World::makeUav(const Scenario& scenario, int id, const agent::Vec2& s
 
   return Uav(initial, heading0, turn_rate,
              OuProcess2(scenario.wind.gust_std, scenario.wind.gust_corr_s, dt_s, Rng(seed, me, Stream::kGust)),
-             ImuModel(scenario.imu, scenario.agent.focal.q_c_mps2, Rng(seed, me, Stream::kImuBias),
-                      Rng(seed, me, Stream::kImuNoise), Rng(seed, me, Stream::kHeadingWalk)),
+             ImuModel(scenario.imu, scenario.agent.focal.q_c_mps2,
+                      ImuModel::Streams{Rng(seed, me, Stream::kImuBias), Rng(seed, me, Stream::kImuNoise),
+                                        Rng(seed, me, Stream::kHeadingWalk), Rng(seed, me, Stream::kAccelBias),
+                                        Rng(seed, me, Stream::kAccelNoise)}),
              MpsModel(scenario.mps, MpsStreams{Rng(seed, me, Stream::kMpsMiss), Rng(seed, me, Stream::kMpsNoise),
                                                Rng(seed, me, Stream::kMpsClutter), Rng(seed, me, Stream::kMpsOrder)}),
              GnssModel(scenario.gnss, id, Rng(seed, me, Stream::kGnssNoise)), Rng(seed, me, Stream::kMpsLatency));
@@ -86,6 +88,8 @@ World::World(const Scenario& scenario)
   const std::vector<agent::Vec2> slots = hexLattice(scenario_.uav_count, scenario_.formation.spacing_m);
   uavs_.reserve(n);
   for (std::size_t i = 0; i < n; ++i) uavs_.push_back(makeUav(scenario_, static_cast<int>(i), slots[i], dt_s_));
+  // At rest in the wind from the start: the thrust already holds against its drag.
+  for (Uav& u : uavs_) u.thrust_mps2 = scenario_.dynamics.drag_per_s * (u.state.velocity_mps - meanWind(0));
   truth_.resize(n);
   for (std::size_t i = 0; i < n; ++i) truth_[i].id = static_cast<int>(i);
   positions_.resize(n);
@@ -122,11 +126,18 @@ void World::step() {
   for (std::size_t i = 0; i < uavs_.size(); ++i) updateFailsafe(uavs_[i], static_cast<int>(i));
 
   common_gust_.advance();
+  const agent::Vec2 wind = meanWind(time_ns_ + dt_ns_);
   for (Uav& u : uavs_) {
     u.gust.advance();
     u.last_gust_mps2 = u.gust.value() + common_gust_.value();
     const agent::Vec2 setpoint = u.failsafe ? agent::Vec2::Zero() : u.setpoint_mps;
     stepLateral(scenario_.dynamics, dt_s_, setpoint, u.last_gust_mps2, u.state);
+    // The velocity loop's integrator holds the commanded velocity against the steady drag (PX4's MPC_XY_VEL_I_ACC,
+    // ArduPilot's PSC_VELXY_I), so the path stays the lagged response above; what drag changes is the thrust the
+    // UAV needs, a = T - k (v - w) + gust, and with it the attitude: T = a + k (v - w) - gust. A UAV holding still
+    // in a 5 m/s wind leans into it as if it were accelerating at 0.75 m/s^2 (k = 0.15 1/s).
+    u.thrust_mps2 = u.state.acceleration_mps2 - u.last_gust_mps2 +
+                    scenario_.dynamics.drag_per_s * (u.state.velocity_mps - wind);
     // Heading: the yaw rate follows the commanded one with a first-order lag, like velocity; the failsafe holds
     // the heading. Kept apart from the closed-form turn of heading_rate_std_radps, and exactly 0 while nothing
     // was ever commanded, so an all-round swarm's headings are bit for bit those of a world without yaw control.
@@ -143,6 +154,14 @@ void World::step() {
   generateSensors();
 }
 
+agent::Vec2 World::meanWind(agent::StampNs at_ns) const {
+  const WindSetup& w = scenario_.wind;
+  if (w.mean_mps == 0.0) return agent::Vec2::Zero();
+  // Meteorological: the direction it comes from, clockwise from north; world x = east, y = north.
+  const double from_rad = (w.direction_deg + w.turn_rate_dps * stampSeconds(at_ns)) * M_PI / 180.0;
+  return -w.mean_mps * agent::Vec2(std::sin(from_rad), std::cos(from_rad));
+}
+
 void World::refreshTruth() {
   // Heading from the closed form psi0 + rate t, not accumulated per step, so it does not drift with round-off.
   const double t_s = stampSeconds(time_ns_);
@@ -155,6 +174,8 @@ void World::refreshTruth() {
     t.heading_rad = wrapAngle(u.initial_heading_rad + u.turn_rate_radps * t_s + u.commanded_turn_rad);
     t.failsafe = u.failsafe;
     t.gust_mps2 = u.last_gust_mps2;
+    t.thrust_mps2 = u.thrust_mps2;
+    t.wind_mps = meanWind(time_ns_);
     positions_[i] = u.state.position_m;
   }
 }
@@ -185,7 +206,9 @@ void World::generateSensors() {
     UavSensors& out = sensors_[i];
     out = UavSensors{};
     const double heading = truth_[i].heading_rad;
-    if (sensorDue(step_, imu_period_steps_)) out.imu = u.imu.sample(time_ns_, u.state.acceleration_mps2, heading);
+    if (sensorDue(step_, imu_period_steps_)) {
+      out.imu = u.imu.sample(time_ns_, u.state.acceleration_mps2, u.thrust_mps2, heading);
+    }
     if (sensorDue(step_, mps_period_steps_) && mps_latency_ns_ != kNever) {
       agent::StampNs delay_ns = mps_latency_ns_;
       if (mps_latency_jitter_s_ > 0.0) {  // drawn only then: without jitter the stream is never touched

@@ -563,6 +563,8 @@ TEST_F(SwarmRun, AgentWhoseSamplesStopWhileTheirWriterStaysMatchedReconnects) {
   // WHEN it writes 1 s of samples at 100 Hz, then nothing, while it stays matched
   for (std::uint32_t k = 0; k < 100; ++k) {
     msg::Imu m;
+    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
+    m.accel_z_mps2(9.80665);
     m.header().stamp_ns(static_cast<agent::StampNs>(k) * 10'000'000);
     m.header().seq(k + 1);
     m.uav_id(1);

@@ -106,6 +106,8 @@ TEST_P(RogueDetections, BadDetectorOutputGivesNoBadCommand) {
   for (int i = 0; i < 400; ++i) {
     const agent::StampNs t = 1'000 * kMs + i * 10 * kMs;
     msg::Imu m;
+    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
+    m.accel_z_mps2(9.80665);
     m.header().stamp_ns(t);
     m.header().seq(++seq);
     m.uav_id(kUav);

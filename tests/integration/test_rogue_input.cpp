@@ -71,6 +71,8 @@ class RogueInput : public RogueAgentTest {
   // A genuine-looking step: IMU level, every 10th step detections of three neighbours on a ring around the UAV.
   void genuineStep(agent::StampNs t, std::uint32_t& seq) {
     msg::Imu m;
+    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
+    m.accel_z_mps2(9.80665);
     m.header().stamp_ns(t);
     m.header().seq(++seq);
     m.uav_id(kUav);
@@ -139,6 +141,8 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
     for (int i = 0; i < 2000; ++i) {
       if (i % 100 == 0) {
         msg::Imu m;
+        m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
+        m.accel_z_mps2(9.80665);
         m.header().stamp_ns(t += 10 * kMs);
         m.header().seq(++seq);
         m.uav_id(kUav);
@@ -174,6 +178,8 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   // ... IMU samples with NaN, 1e300 heading, one 60 s ahead, one at INT64_MAX, and GNSS garbage
   for (int i = 0; i < 50; ++i) {
     msg::Imu m;
+    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
+    m.accel_z_mps2(9.80665);
     m.uav_id(kUav);
     m.header().stamp_ns(i == 0 ? t + 60 * kSec : i == 1 ? std::numeric_limits<agent::StampNs>::max() : t + i * kMs);
     if (i >= 2) {
@@ -199,6 +205,8 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   const auto flood_start = SteadyClock::now();
   for (int i = 0; i < 20000; ++i) {
     msg::Imu m;
+    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
+    m.accel_z_mps2(9.80665);
     m.uav_id(kUav);
     m.header().stamp_ns(stale(rng));
     imu_.write(m);

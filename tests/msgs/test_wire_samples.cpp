@@ -126,6 +126,27 @@ TEST(WireMessages, ASensorFrameCarriesItsPartsUnchangedAndOnlyThoseItHas) {
   EXPECT_TRUE(out2.gnss_fix().empty());
 }
 
+TEST(WireSamples, TheAccelerometerOfMessageSet5SurvivesTheWireBitForBitAndItsAbsenceToo) {
+  // GIVEN an IMU sample with an accelerometer part of values no arithmetic leaves alone, and one without
+  agent::AccelerometerSample acc;
+  acc.specific_force_body_mps2 = agent::Vec3(1.0 / 3.0, -1e-17, 9.80665);
+  acc.roll_rad = -1.0 / 7.0;
+  acc.pitch_rad = std::nextafter(0.1, 1.0);
+  const agent::ImuSample with{5, 0.1, 0.2, 0.3, acc};
+  const agent::ImuSample without{6, 0.1, 0.2, 0.3};
+  // WHEN each goes sample -> message -> wire -> message -> sample
+  const agent::ImuSample with2 = fromMsg(through_the_wire<msg::ImuPubSubType>(toMsg(with, 1, 2), "swa::msg::Imu"));
+  const agent::ImuSample without2 =
+      fromMsg(through_the_wire<msg::ImuPubSubType>(toMsg(without, 1, 3), "swa::msg::Imu"));
+  // THEN the accelerometer comes back bit for bit, and its absence stays an absence
+  ASSERT_TRUE(with2.accelerometer.has_value());
+  EXPECT_EQ(with2.accelerometer->specific_force_body_mps2, acc.specific_force_body_mps2);
+  EXPECT_EQ(with2.accelerometer->roll_rad, acc.roll_rad);
+  EXPECT_EQ(with2.accelerometer->pitch_rad, acc.pitch_rad);
+  EXPECT_FALSE(without2.accelerometer.has_value());
+  EXPECT_EQ(without2.pitch_rad, 0.2);
+}
+
 TEST(WireSamples, SamplesSurviveTheBridgeAndTheWireBitForBit) {
   // GIVEN samples with values that do not survive any arithmetic
   const agent::ImuSample imu{123456789, 0.1234567890123, -1e-17, 3.0 * M_PI};

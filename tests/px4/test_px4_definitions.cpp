@@ -19,6 +19,7 @@
 #include <swa/px4/SensorGps_v1_15PubSubTypes.h>
 #include <swa/px4/SensorGps_v1_17PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
+#include <swa/px4/SensorCombined_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
@@ -198,6 +199,7 @@ std::vector<Used> usedIn(Release r) {
                     : wire<px4_msgs::msg::VehicleLocalPositionPubSubType>({})},
       {"VehicleOdometry", "VehicleOdometry_v1_15", "vehicle_visual_odometry",
        wire<px4_msgs::msg::VehicleOdometryPubSubType>({})},
+      {"SensorCombined", "SensorCombined_v1_15", "sensor_combined", wire<px4_msgs::msg::SensorCombinedPubSubType>({})},
   };
 }
 
@@ -251,13 +253,14 @@ TEST(Px4Definitions, TheFieldsSwaReadsOfVehicleStatusSitWherePx4PutsThemInEveryR
 TEST(Px4Definitions, MirroredConstantsAndTopicVersionsAreEveryReleases) {
   const std::vector<std::string> messages = {"VehicleAttitude",   "VehicleStatus",   "OffboardControlMode",
                                              "TrajectorySetpoint", "VehicleCommand", "VehicleCommandAck",
-                                             "SensorGps",          "VehicleLocalPosition", "VehicleOdometry"};
+                                             "SensorGps",          "VehicleLocalPosition", "VehicleOdometry",
+                                             "SensorCombined"};
   const std::map<std::string, std::string> topic = {
       {"VehicleAttitude", "vehicle_attitude"},     {"VehicleStatus", "vehicle_status"},
       {"OffboardControlMode", "offboard_control_mode"}, {"TrajectorySetpoint", "trajectory_setpoint"},
       {"VehicleCommand", "vehicle_command"},       {"VehicleCommandAck", "vehicle_command_ack"},
       {"SensorGps", "vehicle_gps_position"},       {"VehicleLocalPosition", "vehicle_local_position"},
-      {"VehicleOdometry", "vehicle_visual_odometry"}};
+      {"VehicleOdometry", "vehicle_visual_odometry"}, {"SensorCombined", "sensor_combined"}};
   for (const ReleaseDir& rd : kReleaseDirs) {
     SCOPED_TRACE(rd.tag);
     // GIVEN the release's definitions

@@ -337,14 +337,16 @@ void Px4SwarmTest::expectGnssLostAndRegainedThroughTheBridges(const std::string&
   EXPECT_EQ(readFile(run.dir / "events.csv").find("control_lost"), std::string::npos)
       << readFile(run.dir / "events.csv");
   // AND the commanded velocity does not jump when GNSS returns (the feed stops, the anchored hold returns, blended in
-  // over anchor.regain_ramp_s): from 0.5 s before to 2.5 s after it, no UAV's command changes faster than it did
-  // before, with GNSS and while the estimate was fed. Measured (4 UAVs, both autopilots): 11-59 m/s^2 around the
-  // regain against 22-85 before (the formation's own steps); with the hold switched on at once (regain_ramp_s 0) UAVs
-  // 1-3 stepped 38-52 m/s^2 in the first 2 s, more than UAVs 1 and 3 ever did before.
+  // over anchor.regain_ramp_s): from 0.5 s before to 1 s after it, no UAV's command changes faster than it did
+  // before, with GNSS and while the estimate was fed. Measured through PX4 with the accelerometer source (issue #44):
+  // 7-38 m/s^2 there against 19-77 before (the formation's own steps at each scan); with the hold switched on at once
+  // (regain_ramp_s 0) UAVs 1 and 3 stepped 65 and 29 m/s^2 within 0.5 s of the regain, more than they ever did before
+  // (38 and 19). A window reaching 2.5 s past the regain (as before issue #44) also takes in formation steps that
+  // have nothing to do with it: UAV 0 stepped 64 m/s^2 at 22.3 s with the ramp, after the ramp had ended.
   const replay::RecordedRun recorded = replay::readRecordedRun((run.dir / "run.mcap").string(), std::nullopt, false);
   ASSERT_EQ(recorded.uavs.size(), 4u);
   for (const auto& [uav, r] : recorded.uavs) {
-    const double before = largestCommandRate(r, 2.0, 19.5), regain = largestCommandRate(r, 19.5, 22.5);
+    const double before = largestCommandRate(r, 2.0, 19.5), regain = largestCommandRate(r, 19.5, 21.0);
     std::cout << "UAV " << uav << ": largest command change before the regain " << before
               << " m/s^2, around it " << regain << " m/s^2\n";
     EXPECT_GT(before, 0.0) << "UAV " << uav;

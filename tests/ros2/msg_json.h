@@ -29,8 +29,17 @@ inline json big(std::uint64_t v) { return std::to_string(v); }
 inline json toJson(const msg::MessageHeader& h) { return {{"stamp_ns", big(h.stamp_ns())}, {"seq", h.seq()}}; }
 
 inline json toJson(const msg::Imu& m) {
-  return {{"header", toJson(m.header())}, {"uav_id", m.uav_id()},         {"roll_rad", m.roll_rad()},
-          {"pitch_rad", m.pitch_rad()},   {"heading_rad", m.heading_rad()}};
+  return {{"header", toJson(m.header())},
+          {"uav_id", m.uav_id()},
+          {"roll_rad", m.roll_rad()},
+          {"pitch_rad", m.pitch_rad()},
+          {"heading_rad", m.heading_rad()},
+          {"has_accelerometer", m.has_accelerometer()},
+          {"accel_x_mps2", m.accel_x_mps2()},
+          {"accel_y_mps2", m.accel_y_mps2()},
+          {"accel_z_mps2", m.accel_z_mps2()},
+          {"accel_roll_rad", m.accel_roll_rad()},
+          {"accel_pitch_rad", m.accel_pitch_rad()}};
 }
 
 inline json toJson(const msg::Detections& m) {

@@ -130,7 +130,7 @@ test_layout_and_documents() {
     test "$(granted "$d/swa_sim/permissions.xml" publish)" = \
     "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' 'swa/uav*/sensors' swa/truth swa/events swa/clock \
       'rt/uav*/detections' 'rt/uav*/uvdar/measuredPoses' 'rt/px4_*/fmu/out/vehicle_attitude' \
-      'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_status_v1' \
+      'rt/px4_*/fmu/out/sensor_combined' 'rt/px4_*/fmu/out/vehicle_status' 'rt/px4_*/fmu/out/vehicle_status_v1' \
       'rt/px4_*/fmu/out/vehicle_command_ack' 'rt/px4_*/fmu/out/vehicle_gps_position' \
       'rt/px4_*/fmu/out/vehicle_local_position' 'rt/px4_*/fmu/out/vehicle_local_position_v1' \
       'rt/ap/v*/imu/experimental/data' 'rt/ap/v*/status' 'rt/ap/v*/navsat' 'rr/ap/v*/arm_motorsReply' \
@@ -199,7 +199,8 @@ test_bridges_and_naming() {
       rq/ap/v2/mode_switchRequest)"
   check "bridge 1 subscribes UAV 1's commands, its agent's state and its own vehicle's outputs (PX4, ArduPilot ap/v2)" \
     test "$(granted "$d/swa_bridge_1/permissions.xml" subscribe)" = \
-    "$(sorted swa/uav1/cmd_vel swa/uav1/state rt/drone_1/fmu/out/vehicle_attitude rt/drone_1/fmu/out/vehicle_status \
+    "$(sorted swa/uav1/cmd_vel swa/uav1/state rt/drone_1/fmu/out/vehicle_attitude rt/drone_1/fmu/out/sensor_combined \
+      rt/drone_1/fmu/out/vehicle_status \
       rt/drone_1/fmu/out/vehicle_status_v1 rt/drone_1/fmu/out/vehicle_command_ack \
       rt/drone_1/fmu/out/vehicle_gps_position rt/drone_1/fmu/out/vehicle_local_position \
       rt/drone_1/fmu/out/vehicle_local_position_v1 rt/ap/v2/imu/experimental/data rt/ap/v2/status \

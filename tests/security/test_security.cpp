@@ -34,6 +34,7 @@
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
+#include <swa/px4/SensorCombined_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleOdometry_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
@@ -192,6 +193,9 @@ void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
   const char* reader = out ? "px4_out_reader" : "px4_in_reader";
   if (endsWith(topic, "/vehicle_attitude")) {
     return createWith<px4_msgs::msg::VehicleAttitudePubSubType>(p, kind, topic, writer, reader);
+  }
+  if (endsWith(topic, "/sensor_combined")) {
+    return createWith<px4_msgs::msg::SensorCombinedPubSubType>(p, kind, topic, writer, reader);
   }
   if (endsWith(topic, "/vehicle_status")) {
     return createWith<px4_msgs::msg::VehicleStatusPubSubType>(p, kind, topic, writer, reader);

@@ -187,7 +187,16 @@ TEST(ScenarioFiles, GivenEachShippedScenario_WhenLoaded_ThenItHasTheIntendedValu
   EXPECT_TRUE(std::isinf(dvn.gnss.dropout_end_s));
   EXPECT_EQ(dvn.agent.formation.k, 2);
 
-  // AND there are exactly these six, and each one round-trips through its dump
+  // study_wind: issue #44's study; its base is 8 UAVs in a 5 m/s westerly reading the accelerometer, for 600 s
+  const Scenario wind = loadScenario(dir + "/study_wind.yaml");
+  EXPECT_EQ(wind.uav_count, 8);
+  EXPECT_EQ(wind.duration_s, 600.0);
+  EXPECT_EQ(wind.wind.mean_mps, 5.0);
+  EXPECT_EQ(wind.wind.direction_deg, 270.0);
+  EXPECT_EQ(wind.imu.source, agent::ImuSource::kAccelerometer);
+  EXPECT_EQ(wind.agent.focal.imu_source, agent::ImuSource::kAccelerometer);
+
+  // AND there are exactly these seven, and each one round-trips through its dump
   int count = 0;
   for (const auto& file : std::filesystem::directory_iterator(dir)) {
     if (file.path().extension() != ".yaml") continue;
@@ -195,7 +204,7 @@ TEST(ScenarioFiles, GivenEachShippedScenario_WhenLoaded_ThenItHasTheIntendedValu
     const Scenario loaded = loadScenario(file.path().string());
     EXPECT_EQ(yamlOf(parseScenario(yamlOf(loaded), "dump")), yamlOf(loaded)) << file.path();
   }
-  EXPECT_EQ(count, 6);
+  EXPECT_EQ(count, 7);
 }
 
 TEST(ScenarioOverride, GivenASetOfEachRequiredKey_WhenApplied_ThenExactlyThatFieldChanges) {
@@ -368,6 +377,45 @@ TEST(ScenarioParse, GivenAShortcutAndItsLongForm_ThenItIsAConflict) {
   EXPECT_EQ(parseScenario(knn, "<t>", {"agent.k=2", "agent.formation.k=5"}).agent.formation.k, 5);
   EXPECT_EQ(parseScenario("agent: {circle_fit: algebraic}\n", "<t>").agent.formation.circle_fit,
             agent::CircleFit::kAlgebraic);
+}
+
+TEST(ScenarioParse, GivenWindOrAccelerometerKeysThatChangeNothing_ThenEachIsAnErrorThatSaysWhy) {
+  // GIVEN a wind direction and turn rate without a mean wind, and the accelerometer's errors for tilt-reading agents
+  const ConfigError error = expectConfigError([] {
+    parseScenario("wind: {direction_deg: 90, turn_rate_dps: 0.1}\n"
+                  "imu: {source: tilt, attitude_error_std_rad: 0.01, accel_bias_std_mps2: 0.2, "
+                  "accel_noise_std_mps2: 0.5}\n",
+                  "<t>");
+  });
+  // THEN one error names all five, each with what turns it off
+  ASSERT_EQ(error.problems().size(), 5u) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "wind.direction_deg"), "applies to a mean wind only (wind.mean_mps is 0)"));
+  EXPECT_TRUE(contains(problemAbout(error, "wind.turn_rate_dps"), "a mean wind only"));
+  EXPECT_TRUE(contains(problemAbout(error, "imu.attitude_error_std_rad"),
+                       "applies to the accelerometer source only (imu.source is tilt)"));
+  EXPECT_TRUE(contains(problemAbout(error, "imu.accel_bias_std_mps2"), "the accelerometer source only"));
+  EXPECT_TRUE(contains(problemAbout(error, "imu.accel_noise_std_mps2"), "the accelerometer source only"));
+  // AND with a mean wind and the accelerometer each is taken, and the agents read what the simulator publishes
+  const Scenario ok = parseScenario(
+      "wind: {mean_mps: 5, direction_deg: 90, turn_rate_dps: 0.1}\ndynamics: {drag_per_s: 0.3}\n"
+      "imu: {source: accelerometer, attitude_error_std_rad: 0.01, accel_bias_std_mps2: 0.2}\n",
+      "<t>");
+  EXPECT_EQ(ok.wind.mean_mps, 5.0);
+  EXPECT_EQ(ok.wind.direction_deg, 90.0);
+  EXPECT_EQ(ok.wind.turn_rate_dps, 0.1);
+  EXPECT_EQ(ok.dynamics.drag_per_s, 0.3);
+  EXPECT_EQ(ok.imu.attitude_error_std_rad, 0.01);
+  EXPECT_EQ(ok.agent.focal.imu_source, agent::ImuSource::kAccelerometer);
+  EXPECT_EQ(parseScenario("imu: {source: tilt}\n", "<t>").agent.focal.imu_source, agent::ImuSource::kTilt);
+  // AND the agents' own key wins over the simulator's when given
+  EXPECT_EQ(parseScenario("imu: {source: tilt}\nagent: {focal: {imu_source: accelerometer}}\n", "<t>")
+                .agent.focal.imu_source,
+            agent::ImuSource::kAccelerometer);
+  // AND values out of their bounds are refused: a wind of 40 m/s, a negative drag, an unknown source
+  EXPECT_EQ(expectConfigError([] {
+              parseScenario("wind: {mean_mps: 40}\ndynamics: {drag_per_s: -0.1}\nimu: {source: gyro}\n", "<t>");
+            }).problems().size(),
+            3u);
 }
 
 TEST(ScenarioParse, GivenKeysTheChosenModesIgnore_ThenEachIsAnErrorThatSaysWhich) {

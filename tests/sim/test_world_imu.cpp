@@ -20,6 +20,11 @@ Vec2 derivedAcceleration(const agent::ImuSample& imu, double q_c) {
   return q_c * (agent::rotation(imu.heading_rad) * Vec2(imu.pitch_rad, imu.roll_rad));
 }
 
+ImuModel::Streams streams(std::uint64_t seed = 1) {
+  return {Rng(seed, 0, Stream::kImuBias), Rng(seed, 0, Stream::kImuNoise), Rng(seed, 0, Stream::kHeadingWalk),
+          Rng(seed, 0, Stream::kAccelBias), Rng(seed, 0, Stream::kAccelNoise)};
+}
+
 Scenario windyHover(int n) {
   Scenario s;
   s.uav_count = n;
@@ -37,12 +42,12 @@ TEST(WorldImu, TiltRoundTripThroughTheAgentConventionRecoversAccelerationPlusBia
   setup.noise_std = 0.0;
   setup.heading_noise_std_rad = 0.0;
   setup.bias_std = 0.05;
-  ImuModel imu(setup, 6.35, Rng(1, 0, Stream::kImuBias), Rng(1, 0, Stream::kImuNoise), Rng(1, 0, Stream::kHeadingWalk));
+  ImuModel imu(setup, 6.35, streams());
   ASSERT_GT(imu.bias_body_mps2().norm(), 0.0);
   for (const double heading : {0.0, 0.7, M_PI / 2, -2.5, M_PI}) {
     // WHEN the UAV accelerates at (0.8, -0.3) m/s^2 in the world with that heading
     const Vec2 a(0.8, -0.3);
-    const agent::ImuSample sample = imu.sample(123, a, heading);
+    const agent::ImuSample sample = imu.sample(123, a, a, heading);
     // THEN the agent's convention gives back the acceleration plus the bias turned into the world frame
     const Vec2 expected = a + agent::rotation(heading) * imu.bias_body_mps2();
     EXPECT_NEAR(derivedAcceleration(sample, 6.35).x(), expected.x(), 1e-12) << heading;
@@ -53,8 +58,7 @@ TEST(WorldImu, TiltRoundTripThroughTheAgentConventionRecoversAccelerationPlusBia
   // AND pitch is body-x, roll body-y: heading east, accelerating north is a positive roll only
   setup.bias_std = 0.0;
   const agent::ImuSample north =
-      ImuModel(setup, 6.35, Rng(1, 0, Stream::kImuBias), Rng(1, 0, Stream::kImuNoise), Rng(1, 0, Stream::kHeadingWalk))
-          .sample(0, Vec2(0, 0.635), 0.0);
+      ImuModel(setup, 6.35, streams()).sample(0, Vec2(0, 0.635), Vec2(0, 0.635), 0.0);
   EXPECT_NEAR(north.roll_rad, 0.1, 1e-15);
   EXPECT_NEAR(north.pitch_rad, 0.0, 1e-15);
 }
@@ -75,7 +79,7 @@ TEST(WorldImu, DerivedAccelerationNoiseHasTheConfiguredVarianceAroundTruth) {
     const auto& imu = world.sensors()[0].imu;
     ASSERT_TRUE(imu.has_value());  // every step at 100 Hz
     ASSERT_EQ(imu->stamp_ns, world.time_ns());
-    const Vec2 err = derivedAcceleration(*imu, q_c) - world.truth()[0].acceleration_mps2;
+    const Vec2 err = derivedAcceleration(*imu, q_c) - world.truth()[0].thrust_mps2;
     sum += err;
     sum2 += err.cwiseProduct(err);
     heading_err2 += std::pow(std::remainder(imu->heading_rad - world.truth()[0].heading_rad, 2 * M_PI), 2);
@@ -107,7 +111,7 @@ TEST(WorldImu, BiasIsConstantPerUavWithTheConfiguredSpread) {
   for (int k = 0; k < 50; ++k) {
     world.step();
     for (std::size_t i = 0; i < 200; ++i) {
-      const Vec2 bias_world = derivedAcceleration(*world.sensors()[i].imu, q_c) - world.truth()[i].acceleration_mps2;
+      const Vec2 bias_world = derivedAcceleration(*world.sensors()[i].imu, q_c) - world.truth()[i].thrust_mps2;
       // THEN the bias seen in the body frame does not change over time
       const Vec2 bias_body = agent::rotation(-world.truth()[i].heading_rad) * bias_world;
       if (k == 0) {

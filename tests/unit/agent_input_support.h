@@ -244,9 +244,12 @@ inline std::vector<Event> makeStream(const Scene& scene, StampNs t0, StampNs dur
   return out;
 }
 
+// The input tests drive the tilt input: their IMU samples are {stamp, roll, pitch, heading}, without the
+// accelerometer a default agent fuses (the accelerometer's own checks: test_geometry.cpp, test_agent_input_fuzz.cpp).
 inline AgentConfig configFor(Mode mode) {
   AgentConfig c;
   c.mode = mode;
+  c.focal.imu_source = ImuSource::kTilt;
   return c;
 }
 

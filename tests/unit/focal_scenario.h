@@ -41,12 +41,17 @@ struct FocalWorld {
     v += a * dt;
   }
 
-  // Tilt consistent with the true acceleration: body acceleration = q_c [pitch, roll] (DESIGN §3.4).
+  // Tilt consistent with the true acceleration: body acceleration = q_c [pitch, roll] (DESIGN §3.4); and an
+  // accelerometer that measures the same acceleration, read with a level attitude, so that either source
+  // (focal.imu_source) sees one measurement.
   ImuSample imu(StampNs t) {
     std::normal_distribution<double> n(0.0, 1.0);
     const Vec2 meas = a + bias + opt.acc_noise_std * Vec2(n(rng), n(rng));
-    const Vec2 body = rotation(-opt.heading_rad) * meas / opt.q_c;
-    return ImuSample{t, body.y(), body.x(), opt.heading_rad};
+    const Vec2 body_acc = rotation(-opt.heading_rad) * meas;
+    const Vec2 body = body_acc / opt.q_c;
+    AccelerometerSample acc;
+    acc.specific_force_body_mps2 = Vec3(body_acc.x(), body_acc.y(), kStandardGravity_mps2);
+    return ImuSample{t, body.y(), body.x(), opt.heading_rad, acc};
   }
 
   DetectionSet detections(StampNs t) {

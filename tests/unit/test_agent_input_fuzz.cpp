@@ -178,18 +178,36 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
       s.roll_rad = fz.value(-0.85, 0.85, 0.05);
       s.pitch_rad = fz.value(-0.85, 0.85, 0.05);
       s.heading_rad = fz.value(-4.0, 4.0, 0.05);
-      const bool finite = std::isfinite(s.roll_rad) && std::isfinite(s.pitch_rad) && std::isfinite(s.heading_rad);
+      // Mostly with an accelerometer (message set 5), sometimes without: what a tilt-only bridge sends.
+      if (fz.chance(0.95)) {
+        AccelerometerSample a;
+        a.roll_rad = fz.value(-0.85, 0.85, 0.02);
+        a.pitch_rad = fz.value(-0.85, 0.85, 0.02);
+        a.specific_force_body_mps2 =
+            Vec3(fz.value(-20.0, 20.0, 0.02), fz.value(-20.0, 20.0, 0.02), fz.value(-200.0, 200.0, 0.02));
+        s.accelerometer = a;
+      }
+      const AccelerometerSample* a = s.accelerometer ? &*s.accelerometer : nullptr;
+      const bool finite = std::isfinite(s.roll_rad) && std::isfinite(s.pitch_rad) && std::isfinite(s.heading_rad) &&
+                          (a == nullptr || (a->specific_force_body_mps2.allFinite() && std::isfinite(a->roll_rad) &&
+                                            std::isfinite(a->pitch_rad)));
       const bool tilt_ok = std::abs(s.roll_rad) <= lim.max_tilt_rad && std::abs(s.pitch_rad) <= lim.max_tilt_rad &&
                            std::abs(s.heading_rad) <= lim.max_abs_heading_rad;
+      // An agent fusing the accelerometer needs one, level enough and within a MEMS part's range.
+      const bool accel_ok = config.focal.imu_source != ImuSource::kAccelerometer ||
+                            (a != nullptr && std::abs(a->roll_rad) <= lim.max_tilt_rad &&
+                             std::abs(a->pitch_rad) <= lim.max_tilt_rad &&
+                             a->specific_force_body_mps2.norm() <= kMaxSpecificForce_mps2);
       if (!finite) {
         ++res.bad, ++res.generated.nonfinite;
-      } else if (!tilt_ok) {
+      } else if (!tilt_ok || !accel_ok) {
         ++res.bad, ++res.generated.implausible;
       } else if (countStamp(oracle.judge(0, s.stamp_ns), res)) {
         oracle.have_heading = true;
       }
       what = "IMU stamp " + std::to_string(s.stamp_ns) + " roll " + std::to_string(s.roll_rad) + " pitch " +
-             std::to_string(s.pitch_rad) + " heading " + std::to_string(s.heading_rad);
+             std::to_string(s.pitch_rad) + " heading " + std::to_string(s.heading_rad) +
+             (a ? " accelerometer |f| " + std::to_string(a->specific_force_body_mps2.norm()) : " no accelerometer");
       const VelocityCommand c = agent.onImu(s);
       ++imu_count;
       if (!c.velocity_mps.allFinite() || !(c.velocity_mps.norm() <= v_max + 1e-12)) {

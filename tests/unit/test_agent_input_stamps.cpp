@@ -18,6 +18,12 @@
 namespace swa::agent {
 namespace {
 
+AgentConfig tiltOnly() {
+  AgentConfig c;
+  c.focal.imu_source = ImuSource::kTilt;
+  return c;
+}
+
 using testing::FocalWorld;
 
 constexpr StampNs kStepNs = 10'000'000;  // 100 Hz
@@ -137,7 +143,7 @@ TEST(AgentStamps, DetectionsOffTheImuClockAreRejected) {
 }
 
 TEST(AgentLimits, HeadingBeyondFourPiIsImplausible) {
-  Agent agent{AgentConfig{}};
+  Agent agent{tiltOnly()};  // tilt-only samples below
   ImuSample s;
   s.stamp_ns = 1;
   s.heading_rad = 1e300;  // before issue #11: accepted
@@ -171,7 +177,7 @@ TEST(AgentLimits, SaturatedCommandIsNeverARoundingStepOverTheLimit) {
 
 TEST(AgentLimits, IdsAboveTheSwarmsLargestAreCorrupt) {
   // GIVEN the default limit (255: the simulator's largest UAV id) and detections of ids 255, 256 and 1,000,000
-  Agent agent{AgentConfig{}};
+  Agent agent{tiltOnly()};  // tilt-only samples below
   ImuSample s;
   s.stamp_ns = 1;
   agent.onImu(s);

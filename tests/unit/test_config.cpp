@@ -442,7 +442,7 @@ TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEvery
   std::ifstream file(path);
   const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
-  EXPECT_EQ(keysOf(text).size(), 48u);
+  EXPECT_EQ(keysOf(text).size(), 49u);
   EXPECT_TRUE(contains(text, "  # k: 3 ")) << text;
   EXPECT_TRUE(contains(text, "#   gain: 0.2 ")) << text;
   EXPECT_TRUE(contains(text, "#   gnss_min_std_m: 0.05 ")) << text;
@@ -564,7 +564,7 @@ TEST(AgentConfigApplies, GivenDetectorKeysThatChangeNothing_ThenEachIsAnErrorTha
 
 TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
   const std::string yaml = toYaml(AgentConfig{});
-  EXPECT_EQ(keysOf(yaml).size(), 48u);
+  EXPECT_EQ(keysOf(yaml).size(), 49u);
   EXPECT_TRUE(contains(yaml, "k_p: 0.7")) << yaml;
   // AND the three keys the defaults ignore are written as comments that say so
   EXPECT_TRUE(contains(yaml, "  # k: 3")) << yaml;

@@ -40,6 +40,7 @@ TEST(HeadingControl, ALimitedSensorTurnsItsAxisToTheFacingTheShortWayWithinTheLi
 
 TEST(HeadingControl, TheAgentsCommandCarriesTheRateOnlyWithALimitedSensor) {
   AgentConfig config;
+  config.focal.imu_source = ImuSource::kTilt;  // the samples below are tilt-only
   ImuSample imu;
   imu.stamp_ns = 10'000'000;
   imu.heading_rad = 1.0;

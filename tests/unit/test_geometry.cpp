@@ -32,7 +32,9 @@ TEST(Geometry, NeighbourAheadOfUavHeadingNorthIsNorthAndLeftIsWest) {
 
 TEST(Geometry, AgentRotatesDetectionsByItsImuHeading) {
   // GIVEN an agent whose IMU reports heading 30 deg, and one identified neighbour 8 m straight ahead
-  Agent agent{AgentConfig{}};
+  AgentConfig cfg;
+  cfg.focal.imu_source = ImuSource::kTilt;  // a tilt-only sample below
+  Agent agent{cfg};
   const double psi = 30.0 * M_PI / 180.0;
   agent.onImu({0, 0.0, 0.0, psi});
   DetectionSet set;
@@ -51,6 +53,7 @@ TEST(Geometry, TiltToAccelerationFollowsDesignConvention) {
   // GIVEN heading pi/2 and pitch 0.1 rad (body-x acceleration q_c * 0.1 by DESIGN §3.4), no roll
   AgentConfig cfg;
   cfg.mode = Mode::kStandalone;
+  cfg.focal.imu_source = ImuSource::kTilt;
   Agent agent{cfg};
   agent.onGnss({0, true, Vec2(0, 0), 0.5});
   // WHEN many IMU samples arrive (the acceleration state converges to the measurement)
@@ -59,6 +62,51 @@ TEST(Geometry, TiltToAccelerationFollowsDesignConvention) {
   const Vec2 a = agent.absolute().acceleration();
   EXPECT_NEAR(a.x(), 0.0, 0.05);
   EXPECT_NEAR(a.y(), 0.635, 0.1);
+}
+
+TEST(Geometry, AccelerometerSourceTurnsTheSpecificForceLevelAndIgnoresTheTilt) {
+  // GIVEN an agent told to use the accelerometer, heading pi/2
+  AgentConfig cfg;
+  cfg.mode = Mode::kStandalone;
+  cfg.focal.imu_source = ImuSource::kAccelerometer;
+  Agent agent{cfg};
+  agent.onGnss({0, true, Vec2(0, 0), 0.5});
+  // WHEN its samples carry a tilt that says "accelerating east" (as in a wind), and an accelerometer leaning 0.1
+  // rad forward whose specific force, turned level, is 0.5 m/s^2 forward (body x) and g up
+  AccelerometerSample acc;
+  acc.pitch_rad = 0.1;
+  acc.specific_force_body_mps2 =
+      tiltRotation(0.0, 0.1).transpose() * Vec3(0.5, 0.0, kStandardGravity_mps2);
+  for (int k = 1; k <= 300; ++k) {
+    const VelocityCommand c = agent.onImu({k * 10'000'000LL, 0.0, -0.2, M_PI / 2, acc});
+    ASSERT_TRUE(c.fresh);
+  }
+  // THEN the estimated acceleration is the accelerometer's, 0.5 m/s^2 north, not the tilt's
+  const Vec2 a = agent.absolute().acceleration();
+  EXPECT_NEAR(a.x(), 0.0, 0.05);
+  EXPECT_NEAR(a.y(), 0.5, 0.05);
+  // AND a sample without an accelerometer is refused and counted, never read as a tilt
+  const VelocityCommand refused = agent.onImu({301 * 10'000'000LL, 0.0, 0.1, M_PI / 2});
+  EXPECT_FALSE(refused.fresh);
+  EXPECT_EQ(agent.diagnostics().rejected.implausible, 1u);
+  // AND so is one whose specific force is beyond a MEMS accelerometer's range (16 g), or not finite
+  acc.specific_force_body_mps2 = Vec3(0.0, 0.0, 17.0 * kStandardGravity_mps2);
+  EXPECT_FALSE(agent.onImu({302 * 10'000'000LL, 0.0, 0.0, M_PI / 2, acc}).fresh);
+  EXPECT_EQ(agent.diagnostics().rejected.implausible, 2u);
+  acc.specific_force_body_mps2 = Vec3(0.0, std::nan(""), 9.8);
+  EXPECT_FALSE(agent.onImu({303 * 10'000'000LL, 0.0, 0.0, M_PI / 2, acc}).fresh);
+  EXPECT_EQ(agent.diagnostics().rejected.nonfinite, 1u);
+}
+
+TEST(Geometry, TiltRotationLeansBodyZByPitchTowardsXAndByRollTowardsY) {
+  const Vec3 z = tiltRotation(0.2, 0.3) * Vec3::UnitZ();
+  EXPECT_NEAR(z.x(), std::sin(0.3) * std::cos(0.2), 1e-15);
+  EXPECT_NEAR(z.y(), std::sin(0.2), 1e-15);
+  EXPECT_NEAR(z.z(), std::cos(0.3) * std::cos(0.2), 1e-15);
+  // AND it is a rotation
+  const Mat3 r = tiltRotation(-0.7, 1.1);
+  EXPECT_NEAR((r * r.transpose() - Mat3::Identity()).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(r.determinant(), 1.0, 1e-15);
 }
 
 }  // namespace

@@ -51,8 +51,8 @@ const char* linkName(Link link) {
 
 BridgeCore::BridgeCore(const BridgeConfig& config) : config_(config) {}
 
-std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_us, const Quaternion& q,
-                                                       double now_s) {
+std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_us, const Quaternion& q, double now_s,
+                                                       const std::optional<ardupilot::SpecificForce>& force_frd) {
   ++counters_.attitude_in;
   const std::optional<agent::StampNs> stamp = stampNsOf(timestamp_us);
   if (!isAttitude(q) || !stamp) {
@@ -83,7 +83,17 @@ std::optional<agent::ImuSample> BridgeCore::onAttitude(std::uint64_t timestamp_u
   newest_us_ = timestamp_us;
   newest_at_s_ = now_s;
   const SwaAttitude a = swaAttitude(eulerOf(q));
-  return agent::ImuSample{*stamp, a.roll_rad, a.pitch_rad, a.heading_rad};
+  agent::ImuSample imu{*stamp, a.roll_rad, a.pitch_rad, a.heading_rad};
+  if (force_frd) {
+    // FRD -> FLU; the attitude's roll and pitch are SWA's tilt angles exactly (px4/frames.h: flippedBody), so the
+    // agent turns the force level with the same rotation the vehicle has.
+    agent::AccelerometerSample acc;
+    acc.specific_force_body_mps2 = px4::flippedBody(agent::Vec3(force_frd->x, force_frd->y, force_frd->z));
+    acc.roll_rad = a.roll_rad;
+    acc.pitch_rad = a.pitch_rad;
+    imu.accelerometer = acc;
+  }
+  return imu;
 }
 
 Outbox BridgeCore::onCommand(const agent::VelocityCommand& command, double now_s) {

@@ -128,6 +128,7 @@ class Reader {
       values_[d.key] = values_.at(d.source);
       const Spec& spec = *schema_.find(d.key);
       const std::string& name = names_[d.key];
+      if (!std::holds_alternative<double>(values_[d.key])) continue;  // a choice: the source's own values are valid
       if (auto p = numberProblem(spec, number(values_, d.key), name, plainValue(spec, values_[d.key]))) bad(d.key, *p);
     }
   }

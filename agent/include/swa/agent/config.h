@@ -26,6 +26,12 @@ inline constexpr std::pair<NeighbourhoodRule, const char*> kNeighbourhoodRuleNam
 inline constexpr std::pair<DetectionInput, const char*> kDetectionInputNames[] = {
     {DetectionInput::kSwa, "swa"}, {DetectionInput::kVisionMsgs, "vision_msgs"}, {DetectionInput::kUvdar, "uvdar"}};
 
+// Where the focal filter's acceleration comes from (issue #44): the attitude alone (the paper's q_c model, which
+// sees the thrust only), or the accelerometer's specific force turned by the attitude (every force, drag included).
+enum class ImuSource { kTilt, kAccelerometer };
+inline constexpr std::pair<ImuSource, const char*> kImuSourceNames[] = {{ImuSource::kTilt, "tilt"},
+                                                                      {ImuSource::kAccelerometer, "accelerometer"}};
+
 struct SurroundingsConfig {
   // Q_o diagonal blocks, per `q_ref_dt_s` of prediction (scaled linearly with the actual step).
   double q_pos_m2 = 1e-3;
@@ -88,6 +94,7 @@ struct FocalConfig {
   double r_pos_m2 = 0.1;
   double r_acc_m2ps4 = 2.25;       // R_a
   double q_c_mps2 = 6.35;          // tilt (rad) -> lateral acceleration
+  ImuSource imu_source = ImuSource::kAccelerometer;  // issue #44: holds better in gusts and wind (BENCHMARKS.md)
   double frame_timeout_s = 2.0;    // without a frame for this long the agent stops trusting dead reckoning
   // IMU-bias removal (DESIGN §3.4): the tilt-derived acceleration minus its running mean over this window. Assumes
   // a hovering UAV's true acceleration averages to zero over the window (its velocity stays bounded), so the mean is
@@ -176,5 +183,6 @@ std::string toString(Mode mode);
 std::string toString(CircleFit fit);
 std::string toString(NeighbourhoodRule rule);
 std::string toString(DetectionInput input);
+std::string toString(ImuSource source);
 
 }  // namespace swa::agent

@@ -10,6 +10,11 @@ namespace swa::agent {
 
 using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+// Standard gravity (BIPM, 3rd CGPM 1901): what an accelerometer at rest reads, up to local variation of < 0.3 %.
+constexpr double kStandardGravity_mps2 = 9.80665;
 
 inline Mat2 rotation(double psi) {
   const double c = std::cos(psi);
@@ -17,6 +22,22 @@ inline Mat2 rotation(double psi) {
   Mat2 R;
   R << c, -s, s, c;
   return R;
+}
+
+// The body's tilt in SWA's convention (DESIGN §3.4): body -> level frame (x along the heading, y left, z up) for a
+// body tilted so that its z axis leans by `pitch_rad` towards level +x and by `roll_rad` towards level +y, so that
+// small angles (pitch, roll) give the lateral acceleration q_c (pitch, roll) of the paper's tilt model. The z axis
+// of the body in the level frame is (sin pitch cos roll, sin roll, cos pitch cos roll).
+inline Mat3 tiltRotation(double roll_rad, double pitch_rad) {
+  const double cr = std::cos(roll_rad);
+  const double sr = std::sin(roll_rad);
+  const double cp = std::cos(pitch_rad);
+  const double sp = std::sin(pitch_rad);
+  Mat3 pitch;  // about level y, +pitch leans z towards +x
+  pitch << cp, 0.0, sp, 0.0, 1.0, 0.0, -sp, 0.0, cp;
+  Mat3 roll;  // about x by -roll, which leans z towards +y
+  roll << 1.0, 0.0, 0.0, 0.0, cr, sr, 0.0, -sr, cr;
+  return pitch * roll;
 }
 
 inline bool isFinite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }

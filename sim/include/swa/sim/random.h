@@ -27,6 +27,8 @@ enum class Stream : std::uint32_t {
   kGnssNoise = 10,
   kHeadingWalk = 11,  // the compass bias's random walk
   kMpsLatency = 12,   // the detection sets' latency jitter
+  kAccelBias = 13,    // the accelerometer part's constant errors: attitude error, then the three biases
+  kAccelNoise = 14,   // the accelerometer part's white noise
 };
 
 // Owner of the streams that belong to the whole world rather than one UAV (the common gust).

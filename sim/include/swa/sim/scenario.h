@@ -39,6 +39,11 @@ struct DynamicsSetup {
   double heading_rate_std_radps = 0.0;  // per-UAV constant turn rate (0 = constant heading)
   double yaw_lag_s = 0.3;               // first-order response of the yaw rate to the commanded one
   double max_yaw_rate_radps = 1.0;      // commanded yaw rates are clamped to this (the vehicle's limit)
+  // Linear aerodynamic drag per unit mass on the air-relative velocity, a_drag = -k (v - w) (issue #44). Default:
+  // PX4's EKF2_MCOEF (src/modules/ekf2/params_drag.yaml, 0.15 1/s), the rotor momentum drag PX4 assumes for a
+  // small multirotor. The autopilot's velocity loop holds the commanded velocity against it (its integrator), so
+  // drag changes the attitude the UAV flies with, not its path: see World::step.
+  double drag_per_s = 0.15;
 };
 
 struct WindSetup {
@@ -46,6 +51,11 @@ struct WindSetup {
   double gust_corr_s = 5.0;
   double common_std = 0.0;         // m/s^2, the same OU gust for every UAV (moves the swarm as a block)
   double common_corr_s = 20.0;
+  // The mean wind, the same for every UAV (issue #44): speed, and the direction it blows from, clockwise from north
+  // (the meteorological convention: 270 = a westerly, blowing east), turning at turn_rate_dps.
+  double mean_mps = 0.0;
+  double direction_deg = 270.0;
+  double turn_rate_dps = 0.0;      // deg/s, clockwise positive like the direction
 };
 
 struct ImuSetup {
@@ -57,6 +67,18 @@ struct ImuSetup {
   // the motors' field) and a slow random walk on top (temperature, currents), both 0 by default: an ideal compass.
   double heading_bias_std_rad = 0.0;
   double heading_bias_walk_radps = 0.0;  // rad/sqrt(s): the std of the walk's change over one second
+  // Which acceleration the agents fuse (agent.focal.imu_source unless given): the simulator publishes both.
+  agent::ImuSource source = agent::ImuSource::kAccelerometer;
+  // The accelerometer part (issue #44), read with the autopilot's attitude estimate. Its constant per-UAV tilt
+  // error becomes an acceleration bias of g x the error; the default 0.005 rad is the tilt source's bias_std (0.05
+  // m/s^2 / g), so that both sources start from the same attitude error. The accelerometer's own errors are a
+  // MEMS part's (TDK InvenSense ICM-20948, DS-000189 rev 1.3, table 2, as on Pixhawk-class boards): zero-g offset
+  // change 0.8 mg/degC over a 20 degC difference from the calibration = 16 mg = 0.157 m/s^2 per axis, constant;
+  // white noise: PX4's EKF2_ACC_NOISE (0.35 m/s^2), what the autopilot assumes in flight, motors' vibration
+  // included (the part alone, 230 ug/sqrt(Hz) over 50 Hz, is 0.016 m/s^2).
+  double attitude_error_std_rad = 0.005;
+  double accel_bias_std_mps2 = 0.157;
+  double accel_noise_std_mps2 = 0.35;
 };
 
 struct MpsSetup {

@@ -33,11 +33,13 @@ struct UavTruth {
   int id = 0;
   agent::Vec2 position_m = agent::Vec2::Zero();
   agent::Vec2 velocity_mps = agent::Vec2::Zero();
-  agent::Vec2 acceleration_mps2 = agent::Vec2::Zero();  // achieved over the last step (what the IMU tilt encodes)
+  agent::Vec2 acceleration_mps2 = agent::Vec2::Zero();  // achieved over the last step (what the accelerometer reads)
   double heading_rad = 0.0;                              // (-pi, pi], body x from world x, counter-clockwise
   bool gnss_valid = true;                                // the dropout schedule at this time (also when not sampled)
   bool failsafe = false;                                 // braking to hover during the last step
   agent::Vec2 gust_mps2 = agent::Vec2::Zero();           // wind acceleration applied in the last step (own + common)
+  agent::Vec2 thrust_mps2 = agent::Vec2::Zero();         // the thrust's lateral share (what the tilt encodes)
+  agent::Vec2 wind_mps = agent::Vec2::Zero();            // the mean wind now (the same for every UAV)
 };
 
 enum class EventKind { kGnssLost, kGnssRestored, kCollision, kFailsafeOn, kFailsafeOff };
@@ -121,6 +123,7 @@ class World {
     double commanded_turn_rad = 0.0;       // heading turned by yaw commands, on top of the scenario's own turn
     agent::StampNs setpoint_arrival_ns = 0;  // t = 0 stands for "none yet": the timeout then runs from the start
     agent::Vec2 last_gust_mps2 = agent::Vec2::Zero();
+    agent::Vec2 thrust_mps2 = agent::Vec2::Zero();  // lateral thrust per unit mass over the last step
     bool failsafe = false;
     bool gnss_valid = true;
   };
@@ -131,6 +134,7 @@ class World {
   void updateGnssAvailability();
   void detectCollisions();
   void generateSensors();
+  agent::Vec2 meanWind(agent::StampNs at_ns) const;  // air velocity of the mean wind in the world frame
 
   Scenario scenario_;
   agent::StampNs dt_ns_;

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "swa/agent/samples.h"
+#include "swa/autopilot/quaternion_order.h"
 #include "swa/px4/frames.h"
 
 namespace swa::autopilot {
@@ -103,7 +104,10 @@ class BridgeCore {
   // than a second behind the newest is the vehicle's clock restarted, and one ahead of it by more than now_s saw pass
   // plus a day is the clock set (ArduPilot: boot time -> UTC): both accepted, and the commands of the old timeline
   // are forgotten.
-  std::optional<agent::ImuSample> onAttitude(std::uint64_t timestamp_us, const Quaternion& q, double now_s);
+  // With `force_frd`, the accelerometer's specific force in FRD body axes read with this attitude, the sample
+  // carries the accelerometer (FLU body, the same attitude) for an agent that fuses it (focal.imu_source).
+  std::optional<agent::ImuSample> onAttitude(std::uint64_t timestamp_us, const Quaternion& q, double now_s,
+                                             const std::optional<ardupilot::SpecificForce>& force_frd = std::nullopt);
   // The agent's command (cmd_vel): its setpoint and heartbeat to send at once, or nothing if it is not accepted.
   Outbox onCommand(const agent::VelocityCommand& command, double now_s);
   // The vehicle's state (PX4: vehicle_status's arming_state ARMED and nav_state; ArduPilot: status's armed and mode).

@@ -45,6 +45,10 @@ struct SwaAttitude {
   double roll_rad = 0.0, pitch_rad = 0.0, heading_rad = 0.0;
 };
 SwaAttitude swaAttitude(const Euler& e);
+// A body vector between PX4's FRD and SWA's FLU (x forward, y left, z up): y and z flip, the same both ways. With
+// swaAttitude()'s roll and pitch, SWA's tilt rotation (agent::tiltRotation) turns an FLU vector level exactly as
+// PX4's attitude turns the FRD one (conjugating Ry(theta) Rx(phi) by diag(1, -1, -1) gives Ry(-theta) Rx(phi)).
+inline agent::Vec3 flippedBody(const agent::Vec3& v) { return {v.x(), -v.y(), -v.z()}; }
 Euler px4Euler(const SwaAttitude& a);
 
 // Angle in (-pi, pi].

@@ -65,6 +65,13 @@ bool decodePayload(const Payload& payload, typename PubSubType::type& out) {
   }
 }
 
+// `payload` as today's PubSubType, also when it was written by an earlier message set whose type has since grown
+// by fields appended at its end (Imu in set 5): a payload of exactly `earlier_bytes` (the earlier layout's size,
+// encapsulation included) has its missing tail read as zeros (false, 0) and is re-encoded at today's size. Anything
+// else is returned as it is (what does not decode is then dropped by its reader).
+template <class PubSubType>
+Payload upgradeAppended(const Payload& payload, std::size_t earlier_bytes);
+
 // The bytes a DataWriter of PubSubType sends for `m` (CDR encapsulation header included); empty if it cannot.
 template <class PubSubType>
 Payload encodePayload(typename PubSubType::type m) {
@@ -72,6 +79,19 @@ Payload encodePayload(typename PubSubType::type m) {
   eprosima::fastrtps::rtps::SerializedPayload_t p(type.getSerializedSizeProvider(&m)());
   if (!type.serialize(&m, &p)) return {};
   return Payload(p.data, p.data + p.length);
+}
+
+template <class PubSubType>
+Payload upgradeAppended(const Payload& payload, std::size_t earlier_bytes) {
+  typename PubSubType::type m;
+  PubSubType type;
+  if (payload.size() != earlier_bytes || payload.size() >= type.m_typeSize) return payload;
+  if (decodePayload<PubSubType>(payload, m)) return payload;
+  Payload padded = payload;
+  padded.resize(type.m_typeSize, 0);
+  if (!decodePayload<PubSubType>(padded, m)) return payload;
+  Payload upgraded = encodePayload<PubSubType>(m);
+  return upgraded.empty() ? payload : upgraded;
 }
 
 }  // namespace swa::dds

@@ -23,14 +23,15 @@ namespace swa::wire {
 std::optional<std::uint64_t> timestampUsOf(const builtin_interfaces::msg::Time& t);
 
 // The attitude in an IMU message, read in `layout`; its orientation fields as they came and its linear acceleration
-// (for --ap-quaternion auto). And an IMU message of an attitude, its fields in `layout`, with the specific force of a
-// vehicle at rest (the stand-in is kinematic: it measures no acceleration) and no angular velocity (its covariance
-// says "no estimate").
+// (for --ap-quaternion auto). And an IMU message of an attitude, its fields in `layout`, with the specific force
+// `force_frd` (FRD body, m/s^2), or without it that of a vehicle at rest, and no angular velocity (its covariance says
+// "no estimate").
 px4::Quaternion attitudeOf(const sensor_msgs::msg::Imu& m, ardupilot::QuaternionLayout layout);
 ardupilot::OrientationFields orientationFieldsOf(const sensor_msgs::msg::Imu& m);
 ardupilot::SpecificForce specificForceOf(const sensor_msgs::msg::Imu& m);
 sensor_msgs::msg::Imu imuMessage(std::uint64_t timestamp_us, const px4::Quaternion& q,
-                                 ardupilot::QuaternionLayout layout = ardupilot::QuaternionLayout::kRos);
+                                 ardupilot::QuaternionLayout layout = ardupilot::QuaternionLayout::kRos,
+                                 const std::optional<ardupilot::SpecificForce>& force_frd = std::nullopt);
 
 ardupilot_msgs::msg::Status statusMessage(std::uint64_t timestamp_us, bool armed, std::uint8_t mode, bool failsafe_ekf);
 

@@ -9,6 +9,7 @@
 
 #include <swa/msg/BridgeState.h>
 #include <swa/px4/OffboardControlMode_v1_15.h>
+#include <swa/px4/SensorCombined_v1_15.h>
 #include <swa/px4/TrajectorySetpoint_v1_15.h>
 #include <swa/px4/VehicleAttitude_v1_15.h>
 #include <swa/px4/VehicleCommandAck_v1_15.h>
@@ -26,6 +27,9 @@ namespace swa::wire {
 
 px4::Quaternion quaternionOf(const px4_msgs::msg::VehicleAttitude& m);
 px4_msgs::msg::VehicleAttitude vehicleAttitude(std::uint64_t timestamp_us, const px4::Quaternion& q);
+// The accelerometer part of sensor_combined, sampled at `timestamp_us` (relative time 0), FRD body, m/s^2; the gyro
+// left at 0 (SWA reads none), the integration periods those of a 100 Hz IMU.
+px4_msgs::msg::SensorCombined sensorCombined(std::uint64_t timestamp_us, const agent::Vec3& specific_force_frd);
 
 // A velocity-only setpoint: position, acceleration, jerk and yaw NaN (not controlled), as PX4's offboard velocity
 // control wants them; yawspeed the setpoint's (yaw NaN: PX4 follows the rate, 0 holds the heading).
