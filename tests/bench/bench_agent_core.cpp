@@ -310,6 +310,12 @@ AgentInputs makeAgentInputs(int neighbours = kSwarmNeighbours) {
     s.heading_rad = 0.3 + 0.2 * std::sin(ringPhase(k));
     s.roll_rad = 0.01 * n01(rng);
     s.pitch_rad = 0.01 * n01(rng);
+    // The accelerometer the default agent fuses (focal.imu_source): the same small tilt, gravity and some noise.
+    AccelerometerSample acc;
+    acc.roll_rad = s.roll_rad;
+    acc.pitch_rad = s.pitch_rad;
+    acc.specific_force_body_mps2 = Vec3(0.3 * n01(rng), 0.3 * n01(rng), kStandardGravity_mps2 + 0.3 * n01(rng));
+    s.accelerometer = acc;
 
     const double heading = s.heading_rad;  // the detection set of slot k is sent with IMU slot k
     const Mat2 to_body = rotation(-heading);
