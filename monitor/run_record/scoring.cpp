@@ -1,5 +1,7 @@
 #include "swa/run_record/scoring.h"
 
+#include "swa/monitor/svg_plot.h"
+
 namespace swa::record {
 
 Scoring scoringOf(const sim::Scenario& scenario) {
@@ -7,6 +9,13 @@ Scoring scoringOf(const sim::Scenario& scenario) {
   s.metrics.formation = scenario.agent.formation;
   s.metrics.window_start_s = sim::driftWindowStart(scenario);
   s.score_estimates = scenario.agent.mode != agent::Mode::kStandalone;
+  // Issue #44: every UAV leans into a steady wind alike, and a tilt-reading agent takes the lean for acceleration.
+  if (scenario.wind.mean_mps > 0.0 && scenario.agent.focal.imu_source == agent::ImuSource::kTilt) {
+    s.failure_hint = "the agents read their acceleration from the tilt (imu.source tilt) in a mean wind of " +
+                     monitor::formatFixed(scenario.wind.mean_mps, 1) +
+                     " m/s: each takes its lean into the wind for acceleration, all alike, which nothing "
+                     "relative can see, so the swarm rides the wind (imu.source accelerometer sees the wind's push)";
+  }
   return s;
 }
 

@@ -63,6 +63,7 @@ Verdict judge(const VerdictInput& in) {
   } else {
     v.outcome = v.reasons.empty() ? Outcome::kPass : Outcome::kFail;
   }
+  if (v.outcome == Outcome::kFail && !in.failure_hint.empty()) v.reasons.push_back("likely because " + in.failure_hint);
   return v;
 }
 

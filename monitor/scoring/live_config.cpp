@@ -9,6 +9,7 @@ LiveRunConfig liveRunConfig(const sim::Scenario& scenario) {
   const record::Scoring scoring = record::scoringOf(scenario);  // as swa_batch's closed loop
   c.metrics = scoring.metrics;
   c.score_estimates = scoring.score_estimates;
+  c.failure_hint = scoring.failure_hint;
   c.window_from_events = false;
   c.mode = scenario.agent.mode;
   return c;

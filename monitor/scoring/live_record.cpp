@@ -42,7 +42,7 @@ RunRecord makeRunRecord(const LiveRun& run, const LiveRunConfig& config, const R
   r.scoring.window_start_s = run.windowStartS();
   r.summary = run.summary();
   r.verdict = record::judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.scoring,
-                     run.coverage().missed(), run.failsafeNow(), run.outOfControlNow()});
+                             run.coverage().missed(), run.failsafeNow(), run.outOfControlNow(), config.failure_hint});
   r.counts = inputCounts(run);
   r.restarts = context.restarts;
   r.events = run.events();

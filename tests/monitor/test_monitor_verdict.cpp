@@ -6,6 +6,7 @@
 #include <string>
 
 #include "monitor_options.h"
+#include "swa/run_record/scoring.h"
 #include "swa/run_record/verdict.h"
 #include "verdict_input.h"
 
@@ -44,6 +45,35 @@ TEST(MonitorVerdict, UavsOnFailsafeAtTheEndFailTheRunWhateverTheFormation) {
   in.missed = {{10.0, 12.0}};
   EXPECT_EQ(judge(in).outcome, Outcome::kIncomplete);
   EXPECT_TRUE(mentions(judge(in), "on failsafe"));
+}
+
+TEST(MonitorVerdict, AFailInAWindTheTiltCannotReadSaysWhy) {
+  // GIVEN the scoring of a tilt-reading swarm in an 8 m/s wind, and of the same swarm reading its accelerometer
+  sim::Scenario s;
+  s.wind.mean_mps = 8.0;
+  s.agent.focal.imu_source = agent::ImuSource::kTilt;
+  const Scoring tilt = scoringOf(s);
+  s.agent.focal.imu_source = agent::ImuSource::kAccelerometer;
+  EXPECT_TRUE(scoringOf(s).failure_hint.empty());
+  s.wind.mean_mps = 0.0;
+  s.agent.focal.imu_source = agent::ImuSource::kTilt;
+  EXPECT_TRUE(scoringOf(s).failure_hint.empty());  // calm air: nothing to blame on the wind
+  // WHEN the tilt swarm's run split
+  VerdictInput in = good();
+  in.failure_hint = tilt.failure_hint;
+  in.summary.groups = 3;
+  const Verdict v = judge(in);
+  // THEN the verdict names the split, and last why: the tilt takes the lean into the wind for acceleration
+  EXPECT_EQ(v.outcome, Outcome::kFail);
+  ASSERT_EQ(v.reasons.size(), 2u);
+  EXPECT_EQ(v.reasons[0], "3 groups at the end (expected 1)");
+  EXPECT_NE(v.reasons[1].find("likely because the agents read their acceleration from the tilt (imu.source tilt) in "
+                              "a mean wind of 8 m/s"),
+            std::string::npos)
+      << v.reasons[1];
+  // AND a run that passed says nothing of it
+  in.summary.groups = 1;
+  EXPECT_EQ(verdictText(judge(in)), "PASS");
 }
 
 TEST(MonitorVerdict, BandEdgesAreInclusive) {

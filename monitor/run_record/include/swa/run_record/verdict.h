@@ -49,6 +49,8 @@ struct VerdictInput {
   std::vector<int> failsafe_at_end;
   // Vehicles out of SWA's control at the end (a PX4 or ArduPilot failsafe): the swarm did not end under SWA either.
   std::vector<ControlLoss> out_of_control_at_end;
+  // Said last with a FAIL (record::Scoring::failure_hint): what in the world the reasons above come from.
+  std::string failure_hint;
 };
 
 Verdict judge(const VerdictInput& input);
