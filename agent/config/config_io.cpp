@@ -81,7 +81,7 @@ params::Table<AgentConfig> makeTable() {
   SWA_PARAM(t, choice, focal.imu_source, named(kImuSourceNames),
             "the acceleration the focal filter fuses: tilt (q_c x the attitude: the thrust's push only, the paper's) "
             "or accelerometer (the specific force turned by the attitude, gravity removed: every push, drag and "
-            "wind included; needs IMU samples that carry it)");
+            "wind included; a sample without one is read from the tilt, logged and counted)");
   SWA_PARAM(t, number, focal.frame_timeout_s, "s", openClosed(0, 600),
             "without a floating frame for this long, dead reckoning is no longer trusted");
   SWA_PARAM(t, number, focal.bias_window_s, "s", closed(0, 3600),

@@ -204,6 +204,12 @@ void AgentNode::logFinalCounts() const {
                static_cast<unsigned long long>(r.bad_id), static_cast<unsigned long long>(r.implausible),
                static_cast<unsigned long long>(r.no_heading), static_cast<unsigned long long>(d.stamp_resyncs),
                static_cast<unsigned long long>(order_.forcedReleases()), static_cast<unsigned long long>(s.replayed));
+  if (d.tilt_fallbacks > 0) {
+    std::fprintf(stderr,
+                 "swa_agent %d: %llu IMU sample(s) came without the accelerometer focal.imu_source asks for and were "
+                 "read from the tilt\n",
+                 id_, static_cast<unsigned long long>(d.tilt_fallbacks));
+  }
   if (agent_.config().sensor.input == agent::DetectionInput::kSwa) return;
   const agent::DetectionAdapterCounters& a = adapter_.counters();
   const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
@@ -279,7 +285,15 @@ void AgentNode::handle(Input& in) {
       pending_state_ns_.reset();
     }
     const std::uint64_t resyncs = agent_.diagnostics().stamp_resyncs;
+    const std::uint64_t fallbacks = agent_.diagnostics().tilt_fallbacks;
     const std::optional<msg::VelocitySetpoint> answer = feed_.onImu(*imu);
+    if (fallbacks == 0 && agent_.diagnostics().tilt_fallbacks > 0) {
+      std::fprintf(stderr,
+                   "swa_agent %d: an IMU sample without the accelerometer focal.imu_source asks for (stamp %lld ns): "
+                   "read from the tilt, which takes drag and wind for acceleration; further ones counted (a bridge "
+                   "that reads no accelerometer, e.g. PX4 without sensor_combined on its topic list, sends none)\n",
+                   id_, static_cast<long long>(stamp));
+    }
     if (agent_.diagnostics().stamp_resyncs != resyncs) {
       std::fprintf(stderr,
                    "swa_agent %d: the IMU clock restarted (now at stamp %lld ns): estimates restarted on the new "

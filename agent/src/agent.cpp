@@ -103,12 +103,9 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
   } else if (std::abs(imu.roll_rad) > lim.max_tilt_rad || std::abs(imu.pitch_rad) > lim.max_tilt_rad ||
              std::abs(imu.heading_rad) > lim.max_abs_heading_rad) {
     ++diag_.rejected.implausible;
-  } else if (use_accelerometer &&
-             (acc == nullptr || std::abs(acc->roll_rad) > lim.max_tilt_rad ||
-              std::abs(acc->pitch_rad) > lim.max_tilt_rad ||
+  } else if (use_accelerometer && acc != nullptr &&
+             (std::abs(acc->roll_rad) > lim.max_tilt_rad || std::abs(acc->pitch_rad) > lim.max_tilt_rad ||
               acc->specific_force_body_mps2.norm() > kMaxSpecificForce_mps2)) {
-    // Without the accelerometer it is told to use, the agent must not fall back on the tilt unannounced: the
-    // sample is refused and counted, and the node says why.
     ++diag_.rejected.implausible;
   } else {
     accepted = acceptStamp(imu_clock_, imu.stamp_ns);
@@ -122,8 +119,13 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
     have_heading_ = true;
     // DESIGN §3.4: pitch gives body-x and roll body-y acceleration, rotated into the stable frame by heading; or
     // the accelerometer's specific force, turned level by its attitude (issue #44).
-    const Vec2 acc_body = use_accelerometer ? levelAcceleration(*acc)
-                                            : Vec2(config_.focal.q_c_mps2 * Vec2(imu.pitch_rad, imu.roll_rad));
+    // A sample without the accelerometer is read from the tilt and counted (Diagnostics::tilt_fallbacks), not
+    // refused: refused, it would go unanswered, and a vehicle whose accelerometer stream starts a moment after its
+    // attitude (discovery order; PX4's two topics) would lose control for it.
+    if (use_accelerometer && acc == nullptr) ++diag_.tilt_fallbacks;
+    const Vec2 acc_body = use_accelerometer && acc != nullptr
+                              ? levelAcceleration(*acc)
+                              : Vec2(config_.focal.q_c_mps2 * Vec2(imu.pitch_rad, imu.roll_rad));
     const Mat2 to_stable = rotation(imu.heading_rad);
     const Vec2 unbiased_body = imu_bias_.correct(acc_body, imu.stamp_ns, command_);
     focal_.predictTo(imu.stamp_ns, command_);

@@ -193,10 +193,9 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
                                             std::isfinite(a->pitch_rad)));
       const bool tilt_ok = std::abs(s.roll_rad) <= lim.max_tilt_rad && std::abs(s.pitch_rad) <= lim.max_tilt_rad &&
                            std::abs(s.heading_rad) <= lim.max_abs_heading_rad;
-      // An agent fusing the accelerometer needs one, level enough and within a MEMS part's range.
-      const bool accel_ok = config.focal.imu_source != ImuSource::kAccelerometer ||
-                            (a != nullptr && std::abs(a->roll_rad) <= lim.max_tilt_rad &&
-                             std::abs(a->pitch_rad) <= lim.max_tilt_rad &&
+      // An agent fusing the accelerometer takes one level enough and within a MEMS part's range (none: the tilt).
+      const bool accel_ok = config.focal.imu_source != ImuSource::kAccelerometer || a == nullptr ||
+                            (std::abs(a->roll_rad) <= lim.max_tilt_rad && std::abs(a->pitch_rad) <= lim.max_tilt_rad &&
                              a->specific_force_body_mps2.norm() <= kMaxSpecificForce_mps2);
       if (!finite) {
         ++res.bad, ++res.generated.nonfinite;

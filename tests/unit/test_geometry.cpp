@@ -64,7 +64,7 @@ TEST(Geometry, TiltToAccelerationFollowsDesignConvention) {
   EXPECT_NEAR(a.y(), 0.635, 0.1);
 }
 
-TEST(Geometry, AccelerometerSourceTurnsTheSpecificForceLevelAndIgnoresTheTilt) {
+TEST(Geometry, AccelerometerSourceTurnsTheSpecificForceLevelAndIgnoresTheTiltWhileItHasOne) {
   // GIVEN an agent told to use the accelerometer, heading pi/2
   AgentConfig cfg;
   cfg.mode = Mode::kStandalone;
@@ -85,14 +85,18 @@ TEST(Geometry, AccelerometerSourceTurnsTheSpecificForceLevelAndIgnoresTheTilt) {
   const Vec2 a = agent.absolute().acceleration();
   EXPECT_NEAR(a.x(), 0.0, 0.05);
   EXPECT_NEAR(a.y(), 0.5, 0.05);
-  // AND a sample without an accelerometer is refused and counted, never read as a tilt
-  const VelocityCommand refused = agent.onImu({301 * 10'000'000LL, 0.0, 0.1, M_PI / 2});
-  EXPECT_FALSE(refused.fresh);
-  EXPECT_EQ(agent.diagnostics().rejected.implausible, 1u);
-  // AND so is one whose specific force is beyond a MEMS accelerometer's range (16 g), or not finite
+  EXPECT_EQ(agent.diagnostics().tilt_fallbacks, 0u);
+  // AND a sample without an accelerometer is answered, read from its tilt, and counted as such (not refused: a
+  // vehicle whose accelerometer stream starts after its attitude must not go unanswered)
+  const VelocityCommand fallback = agent.onImu({301 * 10'000'000LL, 0.0, 0.1, M_PI / 2});
+  EXPECT_TRUE(fallback.fresh);
+  EXPECT_EQ(agent.diagnostics().tilt_fallbacks, 1u);
+  EXPECT_EQ(agent.diagnostics().rejected.total(), 0u);
+  // AND one whose specific force is beyond a MEMS accelerometer's range (16 g) is refused as implausible, and one
+  // that is not finite as non-finite
   acc.specific_force_body_mps2 = Vec3(0.0, 0.0, 17.0 * kStandardGravity_mps2);
   EXPECT_FALSE(agent.onImu({302 * 10'000'000LL, 0.0, 0.0, M_PI / 2, acc}).fresh);
-  EXPECT_EQ(agent.diagnostics().rejected.implausible, 2u);
+  EXPECT_EQ(agent.diagnostics().rejected.implausible, 1u);
   acc.specific_force_body_mps2 = Vec3(0.0, std::nan(""), 9.8);
   EXPECT_FALSE(agent.onImu({303 * 10'000'000LL, 0.0, 0.0, M_PI / 2, acc}).fresh);
   EXPECT_EQ(agent.diagnostics().rejected.nonfinite, 1u);
