@@ -60,10 +60,7 @@ World::Uav World::makeUav(const Scenario& scenario, int id, const agent::Vec2& s
 
   return Uav(initial, heading0, turn_rate,
              OuProcess2(scenario.wind.gust_std, scenario.wind.gust_corr_s, dt_s, Rng(seed, me, Stream::kGust)),
-             ImuModel(scenario.imu, scenario.agent.focal.q_c_mps2,
-                      ImuModel::Streams{Rng(seed, me, Stream::kImuBias), Rng(seed, me, Stream::kImuNoise),
-                                        Rng(seed, me, Stream::kHeadingWalk), Rng(seed, me, Stream::kAccelBias),
-                                        Rng(seed, me, Stream::kAccelNoise)}),
+             ImuModel(scenario.imu, scenario.agent.focal.q_c_mps2, ImuModel::Streams::of(seed, me)),
              MpsModel(scenario.mps, MpsStreams{Rng(seed, me, Stream::kMpsMiss), Rng(seed, me, Stream::kMpsNoise),
                                                Rng(seed, me, Stream::kMpsClutter), Rng(seed, me, Stream::kMpsOrder)}),
              GnssModel(scenario.gnss, id, Rng(seed, me, Stream::kGnssNoise)), Rng(seed, me, Stream::kMpsLatency));

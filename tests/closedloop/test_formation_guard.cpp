@@ -51,6 +51,15 @@ std::vector<Case> cases() {
                  "dropout_8",
                  {duration, "imu.source=tilt", "imu.bias_std=0.15", "agent.focal.bias_window_s=0"},
                  false});
+  all.push_back({"poor_accelerometer_bias_removal",
+                 "dropout_8",
+                 {duration, "imu.accel_bias_std_mps2=0.47", "imu.attitude_error_std_rad=0.015"},
+                 true});
+  all.push_back(
+      {"poor_accelerometer_no_bias_removal",
+       "dropout_8",
+       {duration, "imu.accel_bias_std_mps2=0.47", "imu.attitude_error_std_rad=0.015", "agent.focal.bias_window_s=0"},
+       false});
   all.push_back({"old_rule_k3_n8", "dropout_8", kNearest(3, {duration}), false});
   all.push_back({"old_rule_k3_n4", "dropout_4", kNearest(3, {duration}), false});
   all.push_back({"old_rule_k2_n8", "dropout_8", kNearest(2, {duration}), false});

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../sim/world_support.h"
 #include "swa/autopilot/bridge_core.h"
 #include "swa/px4/accelerometer.h"
 #include "swa/px4/frames.h"
@@ -21,17 +22,8 @@ using agent::Vec3;
 
 // A sample as the simulator makes it: a UAV accelerating at `a` while its thrust (drag, wind) differs, heading `psi`.
 agent::ImuSample simulated(const Vec2& a, const Vec2& thrust, double psi) {
-  sim::ImuSetup setup;
-  setup.noise_std = 0.0;
-  setup.bias_std = 0.0;
-  setup.heading_noise_std_rad = 0.0;
-  setup.attitude_error_std_rad = 0.0;
-  setup.accel_bias_std_mps2 = 0.0;
-  setup.accel_noise_std_mps2 = 0.0;
-  sim::ImuModel model(setup, 6.35,
-                      {sim::Rng(1, 0, sim::Stream::kImuBias), sim::Rng(1, 0, sim::Stream::kImuNoise),
-                       sim::Rng(1, 0, sim::Stream::kHeadingWalk), sim::Rng(1, 0, sim::Stream::kAccelBias),
-                       sim::Rng(1, 0, sim::Stream::kAccelNoise)});
+  const sim::ImuSetup setup = sim::testing::exactImu();
+  sim::ImuModel model(setup, 6.35, sim::ImuModel::Streams::of(1, 0));
   return model.sample(20'000'000, a, thrust, psi);
 }
 

@@ -20,10 +20,7 @@ Vec2 derivedAcceleration(const agent::ImuSample& imu, double q_c) {
   return q_c * (agent::rotation(imu.heading_rad) * Vec2(imu.pitch_rad, imu.roll_rad));
 }
 
-ImuModel::Streams streams(std::uint64_t seed = 1) {
-  return {Rng(seed, 0, Stream::kImuBias), Rng(seed, 0, Stream::kImuNoise), Rng(seed, 0, Stream::kHeadingWalk),
-          Rng(seed, 0, Stream::kAccelBias), Rng(seed, 0, Stream::kAccelNoise)};
-}
+ImuModel::Streams streams(std::uint64_t seed = 1) { return ImuModel::Streams::of(seed, 0); }
 
 Scenario windyHover(int n) {
   Scenario s;

@@ -27,12 +27,7 @@ Vec2 accelerometerAcceleration(const agent::ImuSample& imu) {
 Scenario exactSensors(int n) {
   Scenario s = testing::calmScenario(n, 17);
   s.dynamics.failsafe_timeout_s = std::numeric_limits<double>::infinity();  // hover on the zero setpoint
-  s.imu.bias_std = 0.0;
-  s.imu.noise_std = 0.0;
-  s.imu.heading_noise_std_rad = 0.0;
-  s.imu.attitude_error_std_rad = 0.0;
-  s.imu.accel_bias_std_mps2 = 0.0;
-  s.imu.accel_noise_std_mps2 = 0.0;
+  s.imu = testing::exactImu(s.imu);
   return s;
 }
 

@@ -22,6 +22,17 @@ inline Scenario calmScenario(int n, std::uint64_t seed) {
   return s;
 }
 
+// An IMU without any error: no tilt or accelerometer bias or noise, an ideal compass, a perfect attitude.
+inline ImuSetup exactImu(ImuSetup setup = {}) {
+  setup.noise_std = 0.0;
+  setup.bias_std = 0.0;
+  setup.heading_noise_std_rad = 0.0;
+  setup.attitude_error_std_rad = 0.0;
+  setup.accel_bias_std_mps2 = 0.0;
+  setup.accel_noise_std_mps2 = 0.0;
+  return setup;
+}
+
 // No IMU, MPS or GNSS sample at all, for a test of the dynamics alone.
 inline void sensorsOff(Scenario& s) {
   s.imu.rate_hz = 0.0;

@@ -13,6 +13,7 @@
 // The heading is the true one plus the compass's bias (a constant per UAV, drawn with the acceleration bias, plus a
 // random walk of its own stream, so that an ideal compass leaves every other draw as it was) and white noise.
 
+#include <cstdint>
 #include <optional>
 
 #include "swa/agent/geometry.h"
@@ -30,6 +31,12 @@ class ImuModel {
     Rng walk;        // the heading bias's random walk
     Rng accel_bias;  // the accelerometer part's constant errors, drawn at construction
     Rng accel_noise;
+    // Every stream of UAV `owner` (its index) in run `seed`, each on its own number (random.h).
+    static Streams of(std::uint64_t seed, std::uint32_t owner) {
+      return {Rng(seed, owner, Stream::kImuBias), Rng(seed, owner, Stream::kImuNoise),
+              Rng(seed, owner, Stream::kHeadingWalk), Rng(seed, owner, Stream::kAccelBias),
+              Rng(seed, owner, Stream::kAccelNoise)};
+    }
   };
   ImuModel(const ImuSetup& setup, double q_c_mps2, Streams streams);
 

@@ -74,8 +74,9 @@ struct ImuSetup {
   // m/s^2 / g), so that both sources start from the same attitude error. The accelerometer's own errors are a
   // MEMS part's (TDK InvenSense ICM-20948, DS-000189 rev 1.3, table 2, as on Pixhawk-class boards): zero-g offset
   // change 0.8 mg/degC over a 20 degC difference from the calibration = 16 mg = 0.157 m/s^2 per axis, constant;
-  // white noise: PX4's EKF2_ACC_NOISE (0.35 m/s^2), what the autopilot assumes in flight, motors' vibration
-  // included (the part alone, 230 ug/sqrt(Hz) over 50 Hz, is 0.016 m/s^2).
+  // white noise: PX4's EKF2_ACC_NOISE (0.35 m/s^2; src/modules/ekf2/module.yaml, before v1.15 ekf2_params.c), what
+  // the autopilot assumes in flight, motors' vibration included (the part alone, 230 ug/sqrt(Hz) over 50 Hz, is
+  // 0.016 m/s^2).
   double attitude_error_std_rad = 0.005;
   double accel_bias_std_mps2 = 0.157;
   double accel_noise_std_mps2 = 0.35;
