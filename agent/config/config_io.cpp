@@ -1,5 +1,6 @@
 #include "swa/agent/config_io.h"
 
+#include <cmath>
 #include <iterator>
 #include <limits>
 
@@ -14,6 +15,45 @@ using params::openClosed;
 template <class Enum, std::size_t N>
 std::vector<std::pair<Enum, std::string>> named(const std::pair<Enum, const char*> (&names)[N]) {
   return {std::begin(names), std::end(names)};
+}
+
+constexpr double kMaxMissionSpeed_mps = 50.0;
+constexpr double kMaxMissionDistance_m = 1e6;
+constexpr double kMaxMissionTime_s = 1e6;
+
+// mission.legs: a list of legs, each a velocity over a time or a point at a speed (mission.h).
+params::Spec legsSpec() {
+  params::Spec s = params::makeSpec("mission.legs", params::Kind::kRecordList, "");
+  s.meaning = "the swarm's plan, the same for every agent: legs flown one after the other from mission.start, then "
+              "a hold; a velocity over a time, or a point (relative to where the swarm was at the start) at a speed";
+  params::Spec velocity = params::makeSpec("velocity_mps", params::Kind::kReal, "m/s",
+                                           params::closed(-kMaxMissionSpeed_mps, kMaxMissionSpeed_mps));
+  velocity.components = 2;
+  params::Spec to = params::makeSpec("to_m", params::Kind::kReal, "m",
+                                     params::closed(-kMaxMissionDistance_m, kMaxMissionDistance_m));
+  to.components = 2;
+  s.fields = {velocity, params::makeSpec("duration_s", params::Kind::kReal, "s", openClosed(0, kMaxMissionTime_s)),
+              to, params::makeSpec("speed_mps", params::Kind::kReal, "m/s", openClosed(0, kMaxMissionSpeed_mps))};
+  s.forms = {{"velocity_mps", "duration_s"}, {"to_m", "speed_mps"}};
+  s.example = "{velocity_mps: [-4, 0], duration_s: 125}";
+  s.expected = "a list of legs such as [{velocity_mps: [3, 0], duration_s: 10}, {to_m: [0, 0], speed_mps: 4}] or []";
+  s.range_text = "list of {velocity_mps: [east, north], duration_s} or {to_m: [east, north], speed_mps}";
+  s.comment = "legs {velocity_mps: [east, north], duration_s} or {to_m: [east, north], speed_mps}; [] = hold";
+  s.type_name = "leg list";
+  return s;
+}
+
+// The records as legs: a velocity leg as it is, a point leg from the end of the legs before it.
+std::vector<MissionLeg> legsOf(const std::vector<params::Record>& records) {
+  std::vector<MissionLeg> legs;
+  for (const params::Record& r : records) {
+    if (!std::isnan(r[0])) {
+      legs.push_back({Vec2(r[0], r[1]), r[2]});
+    } else {
+      appendLegTo(legs, Vec2(r[3], r[4]), r[5]);
+    }
+  }
+  return legs;
 }
 
 // Every tunable of AgentConfig, declared here exactly once.
@@ -147,6 +187,25 @@ params::Table<AgentConfig> makeTable() {
             "clock) is not trusted");
   SWA_PARAM(t, number, limits.resync_samples, "", closed(2, 100),
             "consecutive samples of a consistent new timeline after which a stream re-synchronises to it");
+  t.add(
+      legsSpec(),
+      [](const AgentConfig& c) {
+        std::vector<params::Record> out;
+        const double absent = std::numeric_limits<double>::quiet_NaN();
+        for (const MissionLeg& l : c.mission.legs) {
+          out.push_back({l.velocity_mps.x(), l.velocity_mps.y(), l.duration_s, absent, absent, absent});
+        }
+        return params::Value(out);
+      },
+      [](AgentConfig& c, const params::Value& v) {
+        c.mission.legs = legsOf(std::get<std::vector<params::Record>>(v));
+      });
+  SWA_PARAM(t, choice, mission.start, named(kMissionStartNames),
+            "when the first leg begins: gnss_loss (the first GNSS sample without a fix) or time (mission.start_s)");
+  SWA_PARAM(t, number, mission.start_s, "s", closed(0, kMaxMissionTime_s),
+            "mission.start time: the first leg begins at this stamp of the IMU's clock");
+  SWA_PARAM(t, number, mission.max_speed_mps, "m/s", openClosed(0, kMaxMissionSpeed_mps),
+            "a plan with a faster leg is refused (the vehicles' cruise limit)");
   // Keys a chosen mode ignores: giving one is an error (a user who sets a key that changes nothing should know).
   // The standalone baseline flies on dead reckoning alone and fits no floating frame; the radius stays, as the
   // monitor scores every run against it. The mode comes first: it is what a message should name.
@@ -170,7 +229,9 @@ params::Table<AgentConfig> makeTable() {
       {"sensor.detector_x_m", "sensor.detector_frame", {}, "a detector in its own frame"},
       {"sensor.detector_y_m", "sensor.detector_frame", {}, "a detector in its own frame"},
       {"sensor.detector_classes", "sensor.input", {"vision_msgs"}, "vision_msgs detections"},
+      {"mission.start_s", "mission.start", {"time"}, "a mission started at a time"},
   });
+  t.schema().checks = configChecks("");
   t.schema().relations = {
       {"surroundings.tentative_timeout_s", false, "surroundings.track_timeout_s",
        "a tentative track must not outlive a confirmed one"},
@@ -183,6 +244,34 @@ params::Table<AgentConfig> makeTable() {
 }
 
 }  // namespace
+
+std::vector<params::Check> configChecks(const std::string& prefix) {
+  const std::string legs_key = prefix + "mission.legs";
+  const std::string max_key = prefix + "mission.max_speed_mps";
+  return {{{legs_key, max_key}, [legs_key, max_key](const params::Values& v, std::vector<std::string>& problems) {
+             const double max_speed = params::number(v, max_key);
+             std::vector<MissionLeg> legs;
+             const std::vector<params::Record>& records = params::records(v, legs_key);
+             for (std::size_t i = 0; i < records.size(); ++i) {
+               const params::Record& r = records[i];
+               const std::string name = legs_key + "[" + std::to_string(i) + "]";
+               const bool velocity_form = !std::isnan(r[0]);
+               const double speed = velocity_form ? Vec2(r[0], r[1]).norm() : r[5];
+               if (speed > max_speed) {
+                 problems.push_back(name + " flies at " + params::formatYamlNumber(speed) + " m/s, above " + max_key +
+                                    " = " + params::formatYamlNumber(max_speed) + " m/s");
+               }
+               const std::size_t before = legs.size();
+               if (velocity_form) {
+                 legs.push_back({Vec2(r[0], r[1]), r[2]});
+               } else if (appendLegTo(legs, Vec2(r[3], r[4]), r[5]) && legs.size() == before) {
+                 problems.push_back(name + " goes to [" + params::formatYamlNumber(r[3]) + ", " +
+                                    params::formatYamlNumber(r[4]) +
+                                    "], where the plan already is: a leg that goes nowhere (the hold follows the last)");
+               }
+             }
+           }}};
+}
 
 const params::Table<AgentConfig>& configTable() {
   static const params::Table<AgentConfig> table = makeTable();

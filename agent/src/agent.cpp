@@ -32,6 +32,9 @@ Agent::Agent(const AgentConfig& config)
       gnss_clock_(toNs(config.limits.max_stamp_jump_s), config.limits.resync_samples) {
   diag_.mode = config.mode;
   stable_.reserve(config.limits.max_detections);
+  // A plan that cannot be flown is refused where the configuration is read (config_io); one that reaches the agent
+  // anyway is not flown: the agent holds, as without a mission.
+  if (!missionProblem(config.mission)) plan_ = MissionPlan(config.mission.legs);
 }
 
 bool Agent::acceptStamp(StreamClock& clock, StampNs stamp) {
@@ -88,6 +91,13 @@ void Agent::restartTimeline() {
   gnss_clock_ = StreamClock(toNs(config_.limits.max_stamp_jump_s), config_.limits.resync_samples);
   gnss_valid_ = false;
   anchor_on_ = false;  // the hold's first fix after the restart is a return: blended in
+  // The plan's time is the IMU's: on a new timeline the mission's start means nothing. Holding is the safe end.
+  if (mission_start_ns_ && !diag_.mission_aborted) {
+    diag_.mission_aborted = true;
+    plan_ = MissionPlan();
+  }
+  mission_start_ns_.reset();
+  plan_velocity_.setZero();
 }
 
 VelocityCommand Agent::onImu(const ImuSample& imu) {
@@ -95,13 +105,16 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
   const LimitsConfig& lim = config_.limits;
   const bool use_accelerometer = config_.focal.imu_source == ImuSource::kAccelerometer;
   const AccelerometerSample* acc = imu.accelerometer ? &*imu.accelerometer : nullptr;
+  const bool reads_tilt = !use_accelerometer || acc == nullptr;
   const bool acc_finite = acc == nullptr || (acc->specific_force_body_mps2.allFinite() &&
                                              std::isfinite(acc->roll_rad) && std::isfinite(acc->pitch_rad));
   bool accepted = false;
   if (!finite || !acc_finite) {
     ++diag_.rejected.nonfinite;
-  } else if (std::abs(imu.roll_rad) > lim.max_tilt_rad || std::abs(imu.pitch_rad) > lim.max_tilt_rad ||
-             std::abs(imu.heading_rad) > lim.max_abs_heading_rad) {
+  } else if (std::abs(imu.heading_rad) > lim.max_abs_heading_rad ||
+             (reads_tilt && (std::abs(imu.roll_rad) > lim.max_tilt_rad || std::abs(imu.pitch_rad) > lim.max_tilt_rad))) {
+    // The tilt is judged only where it is read: an agent fusing the accelerometer takes its attitude from there (a
+    // mission's 7 m/s turn-round takes the tilt model's q_c-scaled angles past the limit while the attitude is 0.6 rad).
     ++diag_.rejected.implausible;
   } else if (use_accelerometer && acc != nullptr &&
              (std::abs(acc->roll_rad) > lim.max_tilt_rad || std::abs(acc->pitch_rad) > lim.max_tilt_rad ||
@@ -127,13 +140,19 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
                               ? levelAcceleration(*acc)
                               : Vec2(config_.focal.q_c_mps2 * Vec2(imu.pitch_rad, imu.roll_rad));
     const Mat2 to_stable = rotation(imu.heading_rad);
-    const Vec2 unbiased_body = imu_bias_.correct(acc_body, imu.stamp_ns, command_);
-    focal_.predictTo(imu.stamp_ns, command_);
-    focal_.correctAcceleration(to_stable * unbiased_body, r_acc_);
+    const Vec2 unbiased_body = imu_bias_.correct(acc_body, imu.stamp_ns, relativeCommand());
+    focal_.predictTo(imu.stamp_ns, relativeCommand());
     absolute_.predictTo(imu.stamp_ns, command_);
+    advanceMission(imu.stamp_ns);
+    focal_.correctAcceleration(to_stable * unbiased_body, r_acc_);
     absolute_.correctAcceleration(to_stable * acc_body, r_acc_);
     command_ = computeCommand(imu.stamp_ns);
-    yaw_rate_ = headingRate(imu.heading_rad, config_.sensor, config_.control);
+    // With a limited field of view every UAV faces the same way: the plan's direction while it moves (all turn
+    // alike, from the same plan), else the configured one.
+    const double facing_deg = plan_velocity_ == Vec2::Zero()
+                                  ? config_.control.facing_deg
+                                  : std::atan2(plan_velocity_.y(), plan_velocity_.x()) * 180.0 / M_PI;
+    yaw_rate_ = headingRate(imu.heading_rad, config_.sensor, config_.control, facing_deg);
   }
 
   VelocityCommand cmd;
@@ -203,7 +222,7 @@ void Agent::updateFrame(StampNs stamp) {
   }
   const Vec2 z = -now.centre;  // z_p = -r_c: own position in the floating frame
   const Mat2 r_fit = fitNoise(next, now);
-  focal_.predictTo(stamp, command_);
+  focal_.predictTo(stamp, relativeCommand());
   const bool stale = secondsBetween(last_frame_ns_, stamp) > config_.focal.frame_timeout_s;
   if (!focal_.initialized()) {
     focal_.initialize(stamp, z, r_fit);
@@ -278,7 +297,10 @@ void Agent::onGnss(const GnssSample& g) {
   if (!acceptStamp(gnss_clock_, g.stamp_ns)) return;
   gnss_valid_ = g.valid;
   diag_.gnss_valid = g.valid;
-  if (!g.valid) return;
+  if (!g.valid) {
+    if (config_.mission.start == MissionStart::kGnssLoss && !mission_start_ns_) startMission(g.stamp_ns);
+    return;
+  }
   last_valid_gnss_ns_ = g.stamp_ns;
   if (config_.mode == Mode::kSwa) return;  // the paper's agent never uses GNSS
 
@@ -296,6 +318,37 @@ void Agent::onGnss(const GnssSample& g) {
   absolute_.correctPosition(g.position_m - hold_point_, R);
 }
 
+void Agent::startMission(StampNs stamp) {
+  if (plan_.empty() || mission_start_ns_) return;
+  mission_start_ns_ = stamp;
+  mission_origin_ = absolute_.initialized() ? absolute_.position() : Vec2::Zero();
+}
+
+double Agent::missionTime(StampNs stamp) const {
+  return mission_start_ns_ ? secondsBetween(*mission_start_ns_, stamp) : -1.0;
+}
+
+void Agent::advanceMission(StampNs stamp) {
+  if (config_.mission.start == MissionStart::kTime && !mission_start_ns_ && !diag_.mission_aborted) {
+    const StampNs start = toNs(config_.mission.start_s);
+    if (stamp >= start) startMission(start);
+  }
+  const Vec2 next = plan_.velocityAt(missionTime(stamp));
+  if (next != plan_velocity_) {
+    // The frame changes velocity at once, the UAV does not: its velocity in the frame jumps by the opposite.
+    focal_.shiftVelocity(next - plan_velocity_);
+    imu_bias_.manoeuvreAt(stamp);
+    plan_velocity_ = next;
+  }
+}
+
+// Standalone and anchored: the absolute filter's pull towards the take-off point, or during a mission towards the
+// plan's path from where the UAV was at its start, damped against the plan's velocity.
+Vec2 Agent::absoluteHold(StampNs stamp, const ControlConfig& cc) const {
+  const Vec2 target = mission_origin_ + plan_.pathAt(missionTime(stamp));
+  return formationVelocity(absolute_.position() - target, absolute_.velocity() - plan_velocity_, cc);
+}
+
 Vec2 Agent::computeCommand(StampNs stamp) {
   const ControlConfig& cc = config_.control;
   Vec2 v = Vec2::Zero();
@@ -306,8 +359,9 @@ Vec2 Agent::computeCommand(StampNs stamp) {
       if (frame_fresh) v = formationVelocity(focal_.position(), focal_.velocity(), cc);
       break;
     case Mode::kStandalone:
-      // The baseline keeps holding its take-off point on dead reckoning after GNSS is gone (and drifts).
-      if (absolute_.initialized()) v = formationVelocity(absolute_.position(), absolute_.velocity(), cc);
+      // The baseline keeps holding its take-off point (or following the plan) on dead reckoning after GNSS is gone
+      // (and drifts).
+      if (absolute_.initialized()) v = absoluteHold(stamp, cc);
       break;
     case Mode::kAnchored: {
       if (frame_fresh) v = formationVelocity(focal_.position(), focal_.velocity(), cc);
@@ -321,12 +375,15 @@ Vec2 Agent::computeCommand(StampNs stamp) {
         if (anchor_ramp_from_ns_ && config_.anchor.regain_ramp_s > 0.0) {
           weight = std::min(1.0, secondsBetween(*anchor_ramp_from_ns_, stamp) / config_.anchor.regain_ramp_s);
         }
-        v += weight * config_.anchor.gain * formationVelocity(absolute_.position(), absolute_.velocity(), cc);
+        v += weight * config_.anchor.gain * absoluteHold(stamp, cc);
       }
       break;
     }
   }
-  return saturate(v, cc.v_max_mps);
+  // The formation's correction is saturated, the plan's velocity is not (missionProblem bounds it): a lost agent
+  // flies the plan, where its swarm is going.
+  const Vec2 correction = saturate(v, cc.v_max_mps);
+  return plan_velocity_ == Vec2::Zero() ? correction : Vec2(plan_velocity_ + correction);
 }
 
 void Agent::refreshDiagnostics(StampNs stamp) {
@@ -352,6 +409,8 @@ void Agent::refreshDiagnostics(StampNs stamp) {
   diag_.confirmed_tracks = bank_.confirmedCount();
   diag_.tentative_tracks = bank_.tentativeCount();
   diag_.gnss_valid = gnss_valid_;
+  diag_.mission_leg = plan_.legAt(missionTime(stamp));
+  diag_.plan_velocity_mps = plan_velocity_;
 }
 
 }  // namespace swa::agent

@@ -18,5 +18,6 @@ std::string toString(CircleFit fit) { return nameIn(kCircleFitNames, fit); }
 std::string toString(NeighbourhoodRule rule) { return nameIn(kNeighbourhoodRuleNames, rule); }
 std::string toString(DetectionInput input) { return nameIn(kDetectionInputNames, input); }
 std::string toString(ImuSource source) { return nameIn(kImuSourceNames, source); }
+std::string toString(MissionStart start) { return nameIn(kMissionStartNames, start); }
 
 }  // namespace swa::agent

@@ -62,6 +62,8 @@ bool FocalEstimator::correctAcceleration(const Vec2& z, const Mat2& R) {
 
 void FocalEstimator::shiftFrame(const Vec2& delta) { segment<pva::Pos>(state_.x) -= delta; }
 
+void FocalEstimator::shiftVelocity(const Vec2& delta) { segment<pva::Vel>(state_.x) -= delta; }
+
 void FocalEstimator::resetPosition(const Vec2& z, const Mat2& R) {
   segment<pva::Pos>(state_.x) = z;
   block<pva::Pos, pva::Pos>(state_.P) = R;

@@ -34,6 +34,10 @@ namespace {
 constexpr const char* kColumns[] = {"mean_neighbor_distance_m", "min_separation_m", "collisions",
                                     "drift_velocity_mps",       "uav_displacement_m", "groups",
                                     "anees_position"};
+// With a mission (issue #45), also: the swarm's centroid against the plan, d_NB while moving, and each UAV's own end
+// error and the scatter of their end points (what --compare standalone is read by).
+constexpr const char* kMissionColumns[] = {"mission_end_error_m", "mission_path_error_m", "mission_d_nb_moving_m",
+                                           "mission_uav_end_error_m", "mission_uav_end_spread_m"};
 
 double field(const monitor::Summary& s, const std::string& key) {
   for (const auto& f : monitor::summaryFields(s))
@@ -87,7 +91,10 @@ void printAggregate(const std::vector<std::vector<batch::RunResult>>& modes) {
     for (const auto& r : runs) s.push_back(r.summary);
     aggs.push_back(monitor::aggregate(s));
   }
-  for (const char* key : kColumns) {
+  std::vector<const char*> keys(std::begin(kColumns), std::end(kColumns));
+  const monitor::Statistic* mission = aggs.front().find(kMissionColumns[0]);
+  if (mission != nullptr && mission->runs > 0) keys.insert(keys.end(), std::begin(kMissionColumns), std::end(kMissionColumns));
+  for (const char* key : keys) {
     std::printf("%-26s", key);
     for (const auto& a : aggs) {
       const monitor::Statistic* st = a.find(key);

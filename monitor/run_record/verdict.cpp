@@ -1,5 +1,6 @@
 #include "swa/run_record/verdict.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "swa/monitor/svg_plot.h"
@@ -8,6 +9,9 @@ namespace swa::record {
 namespace {
 
 std::string fixed(double v, int decimals) { return monitor::formatFixed(v, decimals); }
+
+// The band of the final d_NB after a mission (issue #45): the swarm holds again, as tight as a hover is held.
+constexpr double kMissionEndTolerance = 0.03;
 
 }  // namespace
 
@@ -25,7 +29,20 @@ Verdict judge(const VerdictInput& in) {
   }
 
   const double r = in.scoring.formation.radius_m;
-  const double tolerance = in.scoring.radius_tolerance;
+  // A mission (issue #45) is judged tighter at the end, when the swarm holds again, and by its d_NB while moving.
+  const bool mission = !in.scoring.mission_legs.empty();
+  const double tolerance =
+      mission ? std::min(in.scoring.radius_tolerance, kMissionEndTolerance) : in.scoring.radius_tolerance;
+  if (mission) {
+    const double moving = s.mission_d_nb_moving_m;
+    const double band = in.scoring.radius_tolerance;
+    if (!std::isfinite(moving)) {
+      v.reasons.push_back("the mission was not flown (it never started, or no two UAVs flew it)");
+    } else if (std::fabs(moving - r) > band * r) {
+      v.reasons.push_back("d_NB while moving " + fixed(moving, 3) + " m outside r = " + fixed(r, 3) + " m ± " +
+                          fixed(100.0 * band, 1) + " %");
+    }
+  }
   const double d = s.mean_neighbor_distance_m;
   if (!std::isfinite(d)) {
     v.reasons.push_back("final d_NB undefined (fewer than 2 UAVs)");

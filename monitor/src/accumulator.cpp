@@ -38,7 +38,9 @@ MetricsAccumulator::MetricsAccumulator(const MetricsConfig& config)
       window_start_ns_(toNs(config.window_start_s)),
       final_window_ns_(toNs(config.final_window_s)),
       drift_window_ns_(toNs(config.drift_window_s)),
-      drift_segment_ns_(toNs(config.drift_segment_s)) {}
+      drift_segment_ns_(toNs(config.drift_segment_s)) {
+  if (!config.mission_legs.empty()) mission_ = MissionScore(agent::MissionPlan(config.mission_legs), config.mission_start_s);
+}
 
 const StepMetrics& MetricsAccumulator::add(const StepInput& step) {
   if (steps_ > 0 && step.stamp_ns < last_ns_) {
@@ -69,6 +71,8 @@ const StepMetrics& MetricsAccumulator::add(const StepInput& step) {
   for (const UavTruth& u : step.uavs) {
     if (isPresent(u)) last_positions_[u.id] = u.position_m;
   }
+
+  mission_.add(m.t_s, m.geometry, last_positions_);
 
   if (step.stamp_ns >= window_start_ns_) {
     if (!window_started_) {
@@ -207,6 +211,14 @@ Summary MetricsAccumulator::summary() const {
   s.mean_neighbor_distance_m = finalMean(&FinalSample::d_nb);
   s.formation_error_m = finalMean(&FinalSample::formation_error);
   s.edge_length_m = finalMean(&FinalSample::edge_length);
+  if (mission_.active()) {
+    const MissionFigures f = mission_.figures(last_.geometry, last_positions_);
+    s.mission_end_error_m = f.end_error_m;
+    s.mission_path_error_m = f.path_error_m;
+    s.mission_d_nb_moving_m = f.d_nb_moving_m;
+    s.mission_uav_end_error_m = f.uav_end_error_m;
+    s.mission_uav_end_spread_m = f.uav_end_spread_m;
+  }
 
   if (!window_started_) return s;
   s.window_start_s = toSeconds(window_first_ns_);

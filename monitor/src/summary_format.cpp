@@ -50,6 +50,11 @@ void visitSummary(S& s, F&& f) {
   f("nees_samples", s.nees_samples);
   f("nees_skipped_unknown_id", s.nees_skipped_unknown_id);
   f("nees_skipped_invalid", s.nees_skipped_invalid);
+  f("mission_end_error_m", s.mission_end_error_m);
+  f("mission_path_error_m", s.mission_path_error_m);
+  f("mission_d_nb_moving_m", s.mission_d_nb_moving_m);
+  f("mission_uav_end_error_m", s.mission_uav_end_error_m);
+  f("mission_uav_end_spread_m", s.mission_uav_end_spread_m);
 }
 
 template <class T>

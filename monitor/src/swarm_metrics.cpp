@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -69,6 +70,12 @@ void validate(const MetricsConfig& c) {
   check(c.anees_alpha > 0.0 && c.anees_alpha < 1.0, "anees_alpha must lie in (0, 1)");
   check(c.frame_velocity == FrameVelocity::kNeighbourMean || c.frame_velocity == FrameVelocity::kFitDerivative,
         "frame_velocity unknown");
+  check(std::isfinite(c.mission_start_s) && std::fabs(c.mission_start_s) < 9e9, "mission_start_s must be finite");
+  agent::MissionConfig mission;
+  mission.legs = c.mission_legs;
+  mission.max_speed_mps = std::numeric_limits<double>::max();  // the speed limit is the agents' configuration's
+  const auto why = agent::missionProblem(mission);
+  check(!why, why ? why->c_str() : "");
   if (!errors.empty()) throw std::invalid_argument("MetricsConfig: " + errors);
 }
 

@@ -302,6 +302,7 @@ params::Table<Scenario> makeTable() {
       "the agents' configuration (swa_agent --parameters); formation.radius_m as used");
   params::Schema& schema = t.schema();
   schema.checks = scenarioChecks();
+  for (params::Check& c : agent::configChecks("agent.")) schema.checks.push_back(std::move(c));
   // After the mount, which brought the agent's own (agent.formation.k, ...).
   schema.applies.insert(schema.applies.end(), {
       {"clock.speed", "clock.mode", {"realtime"}, "realtime mode"},
@@ -323,7 +324,13 @@ params::Table<Scenario> makeTable() {
       {"imu.accel_bias_std_mps2", "imu.source", {"accelerometer"}, "the accelerometer source"},
       {"imu.accel_noise_std_mps2", "imu.source", {"accelerometer"}, "the accelerometer source"},
   });
-  schema.aliases = {{"agent.k", "agent.formation.k"}, {"agent.circle_fit", "agent.formation.circle_fit"}};
+  // The mission is the agents' (each holds the plan), written at the top of a scenario as in an agent's file.
+  schema.aliases = {{"agent.k", "agent.formation.k"},
+                    {"agent.circle_fit", "agent.formation.circle_fit"},
+                    {"mission.legs", "agent.mission.legs"},
+                    {"mission.start", "agent.mission.start"},
+                    {"mission.start_s", "agent.mission.start_s"},
+                    {"mission.max_speed_mps", "agent.mission.max_speed_mps"}};
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"},
                     {"agent.sensor.fov_deg", "mps.fov_deg"},
                     {"agent.sensor.mount_deg", "mps.mount_deg"},

@@ -35,7 +35,7 @@ TEST(RecordJson, SummaryHasEveryKeyOnceAndNullForMissingValues) {
   // AND so is every field of the flat view, with its value, null where it is not finite
   const Json parsed = Json::parse(json);
   const std::vector<monitor::NamedValue> fields = monitor::summaryFields(s);
-  EXPECT_EQ(fields.size(), 28u);
+  EXPECT_EQ(fields.size(), 33u);
   EXPECT_EQ(parsed.size(), fields.size());
   for (const monitor::NamedValue& f : fields) {
     ASSERT_TRUE(parsed.contains(f.key)) << f.key;

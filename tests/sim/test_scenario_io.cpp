@@ -196,7 +196,19 @@ TEST(ScenarioFiles, GivenEachShippedScenario_WhenLoaded_ThenItHasTheIntendedValu
   EXPECT_EQ(wind.imu.source, agent::ImuSource::kAccelerometer);
   EXPECT_EQ(wind.agent.focal.imu_source, agent::ImuSource::kAccelerometer);
 
-  // AND there are exactly these seven, and each one round-trips through its dump
+  // return_home_8: issue #45's mission, written at the top of the scenario and held by every agent: cruising east
+  // from 0 s, GNSS lost at 10 s, 500 m back west at 4 m/s, then a hold
+  const Scenario home = loadScenario(dir + "/return_home_8.yaml");
+  EXPECT_EQ(home.uav_count, 8);
+  EXPECT_EQ(home.agent.mission.start, agent::MissionStart::kTime);
+  ASSERT_EQ(home.agent.mission.legs.size(), 2u);
+  EXPECT_EQ(home.agent.mission.legs[0].velocity_mps, agent::Vec2(3, 0));
+  EXPECT_EQ(home.agent.mission.legs[0].duration_s, 10.0);
+  EXPECT_EQ(home.agent.mission.legs[1].velocity_mps, agent::Vec2(-4, 0));
+  EXPECT_EQ(home.agent.mission.legs[1].duration_s, 125.0);
+  EXPECT_EQ(sim::missionStart(home), 0.0);
+
+  // AND there are exactly these eight, and each one round-trips through its dump
   int count = 0;
   for (const auto& file : std::filesystem::directory_iterator(dir)) {
     if (file.path().extension() != ".yaml") continue;
@@ -204,7 +216,7 @@ TEST(ScenarioFiles, GivenEachShippedScenario_WhenLoaded_ThenItHasTheIntendedValu
     const Scenario loaded = loadScenario(file.path().string());
     EXPECT_EQ(yamlOf(parseScenario(yamlOf(loaded), "dump")), yamlOf(loaded)) << file.path();
   }
-  EXPECT_EQ(count, 7);
+  EXPECT_EQ(count, 8);
 }
 
 TEST(ScenarioOverride, GivenASetOfEachRequiredKey_WhenApplied_ThenExactlyThatFieldChanges) {

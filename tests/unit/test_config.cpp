@@ -70,6 +70,14 @@ void expectSameConfig(const AgentConfig& a, const AgentConfig& b) {
   EXPECT_EQ(a.sensor.detector_x_m, b.sensor.detector_x_m);
   EXPECT_EQ(a.sensor.detector_y_m, b.sensor.detector_y_m);
   EXPECT_EQ(a.sensor.detector_classes, b.sensor.detector_classes);
+  EXPECT_EQ(a.mission.start, b.mission.start);
+  EXPECT_EQ(a.mission.start_s, b.mission.start_s);
+  EXPECT_EQ(a.mission.max_speed_mps, b.mission.max_speed_mps);
+  ASSERT_EQ(a.mission.legs.size(), b.mission.legs.size());
+  for (std::size_t i = 0; i < a.mission.legs.size(); ++i) {
+    EXPECT_EQ(a.mission.legs[i].velocity_mps, b.mission.legs[i].velocity_mps) << i;
+    EXPECT_EQ(a.mission.legs[i].duration_s, b.mission.legs[i].duration_s) << i;
+  }
 }
 
 // Every field different from its default and valid; awkward binary fractions test exact round trips.
@@ -442,7 +450,7 @@ TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEvery
   std::ifstream file(path);
   const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
-  EXPECT_EQ(keysOf(text).size(), 49u);
+  EXPECT_EQ(keysOf(text).size(), 52u);
   EXPECT_TRUE(contains(text, "  # k: 3 ")) << text;
   EXPECT_TRUE(contains(text, "#   gain: 0.2 ")) << text;
   EXPECT_TRUE(contains(text, "#   gnss_min_std_m: 0.05 ")) << text;
@@ -564,7 +572,7 @@ TEST(AgentConfigApplies, GivenDetectorKeysThatChangeNothing_ThenEachIsAnErrorTha
 
 TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
   const std::string yaml = toYaml(AgentConfig{});
-  EXPECT_EQ(keysOf(yaml).size(), 49u);
+  EXPECT_EQ(keysOf(yaml).size(), 52u);
   EXPECT_TRUE(contains(yaml, "k_p: 0.7")) << yaml;
   // AND the three keys the defaults ignore are written as comments that say so
   EXPECT_TRUE(contains(yaml, "  # k: 3")) << yaml;
@@ -709,6 +717,70 @@ TEST(AgentConfigHelp, GivenTheParameterTable_ThenTheHelpListsEveryKeyWithUnitDef
   EXPECT_TRUE(contains(help, "  - formation.k: the k_nearest rule (formation.neighbourhood: k_nearest).")) << help;
   EXPECT_TRUE(contains(help, "focal.bias_freeze_speed_mps, focal.bias_freeze_hold_s: IMU-bias removal "
                              "(focal.bias_window_s not 0).")) << help;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The mission (issue #45): legs in two forms, refused before take-off when they cannot be flown.
+
+TEST(AgentConfigMission, GivenLegsInBothForms_ThenEachIsAVelocityOverATimeThatRunsThroughThePoints) {
+  // GIVEN a plan of a velocity leg, then two legs to points at a speed
+  const AgentConfig c = parseAgentConfig(
+      "mission:\n"
+      "  start: time\n"
+      "  start_s: 5\n"
+      "  legs:\n"
+      "    - {velocity_mps: [3, 0], duration_s: 10}\n"
+      "    - {to_m: [30, 40], speed_mps: 4}\n"
+      "    - {to_m: [0, 0], speed_mps: 5}\n");
+  // THEN the point legs start where the plan is (30, 0) and end exactly at their points, at their speeds
+  EXPECT_EQ(c.mission.start, MissionStart::kTime);
+  EXPECT_EQ(c.mission.start_s, 5.0);
+  ASSERT_EQ(c.mission.legs.size(), 3u);
+  EXPECT_EQ(c.mission.legs[0].velocity_mps, Vec2(3, 0));
+  EXPECT_NEAR(c.mission.legs[1].velocity_mps.norm(), 4.0, 1e-12);
+  EXPECT_NEAR(c.mission.legs[1].duration_s, 10.0, 1e-12);  // 40 m north at 4 m/s
+  const MissionPlan plan(c.mission.legs);
+  EXPECT_NEAR((plan.pathAt(20.0) - Vec2(30, 40)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(plan.endPoint().norm(), 0.0, 1e-9);
+  // AND the dump writes them as velocity legs that parse back to the same plan
+  expectSameConfig(parseAgentConfig(toYaml(c)), c);
+}
+
+TEST(AgentConfigMission, GivenAPlanThatCannotBeFlown_ThenEveryProblemIsNamedBeforeTakeOff) {
+  // GIVEN legs that mix forms, leave one half out, name an unknown key, fly too fast, go nowhere, or are not numbers
+  const ConfigError error = expectConfigError([] {
+    parseAgentConfig(
+        "mission:\n"
+        "  legs:\n"
+        "    - {velocity_mps: [1, 0], duration_s: 5, speed_mps: 2}\n"
+        "    - {to_m: [5, 0]}\n"
+        "    - {velocity_mps: [1, 0], duration_s: 5, heading: 3}\n"
+        "    - {velocity_mps: [6, 0], duration_s: 5}\n"
+        "    - {to_m: [0, 0], speed_mps: 2}\n"
+        "    - {velocity_mps: [.nan, 0], duration_s: 5}\n"
+        "    - {velocity_mps: [1], duration_s: 5}\n");
+  });
+  // THEN each is refused, naming its leg
+  EXPECT_TRUE(contains(problemAbout(error, "mission.legs[0]"), "mixes two forms")) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "mission.legs[1]"), "is incomplete")) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "'heading'"), "mission.legs[2]")) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "mission.legs[5].velocity_mps[0]"), "not a finite number")) << error.what();
+  EXPECT_TRUE(contains(problemAbout(error, "mission.legs[6].velocity_mps"), "a list of 2 numbers")) << error.what();
+  // AND the rules between legs and the limit are checked once every leg reads: here they do not, so the speed and
+  // the leg to nowhere are told when the rest is right
+  const ConfigError rules = expectConfigError([] {
+    parseAgentConfig(
+        "mission:\n"
+        "  max_speed_mps: 5\n"
+        "  legs:\n"
+        "    - {velocity_mps: [6, 0], duration_s: 5}\n"
+        "    - {to_m: [30, 0], speed_mps: 2}\n");
+  });
+  EXPECT_TRUE(contains(problemAbout(rules, "mission.legs[0]"), "above mission.max_speed_mps = 5")) << rules.what();
+  EXPECT_TRUE(contains(problemAbout(rules, "mission.legs[1]"), "goes nowhere")) << rules.what();
+  // AND start_s without a timed start changes nothing, so it is an error
+  const ConfigError start = expectConfigError([] { parseAgentConfig("mission: {start_s: 3}\n"); });
+  EXPECT_TRUE(contains(problemAbout(start, "mission.start_s"), "a mission started at a time")) << start.what();
 }
 
 }  // namespace

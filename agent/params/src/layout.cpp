@@ -2,6 +2,7 @@
 // messages of read.cpp.
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "spec_text.h"
@@ -57,8 +58,18 @@ std::string formatRecord(const Spec& s, const Record& record) {
   std::vector<std::string> items;
   for (std::size_t i = 0; i < s.fields.size(); ++i) {
     const Spec& f = s.fields[i];
-    items.push_back(f.key + ": " + (f.kind == Kind::kInteger ? std::to_string(static_cast<long long>(record[i]))
-                                                             : formatYamlReal(record[i])));
+    const std::size_t slot = recordSlot(s, i);
+    if (slot >= record.size() || (!s.forms.empty() && std::isnan(record[slot]))) continue;  // another form's field
+    const auto number = [&](double v) {
+      return f.kind == Kind::kInteger ? std::to_string(static_cast<long long>(v)) : formatYamlReal(v);
+    };
+    if (f.components == 1) {
+      items.push_back(f.key + ": " + number(record[slot]));
+      continue;
+    }
+    std::vector<std::string> parts;
+    for (std::size_t j = 0; j < f.components && slot + j < record.size(); ++j) parts.push_back(number(record[slot + j]));
+    items.push_back(f.key + ": [" + join(parts, ", ") + "]");
   }
   return "{" + join(items, ", ") + "}";
 }

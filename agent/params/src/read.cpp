@@ -218,6 +218,9 @@ class Reader {
     for (const Spec& s : schema_.specs) {
       if (startsWith(s.key, section + ".")) return s.key;
     }
+    for (const Alias& a : schema_.aliases) {  // a section of aliases only (the scenario's mission:)
+      if (startsWith(a.alias, section + ".")) return a.key;
+    }
     return {};
   }
 

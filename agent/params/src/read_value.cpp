@@ -82,10 +82,53 @@ std::optional<Value> readIntList(const Spec& s, const YAML::Node& list_node, con
   return ok ? std::optional<Value>(list) : std::nullopt;
 }
 
+// A field of `components` numbers: a list of exactly that many, each valid for the field. Problems go to `fail`.
+bool readComponents(const Spec& f, const YAML::Node& value, const std::string& name, Record& record, std::size_t slot,
+                    const std::function<void(std::string)>& fail) {
+  const std::string expected = "a list of " + std::to_string(f.components) + " numbers" +
+                               (f.unit.empty() ? std::string() : " in " + f.unit) + " such as [3, 0]";
+  if (!value.IsSequence() || value.size() != f.components) {
+    fail(name + " must be " + expected + ", got " +
+         (value.IsSequence() ? "a list of " + std::to_string(value.size()) : nodeKindName(value)));
+    return false;
+  }
+  bool ok = true;
+  for (std::size_t j = 0; j < f.components; ++j) {
+    const auto v = readNumber(f, value[j], name + "[" + std::to_string(j) + "]", fail);
+    if (v) record[slot + j] = *v;
+    ok = ok && v.has_value();
+  }
+  return ok;
+}
+
+// Which of the spec's forms the given fields make: its index, or nullopt with `fail` told why.
+std::optional<std::size_t> formOf(const Spec& s, const std::vector<std::string>& names,
+                                  const std::vector<const YAML::Node*>& given, const std::string& name,
+                                  const std::function<void(std::string)>& fail) {
+  const auto has = [&](const std::string& field) {
+    const auto at = std::find(names.begin(), names.end(), field);
+    return at != names.end() && given[static_cast<std::size_t>(at - names.begin())] != nullptr;
+  };
+  std::vector<std::string> forms;
+  std::optional<std::size_t> complete;
+  int started = 0;
+  for (std::size_t k = 0; k < s.forms.size(); ++k) {
+    const auto& form = s.forms[k];
+    forms.push_back(join(form, " and "));
+    const auto n = std::count_if(form.begin(), form.end(), has);
+    if (n > 0) ++started;
+    if (n == static_cast<long>(form.size()) && !complete) complete = k;
+  }
+  if (complete && started == 1) return complete;
+  fail(name + (started > 1 ? " mixes two forms" : " is incomplete") + "; it gives either " + join(forms, ", or ") +
+       " (such as " + s.example + ")");
+  return std::nullopt;
+}
+
 // One element of a record list: a map of the spec's fields. Every problem goes to `fail`.
 Record readRecord(const Spec& s, const YAML::Node& item, const std::string& name,
                   const std::function<void(std::string, const YAML::Node&)>& fail) {
-  Record record(s.fields.size(), 0.0);
+  Record record(recordSlots(s), 0.0);
   std::vector<std::string> names;
   for (const Spec& f : s.fields) names.push_back(f.key);
   if (!item.IsMap()) {
@@ -116,15 +159,35 @@ Record readRecord(const Spec& s, const YAML::Node& item, const std::string& name
     }
     given[i] = &nodes.emplace_back(field.second);
     const auto field_fail = [&](std::string message) { fail(std::move(message), field.second); };
-    if (const auto v = readNumber(s.fields[i], field.second, name + "." + key, field_fail)) {
-      record[i] = *v;
+    const Spec& f = s.fields[i];
+    const std::size_t slot = recordSlot(s, i);
+    if (f.components != 1) {
+      valid[i] = readComponents(f, field.second, name + "." + key, record, slot, field_fail);
+    } else if (const auto v = readNumber(f, field.second, name + "." + key, field_fail)) {
+      record[slot] = *v;
       valid[i] = true;
+    }
+  }
+  // The fields of the forms the element does not take hold NaN; a field outside every form is required as before.
+  std::vector<bool> in_form(s.fields.size(), false);
+  std::optional<std::size_t> form;
+  if (!s.forms.empty()) {
+    form = formOf(s, names, given, name, [&](std::string message) { fail(std::move(message), item); });
+    if (!form) return record;
+    for (const auto& f : s.forms) {
+      for (const std::string& field : f) {
+        const auto i = static_cast<std::size_t>(std::find(names.begin(), names.end(), field) - names.begin());
+        if (i < names.size()) in_form[i] = true;
+      }
     }
   }
   for (std::size_t i = 0; i < s.fields.size(); ++i) {
     if (given[i] != nullptr) continue;
-    if (s.fields[i].default_value) {
-      record[i] = *s.fields[i].default_value;
+    if (in_form[i]) {
+      std::fill_n(record.begin() + static_cast<long>(recordSlot(s, i)), s.fields[i].components,
+                  std::numeric_limits<double>::quiet_NaN());
+    } else if (s.fields[i].default_value) {
+      record[recordSlot(s, i)] = *s.fields[i].default_value;
       valid[i] = true;
     } else {
       fail(name + " has no " + names[i] + "; expected a map such as " + s.example, item);
@@ -136,10 +199,10 @@ Record readRecord(const Spec& s, const YAML::Node& item, const std::string& name
   const std::size_t earlier = index(s.earlier);
   const std::size_t later = index(s.later);
   if (later < names.size() && valid[earlier] && valid[later] && given[later] != nullptr &&
-      !(record[later] > record[earlier])) {
+      !(record[recordSlot(s, later)] > record[recordSlot(s, earlier)])) {
     const std::string unit = unitSuffix(s.fields[later]);
-    fail(name + "." + s.later + " = " + formatYamlNumber(record[later]) + unit + " must be > " + name + "." +
-             s.earlier + " = " + formatYamlNumber(record[earlier]) + unit + ": " + s.order_why,
+    fail(name + "." + s.later + " = " + formatYamlNumber(record[recordSlot(s, later)]) + unit + " must be > " + name +
+             "." + s.earlier + " = " + formatYamlNumber(record[recordSlot(s, earlier)]) + unit + ": " + s.order_why,
          *given[later]);
   }
   return record;

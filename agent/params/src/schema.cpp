@@ -67,6 +67,14 @@ const std::vector<long long>& intList(const Values& values, const std::string& k
   return std::get<std::vector<long long>>(values.at(key));
 }
 
+std::size_t recordSlot(const Spec& s, std::size_t field) {
+  std::size_t slot = 0;
+  for (std::size_t i = 0; i < field && i < s.fields.size(); ++i) slot += s.fields[i].components;
+  return slot;
+}
+
+std::size_t recordSlots(const Spec& s) { return recordSlot(s, s.fields.size()); }
+
 const std::vector<Record>& records(const Values& values, const std::string& key) {
   return std::get<std::vector<Record>>(values.at(key));
 }

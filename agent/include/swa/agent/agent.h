@@ -14,6 +14,7 @@
 #include "swa/agent/diagnostics.h"
 #include "swa/agent/focal_estimator.h"
 #include "swa/agent/imu_bias.h"
+#include "swa/agent/mission.h"
 #include "swa/agent/neighbourhood.h"
 #include "swa/agent/samples.h"
 #include "swa/agent/stream_clock.h"
@@ -49,6 +50,11 @@ class Agent {
   FrameFit fit(const NeighbourPositions& neighbours) const;
   bool rankedFit() const;
   Mat2 fitNoise(const Neighbourhood& neighbours, const FrameFit& fit) const;
+  void startMission(StampNs stamp);
+  void advanceMission(StampNs stamp);
+  double missionTime(StampNs stamp) const;
+  Vec2 relativeCommand() const { return command_ - plan_velocity_; }
+  Vec2 absoluteHold(StampNs stamp, const ControlConfig& cc) const;
 
   AgentConfig config_;
   TrackBank bank_;
@@ -79,6 +85,15 @@ class Agent {
   bool anchor_on_ = false;
   bool anchor_ever_on_ = false;
   std::optional<StampNs> anchor_ramp_from_ns_;
+
+  // The mission (mission.h). The focal filter works in a frame that moves with the plan: its velocity is the UAV's
+  // minus plan_velocity_, the plan's velocity at the last IMU step (the frame's), and its input the command minus it.
+  // The absolute filter stays in the take-off frame and follows the plan's path from mission_origin_, its position
+  // at the start.
+  MissionPlan plan_;
+  std::optional<StampNs> mission_start_ns_;
+  Vec2 plan_velocity_ = Vec2::Zero();
+  Vec2 mission_origin_ = Vec2::Zero();
 
   Vec2 command_ = Vec2::Zero();
   double yaw_rate_ = 0.0;

@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "swa/agent/mission.h"
+
 namespace swa::agent {
 
 enum class Mode { kSwa, kStandalone, kAnchored };
@@ -177,6 +179,7 @@ struct AgentConfig {
   SensorConfig sensor;
   AnchorConfig anchor;
   LimitsConfig limits;
+  MissionConfig mission;
 };
 
 std::string toString(Mode mode);
@@ -184,5 +187,6 @@ std::string toString(CircleFit fit);
 std::string toString(NeighbourhoodRule rule);
 std::string toString(DetectionInput input);
 std::string toString(ImuSource source);
+std::string toString(MissionStart start);
 
 }  // namespace swa::agent

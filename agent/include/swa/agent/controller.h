@@ -31,16 +31,21 @@ inline Vec2 saturate(const Vec2& v, double v_max) {
 }
 
 // Heading control (ControlConfig: facing_deg): the yaw rate that turns the sensor's axis to the common facing
-// direction. Exactly 0 with an all-round sensor, so such an agent never touches its heading. Always finite and
-// within +-max_yaw_rate_radps, whatever the heading (a non-finite heading gives 0).
-inline double headingRate(double heading_rad, const SensorConfig& sensor, const ControlConfig& c) {
+// direction `facing_deg` (counter-clockwise from east; a mission's direction of travel while it moves, else
+// ControlConfig::facing_deg). Exactly 0 with an all-round sensor, so such an agent never touches its heading. Always
+// finite and within +-max_yaw_rate_radps, whatever the heading (a non-finite heading or direction gives 0).
+inline double headingRate(double heading_rad, const SensorConfig& sensor, const ControlConfig& c, double facing_deg) {
   if (sensor.fov_deg >= 360.0 || !std::isfinite(heading_rad)) return 0.0;
   constexpr double kRadPerDeg = M_PI / 180.0;
-  const double wanted = (c.facing_deg - sensor.mount_deg) * kRadPerDeg;
+  const double wanted = (facing_deg - sensor.mount_deg) * kRadPerDeg;
   const double error = std::remainder(wanted - heading_rad, 2.0 * M_PI);  // in [-pi, pi]: the shorter way round
   const double rate = c.k_yaw * error;
   if (!std::isfinite(rate)) return 0.0;
   return std::clamp(rate, -c.max_yaw_rate_radps, c.max_yaw_rate_radps);
+}
+
+inline double headingRate(double heading_rad, const SensorConfig& sensor, const ControlConfig& c) {
+  return headingRate(heading_rad, sensor, c, c.facing_deg);
 }
 
 }  // namespace swa::agent

@@ -55,6 +55,12 @@ struct Diagnostics {
   // whose accelerometer stream started later than its attitude, or skipped one instant (the node reports them).
   std::uint64_t tilt_fallbacks = 0;
   bool gnss_valid = false;
+  // The mission (mission.h): the leg in force (-1 before the start or without a plan, the number of legs in the
+  // hold after the last), the plan's velocity in the stable frame, and whether a restart of the IMU's clock ended it
+  // early (the plan's time is the IMU's: the agent then holds).
+  int mission_leg = -1;
+  Vec2 plan_velocity_mps = Vec2::Zero();
+  bool mission_aborted = false;
 };
 
 }  // namespace swa::agent

@@ -29,6 +29,9 @@ class FocalEstimator {
   // The frame origin moved by `delta` (new origin - old origin): the UAV did not, so its coordinates shift by
   // -delta while velocity and acceleration (frame-parallel) are unchanged.
   void shiftFrame(const Vec2& delta);
+  // The frame's velocity changed by `delta` (a mission's next leg, mission.h): the UAV's did not, so its velocity in
+  // the frame shifts by -delta.
+  void shiftVelocity(const Vec2& delta);
   // The old frame cannot be related to the new one: restart position from the measurement, keep velocity and
   // acceleration, and drop the position cross-covariances that referred to the old frame.
   void resetPosition(const Vec2& z, const Mat2& R);

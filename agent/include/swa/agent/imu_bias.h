@@ -5,7 +5,9 @@
 // It rests on one prior: a hovering UAV's true acceleration averages to zero over T_b (its velocity stays bounded),
 // so the mean of what the IMU reports is its bias. That prior is false while the UAV manoeuvres, so the mean is
 // frozen (still subtracted, no longer updated) while the command in force is faster than `freeze_speed_mps` and for
-// `freeze_hold_s` after: a manoeuvre's slow phases (turning round, braking) carry its largest accelerations.
+// `freeze_hold_s` after: a manoeuvre's slow phases (turning round, braking) carry its largest accelerations. On a
+// mission the command is taken relative to the plan (a steady cruise accelerates no more than a hover), and each
+// change of the plan's velocity is a manoeuvre.
 // Works in the body frame, where the bias of a tilt sensor is constant even if the heading turns.
 //
 // Why not a bias state in the filter: an 8-state filter did nothing with the paper's Q_f and made drift worse with a
@@ -27,6 +29,12 @@ class ImuBiasRemover {
   // Updates the mean with body-frame acceleration `a` at `stamp` (unless `command_mps` is faster than the freeze
   // speed) and returns a - mean. Stamps must increase; an older or repeated stamp only subtracts.
   Vec2 correct(const Vec2& a, StampNs stamp, const Vec2& command_mps);
+  // A manoeuvre that the command does not show began at `stamp` (a mission's next leg: the command relative to the
+  // plan stays slow while the UAV accelerates with its swarm): frozen as after a fast command.
+  void manoeuvreAt(StampNs stamp) {
+    seen_fast_ = true;
+    last_fast_ns_ = stamp;
+  }
 
   Vec2 bias() const { return bias_; }
   double averagedSeconds() const { return averaged_s_; }

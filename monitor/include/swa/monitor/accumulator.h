@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "swa/monitor/chi2.h"
+#include "swa/monitor/mission_score.h"
 #include "swa/monitor/swarm_metrics.h"
 
 namespace swa::monitor {
@@ -68,6 +69,12 @@ struct Summary {
   std::uint64_t nees_samples = 0;         // agent-estimates evaluated in the window
   std::uint64_t nees_skipped_unknown_id = 0;  // in the window
   std::uint64_t nees_skipped_invalid = 0;     // in the window
+  // A mission's figures (mission_score.h); NaN without a mission or before it started.
+  double mission_end_error_m = kNaN;
+  double mission_path_error_m = kNaN;
+  double mission_d_nb_moving_m = kNaN;
+  double mission_uav_end_error_m = kNaN;
+  double mission_uav_end_spread_m = kNaN;
 };
 
 class MetricsAccumulator {
@@ -135,6 +142,7 @@ class MetricsAccumulator {
   std::uint64_t skipped_unknown_ = 0;
   std::uint64_t skipped_invalid_ = 0;
   std::vector<AneesBand> bands_;  // bands_[k - 1] for k agents, filled on demand
+  MissionScore mission_;
 };
 
 }  // namespace swa::monitor

@@ -94,6 +94,9 @@ struct MetricsConfig {
   double drift_segment_s = 60.0;       // summary drift_velocity_windows_mps: mean over consecutive windows this long
   double anees_alpha = 0.05;           // two-sided ANEES acceptance band (1 - alpha)
   FrameVelocity frame_velocity = FrameVelocity::kNeighbourMean;
+  // A mission (issue #45): the agents' plan and when its first leg begins on the steps' clock; no legs: none.
+  std::vector<agent::MissionLeg> mission_legs;
+  double mission_start_s = 0.0;
 };
 
 // Every problem in one message; throws std::invalid_argument if there is any.

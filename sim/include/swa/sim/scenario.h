@@ -163,4 +163,17 @@ inline double driftWindowStart(const Scenario& s) {
   return (std::isfinite(t) && t < s.duration_s) ? t : 0.0;
 }
 
+// When the agents' mission begins (agent.mission.start): at its time, or at the first GNSS sample without a fix, the
+// first sample at or after the common dropout (a sample every 1/gnss.rate_hz from 0). NaN when it never does: no
+// plan, no GNSS loss within the run, or no GNSS samples.
+inline double missionStart(const Scenario& s) {
+  const agent::MissionConfig& m = s.agent.mission;
+  const double never = std::numeric_limits<double>::quiet_NaN();
+  if (m.legs.empty()) return never;
+  if (m.start == agent::MissionStart::kTime) return m.start_s < s.duration_s ? m.start_s : never;
+  const double t = s.gnss.dropout_start_s;
+  if (!std::isfinite(t) || t >= s.duration_s || !(s.gnss.rate_hz > 0.0)) return never;
+  return std::ceil(t * s.gnss.rate_hz - 1e-9) / s.gnss.rate_hz;
+}
+
 }  // namespace swa::sim

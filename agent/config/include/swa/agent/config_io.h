@@ -29,6 +29,9 @@ using ConfigError = params::ConfigError;
 
 // The parameter table of the agent configuration.
 const params::Table<AgentConfig>& configTable();
+// Its rules between parameters (a mission's legs against its speed limit), with every key under `prefix` ("agent."
+// where the scenario mounts the table: a mounted table's checks are the outer schema's).
+std::vector<params::Check> configChecks(const std::string& prefix);
 
 // Reads a YAML file. Throws ConfigError (source = the path) when the file is missing, unreadable, not valid YAML,
 // or describes an invalid configuration.

@@ -21,7 +21,9 @@ inline constexpr std::size_t kMaxTextChars = 256;
 inline constexpr const char* kTextChars =
     "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./,-";
 
-using Record = std::vector<double>;  // one kRecordList element: a value per Spec::fields entry, in that order
+// One kRecordList element: the values of Spec::fields in their order, a field of `components` numbers taking that many
+// slots (recordSlot); a field left out of an element that gives another alternative holds NaN.
+using Record = std::vector<double>;
 // kReal and kInteger hold a double (integers up to 2^53 are exact), kSeed a uint64, kChoice the chosen name, kText
 // the text.
 using Value = std::variant<double, std::uint64_t, bool, std::string, std::vector<long long>, std::vector<Record>>;
@@ -38,6 +40,12 @@ struct Spec {
   // kRecordList: the fields of one element (kReal or kInteger specs keyed by field name); a field with a default
   // may be left out. `later` > `earlier` must hold in every element, for the reason `order_why`.
   std::vector<Spec> fields;
+  // A field of a record: written as a list of this many numbers ("velocity_mps: [3, 0]"), each within `range`.
+  std::size_t components = 1;
+  // kRecordList: the forms an element may take, each a set of field names: an element gives every field of exactly
+  // one of them and none of the others' ("{velocity_mps, duration_s}" or "{to_m, speed_mps}"). Fields named in no
+  // form are as without forms. Empty: one form, every field.
+  std::vector<std::vector<std::string>> forms;
   std::optional<double> default_value;
   std::string earlier, later, order_why;
   std::string example;     // kRecordList: one element as YAML, for messages
@@ -121,6 +129,10 @@ struct Schema {
 
 // Whether the values of `a.when` turn `a.key` off.
 bool turnsOff(const Applies& a, const Values& values);
+
+// The first slot of field `field` in a record of `s` (fields before it may take several), and the slots of a record.
+std::size_t recordSlot(const Spec& s, std::size_t field);
+std::size_t recordSlots(const Spec& s);
 
 // Typed reads of a Values map, for checks.
 double number(const Values& values, const std::string& key);
