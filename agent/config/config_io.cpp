@@ -204,6 +204,9 @@ params::Table<AgentConfig> makeTable() {
             "when the first leg begins: gnss_loss (the first GNSS sample without a fix) or time (mission.start_s)");
   SWA_PARAM(t, number, mission.start_s, "s", closed(0, kMaxMissionTime_s),
             "mission.start time: the first leg begins at this stamp of the IMU's clock");
+  SWA_PARAM(t, number, mission.response_s, "s", closed(0, 60),
+            "the vehicle's velocity response (first-order time constant): the swarm's frame follows each leg's "
+            "velocity through it; 0: at once");
   SWA_PARAM(t, number, mission.max_speed_mps, "m/s", openClosed(0, kMaxMissionSpeed_mps),
             "a plan with a faster leg is refused (the vehicles' cruise limit)");
   // Keys a chosen mode ignores: giving one is an error (a user who sets a key that changes nothing should know).

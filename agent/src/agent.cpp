@@ -98,6 +98,7 @@ void Agent::restartTimeline() {
   }
   mission_start_ns_.reset();
   plan_velocity_.setZero();
+  expected_velocity_.setZero();
 }
 
 VelocityCommand Agent::onImu(const ImuSample& imu) {
@@ -340,13 +341,24 @@ void Agent::advanceMission(StampNs stamp) {
     imu_bias_.manoeuvreAt(stamp);
     plan_velocity_ = next;
   }
+  // What the swarm is expected to fly: the plan through the vehicle's first-order response (exact for a velocity
+  // constant over the step). The formation law damps the velocity against it, not against the plan: the lag of a
+  // new leg is the whole swarm's, and the vehicle catches it up by itself.
+  if (expected_velocity_ != plan_velocity_ && stamp > expected_at_ns_) {
+    const double dt = secondsBetween(expected_at_ns_, stamp);
+    const double keep = config_.mission.response_s > 0.0 ? std::exp(-dt / config_.mission.response_s) : 0.0;
+    const Vec2 moved = plan_velocity_ + keep * (expected_velocity_ - plan_velocity_);
+    // Within a micrometre per second of the plan it is the plan: a hold is then exactly a hold.
+    expected_velocity_ = (moved - plan_velocity_).norm() < 1e-6 ? plan_velocity_ : moved;
+  }
+  expected_at_ns_ = stamp;
 }
 
 // Standalone and anchored: the absolute filter's pull towards the take-off point, or during a mission towards the
 // plan's path from where the UAV was at its start, damped against the plan's velocity.
 Vec2 Agent::absoluteHold(StampNs stamp, const ControlConfig& cc) const {
   const Vec2 target = mission_origin_ + plan_.pathAt(missionTime(stamp));
-  return formationVelocity(absolute_.position() - target, absolute_.velocity() - plan_velocity_, cc);
+  return formationVelocity(absolute_.position() - target, absolute_.velocity() - expected_velocity_, cc);
 }
 
 Vec2 Agent::computeCommand(StampNs stamp) {
@@ -356,7 +368,7 @@ Vec2 Agent::computeCommand(StampNs stamp) {
       focal_.initialized() && secondsBetween(last_frame_ns_, stamp) <= config_.focal.frame_timeout_s;
   switch (config_.mode) {
     case Mode::kSwa:
-      if (frame_fresh) v = formationVelocity(focal_.position(), focal_.velocity(), cc);
+      if (frame_fresh) v = formationVelocity(focal_.position(), relativeVelocity(), cc);
       break;
     case Mode::kStandalone:
       // The baseline keeps holding its take-off point (or following the plan) on dead reckoning after GNSS is gone
@@ -364,7 +376,7 @@ Vec2 Agent::computeCommand(StampNs stamp) {
       if (absolute_.initialized()) v = absoluteHold(stamp, cc);
       break;
     case Mode::kAnchored: {
-      if (frame_fresh) v = formationVelocity(focal_.position(), focal_.velocity(), cc);
+      if (frame_fresh) v = formationVelocity(focal_.position(), relativeVelocity(), cc);
       const bool gnss_fresh = gnss_valid_ && secondsBetween(last_valid_gnss_ns_, stamp) <= kGnssFreshS;
       const bool anchor_on = gnss_fresh && absolute_.initialized();
       if (anchor_on && !anchor_on_ && anchor_ever_on_) anchor_ramp_from_ns_ = stamp;

@@ -334,7 +334,8 @@ params::Table<Scenario> makeTable() {
   schema.derived = {{"agent.formation.radius_m", "formation.spacing_m"},
                     {"agent.sensor.fov_deg", "mps.fov_deg"},
                     {"agent.sensor.mount_deg", "mps.mount_deg"},
-                    {"agent.focal.imu_source", "imu.source"}};
+                    {"agent.focal.imu_source", "imu.source"},
+                    {"agent.mission.response_s", "dynamics.velocity_lag_s"}};
   schema.foreign_sections = {"study"};
   return t;
 }

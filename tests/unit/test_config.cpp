@@ -73,6 +73,7 @@ void expectSameConfig(const AgentConfig& a, const AgentConfig& b) {
   EXPECT_EQ(a.mission.start, b.mission.start);
   EXPECT_EQ(a.mission.start_s, b.mission.start_s);
   EXPECT_EQ(a.mission.max_speed_mps, b.mission.max_speed_mps);
+  EXPECT_EQ(a.mission.response_s, b.mission.response_s);
   ASSERT_EQ(a.mission.legs.size(), b.mission.legs.size());
   for (std::size_t i = 0; i < a.mission.legs.size(); ++i) {
     EXPECT_EQ(a.mission.legs[i].velocity_mps, b.mission.legs[i].velocity_mps) << i;
@@ -125,6 +126,11 @@ AgentConfig everyFieldChanged() {
   c.limits.max_target_id = 5000;
   c.limits.max_tilt_rad = 0.6;
   c.limits.max_abs_position_m = 2.5e5;
+  c.mission.start = MissionStart::kTime;
+  c.mission.start_s = 2.5;
+  c.mission.response_s = 0.35;
+  c.mission.max_speed_mps = 4.5;
+  c.mission.legs = {{Vec2(0.1 + 0.2, -1.0 / 3.0), 7.25}, {Vec2(-4, 0), 1e-3}};
   return c;
 }
 
@@ -450,7 +456,7 @@ TEST(AgentConfigLoad, GivenTheExampleFile_ThenItParsesToTheDefaultsAndListsEvery
   std::ifstream file(path);
   const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   EXPECT_EQ(keysOf(text), keysOf(toYaml(AgentConfig{})));
-  EXPECT_EQ(keysOf(text).size(), 52u);
+  EXPECT_EQ(keysOf(text).size(), 53u);
   EXPECT_TRUE(contains(text, "  # k: 3 ")) << text;
   EXPECT_TRUE(contains(text, "#   gain: 0.2 ")) << text;
   EXPECT_TRUE(contains(text, "#   gnss_min_std_m: 0.05 ")) << text;
@@ -572,7 +578,7 @@ TEST(AgentConfigApplies, GivenDetectorKeysThatChangeNothing_ThenEachIsAnErrorTha
 
 TEST(AgentConfigYaml, GivenTheDefaults_WhenDumped_ThenEveryKeyIsPresentWithItsUnit) {
   const std::string yaml = toYaml(AgentConfig{});
-  EXPECT_EQ(keysOf(yaml).size(), 52u);
+  EXPECT_EQ(keysOf(yaml).size(), 53u);
   EXPECT_TRUE(contains(yaml, "k_p: 0.7")) << yaml;
   // AND the three keys the defaults ignore are written as comments that say so
   EXPECT_TRUE(contains(yaml, "  # k: 3")) << yaml;

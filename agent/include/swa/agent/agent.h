@@ -54,6 +54,11 @@ class Agent {
   void advanceMission(StampNs stamp);
   double missionTime(StampNs stamp) const;
   Vec2 relativeCommand() const { return command_ - plan_velocity_; }
+  // The focal velocity against what the swarm is expected to fly (exactly the focal velocity without a mission).
+  Vec2 relativeVelocity() const {
+    return expected_velocity_ == plan_velocity_ ? focal_.velocity()
+                                                : Vec2(focal_.velocity() - (expected_velocity_ - plan_velocity_));
+  }
   Vec2 absoluteHold(StampNs stamp, const ControlConfig& cc) const;
 
   AgentConfig config_;
@@ -88,11 +93,14 @@ class Agent {
 
   // The mission (mission.h). The focal filter works in a frame that moves with the plan: its velocity is the UAV's
   // minus plan_velocity_, the plan's velocity at the last IMU step (the frame's), and its input the command minus it.
-  // The absolute filter stays in the take-off frame and follows the plan's path from mission_origin_, its position
-  // at the start.
+  // expected_velocity_ is what the swarm flies meanwhile (the plan through mission.response_s), against which the
+  // formation law damps. The absolute filter stays in the take-off frame and follows the plan's path from
+  // mission_origin_, its position at the start.
   MissionPlan plan_;
   std::optional<StampNs> mission_start_ns_;
   Vec2 plan_velocity_ = Vec2::Zero();
+  Vec2 expected_velocity_ = Vec2::Zero();
+  StampNs expected_at_ns_ = 0;
   Vec2 mission_origin_ = Vec2::Zero();
 
   Vec2 command_ = Vec2::Zero();

@@ -34,6 +34,11 @@ struct MissionConfig {
   // clock: the simulator's time, an autopilot's time since boot).
   MissionStart start = MissionStart::kGnssLoss;
   double start_s = 0.0;
+  // The vehicle's velocity response: the time constant of a first-order step response (the simulator's
+  // dynamics.velocity_lag_s, from which a scenario derives it). The swarm's frame follows the plan through it, so
+  // that a leg's change of velocity, which the whole swarm flies together, is not taken for a UAV falling behind its
+  // neighbours (and caught up twice: by the vehicle and by the formation law).
+  double response_s = 1.0;
   // The fastest leg accepted: above it a plan is refused before take-off (a vehicle's cruise limit; PX4's
   // MPC_XY_VEL_MAX defaults to 12 m/s, the issue asks for up to 5).
   double max_speed_mps = 5.0;
