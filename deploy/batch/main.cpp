@@ -22,6 +22,7 @@
 #include "swa/monitor/output_dir.h"
 #include "swa/run_record/events.h"
 #include "swa/run_record/run_dir.h"
+#include "swa/run_record/scoring.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/app/run_directory.h"
 #include "swa/app/version.h"
@@ -174,7 +175,7 @@ int Batch::run() {
   notes.version = app::programVersion();
   notes.scenario = opt.scenario_path;
   for (int k = 0; k < opt.seeds; ++k) notes.seeds.push_back(scenario.seed + static_cast<std::uint64_t>(k));
-  notes.scoring.formation = scenario.agent.formation;
+  notes.scoring = record::scoringOf(scenario).metrics;  // r, and a mission's plan for the top-down plot
   notes.gnss_loss_s = sim::driftWindowStart(scenario) > 0.0 ? sim::driftWindowStart(scenario) : monitor::kNaN;
   notes.extra.push_back({"plots", "first seed of each mode; summary.json has every seed and the aggregate"});
   monitor::writeReport((out / "report").string(), report_runs, notes);

@@ -7,6 +7,7 @@
 
 #include "swa/run_record/run_dir.h"
 #include "swa/run_record/run_report.h"
+#include "swa/run_record/scoring.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/app/version.h"
 
@@ -37,8 +38,7 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
   notes.version = app::programVersion();
   if (scenario) {
     notes.scenario = options.scenario_path;
-    notes.scoring.formation = scenario->agent.formation;
-    notes.scoring.window_start_s = sim::driftWindowStart(*scenario);
+    notes.scoring = record::scoringOf(*scenario).metrics;
     notes.gnss_loss_s = monitor::gnssLossTime(notes.scoring);
   }
   if (options.tolerance_given) notes.scoring.radius_tolerance = options.tolerance;

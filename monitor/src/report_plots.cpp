@@ -154,7 +154,37 @@ ReportPlot neesPlot(const std::vector<RunReport>& runs, const ReportNotes& notes
   return plot;
 }
 
-ReportPlot trajectoryPlot(const RunReport& run, const std::string& name) {
+// A mission's planned path from where the run's centroid was at its start, and the centroid's own path: both empty
+// without a mission or before it started.
+void addMissionPaths(const RunReport& run, const MetricsConfig& scoring, PlotSpec& spec) {
+  if (scoring.mission_legs.empty()) return;
+  const auto start = std::find_if(run.series.begin(), run.series.end(), [&](const TimeSeriesRow& r) {
+    return r.t_s >= scoring.mission_start_s && std::isfinite(r.centroid_x_m) && std::isfinite(r.centroid_y_m);
+  });
+  if (start == run.series.end()) return;
+  PlotSeries centroid;
+  centroid.label = "swarm centroid";
+  centroid.colour = "#000000";
+  centroid.width_px = 2.0;
+  for (const TimeSeriesRow& r : run.series) {
+    centroid.x.push_back(r.centroid_x_m);
+    centroid.y.push_back(r.centroid_y_m);
+  }
+  PlotSeries planned;
+  planned.label = "planned path";
+  planned.colour = "#d62728";
+  planned.dash_pattern = "6 4";
+  planned.width_px = 2.0;
+  const agent::MissionPlan plan(scoring.mission_legs);
+  for (const agent::Vec2& w : plan.waypoints()) {
+    planned.x.push_back(start->centroid_x_m + w.x());
+    planned.y.push_back(start->centroid_y_m + w.y());
+  }
+  spec.series.push_back(std::move(centroid));
+  spec.series.push_back(std::move(planned));
+}
+
+ReportPlot trajectoryPlot(const RunReport& run, const MetricsConfig& scoring, const std::string& name) {
   ReportPlot plot;
   plot.name = name;
   PlotSpec& spec = plot.spec;
@@ -191,11 +221,17 @@ ReportPlot trajectoryPlot(const RunReport& run, const std::string& name) {
     spec.series.push_back(std::move(s));
   }
   if (!legend) spec.series.push_back(std::move(ends));
+  const std::size_t before = spec.series.size();
+  addMissionPaths(run, scoring, spec);
+  const bool mission = spec.series.size() > before;
   plot.caption =
       "World frame seen from above, equal scale on both axes; a hollow circle marks where each UAV's "
       "track starts, a filled square where it ends" +
       std::string(legend ? "" : ", labelled with the UAV's id") + " (" + std::to_string(run.trajectories.size()) +
-      " UAVs; each run's plot has its own scale).";
+      " UAVs; each run's plot has its own scale)." +
+      std::string(mission ? " The dashed line is the mission's planned path from where the swarm's centroid was when "
+                            "it started; the thick line is the centroid's own path."
+                          : "");
   return plot;
 }
 
@@ -295,7 +331,7 @@ std::vector<ReportPlot> reportPlots(const std::vector<RunReport>& runs, const Re
     std::string name = base;
     for (int k = 2; names.count(name) != 0; ++k) name = base + "_" + std::to_string(k);
     names.insert(name);
-    plots.push_back(trajectoryPlot(runs[i], name));
+    plots.push_back(trajectoryPlot(runs[i], notes.scoring, name));
   }
   return plots;
 }

@@ -68,6 +68,8 @@ class MissionPlan {
   Vec2 velocityAt(double t_s) const;
   Vec2 pathAt(double t_s) const;
   Vec2 endPoint() const { return points_.empty() ? Vec2::Zero() : points_.back(); }
+  // The path's corners: the start (0, 0), then the end of every leg.
+  const std::vector<Vec2>& waypoints() const { return points_; }
 
  private:
   std::vector<MissionLeg> legs_;
