@@ -144,6 +144,7 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
     const Vec2 unbiased_body = imu_bias_.correct(acc_body, imu.stamp_ns, relativeCommand());
     focal_.predictTo(imu.stamp_ns, relativeCommand());
     absolute_.predictTo(imu.stamp_ns, command_);
+    takeCommand(imu.stamp_ns);
     advanceMission(imu.stamp_ns);
     focal_.correctAcceleration(to_stable * unbiased_body, r_acc_);
     absolute_.correctAcceleration(to_stable * acc_body, r_acc_);
@@ -323,6 +324,34 @@ void Agent::startMission(StampNs stamp) {
   if (plan_.empty() || mission_start_ns_) return;
   mission_start_ns_ = stamp;
   mission_origin_ = absolute_.initialized() ? absolute_.position() : Vec2::Zero();
+}
+
+bool Agent::commandMission(const MissionCommand& command) {
+  if (missionCommandProblem(command, config_.mission.max_speed_mps, config_.limits.max_abs_position_m)) {
+    ++diag_.mission_commands_refused;
+    return false;
+  }
+  pending_command_ = command;
+  return true;
+}
+
+void Agent::takeCommand(StampNs stamp) {
+  if (!pending_command_) return;
+  std::vector<MissionLeg> legs;
+  if (mission_start_ns_) {
+    // The agent never looks back along its plan: what was flown is kept as one straight leg to the point it reached,
+    // so that the plan stays one leg longer than the command however many commands come.
+    const double at_s = missionTime(stamp);
+    if (at_s > 0.0) legs.push_back({plan_.pathAt(at_s) / at_s, at_s});
+  } else {
+    mission_start_ns_ = stamp;
+    mission_origin_ = absolute_.initialized() ? absolute_.position() : Vec2::Zero();
+  }
+  appendCommand(legs, *pending_command_);
+  pending_command_.reset();
+  plan_ = MissionPlan(std::move(legs));
+  ++diag_.mission_commands;
+  diag_.mission_command_stamp_ns = stamp;
 }
 
 double Agent::missionTime(StampNs stamp) const {

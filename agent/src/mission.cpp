@@ -67,6 +67,64 @@ MissionPlan::MissionPlan(std::vector<MissionLeg> legs) : legs_(std::move(legs)) 
   }
 }
 
+std::optional<std::string> missionCommandProblem(const MissionCommand& command, double max_speed_mps,
+                                                 double max_abs_position_m) {
+  std::ostringstream why;
+  if (command.hold != command.legs.empty()) {
+    return command.hold ? "a hold with legs" : "no legs and no hold";
+  }
+  if (command.legs.size() > kMaxMissionLegs) {
+    why << command.legs.size() << " legs; at most " << kMaxMissionLegs;
+    return why.str();
+  }
+  for (std::size_t i = 0; i < command.legs.size(); ++i) {
+    const MissionCommandLeg& l = command.legs[i];
+    const bool to = l.kind == MissionCommandLeg::Kind::kTo;
+    const double time_or_speed = to ? l.speed_mps : l.duration_s;
+    const double speed = to ? l.speed_mps : l.value.norm();
+    if (!isFinite(l.value) || !std::isfinite(time_or_speed)) {
+      why << "leg " << i << " is not finite";
+    } else if (time_or_speed <= 0.0) {
+      why << "leg " << i << (to ? " speed_mps = " : " duration_s = ") << time_or_speed << " must be > 0";
+    } else if (speed > max_speed_mps) {
+      why << "leg " << i << " flies at " << speed << " m/s, above mission.max_speed_mps = " << max_speed_mps;
+    } else if (to && l.value.norm() > max_abs_position_m) {
+      why << "leg " << i << " goes to a point " << l.value.norm() << " m from the mission's start, beyond "
+          << "limits.max_abs_position_m = " << max_abs_position_m;
+    } else {
+      continue;
+    }
+    return why.str();
+  }
+  return std::nullopt;
+}
+
+std::vector<MissionLeg> flownUntil(const MissionPlan& plan, double at_s) {
+  std::vector<MissionLeg> flown;
+  if (!(at_s > 0.0)) return flown;
+  double t = 0.0;
+  for (const MissionLeg& l : plan.legs()) {
+    if (t + l.duration_s >= at_s) {
+      flown.push_back({l.velocity_mps, at_s - t});
+      return flown;
+    }
+    flown.push_back(l);
+    t += l.duration_s;
+  }
+  flown.push_back({Vec2::Zero(), at_s - t});
+  return flown;
+}
+
+void appendCommand(std::vector<MissionLeg>& legs, const MissionCommand& command) {
+  for (const MissionCommandLeg& l : command.legs) {
+    if (l.kind == MissionCommandLeg::Kind::kTo) {
+      appendLegTo(legs, l.value, l.speed_mps);
+    } else {
+      legs.push_back({l.value, l.duration_s});
+    }
+  }
+}
+
 int MissionPlan::legAt(double t_s) const {
   if (legs_.empty() || !(t_s >= 0.0)) return -1;
   // The first start after t, minus one: the leg whose interval holds t.

@@ -175,5 +175,64 @@ TEST(AgentMission, ARestartOfTheImuClockEndsTheMissionInAHold) {
   EXPECT_EQ(cmd.velocity_mps, Vec2::Zero());
 }
 
+MissionCommand goFor(const Vec2& velocity, double duration_s) {
+  MissionCommand c;
+  c.legs = {{MissionCommandLeg::Kind::kVelocity, velocity, duration_s, 0.0}};
+  return c;
+}
+
+TEST(AgentMission, AGroundCommandIsFlownFromTheNextImuSampleThenEndsInAHold) {
+  // GIVEN an agent with no plan, hovering alone for 1 s
+  Agent agent{AgentConfig{}};
+  FocalWorld world(7, {}, Vec2::Zero(), {});
+  for (int k = 0; k < 100; ++k) ASSERT_EQ(agent.onImu(world.imu(k * kStep)).velocity_mps, Vec2::Zero());
+  // WHEN the ground sends "east at 1.5 m/s for 2 s" between two IMU samples
+  ASSERT_TRUE(agent.commandMission(goFor(Vec2(1.5, 0), 2.0)));
+  // THEN the very next sample's command flies it, for 2 s, and then the agent holds
+  for (int k = 100; k < 400; ++k) {
+    const Vec2 expected = k < 300 ? Vec2(1.5, 0) : Vec2::Zero();
+    ASSERT_EQ(agent.onImu(world.imu(k * kStep)).velocity_mps, expected) << "step " << k;
+  }
+  EXPECT_EQ(agent.diagnostics().mission_commands, 1u);
+  EXPECT_EQ(agent.diagnostics().mission_command_stamp_ns, 100 * kStep);
+}
+
+TEST(AgentMission, AGroundHoldStopsAPlanMidLegAndAnotherCommandGoesOnFromThere) {
+  // GIVEN an agent 3 s into a 60 s leg east at 2 m/s
+  Agent agent(withPlan({{Vec2(2, 0), 60.0}}));
+  FocalWorld world(8, {}, Vec2::Zero(), {});
+  for (int k = 0; k < 300; ++k) agent.onImu(world.imu(k * kStep));
+  // WHEN the ground says hold
+  MissionCommand hold;
+  hold.hold = true;
+  ASSERT_TRUE(agent.commandMission(hold));
+  // THEN the next sample commands a hover, and the plan is in its hold
+  EXPECT_EQ(agent.onImu(world.imu(300 * kStep)).velocity_mps, Vec2::Zero());
+  EXPECT_EQ(agent.diagnostics().plan_velocity_mps, Vec2::Zero());
+  // AND fifty commands later the plan is still one flown leg and the command's: it does not grow with them
+  for (int n = 0; n < 50; ++n) {
+    ASSERT_TRUE(agent.commandMission(goFor(Vec2(0, n % 2 ? 1.0 : -1.0), 5.0)));
+    agent.onImu(world.imu((301 + n) * kStep));
+  }
+  EXPECT_EQ(agent.diagnostics().mission_leg, 1);
+  EXPECT_EQ(agent.diagnostics().plan_velocity_mps, Vec2(0, 1));
+  EXPECT_EQ(agent.diagnostics().mission_commands, 51u);
+}
+
+TEST(AgentMission, AnUnflyableGroundCommandIsRefusedCountedAndChangesNothing) {
+  // GIVEN an agent flying east at 2 m/s (the plan's limit mission.max_speed_mps is 5 m/s)
+  Agent agent(withPlan({{Vec2(2, 0), 60.0}}));
+  FocalWorld world(9, {}, Vec2::Zero(), {});
+  for (int k = 0; k < 100; ++k) agent.onImu(world.imu(k * kStep));
+  // WHEN the ground sends a command too fast, one with a NaN and one with neither legs nor a hold
+  EXPECT_FALSE(agent.commandMission(goFor(Vec2(6, 0), 1.0)));
+  EXPECT_FALSE(agent.commandMission(goFor(Vec2(std::nan(""), 0), 1.0)));
+  EXPECT_FALSE(agent.commandMission(MissionCommand{}));
+  // THEN each is counted and the plan flies on
+  EXPECT_EQ(agent.diagnostics().mission_commands_refused, 3u);
+  EXPECT_EQ(agent.onImu(world.imu(100 * kStep)).velocity_mps, Vec2(2, 0));
+  EXPECT_EQ(agent.diagnostics().mission_commands, 0u);
+}
+
 }  // namespace
 }  // namespace swa::agent

@@ -206,3 +206,81 @@ TEST(MissionProblem, TooManyLegsAreRefused) {
 
 }  // namespace
 }  // namespace swa::agent
+
+namespace swa::agent {
+namespace {
+
+MissionCommandLeg velocityLeg(const Vec2& v, double duration_s) {
+  return {MissionCommandLeg::Kind::kVelocity, v, duration_s, 0.0};
+}
+MissionCommandLeg toLeg(const Vec2& p, double speed_mps) { return {MissionCommandLeg::Kind::kTo, p, 0.0, speed_mps}; }
+
+TEST(FlownUntil, CutsTheLegInForceAndHoldsAfterTheEnd) {
+  const MissionPlan plan({{Vec2(2, 0), 10.0}, {Vec2(0, 1), 5.0}});
+  // Inside the second leg: the first whole, the second cut
+  const std::vector<MissionLeg> mid = flownUntil(plan, 12.0);
+  ASSERT_EQ(mid.size(), 2u);
+  EXPECT_EQ(mid[1].duration_s, 2.0);
+  EXPECT_EQ(MissionPlan(mid).endPoint(), plan.pathAt(12.0));
+  // After the end: both legs and a hold up to the time asked
+  const std::vector<MissionLeg> after = flownUntil(plan, 20.0);
+  ASSERT_EQ(after.size(), 3u);
+  EXPECT_EQ(after[2].velocity_mps, Vec2::Zero());
+  EXPECT_EQ(MissionPlan(after).duration_s(), 20.0);
+  EXPECT_EQ(MissionPlan(after).endPoint(), plan.endPoint());
+  // At or before the start: nothing was flown
+  EXPECT_TRUE(flownUntil(plan, 0.0).empty());
+  EXPECT_TRUE(flownUntil(plan, -1.0).empty());
+}
+
+TEST(AppendCommand, APlanReplacedMidLegKeepsItsPathAndGoesOnFromThePointItReached) {
+  // GIVEN a plan east at 2 m/s for 10 s, replaced 4 s in by "to (8, 6) at 2 m/s, then north at 1 m/s for 3 s"
+  const MissionPlan plan({{Vec2(2, 0), 10.0}});
+  std::vector<MissionLeg> legs = flownUntil(plan, 4.0);
+  MissionCommand command;
+  command.legs = {toLeg(Vec2(8, 6), 2.0), velocityLeg(Vec2(0, 1), 3.0)};
+  ASSERT_FALSE(missionCommandProblem(command, 5.0, 1e4));
+  appendCommand(legs, command);
+  const MissionPlan replaced(legs);
+  // THEN the path until 4 s is the old one, the point is reached from (8, 0) straight north in 3 s, then 3 m more
+  EXPECT_EQ(replaced.pathAt(2.0), plan.pathAt(2.0));
+  EXPECT_NEAR((replaced.pathAt(7.0) - Vec2(8, 6)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((replaced.endPoint() - Vec2(8, 9)).norm(), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(replaced.duration_s(), 10.0);
+}
+
+TEST(MissionCommandProblem, AGoodCommandAndAHoldHaveNone) {
+  MissionCommand go;
+  go.legs = {velocityLeg(Vec2(3, 4), 10.0), toLeg(Vec2(100, 0), 5.0)};
+  EXPECT_FALSE(missionCommandProblem(go, 5.0, 1e4));
+  MissionCommand hold;
+  hold.hold = true;
+  EXPECT_FALSE(missionCommandProblem(hold, 5.0, 1e4));
+}
+
+TEST(MissionCommandProblem, EachBadCommandIsNamed) {
+  const auto problem = [](MissionCommand c) { return missionCommandProblem(c, 5.0, 1e4).value_or("<none>"); };
+  MissionCommand c;
+  EXPECT_EQ(problem(c), "no legs and no hold");
+  c.hold = true;
+  c.legs = {velocityLeg(Vec2(1, 0), 1.0)};
+  EXPECT_EQ(problem(c), "a hold with legs");
+  c.hold = false;
+  c.legs = {velocityLeg(Vec2(1, 0), 1.0), velocityLeg(Vec2(kNaN, 0), 1.0)};
+  EXPECT_EQ(problem(c), "leg 1 is not finite");
+  c.legs = {velocityLeg(Vec2(1, 0), 0.0)};
+  EXPECT_EQ(problem(c), "leg 0 duration_s = 0 must be > 0");
+  c.legs = {toLeg(Vec2(1, 0), -2.0)};
+  EXPECT_EQ(problem(c), "leg 0 speed_mps = -2 must be > 0");
+  c.legs = {velocityLeg(Vec2(3, 4.1), 1.0)};
+  EXPECT_NE(problem(c).find("above mission.max_speed_mps = 5"), std::string::npos) << problem(c);
+  c.legs = {toLeg(Vec2(1, 0), 6.0)};
+  EXPECT_NE(problem(c).find("flies at 6 m/s"), std::string::npos) << problem(c);
+  c.legs = {toLeg(Vec2(2e4, 0), 1.0)};
+  EXPECT_NE(problem(c).find("beyond limits.max_abs_position_m = 10000"), std::string::npos) << problem(c);
+  c.legs.assign(kMaxMissionLegs + 1, velocityLeg(Vec2(1, 0), 1.0));
+  EXPECT_EQ(problem(c), "1001 legs; at most 1000");
+}
+
+}  // namespace
+}  // namespace swa::agent

@@ -32,6 +32,11 @@ class Agent {
   VelocityCommand onImu(const ImuSample& imu);
   void onDetections(const DetectionSet& detections);
   void onGnss(const GnssSample& gnss);
+  // A mission from the ground (mission.h), flown from the next accepted IMU sample on, from the point the plan has got
+  // to (the mission starts there if it had not). A command that cannot be flown (missionCommandProblem, against
+  // mission.max_speed_mps and limits.max_abs_position_m) is refused and counted and changes nothing: false. A second
+  // command before that sample replaces the first.
+  bool commandMission(const MissionCommand& command);
 
   const Diagnostics& diagnostics() const { return diag_; }
   const AgentConfig& config() const { return config_; }
@@ -51,6 +56,7 @@ class Agent {
   bool rankedFit() const;
   Mat2 fitNoise(const Neighbourhood& neighbours, const FrameFit& fit) const;
   void startMission(StampNs stamp);
+  void takeCommand(StampNs stamp);
   void advanceMission(StampNs stamp);
   double missionTime(StampNs stamp) const;
   Vec2 relativeCommand() const { return command_ - plan_velocity_; }
@@ -102,6 +108,7 @@ class Agent {
   Vec2 expected_velocity_ = Vec2::Zero();
   StampNs expected_at_ns_ = 0;
   Vec2 mission_origin_ = Vec2::Zero();
+  std::optional<MissionCommand> pending_command_;
 
   Vec2 command_ = Vec2::Zero();
   double yaw_rate_ = 0.0;

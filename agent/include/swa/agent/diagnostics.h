@@ -61,6 +61,11 @@ struct Diagnostics {
   int mission_leg = -1;
   Vec2 plan_velocity_mps = Vec2::Zero();
   bool mission_aborted = false;
+  // Missions from the ground (Agent::commandMission): flown, refused as unflyable, and the IMU stamp from which the
+  // last one flown took over.
+  std::uint64_t mission_commands = 0;
+  std::uint64_t mission_commands_refused = 0;
+  StampNs mission_command_stamp_ns = 0;
 };
 
 }  // namespace swa::agent

@@ -49,6 +49,27 @@ struct MissionConfig {
 // finite.
 bool appendLegTo(std::vector<MissionLeg>& legs, const Vec2& to_m, double speed_mps);
 
+// A mission sent from the ground while the swarm flies (swa/swarm/mission): legs as the operator wrote them, resolved
+// where the plan is when an agent receives the command, or a hold there. A plain group velocity is one velocity leg:
+// it ends, and the swarm holds, when its time is up, so a ground link lost mid-command never sends the swarm away.
+struct MissionCommandLeg {
+  enum class Kind { kVelocity, kTo };
+  Kind kind = Kind::kVelocity;
+  Vec2 value = Vec2::Zero();  // kVelocity: m/s (east, north); kTo: the point in m, in the mission's frame
+  double duration_s = 0.0;    // kVelocity
+  double speed_mps = 0.0;     // kTo
+};
+struct MissionCommand {
+  bool hold = false;  // stop where the plan has got to and hold there; `legs` empty
+  std::vector<MissionCommandLeg> legs;
+};
+
+// Why `command` cannot be flown, or nothing: legs with a hold or neither, a non-finite value, a duration or speed not
+// positive, a leg faster than `max_speed_mps`, a point farther than `max_abs_position_m` from the mission's start,
+// more than kMaxMissionLegs legs.
+std::optional<std::string> missionCommandProblem(const MissionCommand& command, double max_speed_mps,
+                                                 double max_abs_position_m);
+
 // Why `config` cannot be flown, or nothing: a non-finite or negative value, a leg faster than max_speed_mps, a
 // zero-length leg, more than kMaxMissionLegs legs.
 inline constexpr std::size_t kMaxMissionLegs = 1000;
@@ -70,11 +91,19 @@ class MissionPlan {
   Vec2 endPoint() const { return points_.empty() ? Vec2::Zero() : points_.back(); }
   // The path's corners: the start (0, 0), then the end of every leg.
   const std::vector<Vec2>& waypoints() const { return points_; }
+  const std::vector<MissionLeg>& legs() const { return legs_; }
 
  private:
   std::vector<MissionLeg> legs_;
   std::vector<double> starts_s_;  // leg i runs over [starts_s_[i], starts_s_[i + 1]); one more than legs_
   std::vector<Vec2> points_;      // the path at each start; one more than legs_
 };
+
+// The legs of `plan` flown `at_s` after its start: every leg begun by then, the one in force cut at at_s, and a hold
+// up to at_s when the plan had ended. Followed by a command's legs (appendCommand), the plan replaced at at_s: the same
+// path until then, and from the point it had reached, the command's.
+std::vector<MissionLeg> flownUntil(const MissionPlan& plan, double at_s);
+// Appends `command`'s legs (missionCommandProblem found nothing) to `legs`, its points resolved from their end.
+void appendCommand(std::vector<MissionLeg>& legs, const MissionCommand& command);
 
 }  // namespace swa::agent
