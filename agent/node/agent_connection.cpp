@@ -14,6 +14,7 @@
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/SensorFramePubSubTypes.h>
+#include <swa/msg/SwarmMissionPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
@@ -70,6 +71,9 @@ void AgentNode::connect() {
     frame_reader_ = participant_->reader<msg::SensorFramePubSubType>(
         dds::topics::sensors(id_), "swa_frame_reader", [this](msg::SensorFrame&& m) { onFrame(std::move(m)); });
   }
+  mission_reader_ = participant_->readerWithOrigin<msg::SwarmMissionPubSubType>(
+      dds::topics::kMission, "swa_mission_reader",
+      [this](msg::SwarmMission&& m, const dds::WriterGuid& writer) { onMission(std::move(m), writer); });
   imu_silence_.restart();
   peers_back_ = 0;
   peer_back_at_.reset();

@@ -17,6 +17,7 @@
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "swa/wire/agent_state.h"
+#include "swa/wire/mission.h"
 #include "swa/wire/ros_detections.h"
 #include "swa/wire/ros_types.h"
 #include "swa/wire/samples.h"
@@ -46,6 +47,10 @@ constexpr auto kArrivingWindow = std::chrono::milliseconds(250);
 // re-created participant's readers can be sent again (redelivery_filter.h).
 constexpr std::size_t kImuHistory = 1000;
 constexpr std::size_t kDetectionsGnssHistory = 100;
+// The ground's writer keeps the say until its participant leaves: no silence hands it over (CommandGate).
+constexpr auto kNoSilenceHandover = std::chrono::hours(24 * 365 * 100);
+// Unflyable missions named in the log one by one; beyond, counted (logged at exit).
+constexpr std::uint64_t kMissionRefusalsLogged = 10;
 
 // The Participant validates the whole deployment environment (and reports a bad one as DdsError); here only
 // whether security is on matters.
@@ -82,7 +87,8 @@ AgentNode::AgentNode(int uav_id, const agent::AgentConfig& config, int domain_id
       last_input_(started_),
       last_state_(started_),
       last_fresh_imu_(started_),
-      handshake_(isSecure()) {
+      handshake_(isSecure()),
+      mission_gate_(1, kNoSilenceHandover) {
   connect();
 }
 
@@ -96,6 +102,63 @@ void AgentNode::onForeign(const agent::ForeignDetectionSet& set) {
   }
   // Dropped sets are counted in the adapter (logged at exit); the rest is SWA's own detections from here on.
   if (converted) onInput(Input(wire::toMsg(*converted, static_cast<std::uint32_t>(id_), seq)));
+}
+
+void AgentNode::onMission(msg::SwarmMission&& m, const dds::WriterGuid& writer) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  ++stats_.missions;
+  for (const dds::PeerKey& gone : participant_->takePeersGone()) mission_gate_.participantGone(gone);
+  const auto now = std::chrono::steady_clock::now();
+  if (mission_writer_ == writer && m.header().seq() <= mission_seq_) {
+    ++stats_.missions_replayed;  // a re-created reader was sent the command in force again
+    return;
+  }
+  if (mission_gate_.admit(0, writer, now) == dds::Admission::kRefused) {
+    ++stats_.missions_other_writer;
+    if (mission_gate_.firstRefusal(0, writer)) {
+      std::fprintf(stderr,
+                   "swa_agent %d: REFUSED a mission on %s from a second writer while the ground station's is there "
+                   "(one writer: the first, until its participant leaves); further ones counted\n",
+                   id_, dds::topics::kMission);
+    }
+    return;
+  }
+  mission_writer_ = writer;
+  mission_seq_ = m.header().seq();
+  const std::variant<agent::MissionCommand, std::string> read = wire::missionCommandOf(m);
+  if (const auto* why = std::get_if<std::string>(&read)) {
+    ++stats_.missions_unreadable;
+    std::fprintf(stderr, "swa_agent %d: dropped mission %u from the ground: %s\n", id_, m.header().seq(),
+                 why->c_str());
+    return;
+  }
+  const agent::MissionCommand& command = std::get<agent::MissionCommand>(read);
+  // The agent flies it from its next IMU sample (reportMission), or counts it as one it cannot fly.
+  if (agent_.commandMission(command)) {
+    mission_arrived_after_ns_ = last_imu_stamp_;
+    return;
+  }
+  if (agent_.diagnostics().mission_commands_refused <= kMissionRefusalsLogged) {
+    const agent::AgentConfig& c = agent_.config();
+    std::fprintf(stderr, "swa_agent %d: dropped mission %u from the ground, it cannot be flown: %s%s\n", id_,
+                 m.header().seq(),
+                 agent::missionCommandProblem(command, c.mission.max_speed_mps, c.limits.max_abs_position_m)
+                     .value_or("?")
+                     .c_str(),
+                 agent_.diagnostics().mission_commands_refused == kMissionRefusalsLogged ? " (further ones counted)"
+                                                                                         : "");
+  }
+}
+
+void AgentNode::reportMission() {
+  const agent::Diagnostics& d = agent_.diagnostics();
+  if (d.mission_commands == missions_flown_) return;
+  missions_flown_ = d.mission_commands;
+  std::fprintf(stderr,
+               "swa_agent %d: mission %u from the ground flown from IMU stamp %lld ns (it arrived after the sample "
+               "of %lld ns); plan velocity now (%.3f, %.3f) m/s\n",
+               id_, mission_seq_, static_cast<long long>(d.mission_command_stamp_ns),
+               static_cast<long long>(mission_arrived_after_ns_), d.plan_velocity_mps.x(), d.plan_velocity_mps.y());
 }
 
 AgentNode::~AgentNode() { participant_.reset(); }
@@ -141,6 +204,8 @@ int AgentNode::run() {
     }
     noteYoungerTwin();
     reportWaiting(matched);
+    // Drained here too, so that the book of departed peers stays short between missions.
+    for (const dds::PeerKey& gone : participant_->takePeersGone()) mission_gate_.participantGone(gone);
     std::string why;
     // What it needs before it can start: a reader of its commands and a writer of its detections (the simulator, or
     // the detection source on a drone); through PX4 these are two peers, and either handshake can stall.
@@ -204,6 +269,17 @@ void AgentNode::logFinalCounts() const {
                static_cast<unsigned long long>(r.bad_id), static_cast<unsigned long long>(r.implausible),
                static_cast<unsigned long long>(r.no_heading), static_cast<unsigned long long>(d.stamp_resyncs),
                static_cast<unsigned long long>(order_.forcedReleases()), static_cast<unsigned long long>(s.replayed));
+  if (s.missions > 0 || d.mission_commands_refused > 0) {
+    std::fprintf(stderr,
+                 "swa_agent %d: missions from the ground: %llu received, %llu flown, %llu that could not be flown, "
+                 "%llu unreadable, %llu from a second writer refused, %llu sent again after a reconnection dropped\n",
+                 id_, static_cast<unsigned long long>(s.missions),
+                 static_cast<unsigned long long>(d.mission_commands),
+                 static_cast<unsigned long long>(d.mission_commands_refused),
+                 static_cast<unsigned long long>(s.missions_unreadable),
+                 static_cast<unsigned long long>(s.missions_other_writer),
+                 static_cast<unsigned long long>(s.missions_replayed));
+  }
   if (d.tilt_fallbacks > 0) {
     std::fprintf(stderr,
                  "swa_agent %d: %llu IMU sample(s) came without the accelerometer focal.imu_source asks for and were "
@@ -287,6 +363,8 @@ void AgentNode::handle(Input& in) {
     const std::uint64_t resyncs = agent_.diagnostics().stamp_resyncs;
     const std::uint64_t fallbacks = agent_.diagnostics().tilt_fallbacks;
     const std::optional<msg::VelocitySetpoint> answer = feed_.onImu(*imu);
+    last_imu_stamp_ = stamp;
+    reportMission();
     if (fallbacks == 0 && agent_.diagnostics().tilt_fallbacks > 0) {
       std::fprintf(stderr,
                    "swa_agent %d: an IMU sample without the accelerometer focal.imu_source asks for (stamp %lld ns): "

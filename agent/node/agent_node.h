@@ -30,6 +30,7 @@
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
 #include <swa/msg/SensorFrame.h>
+#include <swa/msg/SwarmMission.h>
 #include <swa/msg/VelocitySetpoint.h>
 #include <swa/ros/TwistStamped.h>
 
@@ -40,6 +41,7 @@
 #include "swa/agent/detection_adapter.h"
 #include "swa/app/program.h"
 #include "swa/app/stall_watch.h"
+#include "swa/dds/command_gate.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/wire/agent_feed.h"
@@ -53,6 +55,9 @@ struct AgentNodeStats {
   std::uint64_t write_failures = 0;
   std::uint64_t forced_releases = 0;  // samples the stamp orderer let through early (sample_order.h)
   std::uint64_t replayed = 0;         // history sent again to a re-created participant, dropped (redelivery_filter.h)
+  // Missions from the ground (swa/swarm/mission): received; refused as a second writer's; unreadable (an unknown
+  // kind); the newest one sent again to a re-created reader, dropped. The agent counts those it cannot fly.
+  std::uint64_t missions = 0, missions_other_writer = 0, missions_unreadable = 0, missions_replayed = 0;
 };
 
 class AgentNode : public app::Role {
@@ -85,6 +90,8 @@ class AgentNode : public app::Role {
   void onInput(Input&& in);  // listener threads
   void onFrame(msg::SensorFrame&& frame);  // listener threads: each part through onInput
   void onForeign(const agent::ForeignDetectionSet& set);  // listener threads: through adapter_, then onInput
+  void onMission(msg::SwarmMission&& m, const dds::WriterGuid& writer);  // listener thread
+  void reportMission();  // handle(): a ground command the agent has just taken over
   std::string detectionsTopic() const;  // of sensor.input
   void handle(Input& in);
   void publishState(agent::StampNs stamp_ns, bool no_input = false);
@@ -141,6 +148,15 @@ class AgentNode : public app::Role {
   std::optional<std::chrono::steady_clock::time_point> last_imu_at_;  // wall time of the last IMU sample let in
   app::StallWatch own_stall_{kPollGapLimit};  // whether run()'s polls come as often as they should
 
+  // One writer of the ground's mission: the first heard from, until its participant leaves (a ground tool that
+  // exits, or whose lease expires): silence is no handover, a ground station speaks only when the operator does.
+  dds::CommandGate mission_gate_;
+  std::optional<dds::WriterGuid> mission_writer_;  // the newest command's writer and number: a re-created reader is
+  std::uint32_t mission_seq_ = 0;                  // sent it again, which must not be flown twice
+  std::uint64_t missions_flown_ = 0;               // the agent's count when the last was reported
+  agent::StampNs last_imu_stamp_ = 0;              // of the newest IMU sample handled
+  agent::StampNs mission_arrived_after_ns_ = 0;    // last_imu_stamp_ when the pending command arrived
+
   std::unique_ptr<dds::Participant> participant_;
   dds::Writer<msg::VelocitySetpoint> cmd_writer_;
   dds::Writer<geometry_msgs::msg::TwistStamped> twist_writer_;  // the ros2 naming only: cmd_vel as a standard type
@@ -154,6 +170,7 @@ class AgentNode : public app::Role {
   // sensor.input = swa in the SWA naming: the simulator's frames (a step's samples in one message), unpacked into
   // the three inputs above.
   dds::Reader<msg::SensorFrame> frame_reader_;
+  dds::Reader<msg::SwarmMission> mission_reader_;
 };
 
 }  // namespace swa::agent_node

@@ -12,6 +12,7 @@ app::Cli makeCli(AgentOptions& o) {
   cli.usage("swa_agent --id I [--config FILE | --scenario FILE] [--set key=value]... [--domain D]");
   cli.details(R"(Reads only   swa/uav<I>/sensors (a step's samples in one SensorFrame, from swa_sim) and
              swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss (the same samples one by one)
+             swa/swarm/mission  (the ground's mission, from swa_mission: one writer, flown from the next IMU sample)
 Writes only  swa/uav<I>/cmd_vel (one VelocitySetpoint per IMU sample, echoing its stamp and seq)
              swa/uav<I>/state   (AgentState diagnostics, 10 Hz of sample time))");
   cli.integer("--id", "I", o.id, 0, kMaxUavId, "a UAV id", "UAV index; participant name swa_agent_<I>");

@@ -81,6 +81,8 @@ publishes() {
         "$(detector_topics '*') $(ap_out 'ap/v*')"
       ;;
     swa_monitor) echo '' ;;
+    # The ground station (swa_mission): the swarm's mission, and nothing else.
+    swa_ground) echo "${r}swarm/mission" ;;
     swa_agent_*)
       local i=${1#swa_agent_}
       echo "${r}uav$i/cmd_vel ${r}uav$i/state$([[ $NAMING == ros2 ]] && echo " ${r}uav$i/cmd_vel_stamped")"
@@ -104,7 +106,9 @@ subscribes() {
       ;;
     swa_agent_*)
       local i=${1#swa_agent_}
-      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}uav$i/sensors ${r}clock $(detector_topics "$i")"
+      # and the ground's mission (issue #45), which no agent may write
+      echo "${r}uav$i/imu ${r}uav$i/detections ${r}uav$i/gnss ${r}uav$i/sensors ${r}clock ${r}swarm/mission" \
+        "$(detector_topics "$i")"
       ;;
     swa_bridge_*)
       local i=${1#swa_bridge_}

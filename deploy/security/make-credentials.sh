@@ -20,7 +20,7 @@ Creates in DIR, for the simulator, the monitor and N UAVs (swa_agent_0 .. swa_ag
   governance.xml, .p7s        the domain governance, signed by the CA
   <name>/cert.pem, key.pem    the participant's identity (EC prime256v1), key 0600
   <name>/permissions.xml, .p7s  what it may publish and subscribe, signed by the CA
-<name> is swa_sim, swa_monitor, swa_agent_<I> or (--bridges) swa_bridge_<I>. The .xml files are the unsigned
+<name> is swa_sim, swa_monitor, swa_ground, swa_agent_<I> or (--bridges) swa_bridge_<I>. The .xml files are the unsigned
 text, for reading only.
 
 Governance (domains 0-$MAX_DOMAIN by default): only authenticated participants whose permissions grant the
@@ -28,7 +28,7 @@ domain may join; every topic's data and submessages are encrypted, and so is end
 reading or writing a topic needs a permissions grant.
 Permissions (default DENY, nothing else is allowed):
   swa_agent_<I>  reads swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/sensors, swa/clock,
-                 and a real detector's rt/uav<I>/detections (vision_msgs) or rt/uav<I>/uvdar/measuredPoses (UVDAR);
+                 the ground's swa/swarm/mission, and a real detector's rt/uav<I>/detections (vision_msgs) or rt/uav<I>/uvdar/measuredPoses (UVDAR);
                  writes swa/uav<I>/cmd_vel, swa/uav<I>/state (and swa/uav<I>/cmd_vel_stamped with --naming ros2)
   swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/sensors, swa/truth,
                  swa/events, swa/clock, rt/uav*/detections, rt/uav*/uvdar/measuredPoses;
@@ -42,6 +42,7 @@ Permissions (default DENY, nothing else is allowed):
   swa_monitor    reads swa/truth, swa/events, swa/uav*/state, and to record them (swa_monitor --record) swa/clock,
                  swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/sensors, swa/uav*/cmd_vel,
                  swa/uav*/bridge_state
+  swa_ground     the ground station (swa_mission): writes swa/swarm/mission, nothing else
   swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I (swa_px4_bridge, or a bridge of your own):
                  writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and
                  rt/<P><I>/fmu/in/trajectory_setpoint, offboard_control_mode, vehicle_command;
@@ -206,6 +207,7 @@ participants() {
   local i
   echo swa_sim
   echo swa_monitor
+  echo swa_ground
   for ((i = 0; i < N; ++i)); do echo "swa_agent_$i"; done
   if $BRIDGES; then
     for ((i = 0; i < N; ++i)); do echo "swa_bridge_$i"; done
@@ -376,7 +378,7 @@ main() {
 
   local what="new CA"
   [[ $MODE == reuse-ca ]] && what="CA kept"
-  echo "$PROG: $DIR: $what, governance for domains $DOMAIN_MIN-$DOMAIN_MAX, swa_sim, swa_monitor," \
+  echo "$PROG: $DIR: $what, governance for domains $DOMAIN_MIN-$DOMAIN_MAX, swa_sim, swa_monitor, swa_ground," \
     "swa_agent_0..$((N - 1))$($BRIDGES && echo ", swa_bridge_0..$((N - 1))"), $NAMING naming;" \
     "identities and permissions valid until $not_after UTC"
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The "no inter-agent communication" audit (DESIGN §1): given every reader and writer seen on a domain, which agent
-// endpoints break the rule that agent I reads only swa/uav<I>/{imu,detections,gnss,sensors} (and swa/clock) and
+// endpoints break the rule that agent I reads only swa/uav<I>/{imu,detections,gnss,sensors} (and swa/clock, and the
+// ground's swa/swarm/mission, which no agent writes) and
 // writes only swa/uav<I>/{cmd_vel,state}. Pure, no DDS include: test_isolation feeds it what Fast DDS discovery reported,
 // test_isolation_audit feeds it synthetic lists (including planted violations, so the audit is known to fail).
 //
@@ -61,7 +62,8 @@ inline bool startsWith(const std::string& s, const std::string& prefix) { return
 //  - an endpoint whose participant never announced a name (it could be an agent: it cannot be cleared);
 //  - a participant whose name starts with swa_agent_ but is not swa_agent_<I> (an agent that cannot be placed);
 //  - an agent reading swa/truth (ground truth is for the monitor only);
-//  - an agent reading anything outside swa/uav<I>/ other than swa/clock, or writing anything outside swa/uav<I>/;
+//  - an agent reading anything outside swa/uav<I>/ other than swa/clock and swa/swarm/mission, or writing anything
+//    outside swa/uav<I>/ (the mission too: only the ground writes it);
 //  - an agent reading a topic that another agent participant writes.
 inline std::vector<std::string> auditIsolation(const std::vector<Endpoint>& endpoints) {
   std::vector<std::string> violations;
@@ -90,9 +92,10 @@ inline std::vector<std::string> auditIsolation(const std::vector<Endpoint>& endp
     }
     if (e.topic == dds::topics::kTruth) {
       violations.push_back(detail::who(e) + " reads " + e.topic + ": ground truth is for the monitor only");
-    } else if (e.topic != dds::topics::kClock && !detail::startsWith(e.topic, own)) {
+    } else if (e.topic != dds::topics::kClock && e.topic != dds::topics::kMission &&
+               !detail::startsWith(e.topic, own)) {
       violations.push_back(detail::who(e) + " reads " + e.topic + ", outside its own namespace " + own +
-                           " and the clock");
+                           ", the clock and the ground's mission");
     }
     for (const Endpoint& w : endpoints) {
       if (w.kind == EndpointKind::kWriter && w.topic == e.topic && agentIndex(w.participant) &&
@@ -106,7 +109,7 @@ inline std::vector<std::string> auditIsolation(const std::vector<Endpoint>& endp
 
 // Completeness, so that the isolation audit cannot pass on too little: each agent 0..agent_count-1 is exactly one
 // participant, and it has exactly one reader on each of swa/uav<I>/{imu,detections,gnss} (one on swa/uav<I>/sensors
-// and one on swa/clock allowed), exactly one writer on each of swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped
+// and one on swa/clock allowed; one on swa/swarm/mission required), exactly one writer on each of swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped
 // allowed), and nothing else. Agents with an index outside 0..agent_count-1 are reported too.
 inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>& endpoints, int agent_count) {
   using Key = std::pair<EndpointKind, std::string>;
@@ -140,6 +143,7 @@ inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>&
         {{EndpointKind::kReader, dds::topics::gnss(id)}, true},
         {{EndpointKind::kReader, dds::topics::sensors(id)}, false},  // the simulator's frames, SWA naming
         {{EndpointKind::kReader, dds::topics::kClock}, false},
+        {{EndpointKind::kReader, dds::topics::kMission}, true},  // the ground's (issue #45)
         {{EndpointKind::kWriter, dds::topics::cmdVel(id)}, true},
         {{EndpointKind::kWriter, dds::topics::cmdVelStamped(id)}, false},  // the ros2 naming
         {{EndpointKind::kWriter, dds::topics::state(id)}, true}};

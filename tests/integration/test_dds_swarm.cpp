@@ -23,6 +23,7 @@
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SwarmMissionPubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
@@ -36,6 +37,7 @@
 #include "swa/dds/topics.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/sim/world.h"
+#include "swa/wire/mission.h"
 
 namespace swa::testing {
 namespace {
@@ -406,6 +408,79 @@ TEST_F(SwarmRun, LockstepWithAMissionFliesItAsTheInProcessLoopDoes) {
   EXPECT_NEAR(north, 0.0, 6.0);
   // AND the run is the in-process closed loop bit for bit: the plan is the same in every process
   expectFinalTruthOfTheInProcessLoop(overrides, true);
+  EXPECT_EQ(monitor_->count(msg::EVENT_COLLISION), 0);
+  EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD), 0);
+}
+
+// The ground's mission changed live (issue #45): swa_mission mid-flight, every agent follows from its next IMU sample;
+// a second writer's mission meanwhile is refused and counted, never flown. Realtime: the command comes when it comes.
+TEST_F(SwarmRun, RealtimeGroundMissionIsFollowedByEveryAgentAndASecondWritersMissionIsRefused) {
+  // GIVEN 4 agents flying a plan east at 2 m/s from 0 s, realtime, 30 s
+  start({"duration_s=30", "clock.mode=realtime", "mission.start=time",
+         "mission.legs=[{velocity_mps: [2, 0], duration_s: 60}]"},
+        {});
+  ASSERT_FALSE(HasFatalFailure());
+  ASSERT_TRUE(monitor_->waitForSimTime(5.0, 60.0)) << logs();
+  // WHEN the ground sends "north at 2 m/s for 8 s" (and stays, the ground's writer)
+  Child ground({SWA_MISSION_BINARY, "--leg", "vel:0,2,8", "--expect", "4", "--stay", "--domain",
+                std::to_string(domain_)},
+               dir_ / "ground.log");
+  const auto sent_by = SteadyClock::now() + std::chrono::seconds(20);
+  while (readFile(dir_ / "ground.log").find("acknowledged by every one") == std::string::npos &&
+         SteadyClock::now() < sent_by) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_NE(readFile(dir_ / "ground.log").find("acknowledged by every one"), std::string::npos)
+      << readFile(dir_ / "ground.log");
+  // AND then a second writer, while the ground's is there, sends "west at 2 m/s for 30 s"
+  auto rogue = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
+  auto rogue_writer = rogue->writer<msg::SwarmMissionPubSubType>(dds::topics::kMission, "swa_mission_writer");
+  agent::MissionCommand west;
+  west.legs = {{agent::MissionCommandLeg::Kind::kVelocity, agent::Vec2(-2, 0), 30.0, 0.0}};
+  msg::SwarmMission m = wire::toMsg(west, 0, 1);
+  const auto matched_by = SteadyClock::now() + std::chrono::seconds(20);
+  while (rogue_writer.matched() < 4 && SteadyClock::now() < matched_by) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_EQ(rogue_writer.matched(), 4);
+  ASSERT_TRUE(rogue_writer.write(m));
+  EXPECT_TRUE(rogue_writer.waitForAcknowledgments(10.0));
+  ASSERT_EQ(finish(), 0) << logs();
+  EXPECT_EQ(ground.stop(10.0), 0) << readFile(dir_ / "ground.log");
+
+  // THEN every agent flew the ground's mission from the IMU sample after the one it arrived behind (one IMU period,
+  // 10 ms), and only that one
+  const std::regex flown("mission 1 from the ground flown from IMU stamp (\\d+) ns \\(it arrived after the sample of "
+                         "(\\d+) ns\\)");
+  double flown_at_s = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const std::string log = readFile(dir_ / ("agent" + std::to_string(i) + ".log"));
+    std::smatch match;
+    ASSERT_TRUE(std::regex_search(log, match, flown)) << log;
+    const long long at = std::stoll(match[1]), after = std::stoll(match[2]);
+    EXPECT_GT(at, after) << log;
+    EXPECT_LE(at - after, 10'000'000LL) << log;
+    EXPECT_EQ(std::distance(std::sregex_iterator(log.begin(), log.end(), flown), std::sregex_iterator()), 1) << log;
+    flown_at_s = std::max(flown_at_s, static_cast<double>(at) * 1e-9);
+    // AND refused the second writer's, counted
+    EXPECT_NE(log.find("REFUSED a mission on swa/swarm/mission from a second writer"), std::string::npos) << log;
+    EXPECT_NE(log.find("2 received, 1 flown, 0 that could not be flown, 0 unreadable, 1 from a second writer refused"),
+              std::string::npos)
+        << log;
+  }
+  // AND the swarm went where that plan ends: 2 m/s east until the command, then 16 m north (give or take the
+  // formation settling in and the response to each leg, DESIGN §3.6), not 60 m west
+  ASSERT_FALSE(monitor_->truth().empty());
+  double east = 0.0, north = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    east += (monitor_->truth().back().uavs()[i].x_m() - monitor_->truth().front().uavs()[i].x_m()) / 4.0;
+    north += (monitor_->truth().back().uavs()[i].y_m() - monitor_->truth().front().uavs()[i].y_m()) / 4.0;
+  }
+  EXPECT_NEAR(east, 2.0 * flown_at_s, 5.0) << "command flown from " << flown_at_s << " s";
+  EXPECT_NEAR(north, 16.0, 5.0);
+  const std::vector<TruthRow> final_rows = finalTruth();
+  ASSERT_EQ(final_rows.size(), 4u);
+  EXPECT_NEAR(geometryOf(final_rows).d_nb_m, 10.0, 1.5);
   EXPECT_EQ(monitor_->count(msg::EVENT_COLLISION), 0);
   EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD), 0);
 }

@@ -26,14 +26,17 @@ Endpoint ep(EndpointKind kind, const std::string& participant, const std::string
 }
 
 // What the shipped processes create: swa_sim with every sensor writer and command reader plus truth / events /
-// clock, a monitor reading truth, events and states, and `n` agents with their five endpoints.
+// clock, a monitor reading truth, events and states, the ground writing the mission, and `n` agents with their six
+// endpoints (the mission read by each).
 std::vector<Endpoint> cleanSwarm(int n) {
   std::vector<Endpoint> e;
   for (const char* t : {topics::kTruth, topics::kEvents, topics::kClock}) e.push_back(ep(kW, "swa_sim", t));
   e.push_back(ep(kR, "swa_monitor", topics::kTruth));
   e.push_back(ep(kR, "swa_monitor", topics::kEvents));
+  e.push_back(ep(kW, "swa_ground", topics::kMission));
   for (int i = 0; i < n; ++i) {
     const std::string agent = "swa_agent_" + std::to_string(i);
+    e.push_back(ep(kR, agent, topics::kMission));
     for (const std::string& t : {topics::imu(i), topics::detections(i), topics::gnss(i)}) {
       e.push_back(ep(kW, "swa_sim", t));
       e.push_back(ep(kR, agent, t));
@@ -79,6 +82,19 @@ TEST(IsolationAudit, ReadingTheClockIsAllowed) {
   e.push_back(ep(kR, "swa_agent_1", topics::kClock));
   EXPECT_TRUE(auditIsolation(e).empty()) << joined(auditIsolation(e));
   EXPECT_TRUE(auditAgentEndpoints(e, 2).empty()) << joined(auditAgentEndpoints(e, 2));
+}
+
+TEST(IsolationAudit, AnAgentWritingTheGroundsMissionIsReportedAndSoIsEveryAgentReadingIt) {
+  // GIVEN a clean swarm in which agent 2 also writes the mission every agent reads (issue #45: the ground's only)
+  std::vector<Endpoint> e = cleanSwarm(4);
+  e.push_back(ep(kW, "swa_agent_2", topics::kMission));
+  const std::vector<std::string> v = auditIsolation(e);
+  // THEN its writer is outside its namespace, and the three other agents read what an agent writes
+  EXPECT_TRUE(mentions(v, {"swa_agent_2", "writes swa/swarm/mission", "outside its own namespace"})) << joined(v);
+  for (const char* reader : {"swa_agent_0", "swa_agent_1", "swa_agent_3"}) {
+    EXPECT_TRUE(mentions(v, {reader, "reads swa/swarm/mission", "which agent swa_agent_2"})) << joined(v);
+  }
+  EXPECT_EQ(v.size(), 4u) << joined(v);
 }
 
 TEST(IsolationAudit, PlantedViolationsAreEachReported) {

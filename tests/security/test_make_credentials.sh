@@ -122,10 +122,13 @@ test_layout_and_documents() {
 
   check "agent 1 publishes only its cmd_vel and state" test "$(granted "$d/swa_agent_1/permissions.xml" publish)" = \
     "$(sorted swa/uav1/cmd_vel swa/uav1/state)"
-  check "agent 1 subscribes only its sensors and the clock" \
+  check "agent 1 subscribes only its sensors, the clock and the ground's mission" \
     test "$(granted "$d/swa_agent_1/permissions.xml" subscribe)" = \
-    "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/uav1/sensors swa/clock rt/uav1/detections \
-      rt/uav1/uvdar/measuredPoses)"
+    "$(sorted swa/uav1/imu swa/uav1/detections swa/uav1/gnss swa/uav1/sensors swa/clock swa/swarm/mission \
+      rt/uav1/detections rt/uav1/uvdar/measuredPoses)"
+  check "the ground publishes only the mission" test "$(granted "$d/swa_ground/permissions.xml" publish)" = \
+    "$(sorted swa/swarm/mission)"
+  check "the ground subscribes nothing" test -z "$(granted "$d/swa_ground/permissions.xml" subscribe)"
   check "sim publishes sensors, truth, events, clock, and the outputs of every UAV's PX4 and ArduPilot" \
     test "$(granted "$d/swa_sim/permissions.xml" publish)" = \
     "$(sorted 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' 'swa/uav*/sensors' swa/truth swa/events swa/clock \

@@ -1,7 +1,8 @@
 #pragma once
 // Topic names of the SWA system (DESIGN §1). Per-UAV topics carry the UAV index in the name so DDS Security
 // permissions can be written per UAV: agent i may read only swa/uav<i>/{detections,imu,gnss,sensors} and write only
-// swa/uav<i>/{cmd_vel,state}. The monitor-only topics are global.
+// swa/uav<i>/{cmd_vel,state}. The monitor-only topics are global, and so is the ground's mission, which every agent
+// reads.
 
 #include <string>
 
@@ -30,6 +31,8 @@ inline std::string bridgeState(int uav) { return uavPrefix(uav) + "bridge_state"
 inline const char* const kTruth = "swa/truth";
 inline const char* const kEvents = "swa/events";
 inline const char* const kClock = "swa/clock";
+// The ground's swarm mission (issue #45): written by the ground station (swa_mission) only, read by every agent. The same for every UAV, and no UAV's state goes into it: not communication between agents.
+inline const char* const kMission = "swa/swarm/mission";
 
 // PX4's uXRCE-DDS topics of the vehicle with ROS namespace `ns` (empty: none): rt/<ns>/fmu/<in|out>/<name>. DDS names
 // already (the naming of SWA_NAMING does not apply to them). `name` is the release's topic name: from v1.16 a
