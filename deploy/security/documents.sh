@@ -102,7 +102,7 @@ subscribes() {
     # The monitor reads every topic of the run: the UAVs' inputs and commands only to record them (--record).
     swa_monitor)
       echo "${r}truth ${r}events ${r}clock ${r}uav*/state ${r}uav*/imu ${r}uav*/detections ${r}uav*/gnss" \
-        "${r}uav*/sensors ${r}uav*/cmd_vel ${r}uav*/bridge_state"
+        "${r}uav*/sensors ${r}uav*/cmd_vel ${r}uav*/bridge_state ${r}swarm/mission"
       ;;
     swa_agent_*)
       local i=${1#swa_agent_}

@@ -28,7 +28,8 @@ domain may join; every topic's data and submessages are encrypted, and so is end
 reading or writing a topic needs a permissions grant.
 Permissions (default DENY, nothing else is allowed):
   swa_agent_<I>  reads swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/sensors, swa/clock,
-                 the ground's swa/swarm/mission, and a real detector's rt/uav<I>/detections (vision_msgs) or rt/uav<I>/uvdar/measuredPoses (UVDAR);
+                 the ground's swa/swarm/mission, and a real detector's rt/uav<I>/detections (vision_msgs) or
+                 rt/uav<I>/uvdar/measuredPoses (UVDAR);
                  writes swa/uav<I>/cmd_vel, swa/uav<I>/state (and swa/uav<I>/cmd_vel_stamped with --naming ros2)
   swa_sim        writes swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/sensors, swa/truth,
                  swa/events, swa/clock, rt/uav*/detections, rt/uav*/uvdar/measuredPoses;
@@ -41,7 +42,7 @@ Permissions (default DENY, nothing else is allowed):
                  rt/ap/v*/cmd_vel and the requests rq/ap/v*/arm_motorsRequest, mode_switchRequest
   swa_monitor    reads swa/truth, swa/events, swa/uav*/state, and to record them (swa_monitor --record) swa/clock,
                  swa/uav*/imu, swa/uav*/detections, swa/uav*/gnss, swa/uav*/sensors, swa/uav*/cmd_vel,
-                 swa/uav*/bridge_state
+                 swa/uav*/bridge_state; and the ground's swa/swarm/mission (it scores the run against it)
   swa_ground     the ground station (swa_mission): writes swa/swarm/mission, nothing else
   swa_bridge_<I> (only with --bridges) the autopilot bridge of UAV I (swa_px4_bridge, or a bridge of your own):
                  writes swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss, swa/uav<I>/bridge_state and

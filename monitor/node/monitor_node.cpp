@@ -12,12 +12,14 @@
 
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SwarmMissionPubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 
 #include "msg_convert.h"
 #include "recording_taps.h"
 #include "swa/app/signals.h"
 #include "swa/dds/topics.h"
+#include "swa/wire/mission.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -32,6 +34,8 @@ using recording::tapUavTopics;
 
 // Longest single wait, so a signal or the timeout is noticed quickly.
 constexpr auto kPollPeriod = std::chrono::milliseconds(100);
+// The ground's writer keeps the say until its participant leaves, as in the agents (agent_node.cpp).
+constexpr auto kNoSilenceHandover = std::chrono::hours(24 * 365 * 100);
 // Longest wait for every agent's state writer before the run is read without the missing ones.
 constexpr auto kStateMatchWait = std::chrono::seconds(30);
 // Recording: how long the recorder's readers must have been matched before the simulator may start. A reader matches
@@ -55,7 +59,8 @@ MonitorNode::MonitorNode(LiveRun& run, const MonitorNodeOptions& options, int do
       pacer_(isatty(fileno(stderr)) != 0),
       domain_id_(domain_id),
       profiles_file_(profiles_file),
-      handshake_(std::getenv("SWA_SECURITY_DIR") != nullptr && *std::getenv("SWA_SECURITY_DIR") != '\0') {
+      handshake_(std::getenv("SWA_SECURITY_DIR") != nullptr && *std::getenv("SWA_SECURITY_DIR") != '\0'),
+      mission_gate_(1, kNoSilenceHandover) {
   if (options_.uav_count) {
     for (int i = 0; i < *options_.uav_count; ++i) state_readers_.insert(i);
   } else {
@@ -96,6 +101,11 @@ void MonitorNode::connect() {
   truth_reader_ = {};
   for (const int uav : state_readers_) createStateReader(uav);
   if (recordsEveryTopic()) tapClock(*participant_, *options_.recording);
+  // From the start, so that the time a command arrives is the time the agents got it, not when a reader came late.
+  mission_reader_ = participant_->readerWithOrigin<msg::SwarmMissionPubSubType>(
+      dds::topics::kMission, "swa_mission_reader", [this](msg::SwarmMission&& m, const dds::WriterGuid& writer) {
+        queue_.push(MissionInput{writer, std::move(m)});
+      });
   // With a known swarm, the truth and event readers wait until every agent's state writer is matched (see
   // createRunReadersWhenReady); without one, the UAVs are only known from the first truth sample.
   run_readers_pending_ = options_.uav_count.has_value();
@@ -229,7 +239,38 @@ void MonitorNode::process(Input& input) {
     } else {
       run_.onUnknownEvent();
     }
+  } else if (auto* mission = std::get_if<MissionInput>(&input)) {
+    processMission(*mission);
   }
+}
+
+void MonitorNode::processMission(const MissionInput& input) {
+  for (const dds::PeerKey& gone : participant_->takePeersGone()) mission_gate_.participantGone(gone);
+  const std::uint32_t seq = input.mission.header().seq();
+  if (mission_writer_ == input.writer && seq <= mission_seq_) return;  // sent again to a re-created reader
+  if (mission_gate_.admit(0, input.writer, std::chrono::steady_clock::now()) == dds::Admission::kRefused) {
+    if (mission_gate_.firstRefusal(0, input.writer)) {
+      std::fprintf(stderr, "swa_monitor: a mission from a second writer, refused as the agents refuse it\n");
+    }
+    return;
+  }
+  mission_writer_ = input.writer;
+  mission_seq_ = seq;
+  const std::variant<agent::MissionCommand, std::string> read = wire::missionCommandOf(input.mission);
+  if (const auto* why = std::get_if<std::string>(&read)) {
+    std::fprintf(stderr, "swa_monitor: a mission from the ground it cannot read (%s): not scored\n", why->c_str());
+    return;
+  }
+  // What the agents can fly is theirs to say (their own limits); only what no agent flies is left out here.
+  const agent::MissionCommand& command = std::get<agent::MissionCommand>(read);
+  if (const auto why = agent::missionCommandProblem(command, agent::MissionConfig{}.max_speed_mps, 1e300)) {
+    std::fprintf(stderr, "swa_monitor: a mission from the ground the agents do not fly (%s): not scored\n",
+                 why->c_str());
+    return;
+  }
+  run_.onMission(command);
+  std::fprintf(stderr, "swa_monitor: mission %u from the ground: the run is scored against it from %.2f s\n", seq,
+               run_.newestTruth() ? stampSeconds(*run_.newestTruth()) : 0.0);
 }
 
 void MonitorNode::publishNewMetrics() {

@@ -14,6 +14,7 @@
 
 #include <swa/msg/AgentState.h>
 #include <swa/msg/ScenarioEvent.h>
+#include <swa/msg/SwarmMission.h>
 #include <swa/msg/SwarmTruth.h>
 
 #include "live_record.h"
@@ -23,6 +24,7 @@
 #include "recording_taps.h"
 #include "status_line.h"
 #include "swa/agent/config.h"
+#include "swa/dds/command_gate.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
@@ -66,7 +68,11 @@ class MonitorNode {
     int topic_uav = 0;
     msg::AgentState state;
   };
-  using Input = std::variant<msg::SwarmTruth, StateInput, msg::ScenarioEvent>;
+  struct MissionInput {
+    dds::WriterGuid writer{};
+    msg::SwarmMission mission;
+  };
+  using Input = std::variant<msg::SwarmTruth, StateInput, msg::ScenarioEvent, MissionInput>;
 
   void connect();  // the participant and every reader (again after a stalled secure handshake)
   void createRunReaders();           // swa/events and swa/truth
@@ -75,6 +81,7 @@ class MonitorNode {
   void createStateReader(int uav);
   void reconnectIfHandshakeStalled();
   void process(Input& input);
+  void processMission(const MissionInput& input);
   void showStatus(double wall_s, bool last);
   // A raw reader of `topic` whose payloads are recorded (if recording) and decoded into `push`.
   template <class PubSubType, class Push>
@@ -98,11 +105,17 @@ class MonitorNode {
   dds::HandshakeWatch handshake_;
   std::atomic<bool> stop_requested_{false};
   std::atomic<std::uint64_t> undecodable_{0};
+  // The ground's mission, through the agents' rule (agent_node.h): one writer, until its participant leaves; the
+  // command in force sent again to a re-created reader is not a new one.
+  dds::CommandGate mission_gate_;
+  std::optional<dds::WriterGuid> mission_writer_;
+  std::uint32_t mission_seq_ = 0;
 
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Input> queue_;
   std::unique_ptr<dds::Participant> participant_;
   dds::Reader<dds::Payload> truth_reader_;
+  dds::Reader<msg::SwarmMission> mission_reader_;
   std::map<int, dds::Reader<dds::Payload>> state_reader_handles_;
   std::map<int, recording::UavTaps> uav_taps_;  // --record: each UAV's commands and sensors (recording_taps.h)
   bool run_readers_pending_ = false;

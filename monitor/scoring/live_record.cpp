@@ -37,7 +37,7 @@ RunRecord makeRunRecord(const LiveRun& run, const LiveRunConfig& config, const R
   r.seed = context.seed;
   r.completed = context.end.completed;
   r.end_reason = context.end.reason;
-  r.scoring = config.metrics;
+  r.scoring = run.metricsConfig();
   r.scoring.radius_tolerance = context.tolerance;
   r.scoring.window_start_s = run.windowStartS();
   r.summary = run.summary();

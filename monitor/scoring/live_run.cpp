@@ -96,6 +96,15 @@ void LiveRun::score(const JoinedStep& step) {
   if (config_.window_from_events) replay_.push_back(std::move(input));
 }
 
+void LiveRun::onMission(const agent::MissionCommand& command) {
+  const double at_s = joiner_.newestTruth() ? stampSeconds(*joiner_.newestTruth()) : 0.0;
+  const monitor::ReplannedMission r =
+      monitor::replanMission(config_.metrics.mission_legs, config_.metrics.mission_start_s, at_s, command);
+  config_.metrics.mission_legs = r.legs;
+  config_.metrics.mission_start_s = r.start_s;
+  metrics_.replanMission(r.legs, r.start_s);
+}
+
 double LiveRun::windowStartS() const {
   if (!config_.window_from_events) return config_.metrics.window_start_s;
   if (gnss_lost_all_s_) return *gnss_lost_all_s_;

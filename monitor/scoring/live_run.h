@@ -63,6 +63,9 @@ class LiveRun {
   void onState(int topic_uav, StateSample state);
   void onEvent(EventRecord event);
   void onUnknownEvent() { ++unknown_events_; }  // an event kind this build does not know: dropped, counted
+  // A mission from the ground (already through the one-writer gate): from the newest truth's time on, the run is
+  // scored against the plan every agent now flies (monitor::replanMission), and the record says that plan.
+  void onMission(const agent::MissionCommand& command);
   // The wall clock (monotonic seconds) the join grace is measured on; releases the steps it makes overdue.
   void tick(double wall_s);
   // Scores every step still waiting for states. Further inputs after finish() are still accepted.
@@ -82,6 +85,8 @@ class LiveRun {
 
   std::optional<agent::Mode> mode() const { return mode_; }
   double windowStartS() const;
+  // The scoring as it stands: the configuration's, with the mission the ground changed (onMission).
+  const monitor::MetricsConfig& metricsConfig() const { return config_.metrics; }
   monitor::Summary summary() const;
   const std::vector<monitor::TimeSeriesRow>& series() const { return series_; }
   std::vector<monitor::UavTrajectory> trajectories() const { return trajectories_.trajectories(); }

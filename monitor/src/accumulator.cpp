@@ -42,6 +42,12 @@ MetricsAccumulator::MetricsAccumulator(const MetricsConfig& config)
   if (!config.mission_legs.empty()) mission_ = MissionScore(agent::MissionPlan(config.mission_legs), config.mission_start_s);
 }
 
+void MetricsAccumulator::replanMission(const std::vector<agent::MissionLeg>& legs, double start_s) {
+  config_.mission_legs = legs;
+  config_.mission_start_s = start_s;
+  mission_.replan(agent::MissionPlan(legs), start_s);
+}
+
 const StepMetrics& MetricsAccumulator::add(const StepInput& step) {
   if (steps_ > 0 && step.stamp_ns < last_ns_) {
     throw std::invalid_argument("MetricsAccumulator: stamp " + std::to_string(step.stamp_ns) +

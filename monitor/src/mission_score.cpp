@@ -6,7 +6,30 @@ namespace swa::monitor {
 
 using agent::Vec2;
 
+ReplannedMission replanMission(const std::vector<agent::MissionLeg>& legs, double start_s, double at_s,
+                               const agent::MissionCommand& command) {
+  ReplannedMission r;
+  if (legs.empty() || at_s < start_s) {
+    r.start_s = at_s;
+  } else {
+    r.legs = agent::flownUntil(agent::MissionPlan(legs), at_s - start_s);
+    r.start_s = start_s;
+  }
+  agent::appendCommand(r.legs, command);
+  return r;
+}
+
 MissionScore::MissionScore(const agent::MissionPlan& plan, double start_s) : plan_(plan), start_s_(start_s) {}
+
+void MissionScore::replan(const agent::MissionPlan& plan, double start_s) {
+  plan_ = plan;
+  if (started_ && start_s != start_s_) {  // a new mission: what was scored of the old one does not belong to it
+    started_ = false;
+    path_error_sum_ = d_nb_sum_ = 0.0;
+    moving_steps_ = d_nb_steps_ = 0;
+  }
+  start_s_ = start_s;
+}
 
 void MissionScore::add(double t_s, const Geometry& geometry, const std::map<int, Vec2>& positions) {
   if (!active() || !(t_s >= start_s_) || !agent::isFinite(geometry.centroid_m)) return;

@@ -160,5 +160,57 @@ TEST(MissionScore, ARunThatNeverReachesTheStartGivesNaN) {
   EXPECT_TRUE(std::isnan(f.uav_end_spread_m));
 }
 
+agent::MissionCommand northFor(double duration_s) {
+  agent::MissionCommand c;
+  c.legs = {{agent::MissionCommandLeg::Kind::kVelocity, Vec2(0, 1), duration_s, 0.0}};
+  return c;
+}
+
+TEST(ReplanMission, AChangeMidPlanKeepsThePathUntilThenAndTheStart) {
+  // GIVEN the L plan from 10 s, changed at 12 s (2 s into its first leg) to "north for 3 s"
+  const ReplannedMission r = replanMission(lPlan().legs(), kStartS, 12.0, northFor(3.0));
+  // THEN it still starts at 10 s, runs 2 m east, then 3 m north, and ends there
+  EXPECT_EQ(r.start_s, kStartS);
+  const MissionPlan plan(r.legs);
+  EXPECT_EQ(plan.pathAt(1.0), lPlan().pathAt(1.0));
+  EXPECT_EQ(plan.endPoint(), Vec2(2, 3));
+  EXPECT_EQ(plan.duration_s(), 5.0);
+}
+
+TEST(ReplanMission, ACommandBeforeThePlanOrWithoutOneStartsAMissionThen) {
+  for (const std::vector<agent::MissionLeg>& legs : {lPlan().legs(), std::vector<agent::MissionLeg>{}}) {
+    const ReplannedMission r = replanMission(legs, kStartS, 4.0, northFor(3.0));
+    EXPECT_EQ(r.start_s, 4.0);
+    EXPECT_EQ(MissionPlan(r.legs).endPoint(), Vec2(0, 3));
+  }
+}
+
+TEST(MissionScore, AReplannedMissionIsScoredAgainstTheNewPlanAndKeepsWhatWasScored) {
+  // GIVEN a swarm that flies the L plan from 10 s until 12 s, when the ground turns it north for 3 s, and it follows
+  MissionScore score(lPlan(), kStartS);
+  const ReplannedMission r = replanMission(lPlan().legs(), kStartS, 12.0, northFor(3.0));
+  const MissionPlan flown(r.legs);
+  Geometry last;
+  for (int k = 0; k <= 40; ++k) {
+    const double t = stepTime(k);
+    if (t == 12.0) score.replan(MissionPlan(r.legs), r.start_s);
+    last = geometry(flown.pathAt(t - kStartS), 10.0);
+    score.add(t, last, {{0, last.centroid_m}});
+  }
+  // THEN the swarm is on the plan that was flown: no path error, no end error, each UAV at its end
+  const MissionFigures f = score.figures(last, {{0, last.centroid_m}});
+  EXPECT_NEAR(f.end_error_m, 0.0, 1e-12);
+  EXPECT_NEAR(f.path_error_m, 0.0, 1e-12);
+  EXPECT_NEAR(f.uav_end_error_m, 0.0, 1e-12);
+  EXPECT_EQ(f.d_nb_moving_m, 10.0);
+  // AND against the old plan the same swarm would be (4, 2) - (2, 3) off at the end
+  MissionScore old(lPlan(), kStartS);
+  for (int k = 0; k <= 40; ++k) {
+    const Geometry g = geometry(flown.pathAt(stepTime(k) - kStartS), 10.0);
+    old.add(stepTime(k), g, {{0, g.centroid_m}});
+  }
+  EXPECT_NEAR(old.figures(last, {{0, last.centroid_m}}).end_error_m, (Vec2(4, 2) - Vec2(2, 3)).norm(), 1e-12);
+}
+
 }  // namespace
 }  // namespace swa::monitor

@@ -147,7 +147,7 @@ test_layout_and_documents() {
   check "monitor subscribes every topic (to record it)" \
     test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = "$(sorted swa/truth swa/events swa/clock \
     'swa/uav*/state' 'swa/uav*/imu' 'swa/uav*/detections' 'swa/uav*/gnss' 'swa/uav*/sensors' 'swa/uav*/cmd_vel' \
-    'swa/uav*/bridge_state')"
+    'swa/uav*/bridge_state' swa/swarm/mission)"
 }
 
 test_overwrite_rules() {
@@ -219,7 +219,7 @@ test_bridges_and_naming() {
   check "monitor subscribes under the ROS mapping" test "$(granted "$d/swa_monitor/permissions.xml" subscribe)" = \
     "$(sorted rt/lab/a/swa/truth rt/lab/a/swa/events rt/lab/a/swa/clock 'rt/lab/a/swa/uav*/state' \
     'rt/lab/a/swa/uav*/imu' 'rt/lab/a/swa/uav*/detections' 'rt/lab/a/swa/uav*/gnss' 'rt/lab/a/swa/uav*/sensors' \
-    'rt/lab/a/swa/uav*/cmd_vel' 'rt/lab/a/swa/uav*/bridge_state')"
+    'rt/lab/a/swa/uav*/cmd_vel' 'rt/lab/a/swa/uav*/bridge_state' rt/lab/a/swa/swarm/mission)"
   expect_status 2 "--ros-namespace without --naming ros2" bash "$SCRIPT" --ros-namespace a "$WORK/b" 1
   expect_status 2 "--naming other" bash "$SCRIPT" --naming ros "$WORK/b" 1
   expect_status 2 "--ros-namespace with a '-'" bash "$SCRIPT" --naming ros2 --ros-namespace team-a "$WORK/b" 1

@@ -88,6 +88,8 @@ class MetricsAccumulator {
 
   Summary summary() const;
   const MetricsConfig& config() const { return config_; }
+  // A mission changed live (mission_score.h, replanMission): scored against `legs` from `start_s` on.
+  void replanMission(const std::vector<agent::MissionLeg>& legs, double start_s);
   int steps() const { return steps_; }
 
  private:

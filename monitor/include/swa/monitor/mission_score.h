@@ -5,6 +5,7 @@
 // reckoning, and its own end error is what the swarm's centroid error is compared with.
 
 #include <map>
+#include <vector>
 
 #include "swa/agent/mission.h"
 #include "swa/monitor/swarm_metrics.h"
@@ -19,6 +20,16 @@ struct MissionFigures {
   double uav_end_spread_m = kNaN;   // the spread of the UAVs' end points: the std of their distance to their mean
 };
 
+// A plan changed live at `at_s` (the steps' clock) by a command from the ground, as every agent changes its own
+// (agent/mission.h): the legs flown until then and the command's after, from `start_s`. A command before the plan has
+// begun, or without one, starts the mission at at_s with the command's legs alone.
+struct ReplannedMission {
+  std::vector<agent::MissionLeg> legs;
+  double start_s = 0.0;
+};
+ReplannedMission replanMission(const std::vector<agent::MissionLeg>& legs, double start_s, double at_s,
+                               const agent::MissionCommand& command);
+
 class MissionScore {
  public:
   MissionScore() = default;
@@ -26,6 +37,8 @@ class MissionScore {
   MissionScore(const agent::MissionPlan& plan, double start_s);
 
   bool active() const { return !plan_.empty(); }
+  // The plan replaced by one with the same path until now (replanMission): what was scored stays.
+  void replan(const agent::MissionPlan& plan, double start_s);
   void add(double t_s, const Geometry& geometry, const std::map<int, agent::Vec2>& positions);
   // The figures once the run is over: `positions` at its last step. NaN where the run never reached the start.
   MissionFigures figures(const Geometry& last, const std::map<int, agent::Vec2>& positions) const;
