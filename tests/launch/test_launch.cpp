@@ -342,6 +342,34 @@ TEST_F(LaunchTest, CompareStandaloneWritesOneReport) {
   expectNothingLeft();
 }
 
+// A mission changed live by swa_mission (issue #45): the agents fly it, and the monitor judges the run against it.
+TEST_F(LaunchTest, AMissionChangedLiveBySwaMissionIsFlownAndJudgedAgainstTheNewPlan) {
+  // GIVEN a realtime launch flying east at 2 m/s from 0 s, for longer than the run
+  Child launch(launchArgs({"--set", "duration_s=30", "--set", "clock.mode=realtime", "--set", "mission.start=time",
+                           "--set", "mission.legs=[{velocity_mps: [2, 0], duration_s: 60}]"}),
+               dir_ / "launch.log");
+  // WHEN the ground sends "north at 2 m/s for 8 s" as soon as the 4 agents and the monitor read the topic
+  Child ground({SWA_MISSION_BINARY, "--leg", "vel:0,2,8", "--expect", "5", "--wait-s", "60", "--domain",
+                std::to_string(domain_)},
+               dir_ / "ground.log");
+  const auto sent = ground.wait(90.0);
+  ASSERT_TRUE(sent.has_value()) << readFile(dir_ / "ground.log");
+  EXPECT_EQ(*sent, 0) << readFile(dir_ / "ground.log");
+  // THEN the run PASSes, judged against the changed plan: the swarm ends where it ends (against the scenario's plan
+  // it would be tens of metres off)
+  const auto status = launch.wait(150.0);
+  const fs::path out = dir_ / "out";
+  const std::string log = readFile(dir_ / "launch.log") + readFile(out / "logs" / "monitor.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  EXPECT_EQ(*status, 0) << log;
+  const std::string summary = readFile(out / "summary.json");
+  EXPECT_NE(summary.find("\"verdict\": \"PASS\""), std::string::npos) << summary;
+  EXPECT_LT(jsonNumber(summary, "mission_end_error_m"), 3.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "collisions"), 0.0);
+  EXPECT_NE(log.find("mission 1 from the ground: the run is scored against it"), std::string::npos) << log;
+  expectNothingLeft();
+}
+
 // --transport discovery-server without a server address: the launcher starts fast-discovery-server on 127.0.0.1,
 // every child is a UDP-only client of it, and the server is stopped with the run. The run is the same experiment:
 // lockstep gives the in-process loop's d_NB exactly over this transport too.
