@@ -14,8 +14,8 @@ app::Cli makeCli(MissionOptions& o) {
   app::Cli cli("swa_mission", "send a swarm mission from the ground to every agent of a running swarm.");
   cli.usage("swa_mission (--leg vel:E,N,SECONDS | --leg to:E,N,SPEED)... [--expect N] [--stay] [--domain D]\n"
             "       swa_mission --hold [--expect N] [--domain D]");
-  cli.details(R"(Writes swa/swarm/mission (SwarmMission) as the participant swa_ground: every agent reads it, and each
-agent flies it from its next IMU sample, from the point its plan has reached (started there if none ran):
+  cli.details(R"(Writes swa/swarm/mission (SwarmMission) as the participant swa_ground: every agent and the monitor read
+it, and each agent flies it from its next IMU sample, from the point its plan has reached (started there if none ran):
   vel:E,N,SECONDS  fly east E, north N m/s for SECONDS, then hold (a plain group velocity: it ends by itself, so a
                    ground link lost mid-command never sends the swarm away)
   to:E,N,SPEED     fly to the point E m east, N m north of where the swarm's mission began (the frame the UAVs had
@@ -31,7 +31,7 @@ Example: swa_mission --leg vel:0,2,30 --leg to:0,0,4    north at 2 m/s for 30 s,
   cli.real("--max-speed", "M/S", o.max_speed_mps, 0.01, 100.0, "a speed",
            "refuse legs faster than this (the agents' mission.max_speed_mps)");
   cli.integer("--expect", "N", o.expect, 0, 100000, "a count",
-              "send once at least N readers (the agents) have matched");
+              "send once at least N readers (the agents, the monitor) have matched");
   cli.real("--wait-s", "SECONDS", o.wait_s, 0.0, 3600.0, "a time",
            "how long to wait for the readers, then again for their acknowledgment");
   cli.flag("--stay", o.stay,
