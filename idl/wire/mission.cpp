@@ -39,7 +39,8 @@ std::variant<agent::MissionCommand, std::string> missionCommandOf(const msg::Swa
       case msg::LEG_VELOCITY: l.kind = agent::MissionCommandLeg::Kind::kVelocity; break;
       case msg::LEG_TO: l.kind = agent::MissionCommandLeg::Kind::kTo; break;
       default:
-        return "leg " + std::to_string(i) + " has unknown kind " + std::to_string(static_cast<std::uint32_t>(leg.kind()));
+        return "leg " + std::to_string(i) + " has unknown kind " +
+               std::to_string(static_cast<std::uint32_t>(leg.kind()));
     }
     l.value = agent::Vec2(leg.east(), leg.north());
     l.duration_s = leg.duration_s();

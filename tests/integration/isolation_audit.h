@@ -109,8 +109,8 @@ inline std::vector<std::string> auditIsolation(const std::vector<Endpoint>& endp
 
 // Completeness, so that the isolation audit cannot pass on too little: each agent 0..agent_count-1 is exactly one
 // participant, and it has exactly one reader on each of swa/uav<I>/{imu,detections,gnss} (one on swa/uav<I>/sensors
-// and one on swa/clock allowed; one on swa/swarm/mission required), exactly one writer on each of swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped
-// allowed), and nothing else. Agents with an index outside 0..agent_count-1 are reported too.
+// and one on swa/clock allowed; one on swa/swarm/mission required), exactly one writer on each of
+// swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped allowed), and nothing else. Agents with an index outside 0..agent_count-1 are reported too.
 inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>& endpoints, int agent_count) {
   using Key = std::pair<EndpointKind, std::string>;
   std::map<int, std::map<std::string, std::map<Key, int>>> seen;  // agent -> participant guid -> endpoint -> count

@@ -31,7 +31,8 @@ inline std::string bridgeState(int uav) { return uavPrefix(uav) + "bridge_state"
 inline const char* const kTruth = "swa/truth";
 inline const char* const kEvents = "swa/events";
 inline const char* const kClock = "swa/clock";
-// The ground's swarm mission (issue #45): written by the ground station (swa_mission) only, read by every agent and the monitor. The same for every UAV, and no UAV's state goes into it: not communication between agents.
+// The ground's swarm mission (issue #45): written by the ground station (swa_mission) only, read by every agent and
+// the monitor. The same for every UAV, and no UAV's state goes into it: not communication between agents.
 inline const char* const kMission = "swa/swarm/mission";
 
 // PX4's uXRCE-DDS topics of the vehicle with ROS namespace `ns` (empty: none): rt/<ns>/fmu/<in|out>/<name>. DDS names
