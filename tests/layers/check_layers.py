@@ -22,7 +22,7 @@ LAYERS = [
     ("runtime", ["deploy/app", "deploy/dds"]),
     ("processes", ["agent/node", "agent/bridge_node", "sim/node", "monitor/node", "monitor/scoring", "monitor/live_view",
                    "monitor/recording/taps",
-                   "deploy/launch", "deploy/batch", "deploy/replay", "deploy/study"]),
+                   "deploy/launch", "deploy/batch", "deploy/replay", "deploy/study", "deploy/mission"]),
 ]
 TOPS = ["agent", "sim", "monitor", "idl", "deploy"]
 INCLUDE = re.compile(r'\s*#\s*include\s+"([^"]+)"')
