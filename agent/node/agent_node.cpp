@@ -107,7 +107,8 @@ void AgentNode::onForeign(const agent::ForeignDetectionSet& set) {
 void AgentNode::onMission(msg::SwarmMission&& m, const dds::WriterGuid& writer) {
   const std::lock_guard<std::mutex> lock(mutex_);
   ++stats_.missions;
-  for (const dds::PeerKey& gone : participant_->takePeersGone()) mission_gate_.participantGone(gone);
+  // Departed writers are learnt in run() (every poll): a listener must not touch participant_, which is null while
+  // a reconnection deletes the old one.
   const auto now = std::chrono::steady_clock::now();
   if (mission_writer_ == writer && m.header().seq() <= mission_seq_) {
     ++stats_.missions_replayed;  // a re-created reader was sent the command in force again
