@@ -14,8 +14,10 @@
 # A run is `swa_launch --secure` of deploy/scenarios/dropout_8.yaml with uav_count N, 30 s simulated, with
 # SWA_DDS_TRACE=1 (every process logs whom it discovered and authenticated). Printed per kind and size:
 #   secure pass        runs that exited 0 (PASS) / runs
-#   discovery          the simulator's "all N agent(s) discovered in X s": median and max over the runs, secure and
-#                      plain, and the ratio of the medians
+#   discovery          time to full discovery: the latest agent's first IMU sample after its start (it needs the
+#                      whole chain matched: simulator or bridge to agent, and the monitor, which lets the simulator
+#                      start once it has matched every agent); median and max over the runs, secure and plain, and the
+#                      ratio of the medians
 #   reconnections      participants re-created by the product's own recovery (agents, bridges, monitor, simulator),
 #                      in all secure runs together, and in the plain ones
 # Then one line per failed run with its cause: the launch's last words, and from the trace every pair still
@@ -87,8 +89,9 @@ launch() {
   local dir=$work/ok/$name
   [ -d "$dir" ] || dir=$work/failed/$name
   local discovered reconnections
-  discovered=$(sed -n 's/.*all [0-9]* agent(s) discovered in \([0-9.]*\) s.*/\1/p' "$dir/logs/sim.log" 2>/dev/null |
-    head -1)
+  discovered=$(cat "$dir"/logs/agent_*.log 2>/dev/null |
+    sed -n 's/^swa_agent [0-9]*: first IMU sample .* \([0-9.]*\) s after start.*/\1/p' |
+    awk -v n="$n" '{ if ($1 > max) max = $1; k++ } END { if (k == n) printf "%.2f", max }')
   reconnections=$(cat "$dir"/logs/*.log 2>/dev/null | grep -c "re-creating the participant" || true)
   echo "$kind $n $secure $k $status ${discovered:-none} $reconnections" >> "$work/runs.txt"
   [ "$status" = 0 ] && [ -z "$keep" ] && rm -rf "$dir" "$dir.log" "$dir.status"
