@@ -72,6 +72,7 @@ class BridgeNode : public app::Role {
   void forward(const Attitude& a, std::chrono::steady_clock::time_point received);
   void report();  // the core's events to the log, and a state message when there were any (or a second passed)
   void logFinalCounts() const;
+  void logGnssCounts(const px4::GnssForwardCounters& g) const;
   void writeSummary() const;  // --summary-out
 
   // When an attitude sample came in and its IMU sample went out, to time the answer's way back (the bridge's hop).

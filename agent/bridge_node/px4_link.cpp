@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
@@ -129,6 +130,12 @@ class Px4Link : public VehicleLink {
            "EKF2_HGT_REF on the barometer (deploy/README.md, \"External odometry\")";
   }
 
+  std::optional<px4::GnssForwardCounters> gnssCounters() const override {
+    if (options_.no_gnss) return std::nullopt;
+    const std::lock_guard<std::mutex> lock(gnss_mutex_);
+    return gnss_forward_.counters();
+  }
+
   std::string noStatusHint() const override {
     return "no " + topics::px4Out(ns_, status_topic_) + ": is the vehicle PX4 " +
            px4::releaseName(options_.px4_release) +
@@ -166,7 +173,10 @@ class Px4Link : public VehicleLink {
   }
   void onLocalPosition(const px4::LocalPositionReport& position) {
     const std::lock_guard<std::mutex> lock(gnss_mutex_);
-    if (const std::optional<agent::GnssSample> g = gnss_forward_.onLocalPosition(position)) events_.gnss(*g);
+    const std::optional<agent::GnssSample> g = gnss_forward_.onLocalPosition(position);
+    // A moved origin is logged before the first sample placed by it goes out.
+    for (const std::string& line : gnss_forward_.takeEvents()) events_.log(line);
+    if (g) events_.gnss(*g);
     events_.estimator(position.dead_reckoning);
   }
 
@@ -183,7 +193,7 @@ class Px4Link : public VehicleLink {
   const std::string status_topic_;  // the release's name of vehicle_status
   const VehicleEvents events_;
 
-  std::mutex gnss_mutex_;
+  mutable std::mutex gnss_mutex_;
   px4::GnssForward gnss_forward_;
   std::mutex accel_mutex_;
   px4::AccelerometerPairing accel_;

@@ -16,6 +16,7 @@
 #include "swa/autopilot/odometry_feed.h"
 #include "swa/autopilot/quaternion_order.h"
 #include "swa/dds/participant.h"
+#include "swa/px4/gnss.h"
 
 namespace swa::bridge_node {
 
@@ -52,6 +53,10 @@ class VehicleLink {
   virtual std::string odometryTopic() const = 0;
   // What to set on the vehicle when it does not fuse the odometry (the pre-flight table, for the log).
   virtual std::string odometryHint() const = 0;
+
+  // What became of the vehicle's GNSS reports, for the final counts and the summary (PX4's; nullopt: not forwarded
+  // from this vehicle).
+  virtual std::optional<px4::GnssForwardCounters> gnssCounters() const { return std::nullopt; }
 
   // For the log.
   virtual std::string description() const = 0;    // the autopilot, its namespace and topics

@@ -1,6 +1,7 @@
 #include "px4_vehicles.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
@@ -28,11 +29,23 @@ namespace {
 
 namespace topics = dds::topics;
 constexpr agent::StampNs kStatusPeriodNs = 200'000'000;  // vehicle_status at 5 Hz, as PX4 sends it
+// Where every stand-in's EKF2 sets its first global origin: the world's origin on the ground, at PX4 SITL's default
+// home (PX4_HOME_LAT, PX4_HOME_LON), where the ArduPilot stand-in's home is too.
+const px4::GeoPoint kAirfield{47.397742, 8.545594};
+// The world's east, north are PX4's local frame around the airfield: PX4's own projection places them on the ground.
+const px4::MapProjection kAirfieldFrame(kAirfield);
+
+std::optional<agent::StampNs> shiftTime(double at_s) {
+  if (!std::isfinite(at_s)) return std::nullopt;
+  return static_cast<agent::StampNs>(std::llround(at_s * 1e9));
+}
 
 }  // namespace
 
 Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup,
-                         agent::ImuSource source) {
+                         agent::ImuSource source)
+    : shift_{shiftTime(setup.px4_origin_shift_at_s),
+             px4::NedPoint{setup.px4_origin_shift_north_m, setup.px4_origin_shift_east_m}} {
   vehicles_.reserve(static_cast<std::size_t>(uav_count));
   const std::string status_topic = px4::topicName(setup.px4_release, "vehicle_status");
   const std::string gps_topic = px4::topicName(setup.px4_release, "vehicle_gps_position");
@@ -131,15 +144,43 @@ bool Px4Vehicles::publishGnss(int uav, const agent::GnssSample& g) {
   const std::optional<bool> valid =
       v.standin.modelsEstimator() ? std::optional<bool>(v.standin.localPositionValid()) : std::nullopt;
   const bool dead_reckoning = v.standin.deadReckoning();
+  if (!v.position_v1_16 && !v.position) return ok;
+  const wire::LocalReference& reference = referenceAt(uav, v, g.stamp_ns, *timestamp);
+  const agent::GnssSample local = inLocalFrame(v, g);
   if (v.position_v1_16) {
-    auto m = wire::vehicleLocalPosition<px4_v1_16::px4_msgs::msg::VehicleLocalPosition>(*timestamp, g, valid,
-                                                                                        dead_reckoning);
+    auto m = wire::vehicleLocalPosition<px4_v1_16::px4_msgs::msg::VehicleLocalPosition>(*timestamp, local, valid,
+                                                                                        dead_reckoning, reference);
     ok = v.position_v1_16.write(m) && ok;
-  } else if (v.position) {
-    auto m = wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(*timestamp, g, valid, dead_reckoning);
+  } else {
+    auto m = wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(*timestamp, local, valid,
+                                                                             dead_reckoning, reference);
     ok = v.position.write(m) && ok;
   }
   return ok;
+}
+
+const wire::LocalReference& Px4Vehicles::referenceAt(int uav, Vehicle& v, agent::StampNs now,
+                                                     std::uint64_t timestamp_us) {
+  if (!v.reference) v.reference = wire::LocalReference{timestamp_us, kAirfield};
+  if (v.moved || !shift_.at || now < *shift_.at) return *v.reference;
+  // EKF2's setEkfGlobalOrigin: the new origin, stamped now; every position from here on is re-based on it.
+  const px4::GeoPoint to = px4::MapProjection(v.reference->point).reproject(shift_.by);
+  v.reference = wire::LocalReference{timestamp_us, to};
+  v.moved.emplace(to);
+  std::fprintf(stderr,
+               "swa_sim: t = %.2f s: UAV %d: PX4 stand-in %s moved its local origin %.2f m east, %.2f m north "
+               "(ref_timestamp %llu): x, y re-based on it\n",
+               static_cast<double>(now) * 1e-9, uav, v.ns.c_str(), shift_.by.east_m, shift_.by.north_m,
+               static_cast<unsigned long long>(timestamp_us));
+  return *v.reference;
+}
+
+agent::GnssSample Px4Vehicles::inLocalFrame(const Vehicle& v, agent::GnssSample g) const {
+  if (!v.moved) return g;  // around the airfield: the world's own coordinates, bit for bit as before issue #46
+  // The same point on the ground, projected around the moved origin, as EKF2 re-bases its position.
+  const px4::NedPoint p = v.moved->project(kAirfieldFrame.reproject({g.position_m.y(), g.position_m.x()}));
+  g.position_m = agent::Vec2(p.east_m, p.north_m);
+  return g;
 }
 
 void Px4Vehicles::repeatAttitude(int uav) {

@@ -8,6 +8,9 @@
 // The first trajectory_setpoint stamped with a recent attitude sample's timestamp is that sample's answer: it goes to
 // the drivers' lockstep / realtime rules like an agent's cmd_vel (answer.h). The bridge's own setpoints (zero velocity
 // for a stale agent, stamped like the last answer), heartbeats and commands go to the stand-in at once.
+// vehicle_local_position carries its global reference as PX4's does (xy_global, ref_timestamp, ref_lat, ref_lon): a
+// fixed airfield at the world's origin, set with the first report; vehicle.px4_origin_shift_at_s moves it once, mid-
+// flight, and re-bases x, y on it as EKF2 does when its global origin is re-set (issue #46).
 
 #include <chrono>
 #include <cstdint>
@@ -37,8 +40,10 @@
 #include "autopilot_vehicles.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
+#include "swa/px4/map_projection.h"
 #include "swa/sim/px4_standin.h"
 #include "swa/sim/world.h"
+#include "swa/wire/px4.h"
 
 namespace swa::sim_node {
 
@@ -105,14 +110,27 @@ class Px4Vehicles : public AutopilotVehicles {
     double yaw_rate_radps = 0.0;  // of the newest setpoint given to the stand-in (which knows only the velocity)
     std::uint8_t status_sent_nav = 255, status_sent_arming = 255;
     agent::StampNs status_sent_at = 0;
+    // vehicle_local_position's global reference, from the first report on; the projection around it once moved.
+    std::optional<wire::LocalReference> reference;
+    std::optional<px4::MapProjection> moved;
+  };
+  // vehicle.px4_origin_shift_*: when (nullopt: never) and where to [m], in the old origin's NED frame.
+  struct OriginShift {
+    std::optional<agent::StampNs> at;
+    px4::NedPoint by;
   };
 
   void publishStatus(int uav, Vehicle& v, agent::StampNs now);
+  // The reference of vehicle `uav`'s report at `now` (`timestamp_us` on its clock): set by the first, moved once.
+  const wire::LocalReference& referenceAt(int uav, Vehicle& v, agent::StampNs now, std::uint64_t timestamp_us);
+  // `g` (the world's east, north) in the vehicle's local frame around its reference.
+  agent::GnssSample inLocalFrame(const Vehicle& v, agent::GnssSample g) const;
 
   dds::SampleQueue<Arrival> queue_;  // declared before the vehicles' readers are made, outlives their listeners' use
   std::vector<Vehicle> vehicles_;
   std::vector<Arrival> arrived_;
   std::uint64_t acks_ = 0;
+  OriginShift shift_;
 };
 
 }  // namespace swa::sim_node

@@ -21,6 +21,8 @@ using params::Values;
 constexpr int kMaxUavs = 256;
 constexpr double kMaxTime_s = 1e6;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// A re-set EKF origin is a place the vehicle's receiver has seen: within 100 km of the old one.
+constexpr double kMaxOriginShiftM = 1e5;
 
 // gnss.windows: a list of {uav, start_s, end_s} records.
 params::Spec windowsSpec() {
@@ -106,6 +108,15 @@ std::vector<params::Check> scenarioChecks() {
                                          " m must be < mps.range_m = " + formatYamlNumber(range) +
                                          " m: otherwise no UAV detects its neighbours");
                     }});
+  checks.push_back({{"vehicle.px4_origin_shift_at_s", "vehicle.px4_origin_shift_east_m",
+                     "vehicle.px4_origin_shift_north_m"},
+                    [](const Values& v, auto& problems) {
+                      const bool moved = params::number(v, "vehicle.px4_origin_shift_east_m") != 0.0 ||
+                                         params::number(v, "vehicle.px4_origin_shift_north_m") != 0.0;
+                      if (!moved || std::isfinite(params::number(v, "vehicle.px4_origin_shift_at_s"))) return;
+                      problems.push_back("vehicle.px4_origin_shift_east_m / _north_m move the PX4 stand-ins' local "
+                                         "origin, but vehicle.px4_origin_shift_at_s is .inf (never): give the time");
+                    }});
   return checks;
 }
 
@@ -119,6 +130,8 @@ const char* const kNotes =
     "    end_s may be .inf or left out (never restored). A UAV has no GNSS inside the common window (unless it\n"
     "    is in keep_uavs) or inside any of its own windows; windows may overlap.\n"
     "  - formation.spacing_m < mps.range_m.\n"
+    "  - vehicle.px4_origin_shift_east_m and _north_m (a shift of the PX4 stand-ins' local origin) need a finite\n"
+    "    vehicle.px4_origin_shift_at_s; a shift by 0 m still re-sets the origin (a new ref_timestamp).\n"
     "  - agent.*: the agent configuration (swa_agent --parameters); agent.formation.radius_m defaults to\n"
     "    formation.spacing_m unless given; agent.k and agent.circle_fit are aliases (a file gives one spelling).\n"
     "  - study: a section for swa_batch's studies (seeds and the sweep, see swa_batch --help); every other program\n"
@@ -292,6 +305,16 @@ params::Table<Scenario> makeTable() {
             "px4: PX4's EKF2_EV_CTRL, what EKF2 fuses of vehicle_visual_odometry: bit 0 horizontal position, 1 "
             "vertical position, 2 velocity, 3 yaw; 5 as the pre-flight table asks (PX4's default: 15 in v1.15, 0 "
             "from v1.16, which fuses nothing)");
+  SWA_PARAM(t, number, vehicle.px4_origin_shift_at_s, "s", openClosed(0, kMaxTime_s),
+            "px4 with vehicle.gnss_source = autopilot: at this time every PX4 stand-in moves its local origin as "
+            "EKF2 does when its global origin is re-set in flight (issue #46): ref_lat, ref_lon to the point "
+            "vehicle.px4_origin_shift_east_m and _north_m from the old one, ref_timestamp to now, and x, y re-based "
+            "on it; the bridges bring the positions back into the first origin's frame; .inf (default) = never",
+            /*allow_infinity=*/true);
+  SWA_PARAM(t, number, vehicle.px4_origin_shift_east_m, "m", closed(-kMaxOriginShiftM, kMaxOriginShiftM),
+            "px4: how far east of the old local origin the new one lies (vehicle.px4_origin_shift_at_s)");
+  SWA_PARAM(t, number, vehicle.px4_origin_shift_north_m, "m", closed(-kMaxOriginShiftM, kMaxOriginShiftM),
+            "px4: how far north of the old local origin the new one lies (vehicle.px4_origin_shift_at_s)");
   SWA_PARAM(t, flag, vehicle.ap_external_nav,
             "ardupilot: whether EKF3 takes the bridge's ap/tf odometry once GPS is lost (VISO_TYPE 1, source set 2 "
             "with EK3_SRC2_POSXY 6, switched to on GPS loss: the pre-flight table); false: ArduPilot's defaults, "
@@ -318,6 +341,12 @@ params::Table<Scenario> makeTable() {
       {"vehicle.ekf2_noaid_tout_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.ekf2_ev_ctrl", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
       {"vehicle.ap_external_nav", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
+      {"vehicle.px4_origin_shift_at_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.px4_origin_shift_east_m", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.px4_origin_shift_north_m", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+      {"vehicle.px4_origin_shift_at_s", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
+      {"vehicle.px4_origin_shift_east_m", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
+      {"vehicle.px4_origin_shift_north_m", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
       {"wind.direction_deg", "wind.mean_mps", {}, "a mean wind"},
       {"wind.turn_rate_dps", "wind.mean_mps", {}, "a mean wind"},
       {"imu.attitude_error_std_rad", "imu.source", {"accelerometer"}, "the accelerometer source"},

@@ -18,6 +18,7 @@
 #include "swa/agent/agent.h"
 #include "swa/autopilot/navsat.h"
 #include "swa/px4/gnss.h"
+#include "swa/px4/map_projection.h"
 #include "swa/px4/release.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/sim/timing.h"
@@ -56,6 +57,39 @@ std::optional<agent::GnssSample> throughVehicle(Release r, const agent::GnssSamp
   }
   return forward.onLocalPosition(wire::localPositionOf(roundTrip<px4_msgs::msg::VehicleLocalPositionPubSubType>(
       wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(t, g))));
+}
+
+// vehicle_local_position's reference in the release's layout, written by the stand-in and read by the bridge.
+LocalPositionReport referenceThroughWire(Release r, const std::optional<wire::LocalReference>& reference) {
+  agent::GnssSample g;
+  g.valid = true;
+  g.position_m = agent::Vec2(-500.25, 12.5);
+  g.std_m = 0.5;
+  if (hasV116VehicleLocalPosition(r)) {
+    return wire::localPositionOf(roundTrip<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
+        wire::vehicleLocalPosition<px4_v1_16::px4_msgs::msg::VehicleLocalPosition>(7, g, true, false, reference)));
+  }
+  return wire::localPositionOf(roundTrip<px4_msgs::msg::VehicleLocalPositionPubSubType>(
+      wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(7, g, true, false, reference)));
+}
+
+TEST(GnssFromVehicle, TheLocalOriginsReferenceCrossesTheWireInEveryRelease) {
+  for (const Release r : kReleases) {
+    SCOPED_TRACE(releaseName(r));
+    // GIVEN a local position relative to an origin PX4 set at 12.5 s
+    const wire::LocalReference reference{12'500'000, GeoPoint{47.397742123456789, 8.545594987654321}};
+    // WHEN it goes through the wire in the release's layout
+    const LocalPositionReport p = referenceThroughWire(r, reference);
+    // THEN the bridge reads the reference bit for bit (float64 on the wire), beside x, y
+    EXPECT_TRUE(p.xy_global);
+    EXPECT_EQ(p.ref_timestamp_us, 12'500'000u);
+    EXPECT_EQ(p.ref_lat_deg, reference.point.lat_deg);
+    EXPECT_EQ(p.ref_lon_deg, reference.point.lon_deg);
+    EXPECT_EQ(p.x_m, 12.5);
+    EXPECT_EQ(p.y_m, -500.25);
+    // AND without one it says so
+    EXPECT_FALSE(referenceThroughWire(r, std::nullopt).xy_global);
+  }
 }
 
 TEST(GnssFromVehicle, AnAnchoredAgentFollowsTheVehiclesGnssStateAtEveryReportInEveryRelease) {

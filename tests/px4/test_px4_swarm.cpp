@@ -1,7 +1,8 @@
 // The swarm through an autopilot (issues #13, #27), end to end with swa_launch: the simulator plays each UAV's PX4
 // autopilot of a release (vehicle.interface = px4, vehicle.px4_release) or its ArduPilot Copter (vehicle.interface =
-// ardupilot), one swa_px4_bridge per agent. Checked from the outside: the run's summary.json, events.csv,
-// trajectories.csv, restarts.csv and the endpoints DDS discovery reports.
+// ardupilot), one swa_px4_bridge per agent; a PX4 that moves its local origin mid-flight (issue #46). Checked from the
+// outside: the run's summary.json, events.csv, trajectories.csv, restarts.csv, the recording and the endpoints DDS
+// discovery reports.
 
 #include <signal.h>
 
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
 #include "../integration/discovery_observer.h"
@@ -363,6 +365,87 @@ TEST_F(Px4SwarmTest, GnssLostAndRegainedByTheVehiclesReachesTheAgentsThroughTheB
 // bridges tell the loss from the silence.
 TEST_F(Px4SwarmTest, GnssLostAndRegainedByArdupilotReachesTheAgentsThroughTheBridges) {
   expectGnssLostAndRegainedThroughTheBridges("ardupilot", "ArduPilot");
+}
+
+// The valid GNSS fixes an agent read (swa/uav<I>/gnss, as its bridge sent them): times [s] and east, north [m].
+std::vector<std::pair<double, agent::Vec2>> validFixes(const replay::UavRecording& uav) {
+  msg::GnssFixPubSubType type;
+  std::vector<std::pair<double, agent::Vec2>> out;
+  for (const replay::InputSample& s : uav.inputs) {
+    if (s.input != replay::Input::kGnss) continue;
+    eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(s.payload.size()));
+    std::memcpy(payload.data, s.payload.data(), s.payload.size());
+    payload.length = static_cast<std::uint32_t>(s.payload.size());
+    msg::GnssFix m;
+    if (type.deserialize(&payload, &m) && m.valid()) {
+      out.emplace_back(static_cast<double>(s.stamp_ns) * 1e-9, agent::Vec2(m.x_m(), m.y_m()));
+    }
+  }
+  return out;
+}
+
+// Issue #46: PX4 re-sets its EKF2 origin in flight (a new GPS origin, SET_GPS_GLOBAL_ORIGIN) and re-bases x, y on it,
+// so what it sends jumps by the origins' difference. 4 anchored agents (they hold their places by GNSS) with GNSS from
+// the PX4 stand-ins, lost from 15 s to 20 s of 25; every stand-in moves its origin 500 m east at 8 s, GNSS valid then.
+TEST_F(Px4SwarmTest, APx4OriginMovedInFlightReachesNoAgentAsAJump) {
+  const std::vector<std::string> sets = {"duration_s=25", "gnss.dropout_start_s=15", "gnss.dropout_end_s=20",
+                                         "agent.mode=anchored"};
+  std::vector<std::string> px4_sets = sets;
+  px4_sets.insert(px4_sets.end(), {"vehicle.gnss_source=autopilot", "vehicle.px4_origin_shift_at_s=8",
+                                   "vehicle.px4_origin_shift_east_m=500"});
+  const LaunchedRun run = launch("dropout_4.yaml", "px4", px4_sets, "origin", /*record=*/true);
+  ASSERT_NE(run.status, -1) << "still running after " << kRunBoundS << " s";
+  // THEN the run passes as cohesively as the in-process loop, whose GNSS has no origin to move
+  EXPECT_EQ(run.status, 0) << run.summary << logs(run.dir);
+  const double d_direct =
+      batch::runClosedLoop(sim::loadScenario(kScenarioDir + "dropout_4.yaml", sets)).summary.mean_neighbor_distance_m;
+  EXPECT_NEAR(jsonNumber(run.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
+  EXPECT_EQ(jsonNumber(run.summary, "collisions"), 0.0);
+  EXPECT_EQ(jsonNumber(run.summary, "groups"), 1.0);
+  // AND every stand-in moved its origin at 8 s, and every bridge logged the change once, before GNSS was lost,
+  // brought the positions back and counted it in its summary
+  const std::string sim_log = readFile(run.dir / "logs" / "sim.log");
+  const std::string change = "PX4 moved its local origin (ref_timestamp ";
+  const std::string where = " -> 8000000, 500.00 m east, 0.00 m north of the first): positions brought into the first "
+                            "origin's frame";
+  for (int i = 0; i < 4; ++i) {
+    SCOPED_TRACE("UAV " + std::to_string(i));
+    EXPECT_NE(sim_log.find("t = 8.00 s: UAV " + std::to_string(i) + ": PX4 stand-in px4_" + std::to_string(i) +
+                           " moved its local origin 500.00 m east, 0.00 m north"),
+              std::string::npos)
+        << sim_log;
+    const std::string log = readFile(run.dir / "logs" / ("bridge_" + std::to_string(i) + ".log"));
+    const std::size_t at = log.find(change);
+    ASSERT_NE(at, std::string::npos) << log;
+    EXPECT_EQ(log.find(change, at + 1), std::string::npos) << log;
+    EXPECT_NE(log.find(where, at), std::string::npos) << log;
+    EXPECT_LT(at, log.find("GNSS from PX4 LOST")) << log;
+    const std::string summary = readFile(run.dir / "logs" / ("bridge_" + std::to_string(i) + "_summary.json"));
+    EXPECT_EQ(jsonNumber(summary, "origin_changes"), 1.0) << summary;
+    EXPECT_EQ(jsonNumber(summary, "unusable_reference"), 0.0) << summary;
+  }
+  // AND no agent's GNSS jumped: consecutive valid fixes (10 Hz; not across the outage) of a UAV step at most 5 m, where
+  // the origin moved 500 m: 5 m/s at most is 0.5 m a fix, and the difference of two fixes' noise (0.5 m std per
+  // coordinate each) exceeds 4.5 m with a chance of exp(-4.5^2) = 2e-9 a pair (measured: at most 2.7 m); the fixes on
+  // either side of 8 s were valid
+  const replay::RecordedRun recorded = replay::readRecordedRun((run.dir / "run.mcap").string(), std::nullopt, false);
+  ASSERT_EQ(recorded.uavs.size(), 4u);
+  for (const auto& [uav, r] : recorded.uavs) {
+    const std::vector<std::pair<double, agent::Vec2>> fixes = validFixes(r);
+    double largest = 0.0;
+    bool before = false, after = false;
+    for (std::size_t k = 1; k < fixes.size(); ++k) {
+      if (fixes[k].first - fixes[k - 1].first > 0.15) continue;
+      largest = std::max(largest, (fixes[k].second - fixes[k - 1].second).norm());
+      before = before || (fixes[k].first >= 7.5 && fixes[k].first < 8.0);
+      after = after || (fixes[k].first >= 8.0 && fixes[k].first < 8.5);
+    }
+    std::cout << "UAV " << uav << ": " << fixes.size() << " valid fixes, largest step " << largest << " m\n";
+    EXPECT_GT(fixes.size(), 100u) << "UAV " << uav;
+    EXPECT_LT(largest, 5.0) << "UAV " << uav;
+    EXPECT_TRUE(before && after) << "UAV " << uav;
+  }
+  expectNothingLeft();
 }
 
 // events.csv rows of one UAV whose text contains `what`: their times [s] and values.

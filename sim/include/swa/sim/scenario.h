@@ -133,6 +133,10 @@ struct VehicleSetup {
   bool ap_external_nav = true;     // ArduPilot: external navigation once GPS is lost (the pre-flight table's setup)
   // When swa_launch's bridges feed their agent's estimate as external odometry (swa_px4_bridge --odometry).
   autopilot::OdometryMode odometry = autopilot::OdometryMode::kWhileGnssLost;
+  // Issue #46, PX4 with GNSS from the autopilot: at px4_origin_shift_at_s every stand-in moves its local origin this far
+  // east and north of the old one and re-bases x, y on it, as EKF2 does when its global origin is re-set in flight.
+  double px4_origin_shift_at_s = std::numeric_limits<double>::infinity();  // never
+  double px4_origin_shift_east_m = 0.0, px4_origin_shift_north_m = 0.0;
 };
 
 struct ClockSetup {

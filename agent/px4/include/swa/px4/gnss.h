@@ -10,11 +10,23 @@
 // is a valid=false sample ("no fix"), never a dropped one: the agent must hear the loss. The position is PX4's local
 // NED frame turned to SWA's (x east = y_NED, y north = x_NED); its origin is the vehicle's own EKF origin, which is
 // all the agent needs (it holds positions relative to its first fix). std_m is PX4's eph.
+//
+// That origin can move in flight (issue #46): EKF2 re-sets its global origin (a new GPS origin, a
+// SET_GPS_GLOBAL_ORIGIN command, a reboot) and re-bases x, y on it, so x, y jump by the origins' difference. The first
+// usable reference (xy_global with a finite ref_lat, ref_lon) is kept; a report with another one (ref_timestamp,
+// ref_lat or ref_lon changed) has its x, y brought into the first origin's frame through PX4's own map projection
+// (map_projection.h): the agent sees no jump. Each change is counted and reported once (takeEvents). Once a first
+// origin is known, a report without a usable reference cannot be placed: it goes out as no fix, never as a jump.
+// Before any reference PX4's local frame is forwarded as it is (a vehicle without a global origin, as before #46).
 
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "swa/agent/samples.h"
+#include "swa/px4/map_projection.h"
 
 namespace swa::px4 {
 
@@ -29,6 +41,10 @@ struct LocalPositionReport {
   bool dead_reckoning = false;  // the estimator runs on inertial data alone (no position aiding)
   double x_m = 0.0, y_m = 0.0;  // NED
   double eph_m = 0.0;
+  // The global reference x, y are relative to: valid with xy_global; ref_timestamp is when PX4 set it (its clock).
+  bool xy_global = false;
+  std::uint64_t ref_timestamp_us = 0;
+  double ref_lat_deg = 0.0, ref_lon_deg = 0.0;
 };
 
 struct GnssForwardConfig {
@@ -41,6 +57,8 @@ struct GnssForwardCounters {
   std::uint64_t no_fix = 0, not_xy_valid = 0, dead_reckoning = 0, bad_numbers = 0, stale_gps = 0;  // why not valid
   std::uint64_t out_of_order = 0;    // position reports dropped: not newer than the last one
   std::uint64_t clock_restarts = 0;  // PX4's clock went back by more than a second (a reboot): started afresh
+  std::uint64_t origin_changes = 0;  // PX4 moved its local origin: positions brought into the first origin's frame
+  std::uint64_t unusable_reference = 0;  // no usable reference after a first one: not valid (why not valid, too)
 };
 
 constexpr std::uint8_t kGpsFix3d = 3;
@@ -54,10 +72,25 @@ class GnssForward {
   std::optional<agent::GnssSample> onLocalPosition(const LocalPositionReport& position);
 
   const GnssForwardCounters& counters() const { return counters_; }
+  // What happened to the local origin since the last call, for the log: each origin change and each loss of a usable
+  // reference, once.
+  std::vector<std::string> takeEvents() { return std::exchange(events_, {}); }
 
  private:
+  struct Origin {
+    std::uint64_t ref_timestamp_us = 0;
+    MapProjection projection;
+  };
+
+  // The report's position (NED) in the first origin's frame; nullopt if it cannot be placed there.
+  std::optional<NedPoint> inFirstFrame(const LocalPositionReport& p);
+  void onOriginChange(const LocalPositionReport& p);
+
   GnssForwardConfig config_;
   GnssForwardCounters counters_;
+  std::optional<Origin> first_, current_;  // the first usable reference, and the newest one
+  bool reference_lost_ = false;             // reported, until a usable reference returns
+  std::vector<std::string> events_;
   std::optional<GpsReport> gps_;
   std::optional<std::uint64_t> last_position_us_;
   std::optional<bool> last_valid_;

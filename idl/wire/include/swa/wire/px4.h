@@ -22,6 +22,7 @@
 #include "swa/autopilot/odometry_feed.h"
 #include "swa/px4/frames.h"
 #include "swa/px4/gnss.h"
+#include "swa/px4/map_projection.h"
 
 namespace swa::wire {
 
@@ -81,11 +82,19 @@ Gps sensorGps(std::uint64_t timestamp_us, const agent::GnssSample& g) {
   return m;
 }
 
+// The global reference of vehicle_local_position's x, y (xy_global, ref_timestamp, ref_lat, ref_lon).
+struct LocalReference {
+  std::uint64_t timestamp_us = 0;  // when PX4 set it, on its clock
+  px4::GeoPoint point;
+};
+
 // The estimator's own word (`xy_valid`, which is also v_xy_valid, and `dead_reckoning`) when the stand-in models EKF2
-// (px4_estimator.h); without it, xy_valid is the fix's.
+// (px4_estimator.h); without it, xy_valid is the fix's. With a `reference`, xy_global and the ref_ fields say which
+// origin g's position is relative to (the altitude has none: z_global false); without one, xy_global is false.
 template <class Position>
 Position vehicleLocalPosition(std::uint64_t timestamp_us, const agent::GnssSample& g,
-                              std::optional<bool> xy_valid = std::nullopt, bool dead_reckoning = false) {
+                              std::optional<bool> xy_valid = std::nullopt, bool dead_reckoning = false,
+                              const std::optional<LocalReference>& reference = std::nullopt) {
   Position m;
   m.timestamp(timestamp_us);
   m.timestamp_sample(timestamp_us);
@@ -95,6 +104,12 @@ Position vehicleLocalPosition(std::uint64_t timestamp_us, const agent::GnssSampl
   m.x(static_cast<float>(g.position_m.y()));  // north
   m.y(static_cast<float>(g.position_m.x()));  // east
   m.eph(static_cast<float>(g.std_m));
+  if (reference) {
+    m.xy_global(true);
+    m.ref_timestamp(reference->timestamp_us);
+    m.ref_lat(reference->point.lat_deg);
+    m.ref_lon(reference->point.lon_deg);
+  }
   return m;
 }
 
@@ -103,9 +118,11 @@ px4::GpsReport gpsReportOf(const Gps& m) {
   return {m.timestamp(), m.fix_type()};
 }
 
+// The same fields in v1.15's layout (px4_msgs::msg::VehicleLocalPosition) and v1.16's (px4_v1_16::...).
 template <class Position>
 px4::LocalPositionReport localPositionOf(const Position& m) {
-  return {m.timestamp(), m.xy_valid(), m.dead_reckoning(), m.x(), m.y(), m.eph()};
+  return {m.timestamp(), m.xy_valid(), m.dead_reckoning(), m.x(), m.y(), m.eph(),
+          m.xy_global(), m.ref_timestamp(), m.ref_lat(), m.ref_lon()};
 }
 
 // The agent's estimate as external vision (fmu/in/vehicle_visual_odometry, issue #43), stamped on the vehicle's
