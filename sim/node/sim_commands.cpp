@@ -19,6 +19,7 @@ std::string guidText(const dds::WriterGuid& g) {
 }  // namespace
 
 const std::vector<SimPorts::Answer>& SimPorts::drain(Clock::duration wait) {
+  healDeafness();  // first: a re-created participant must not have lost what this drain would take
   batch_.clear();
   admitted_.clear();
   for (const dds::PeerKey& gone : participant_->takePeersGone()) gate_.participantGone(gone);

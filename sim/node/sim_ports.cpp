@@ -61,7 +61,8 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
       det_seq_(static_cast<std::size_t>(n_), 0),
       gnss_seq_(static_cast<std::size_t>(n_), 0),
       side_written_(static_cast<std::size_t>(n_), false),
-      refused_(static_cast<std::size_t>(n_)) {
+      refused_(static_cast<std::size_t>(n_)),
+      profiles_file_(profiles_file) {
   if (!options_.truth_out.empty()) {
     truth_csv_.open(options_.truth_out);
     if (!truth_csv_) throw std::runtime_error("cannot write --truth-out " + options_.truth_out);
@@ -69,26 +70,39 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
     truth_csv_ << std::setprecision(17);
   }
 
-  const bool frames_allowed = framesAllowed();  // a bad value stops the simulator before it joins the domain
-  participant_ = std::make_unique<dds::Participant>("swa_sim", domain_id, profiles_file);
+  frames_allowed_ = framesAllowed();  // a bad value stops the simulator before it joins the domain
+  connect(domain_id, profiles_file);
+  sayPorts();
+  if (scenario.vehicle.interface == sim::VehicleInterface::kPx4) {
+    autopilot_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle, scenario.imu.source);
+  } else if (scenario.vehicle.interface == sim::VehicleInterface::kArdupilot) {
+    autopilot_ = std::make_unique<ArdupilotVehicles>(*participant_, n_, scenario.vehicle, scenario.imu.source);
+  }
+}
+
+void SimPorts::sayPorts() {
   if (const std::vector<int> ports = dds::Participant::ownSharedMemoryPorts(); !ports.empty()) {
     std::string list;
     for (const int port : ports) list += " " + std::to_string(port);
     std::fprintf(stderr, "swa_sim: listening on shared-memory ports%s\n", list.c_str());
   }
+}
+
+void SimPorts::connect(int domain_id, const std::string& profiles_file) {
+  participant_ = std::make_unique<dds::Participant>("swa_sim", domain_id, profiles_file);
   events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
   truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
   clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
-  const bool autopilot = scenario.vehicle.interface != sim::VehicleInterface::kDirect;
+  const bool autopilot = scenario_.vehicle.interface != sim::VehicleInterface::kDirect;
   // With GNSS from the autopilot the bridges write swa/uav<i>/gnss; the simulator reports the fix as PX4 does.
-  const bool own_gnss = !autopilot || scenario.vehicle.gnss_source == sim::GnssSource::kSwa;
+  const bool own_gnss = !autopilot || scenario_.vehicle.gnss_source == sim::GnssSource::kSwa;
   // In the ros2 naming each sample keeps its own topic, where ROS tools expect them.
-  frames_ = frames_allowed && !autopilot && scenario.agent.sensor.input == agent::DetectionInput::kSwa &&
+  frames_ = frames_allowed_ && !autopilot && scenario_.agent.sensor.input == agent::DetectionInput::kSwa &&
             participant_->wireNames().naming == dds::Naming::kSwa;
   for (int i = 0; i < n_; ++i) {
     if (frames_) {
       frame_.push_back(participant_->writer<msg::SensorFramePubSubType>(dds::topics::sensors(i), "swa_frame_writer"));
-      frame_seq_.push_back(0);
+      if (frame_seq_.size() < frame_.size()) frame_seq_.push_back(0);
     } else {
       makeSampleWriters(i, autopilot, own_gnss);
     }
@@ -97,11 +111,6 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
         dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
           queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
         }));
-  }
-  if (scenario.vehicle.interface == sim::VehicleInterface::kPx4) {
-    autopilot_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle, scenario.imu.source);
-  } else if (scenario.vehicle.interface == sim::VehicleInterface::kArdupilot) {
-    autopilot_ = std::make_unique<ArdupilotVehicles>(*participant_, n_, scenario.vehicle, scenario.imu.source);
   }
 }
 
@@ -140,30 +149,7 @@ bool SimPorts::awaitDiscovery() {
   std::vector<std::string> missing;
   while (!stop_) {
     if (olderTwinRuns()) return false;
-    missing.clear();
-    for (int i = 0; i < n_; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      if (frames_) {
-        if (frame_[k].matched() < 1) missing.push_back(dds::topics::sensors(i) + " (no reader)");
-        if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
-        continue;
-      }
-      if (detectionsMatched(k) < 1) {
-        const std::string topic = !det_.empty()        ? dds::topics::detections(i)
-                                  : !vision_det_.empty() ? dds::topics::visionDetections(i)
-                                                         : dds::topics::uvdarPoses(i);
-        missing.push_back(topic + " (no reader)");
-      }
-      if (gnss_[k] && gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
-      if (autopilot_) {
-        autopilot_->unmatched(i, missing);
-        continue;
-      }
-      if (imu_[k].matched() < 1) missing.push_back(dds::topics::imu(i) + " (no reader)");
-      if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
-    }
-    if (truth_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kTruth) + " (monitor)");
-    if (events_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kEvents) + " (monitor)");
+    missing = unmatchedEndpoints();
     if (missing.empty()) {
       summary_.discovery_s = secondsSince(t0);
       std::fprintf(stderr, "swa_sim: all %d agent(s) discovered in %.2f s\n", n_, summary_.discovery_s);
@@ -181,15 +167,98 @@ bool SimPorts::awaitDiscovery() {
   return false;
 }
 
-void SimPorts::noteDeafness() {
+std::vector<std::string> SimPorts::unmatchedEndpoints() const {
+  std::vector<std::string> missing;
+  for (int i = 0; i < n_; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (frames_) {
+      if (frame_[k].matched() < 1) missing.push_back(dds::topics::sensors(i) + " (no reader)");
+      if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
+      continue;
+    }
+    if (detectionsMatched(k) < 1) {
+      const std::string topic = !det_.empty()        ? dds::topics::detections(i)
+                                : !vision_det_.empty() ? dds::topics::visionDetections(i)
+                                                       : dds::topics::uvdarPoses(i);
+      missing.push_back(topic + " (no reader)");
+    }
+    if (gnss_[k] && gnss_[k].matched() < 1) missing.push_back(dds::topics::gnss(i) + " (no reader)");
+    if (autopilot_) {
+      autopilot_->unmatched(i, missing);
+      continue;
+    }
+    if (imu_[k].matched() < 1) missing.push_back(dds::topics::imu(i) + " (no reader)");
+    if (cmd_[k].matched() < 1) missing.push_back(dds::topics::cmdVel(i) + " (no writer)");
+  }
+  if (truth_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kTruth) + " (monitor)");
+  if (events_.matched() < options_.wait_monitors) missing.push_back(std::string(dds::topics::kEvents) + " (monitor)");
+  return missing;
+}
+
+void SimPorts::healDeafness() {
+  const Clock::time_point now = Clock::now();
+  if (now < next_deafness_check_) return;
+  next_deafness_check_ = now + kDeafnessCheckPeriod;
+  std::vector<int> deaf;
   for (const int port : dds::Participant::deafSharedMemoryPorts()) {
-    if (std::find(deaf_ports_.begin(), deaf_ports_.end(), port) != deaf_ports_.end()) continue;
-    deaf_ports_.push_back(port);
+    if (std::find(deaf_ports_.begin(), deaf_ports_.end(), port) == deaf_ports_.end()) deaf.push_back(port);
+  }
+  if (deaf.empty()) return;
+  const double t_s = sim::stampSeconds(world_.time_ns());
+  if (autopilot_) {
+    // The stand-ins' endpoints live on this participant and their vehicles' state with them: not re-created.
+    deaf_ports_.insert(deaf_ports_.end(), deaf.begin(), deaf.end());
     std::fprintf(stderr,
                  "swa_sim: t = %.2f s: deaf on shared-memory port %d: Fast DDS re-created /dev/shm/fastrtps_port%d "
-                 "under this process (a peer judged it dead, e.g. while the simulator was stopped), so what agents "
-                 "send to it is lost and they will be declared dead; the run cannot recover (deploy/README.md)\n",
-                 sim::stampSeconds(world_.time_ns()), port, port);
+                 "under this process (a peer judged it dead, e.g. while the simulator was stopped), so what the "
+                 "bridges send to it is lost; with autopilot stand-ins the simulator does not re-create its "
+                 "participant and the run cannot recover (deploy/README.md)\n",
+                 t_s, deaf.front(), deaf.front());
+    return;
+  }
+  ++summary_.reconnections;
+  std::fprintf(stderr,
+               "swa_sim: t = %.2f s: deaf on shared-memory port %d: Fast DDS re-created /dev/shm/fastrtps_port%d "
+               "under this process (a peer judged it dead, e.g. while the simulator was stopped), so what agents send "
+               "to it is lost: re-creating the participant (reconnection %d)\n",
+               t_s, deaf.front(), deaf.front(), summary_.reconnections);
+  reconnect();
+}
+
+void SimPorts::reconnect() {
+  const int domain_id = participant_->domainId();
+  participant_->abandonAcknowledgments();  // none can reach a deaf port
+  frame_.clear();
+  det_.clear();
+  vision_det_.clear();
+  uvdar_det_.clear();
+  gnss_.clear();
+  imu_.clear();
+  cmd_.clear();
+  participant_.reset();
+  connect(domain_id, profiles_file_);
+  sayPorts();
+  // The new port files are healthy; a port of the same number found deaf later is a new deafness.
+  deaf_ports_.clear();
+  // What the old writers sent last may not have reached everyone before they were deleted: in lockstep, the agents
+  // still waited for get the step's samples once more (repeatWhileWaiting).
+  resend_after_reconnect_ = true;
+  // Nothing steps until every endpoint matched again, so no answer is missed meanwhile: the drivers see the wait as
+  // a stall of the simulator (swa/app/stall_watch.h) and blame no agent for it. The agents' command writers keep
+  // their newest answer (TRANSIENT_LOCAL), which the new readers receive once matched.
+  const auto t0 = Clock::now();
+  std::vector<std::string> missing = unmatchedEndpoints();
+  while (!stop_ && !missing.empty() && Clock::now() - t0 < kRematchTimeout) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    missing = unmatchedEndpoints();
+  }
+  if (missing.empty()) {
+    std::fprintf(stderr, "swa_sim: every endpoint matched again %.2f s after re-creating the participant\n",
+                 secondsSince(t0));
+  } else if (!stop_) {
+    std::fprintf(stderr, "swa_sim: %zu endpoint(s) still unmatched %.0f s after re-creating the participant (first: "
+                         "%s); the run goes on\n",
+                 missing.size(), secondsSince(t0), missing.front().c_str());
   }
 }
 
@@ -199,7 +268,6 @@ void SimPorts::stepTaken(Clock::time_point t) {
 
 void SimPorts::publishStepOutputs(const AliveFn& alive) {
   if (world_.step_index() % 10 == 0) noteYoungerTwin();
-  if (world_.step_index() % 100 == 0) noteDeafness();
   for (const sim::Event& e : world_.events()) publishEvent(record::eventOf(e));
   if (world_.step_index() % options_.truth_every == 0 || world_.finished()) publishTruth(alive);
   const wire::ClockTick tick{static_cast<std::uint64_t>(world_.step_index()), world_.time_ns(),
@@ -209,6 +277,7 @@ void SimPorts::publishStepOutputs(const AliveFn& alive) {
 }
 
 std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optional<Clock::time_point> due) {
+  resend_after_reconnect_ = false;  // a new step: its samples go out on the new writers
   const std::optional<WallNs> due_ns = due ? std::optional<WallNs>(wallNs(*due)) : std::nullopt;
   std::vector<std::optional<agent::StampNs>> imu_stamps(static_cast<std::size_t>(n_));
   const std::vector<sim::UavSensors>& sensors = world_.sensors();
@@ -307,8 +376,45 @@ void SimPorts::publishEnd(const AliveFn& alive, bool completed) {
 }
 
 void SimPorts::repeatWhileWaiting(const std::vector<int>& uavs) {
-  if (!autopilot_) return;
-  for (const int uav : uavs) autopilot_->repeatAttitude(uav);
+  if (autopilot_) {
+    for (const int uav : uavs) autopilot_->repeatAttitude(uav);
+    return;
+  }
+  if (!resend_after_reconnect_) return;
+  resend_after_reconnect_ = false;
+  for (const int uav : uavs) resendStep(uav);
+}
+
+void SimPorts::resendStep(int uav) {
+  // The same samples with the same sequence numbers: an agent that has them drops the copy (not newer), one that
+  // never got them answers now.
+  const auto k = static_cast<std::size_t>(uav);
+  const sim::UavSensors& s = world_.sensors()[k];
+  const auto id = static_cast<std::uint32_t>(k);
+  bool written = true;
+  if (frames_) {
+    if (!s.imu && !s.detections && !s.gnss) return;
+    msg::SensorFrame m;
+    m.uav_id(id);
+    m.header().stamp_ns(world_.time_ns());
+    m.header().seq(frame_seq_[k]);
+    if (s.detections) m.detection_set().push_back(wire::toMsg(*s.detections, id, det_seq_[k]));
+    if (s.gnss) m.gnss_fix().push_back(wire::toMsg(*s.gnss, id, gnss_seq_[k]));
+    if (s.imu) m.imu_sample().push_back(wire::toMsg(*s.imu, id, imu_seq_[k]));
+    written = frame_[k].write(m);
+  } else {
+    if (s.detections) written = writeDetections(k, *s.detections, det_seq_[k]) && written;
+    if (s.gnss && gnss_[k]) {
+      msg::GnssFix m = wire::toMsg(*s.gnss, id, gnss_seq_[k]);
+      written = gnss_[k].write(m) && written;
+    }
+    if (s.imu) {
+      msg::Imu m = wire::toMsg(*s.imu, id, imu_seq_[k]);
+      written = imu_[k].write(m) && written;
+    }
+  }
+  if (!written) ++summary_.write_failures;
+  ++summary_.resent_after_reconnection;
 }
 
 void SimPorts::vehiclesStep() {

@@ -75,7 +75,8 @@ class SimPorts {
   // Before the world steps: with an autopilot interface, what each autopilot flies (autopilot_vehicles.h); else nothing.
   void vehiclesStep();
   // Lockstep, while waiting for `uavs`' answers: with an autopilot interface their attitude once more (PX4 streams
-  // it; best effort may have lost it); else nothing (the sensors are reliable).
+  // it; best effort may have lost it); else, once after a reconnection (healDeafness), the step's samples again (the
+  // sensors are reliable, but the writers that sent them were deleted).
   void repeatWhileWaiting(const std::vector<int>& uavs);
   void timeLatency(bool on) { time_latency_ = on; }
   // Realtime: the next step takes the commands drained up to `t`; an answer received later missed it (late).
@@ -99,8 +100,20 @@ class SimPorts {
   std::string commandTopic(int uav) const;  // where a UAV's setpoints come from (for the log)
   bool olderTwinRuns();                 // another swa_sim older than us in this swarm: refuse (logged)
   void noteYoungerTwin();
-  // Says once per port when this process no longer hears one of its shared-memory ports (shm_ports.h).
-  void noteDeafness();
+  // The participant and every endpoint (the stand-ins' apart), at the start and when re-created.
+  void connect(int domain_id, const std::string& profiles_file);
+  void sayPorts();  // "listening on shared-memory ports ..." (the tests find them there)
+  std::vector<std::string> unmatchedEndpoints() const;  // readable, e.g. "swa/uav2/imu (no reader)"
+  // At most every kDeafnessCheckPeriod: when this process no longer hears one of its shared-memory ports
+  // (shm_ports.h; a peer re-created the port while the simulator was stopped), it re-creates its participant and
+  // waits until every endpoint matched again (reconnect). With autopilot stand-ins it only says so.
+  void healDeafness();
+  void reconnect();
+  void resendStep(int uav);  // the current step's samples of `uav` again, same sequence numbers
+  static constexpr auto kDeafnessCheckPeriod = std::chrono::milliseconds(250);
+  // Agents find a new participant within about a second (a stopped simulator's agents may themselves be re-creating
+  // theirs); beyond this the run goes on and the unanswered are declared dead as usual.
+  static constexpr auto kRematchTimeout = std::chrono::seconds(20);
   void publishTruth(const AliveFn& alive);
   void publishEvent(const record::EventRecord& event);
 
@@ -126,7 +139,11 @@ class SimPorts {
   // The queue outlives the participant, whose listeners push into it.
   dds::SampleQueue<Answer> queue_;
   std::unique_ptr<dds::Participant> participant_;
-  std::vector<int> deaf_ports_;  // shared-memory ports found deaf (noteDeafness), each said once
+  std::string profiles_file_;
+  bool frames_allowed_ = true;
+  Clock::time_point next_deafness_check_{};
+  bool resend_after_reconnect_ = false;
+  std::vector<int> deaf_ports_;  // with stand-ins: shared-memory ports found deaf (healDeafness), each said once
   std::unique_ptr<AutopilotVehicles> autopilot_;  // vehicle.interface = px4 or ardupilot: instead of imu_ and cmd_
   std::vector<dds::Writer<msg::Imu>> imu_;
   // Direct vehicles, SWA's own detections and the SWA naming: each step's samples of a UAV in one message

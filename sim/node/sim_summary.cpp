@@ -33,6 +33,8 @@ std::string summaryJson(const SimSummary& summary, const sim::Scenario& scenario
       {"agent_rejoined_events", summary.agent_rejoined_events},
       {"stalls", summary.stalls},
       {"stalled_s", summary.stalled_s},
+      {"reconnections", summary.reconnections},
+      {"resent_after_reconnection", summary.resent_after_reconnection},
       {"dead_at_end", summary.dead_at_end},
       {"write_failures", summary.write_failures},
       {"latency_commands_judged", l.published},

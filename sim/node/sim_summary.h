@@ -35,6 +35,9 @@ struct SimSummary {
   // long in all: its wall-clock deadlines were moved by it, nobody was declared dead for it.
   int stalls = 0;
   double stalled_s = 0.0;
+  // Times it re-created its participant because it no longer heard its shared-memory port (sim_ports.h).
+  int reconnections = 0;
+  std::uint64_t resent_after_reconnection = 0;  // lockstep: a step's samples sent again to a UAV after one
   std::vector<int> dead_at_end;
   std::uint64_t write_failures = 0;
   // Loop latency: wall time from publishing a UAV's IMU sample to receiving the cmd_vel that answers it (its

@@ -133,12 +133,9 @@ TEST(Chaos, SixUavsKilledOneByOneAndAStoppedSimulatorPassWithEveryRestartRecorde
   fs::create_directories(dir);
   const int domain = testDomain(57);
   useOwnSwarm();
-  // Over UDP only, this test's observer and every process the launcher starts (SWA_TRANSPORT is inherited), as the
-  // stopped-simulator tests of test_dds_swarm.cpp: on shared memory the 2 s stop below outlasts Fast DDS 2.9's 1 s port
-  // health check, a sender re-creates the simulator's port, and now and then the simulator keeps listening on the
-  // deleted one ("deaf on shared-memory port", seen in CI: every agent declared dead). That transport defect is
-  // deploy/README.md's "Which transport" and is tested on its own; this test checks the kills, stops and restarts.
-  ::setenv("SWA_TRANSPORT", "network", 1);
+  // On the default transport, as users run it (issue #46; before it, over UDP only): the 2 s stop below outlasts Fast
+  // DDS 2.9's 1 s port health check, a sender may re-create the simulator's shared-memory port, and the simulator
+  // then re-creates its participant (sim_node/sim_ports.h, healDeafness) instead of losing every agent.
   ShmJanitor janitor;
 
   // GIVEN a realtime launch of 6 UAVs for the plan's duration, and an observer of their states

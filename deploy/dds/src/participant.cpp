@@ -1,6 +1,7 @@
 #include "swa/dds/participant.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -151,6 +152,9 @@ class Participant::PeerListener : public fdds::DomainParticipantListener {
 #if HAVE_SECURITY
   void onParticipantAuthentication(fdds::DomainParticipant*,
                                    eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override {
+    if (info.status == eprosima::fastrtps::rtps::ParticipantAuthenticationInfo::AUTHORIZED_PARTICIPANT) {
+      last_authentication_ns_ = std::chrono::steady_clock::now().time_since_epoch().count();
+    }
     if (!trace_) return;
     std::ostringstream guid;
     guid << info.guid;
@@ -181,6 +185,10 @@ class Participant::PeerListener : public fdds::DomainParticipantListener {
     return it != readers_.end() && it->second.count(peer) > 0;
   }
 
+  std::chrono::steady_clock::time_point lastAuthentication() const {
+    return std::chrono::steady_clock::time_point(std::chrono::steady_clock::duration(last_authentication_ns_.load()));
+  }
+
   template <class F>
   auto withBook(F&& f) {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -192,6 +200,7 @@ class Participant::PeerListener : public fdds::DomainParticipantListener {
   std::mutex mutex_;
   PeerBook book_;
   bool trace_;
+  std::atomic<std::chrono::steady_clock::rep> last_authentication_ns_{0};  // steady clock; 0: never
   std::map<const fdds::DataWriter*, std::multiset<PeerKey>> readers_;
 };
 
@@ -253,7 +262,7 @@ Participant::Participant(const std::string& name, int domain_id, const std::stri
 Participant::~Participant() {
   // See the header: no writer may still be heartbeating an unresponsive reader when it is deleted.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kShutdownAckWaitS);
-  for (fdds::DataWriter* w : writers_) {
+  for (fdds::DataWriter* w : abandon_acknowledgments_ ? std::vector<fdds::DataWriter*>() : writers_) {
     const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
     if (!detail::waitForAcknowledgments(w, std::max(left, 0.0))) {
       std::fprintf(stderr, "%s: writer on %s still unacknowledged after %.0f s; deleting anyway\n", name_.c_str(),
@@ -341,6 +350,10 @@ std::vector<PeerKey> Participant::takePeersGone() {
 
 bool Participant::writerReadBy(const fdds::DataWriter* w, const PeerKey& peer) const {
   return peer_listener_->readBy(w, peer);
+}
+
+std::chrono::steady_clock::time_point Participant::lastAuthentication() const {
+  return peer_listener_->lastAuthentication();
 }
 
 std::vector<int> Participant::ownSharedMemoryPorts() {

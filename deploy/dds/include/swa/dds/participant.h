@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -283,6 +284,14 @@ class Participant {
   static std::vector<int> ownSharedMemoryPorts();
   static std::vector<int> deafSharedMemoryPorts();
 
+  // When this participant last authenticated a remote one (DDS Security); the clock's epoch if never or without
+  // security. A secured start whose handshakes still complete is slow, not stalled (handshake_watch.h).
+  std::chrono::steady_clock::time_point lastAuthentication() const;
+
+  // The destructor then deletes at once instead of waiting for the readers' acknowledgments: a participant that no
+  // longer hears its port (above) would wait the whole kShutdownAckWaitS for acknowledgments that cannot reach it.
+  void abandonAcknowledgments() { abandon_acknowledgments_ = true; }
+
  private:
   // Takes ownership of `type`.
   eprosima::fastdds::dds::Topic* topic(const std::string& topic_name, eprosima::fastdds::dds::TopicDataType* type);
@@ -305,6 +314,7 @@ class Participant {
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
   std::vector<eprosima::fastdds::dds::DataWriter*> writers_;
+  bool abandon_acknowledgments_ = false;
 };
 
 }  // namespace swa::dds
