@@ -343,7 +343,7 @@ int BridgeNode::run() {
     // through ArduPilot got no IMU sample after the first, and re-creating their own participants five times did not
     // mend it).
     if (handshake_.stalled(running, reads && agent_matched && vehicle_->attitudeMatched() && !agent_lost,
-                           std::chrono::steady_clock::now())) {
+                           std::chrono::steady_clock::now(), participant_->lastAuthentication())) {
       std::fprintf(stderr,
                    "swa_px4_bridge %d: the vehicle's or the agent's endpoints not matched, or the agent lost while they "
                    "are, with DDS Security on (a stalled handshake or a broken channel, see deploy/README.md): "
@@ -352,7 +352,8 @@ int BridgeNode::run() {
       reconnect();
       continue;
     }
-    if (requests_handshake_.stalled(engaged_, vehicle_->requestsMatched(), std::chrono::steady_clock::now())) {
+    if (requests_handshake_.stalled(engaged_, vehicle_->requestsMatched(), std::chrono::steady_clock::now(),
+                                    participant_->lastAuthentication())) {
       std::fprintf(stderr,
                    "swa_px4_bridge %d: --engage's requests to %s (arm, mode) not matched with DDS Security on, and the "
                    "vehicle not engaged yet: re-creating the participant (reconnection %d)\n",

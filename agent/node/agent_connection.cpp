@@ -75,6 +75,7 @@ void AgentNode::connect() {
       dds::topics::kMission, "swa_mission_reader",
       [this](msg::SwarmMission&& m, const dds::WriterGuid& writer) { onMission(std::move(m), writer); });
   imu_silence_.restart();
+  detections_silence_.restart();
   peers_back_ = 0;
   peer_back_at_.reset();
   matched_once_ = {};

@@ -193,6 +193,17 @@ int AgentNode::run() {
     const bool arriving = last_imu_at_ && now - *last_imu_at_ < kArrivingWindow;
     const std::optional<SilenceWatch::Clock::duration> silent =
         imu_silence_.poll(now, arriving, running && last_imu_at_.has_value(), matched[1]);
+    // SWA's own detections come at their sensor rate, an empty set included (deploy/README.md, the bridge contract),
+    // so their silence while the IMU flows and their writer stays matched is a broken channel too: seen in a secure
+    // launch through ArduPilot, where an agent got IMU samples from its bridge but no detection or GNSS fix from the
+    // simulator after its first, and its UAV left SWA's control (bench_secure_launch.sh). Foreign detection sources
+    // may publish only what they see: not watched.
+    const bool detections_arriving = last_detections_at_ && now - *last_detections_at_ < kArrivingWindow;
+    const std::optional<SilenceWatch::Clock::duration> detections_silent = detections_silence_.poll(
+        now, detections_arriving,
+        running && arriving && last_detections_at_.has_value() &&
+            agent_.config().sensor.input == agent::DetectionInput::kSwa,
+        matched[2]);
     if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();
@@ -210,7 +221,8 @@ int AgentNode::run() {
     std::string why;
     // What it needs before it can start: a reader of its commands and a writer of its detections (the simulator, or
     // the detection source on a drone); through PX4 these are two peers, and either handshake can stall.
-    if (handshake_.stalled(stats_.imu > 0, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now())) {
+    if (handshake_.stalled(stats_.imu > 0, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now(),
+                          participant_->lastAuthentication())) {
       why = "no reader of " + dds::topics::cmdVel(id_) + " or no writer of " + detectionsTopic() +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {
@@ -219,6 +231,11 @@ int AgentNode::run() {
       why = "no sample on " + dds::topics::imu(id_) + " for " +
             std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(*silent).count()) + " ms while " +
             std::to_string(matched[1]) + " writer(s) of it stay matched (a channel from a writer broke)";
+    } else if (detections_silent) {
+      why = "no sample on " + detectionsTopic() + " for " +
+            std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(*detections_silent).count()) +
+            " ms while IMU samples arrive and " + std::to_string(matched[2]) +
+            " writer(s) of it stay matched (a channel from a writer broke)";
     }
     if (!why.empty()) {
       ++reconnects_;
@@ -317,6 +334,7 @@ void AgentNode::onInput(Input&& in) {
   }
   last_input_ = std::chrono::steady_clock::now();
   if (stream == Stream::kImu) last_imu_at_ = last_input_;
+  if (stream == Stream::kDetections) last_detections_at_ = last_input_;
   const auto* det = std::get_if<msg::Detections>(&in);
   if (det != nullptr && det->items().size() > agent_.config().limits.max_detections) {
     handle(in);  // rejected whole by the core (and counted) before it is stored anywhere

@@ -146,6 +146,9 @@ class AgentNode : public app::Role {
   // No IMU sample for kSilentLimit while their writer is matched: a channel is broken (silence_watch.h).
   SilenceWatch imu_silence_{kSilentLimit};
   std::optional<std::chrono::steady_clock::time_point> last_imu_at_;  // wall time of the last IMU sample let in
+  // The same for SWA's own detections, watched while the IMU flows (agent_node.cpp).
+  SilenceWatch detections_silence_{kSilentLimit};
+  std::optional<std::chrono::steady_clock::time_point> last_detections_at_;
   app::StallWatch own_stall_{kPollGapLimit};  // whether run()'s polls come as often as they should
 
   // One writer of the ground's mission: the first heard from, until its participant leaves (a ground tool that

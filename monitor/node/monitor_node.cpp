@@ -166,7 +166,8 @@ void MonitorNode::createStateReader(int uav) {
 void MonitorNode::reconnectIfHandshakeStalled() {
   // The stalled DDS Security handshake of swa_agent (handshake_watch.h), here with the simulator: before the first
   // truth sample, with no truth writer matched.
-  if (!handshake_.stalled(truth_seen_, truth_reader_.matched() > 0, std::chrono::steady_clock::now())) return;
+  if (!handshake_.stalled(truth_seen_, truth_reader_.matched() > 0, std::chrono::steady_clock::now(),
+                          participant_->lastAuthentication())) return;
   std::fprintf(stderr,
                "swa_monitor: no writer of %s with DDS Security on: re-creating the participant (reconnection %d; a "
                "stalled authentication handshake, see deploy/README.md)\n",

@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/DetectionsPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
@@ -689,6 +690,49 @@ TEST_F(SwarmRun, AgentWhoseSamplesStopWhileTheirWriterStaysMatchedReconnects) {
   const int after_first = reconnections();
   std::this_thread::sleep_for(std::chrono::seconds(10));
   EXPECT_EQ(reconnections(), after_first) << readFile(log);
+  EXPECT_EQ(agent.stop(), 0) << readFile(log);
+}
+
+// The same for SWA's own detections, which come at their sensor rate even when empty (issue #46: an agent of a secure
+// launch through ArduPilot got its IMU from the bridge but no detection from the simulator after the first, and its
+// UAV left SWA's control): silent for 6 s while IMU samples arrive and their writer stays matched, the agent re-creates
+// its participant.
+TEST_F(SwarmRun, AgentWhoseDetectionsStopWhileItsImuFlowsReconnects) {
+  // GIVEN agent 1 alone, and writers of its IMU samples and of its detections in this process
+  const fs::path log = dir_ / "agent1.log";
+  Child agent(agentCommand(SWA_AGENT_BINARY, 1, domain_), log);
+  auto source = std::make_unique<dds::Participant>("swa_test_sensor_source", domain_, dds::resolveProfilesFile());
+  dds::Writer<msg::Imu> imu = source->writer<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_writer");
+  dds::Writer<msg::Detections> detections =
+      source->writer<msg::DetectionsPubSubType>(dds::topics::detections(1), "swa_detections_gnss_writer");
+  ASSERT_TRUE(waitFor([&] { return imu.matched() > 0 && detections.matched() > 0; }, 30.0)) << readFile(log);
+  // WHEN it writes IMU samples at 100 Hz for 10 s, with (empty) detection sets at 10 Hz for the first second only
+  const std::string why = "swa_agent 1: no sample on swa/uav1/detections for";
+  const auto t0 = SteadyClock::now();
+  for (std::uint32_t k = 0; k < 1000 && readFile(log).find(why) == std::string::npos; ++k) {
+    const agent::StampNs stamp = static_cast<agent::StampNs>(k) * 10'000'000;
+    if (k < 100 && k % 10 == 0) {
+      msg::Detections d;
+      d.header().stamp_ns(stamp);
+      d.header().seq(k / 10 + 1);
+      d.observer_id(1);
+      detections.write(d);
+    }
+    msg::Imu m;
+    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
+    m.accel_z_mps2(9.80665);
+    m.header().stamp_ns(stamp);
+    m.header().seq(k + 1);
+    m.uav_id(1);
+    imu.write(m);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  // THEN 6 s or more after the last detection set the agent re-creates its participant, and says why
+  ASSERT_TRUE(waitFor([&] { return readFile(log).find(why) != std::string::npos; }, 5.0)) << readFile(log);
+  EXPECT_GE(std::chrono::duration<double>(SteadyClock::now() - t0).count(), 7.0);
+  EXPECT_NE(readFile(log).find("while IMU samples arrive and 1 writer(s) of it stay matched"), std::string::npos)
+      << readFile(log);
+  source.reset();
   EXPECT_EQ(agent.stop(), 0) << readFile(log);
 }
 
