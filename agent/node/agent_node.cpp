@@ -244,6 +244,10 @@ int AgentNode::run() {
       lock.unlock();  // deleting the participant waits for its listeners, which take the lock
       participant_.reset();
       lock.lock();
+      // Deleting may wait kShutdownAckWaitS for acknowledgments; a stop asked meanwhile (the end of a run, whose
+      // simulator has left) gets no new participant, whose deletion would wait as long again and outlast the
+      // launcher's 10 s grace (seen once: an agent SIGKILLed after a reconnection at the end of a container run).
+      if (stop_requested_) break;
       // The new readers are sent the writers' history again: not news (redelivery_filter.h).
       replay_.arm(Stream::kImu, kImuHistory);
       replay_.arm(Stream::kDetections, kDetectionsGnssHistory);
