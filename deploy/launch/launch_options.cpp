@@ -52,6 +52,15 @@ app::Cli makeCli(LaunchOptions& o) {
            "wall-clock bound per run, 0 for none; the run is then stopped like on SIGINT");
   cli.real("--grace-s", "T", o.grace_s, 0.0, 600.0, "a grace period in seconds",
            "how long a stopped child may take before it is killed (at most 5 s after SIGINT / SIGTERM)");
+  cli.value(
+      "--stagger-s", "T",
+      [&o](const std::string& v, app::Problems& problems) {
+        o.stagger_s = app::parseReal(v, 0.0, 10.0);
+        if (!o.stagger_s) problems.push_back("--stagger-s '" + v + "' is not a delay in seconds in [0, 10]");
+      },
+      "start the simulator and the monitor first, then one UAV process (agent, bridge) every T s; 0 starts all at "
+      "once, the simulator last (default: " + app::formatNumber(kSecureStaggerS) +
+          " with --secure, whose authentication handshakes stall when many processes start together; else 0)");
   std::vector<std::string> transports;
   for (const auto t : {dds::Transport::kLocal, dds::Transport::kNetwork, dds::Transport::kDiscoveryServer}) {
     transports.emplace_back(dds::transportName(t));
@@ -152,6 +161,11 @@ std::optional<std::string> automaticTransport(const LaunchOptions& o, const char
     return std::nullopt;
   }
   return std::string("discovery-server");
+}
+
+double staggerOf(const LaunchOptions& o) {
+  if (o.stagger_s) return *o.stagger_s;
+  return o.secure_dir.empty() ? 0.0 : kSecureStaggerS;
 }
 
 LaunchOptions parseLaunchOptions(const std::vector<std::string>& args) {

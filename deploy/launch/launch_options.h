@@ -21,6 +21,11 @@ constexpr int kDefaultDiscoveryPort = 11811;
 // multicast within 60 s (load average 88), 4.5 s through the server.
 constexpr int kMaxUavProcessesForSimpleDiscovery = 32;
 
+// With DDS Security, every participant authenticates every other one, at a CPU cost on both sides; started all at
+// once, 18 secured processes (8 UAVs through an autopilot) on 2 cores left handshakes stalled and fed reconnection
+// storms (deploy/README.md, "A known Fast DDS 2.9 problem with security"; BENCHMARKS.md, "Secure launches").
+constexpr double kSecureStaggerS = 0.5;
+
 struct LaunchOptions {
   std::string scenario_path;              // --scenario FILE (required)
   std::vector<std::string> overrides;     // --set key=value, in order; passed to sim, agents' config and monitor
@@ -34,6 +39,9 @@ struct LaunchOptions {
   double agent_timeout_s = 2.0;           // passed to swa_sim --agent-timeout-s
   double timeout_s = 0.0;                 // wall bound of each run; 0 = none
   double grace_s = 10.0;                  // SIGTERM -> SIGKILL grace when stopping children
+  // --stagger-s T: the simulator and the monitor first, then one UAV process every T seconds (0: all at once, the
+  // simulator last). Unset: kSecureStaggerS with --secure, else 0.
+  std::optional<double> stagger_s;
   std::string transport;                  // --transport local|network|discovery-server (else $SWA_TRANSPORT)
   std::string discovery_server;           // --discovery-server IP:PORT[;...]: use these instead of starting one
   std::optional<int> discovery_port;      // --discovery-port: of the server swa_launch starts on 127.0.0.1
@@ -47,6 +55,9 @@ struct LaunchOptions {
   std::string live;                       // --live [ADDR:]PORT: passed to the monitor (empty: no live view)
   bool help = false;
 };
+
+// The stagger a launch uses (LaunchOptions::stagger_s).
+double staggerOf(const LaunchOptions& o);
 
 // Accepts "--opt value" and "--opt=value" (--record takes a value only as --record=SET). Throws
 // std::invalid_argument listing every problem, one per line.

@@ -105,8 +105,13 @@ class Supervisor {
     }
     std::fflush(stdout);
     startMonitor();
-    for (UavProcess& p : uav_processes_) start(p);
-    startSim();
+    const double stagger_s = staggerOf(o_);
+    if (stagger_s > 0.0) startSim();  // the hub first: each UAV process then authenticates against settled peers
+    for (std::size_t k = 0; k < uav_processes_.size(); ++k) {
+      if (stagger_s > 0.0 && k > 0) pause(stagger_s);  // returns at once once a stop is asked
+      start(uav_processes_[k]);
+    }
+    if (stagger_s == 0.0) startSim();
     supervise();
     stopAll();
     outcome_.verdict = record::recordedVerdict(spec_.dir.string());
@@ -159,6 +164,12 @@ class Supervisor {
       argv.push_back(o_.live);
     }
     monitor_ = std::make_unique<ChildProcess>(argv, (logs_ / "monitor.log").string());
+  }
+
+  // Waits `s` seconds, or less if a stop is asked meanwhile.
+  void pause(double s) const {
+    const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+    while (!stop_ && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 
   void startSim() {

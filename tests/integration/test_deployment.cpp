@@ -171,5 +171,25 @@ TEST(LaunchDeploymentOptions, ParsedAndChecked) {
   }
 }
 
+TEST(LaunchDeploymentOptions, ASecureLaunchStaggersItsUavProcessesUnlessToldOtherwise) {
+  // A plain launch starts everything at once; a secure one one UAV process every kSecureStaggerS (its handshakes
+  // stall when many start together); --stagger-s says otherwise either way.
+  EXPECT_EQ(launch::staggerOf(launch::parseLaunchOptions({"--scenario", "s"})), 0.0);
+  EXPECT_EQ(launch::staggerOf(launch::parseLaunchOptions({"--scenario", "s", "--secure", "creds"})),
+            launch::kSecureStaggerS);
+  EXPECT_EQ(launch::staggerOf(launch::parseLaunchOptions({"--scenario", "s", "--secure", "creds", "--stagger-s", "0"})),
+            0.0);
+  EXPECT_EQ(launch::staggerOf(launch::parseLaunchOptions({"--scenario", "s", "--stagger-s", "0.25"})), 0.25);
+  for (const char* bad : {"-1", "11", "nan", "0.5s", ""}) {
+    try {
+      launch::parseLaunchOptions({"--scenario", "s", "--stagger-s", bad});
+      FAIL() << "accepted --stagger-s '" << bad << "'";
+    } catch (const std::invalid_argument& e) {
+      const std::string expected = "--stagger-s '" + std::string(bad) + "' is not a delay in seconds in [0, 10]";
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace swa
