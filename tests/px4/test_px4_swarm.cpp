@@ -36,6 +36,13 @@ namespace swa::testing {
 namespace {
 
 const std::string kScenarioDir = std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/";
+
+// The in-process closed loop's mean neighbour distance for a shipped scenario with `sets`: what a launched run
+// through an autopilot is held to.
+double inProcessDnb(const std::string& scenario, const std::vector<std::string>& sets) {
+  return batch::runClosedLoop(sim::loadScenario(kScenarioDir + scenario, sets)).summary.mean_neighbor_distance_m;
+}
+
 constexpr double kRunBoundS = 240.0;
 // A run through PX4 may differ from the direct one only by the float32 of PX4's messages and the second of Hold
 // before the bridges engage offboard: d_NB within 0.5 % of r (10 m). Measured: 0.002 m (4 UAVs), 0.005 m (8 UAVs).
@@ -155,8 +162,7 @@ void expectAsCohesiveAsDirectAndEveryVehicleEngaged(const LaunchedRun& run, doub
 }
 
 void Px4SwarmTest::expectAsCohesiveAsDirect(const std::string& scenario, const std::vector<px4::Release>& releases) {
-  const double d_direct =
-      batch::runClosedLoop(sim::loadScenario(kScenarioDir + scenario, {"duration_s=60"})).summary.mean_neighbor_distance_m;
+  const double d_direct = inProcessDnb(scenario, {"duration_s=60"});
   for (const px4::Release release : releases) {
     const std::string name = px4::releaseName(release);
     SCOPED_TRACE(scenario + " through PX4 " + name);
@@ -179,8 +185,7 @@ void Px4SwarmTest::expectAsCohesiveAsDirect(const std::string& scenario, const s
 void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& scenario,
                                                             DiscoveryObserver* observer) {
   SCOPED_TRACE(scenario + " through ArduPilot");
-  const double d_direct =
-      batch::runClosedLoop(sim::loadScenario(kScenarioDir + scenario, {"duration_s=60"})).summary.mean_neighbor_distance_m;
+  const double d_direct = inProcessDnb(scenario, {"duration_s=60"});
   // With the observer (the 4-UAV run) it is recorded too.
   const LaunchedRun ap = launch(scenario, "ardupilot", {"duration_s=60"}, "", observer != nullptr);
   ASSERT_NE(ap.status, -1) << "still running after " << kRunBoundS << " s";
@@ -312,8 +317,7 @@ void Px4SwarmTest::expectGnssLostAndRegainedThroughTheBridges(const std::string&
   ASSERT_NE(run.status, -1) << "still running after " << kRunBoundS << " s";
   // THEN the run passes as cohesively as the in-process loop with the simulator's own GNSS
   EXPECT_EQ(run.status, 0) << run.summary << logs(run.dir);
-  const double d_direct =
-      batch::runClosedLoop(sim::loadScenario(kScenarioDir + "dropout_4.yaml", sets)).summary.mean_neighbor_distance_m;
+  const double d_direct = inProcessDnb("dropout_4.yaml", sets);
   EXPECT_NEAR(jsonNumber(run.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
   EXPECT_EQ(jsonNumber(run.summary, "collisions"), 0.0);
   // AND every bridge forwarded a valid fix, then the loss, then the regain, each once
@@ -397,8 +401,7 @@ TEST_F(Px4SwarmTest, APx4OriginMovedInFlightReachesNoAgentAsAJump) {
   ASSERT_NE(run.status, -1) << "still running after " << kRunBoundS << " s";
   // THEN the run passes as cohesively as the in-process loop, whose GNSS has no origin to move
   EXPECT_EQ(run.status, 0) << run.summary << logs(run.dir);
-  const double d_direct =
-      batch::runClosedLoop(sim::loadScenario(kScenarioDir + "dropout_4.yaml", sets)).summary.mean_neighbor_distance_m;
+  const double d_direct = inProcessDnb("dropout_4.yaml", sets);
   EXPECT_NEAR(jsonNumber(run.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
   EXPECT_EQ(jsonNumber(run.summary, "collisions"), 0.0);
   EXPECT_EQ(jsonNumber(run.summary, "groups"), 1.0);
