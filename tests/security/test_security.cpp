@@ -46,6 +46,7 @@
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "../integration/process_test.h"
+#include "swa/dds/handshake_watch.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/topics.h"
@@ -484,16 +485,38 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
   auto intruder_imu = intruder->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_reader",
                                                                    [&](msg::SensorFrame&&) { ++intruder_samples; });
   auto intruder_cmd = intruder->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
-  auto control = makeParticipant("swa_agent_1", domain_, creds_);
-  auto control_imu = control->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_reader",
-                                                                 [&](msg::SensorFrame&&) { ++control_samples; });
-  auto control_cmd = control->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
+  // The control recovers from a stalled authentication handshake as an agent does (swa/dds/handshake_watch.h): Fast
+  // DDS 2.9 now and then never completes one pair's (deploy/README.md; seen here in CI: the control matched nothing in
+  // 20 s). That is the product's own reconnection, which a user's node gets too, not a retry of the check.
+  std::unique_ptr<dds::Participant> control;
+  dds::Reader<msg::SensorFrame> control_imu;
+  dds::Writer<msg::VelocitySetpoint> control_cmd;
+  dds::HandshakeWatch control_watch(true);
+  const auto connectControl = [&] {
+    control.reset();
+    control = makeParticipant("swa_agent_1", domain_, creds_);
+    control_imu = control->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_reader",
+                                                              [&](msg::SensorFrame&&) { ++control_samples; });
+    control_cmd = control->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
+    control_watch.connected(SteadyClock::now());
+  };
+  connectControl();
 
   // THEN the control matches both and receives samples; once it has, the intruder has had the same time to do so
   const auto t1 = SteadyClock::now();
   const bool control_ok = waitFor(
-      [&] { return control_imu.matched() >= 1 && control_cmd.matched() >= 1 && control_samples.load() > 10; }, 20.0);
-  std::cout << "secured control matched and received after " << secondsSince(t1) << " s\n";
+      [&] {
+        const bool matched = control_imu.matched() >= 1 && control_cmd.matched() >= 1;
+        if (matched && control_samples.load() > 10) return true;
+        if (control_watch.stalled(control_samples.load() > 0, matched, SteadyClock::now(),
+                                  control->lastAuthentication())) {
+          connectControl();
+        }
+        return false;
+      },
+      60.0);
+  std::cout << "secured control matched and received after " << secondsSince(t1) << " s, "
+            << control_watch.reconnects() << " reconnection(s)\n";
   std::this_thread::sleep_for(std::chrono::seconds(3));
   EXPECT_TRUE(control_ok) << "control: imu matched " << control_imu.matched() << ", cmd_vel matched "
                           << control_cmd.matched() << ", samples " << control_samples.load() << "\n"
