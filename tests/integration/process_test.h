@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "private_shm.h"
 #include "process_support.h"
 #include "scratch.h"
 
@@ -43,7 +44,8 @@ class ProcessRun : public ::testing::Test {
   // Ends the test's own participants.
   virtual void stopObservers() = 0;
 
-  ShmJanitor janitor_;  // first member: sees /dev/shm before anything of ours exists
+  OwnShm own_shm_;       // first member: this test's /dev/shm is its own (private_shm.h)
+  ShmJanitor janitor_;  // sees /dev/shm before anything of ours exists
   fs::path dir_;
   int domain_ = 0;
   std::vector<std::unique_ptr<Child>> agents_;

@@ -48,6 +48,7 @@ class RogueAgentTest : public ::testing::Test {
     if (!HasFailure()) fs::remove_all(dir_);
   }
 
+  OwnShm own_shm_;  // first: this test's /dev/shm is its own (private_shm.h)
   fs::path dir_;
   int domain_ = 0;
   ShmJanitor janitor_;

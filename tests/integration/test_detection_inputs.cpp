@@ -63,6 +63,7 @@ class DetectionInputs : public ::testing::Test {
         << log;
   }
 
+  OwnShm own_shm_;  // first: this test's /dev/shm is its own (private_shm.h)
   ShmJanitor janitor_;
   fs::path dir_;
   int domain_ = testDomain(43);

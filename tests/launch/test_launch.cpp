@@ -65,7 +65,8 @@ class LaunchTest : public ::testing::Test {
     EXPECT_TRUE(left.empty()) << "the launcher left shared-memory files behind:" << left;
   }
 
-  ShmJanitor janitor_;  // first: outlives every process the test starts
+  OwnShm own_shm_;      // first: this test's /dev/shm is its own (private_shm.h)
+  ShmJanitor janitor_;  // outlives every process the test starts
   std::string swarm_;
   fs::path dir_;
   int domain_ = testDomain(31);
@@ -175,7 +176,6 @@ TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveScenarioAndNoSet) {
 // Agent 2 is SIGKILLed mid-run. The launcher must restart it; the new process must rebuild its picture of the
 // swarm (it ends tracking its neighbours), and the run must stay cohesive.
 TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
-  ASSERT_EQ(usePrivateShm(), "");  // it SIGKILLs a process: its files are nobody else's to see (private_shm.h)
   // GIVEN a lockstep launch of 240 s, and an observer of agent 2's state in this test
   constexpr int kVictim = 2;
   auto watch = std::make_unique<StateStampWatch>(domain_, kVictim);
@@ -220,7 +220,6 @@ TEST_F(LaunchTest, KilledAgentIsRestartedAndRejoins) {
 // Issue #11: kill -9 of the monitor under swa_launch ended the whole run with no summary and printed the path of a
 // report that did not exist. Now the monitor is restarted like an agent, and the new one says what it missed.
 TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
-  ASSERT_EQ(usePrivateShm(), "");  // it SIGKILLs a process: its files are nobody else's to see (private_shm.h)
   // GIVEN a lockstep launch of 400 s, and an observer of agent 0's state in this test
   auto watch = std::make_unique<StateStampWatch>(domain_, 0);
   ShmJanitor launcher_files;

@@ -296,7 +296,8 @@ class SecurityTest : public ::testing::Test {
     EXPECT_TRUE(left.empty()) << "shared-memory files left behind:" << left;
   }
 
-  ShmJanitor janitor_;  // first: outlives every process and participant of the test
+  OwnShm own_shm_;      // first: this test's /dev/shm is its own (private_shm.h)
+  ShmJanitor janitor_;  // outlives every process and participant of the test
   fs::path dir_;
   fs::path creds_;
   std::vector<fs::path> made_;
