@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include <swa/msg/AgentStatePubSubTypes.h>
+#include <swa/msg/ClockPubSubTypes.h>
 #include <swa/msg/DetectionsPubSubTypes.h>
 #include <swa/ros/Detection3DArrayPubSubTypes.h>
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
@@ -74,6 +75,11 @@ void AgentNode::connect() {
   mission_reader_ = participant_->readerWithOrigin<msg::SwarmMissionPubSubType>(
       dds::topics::kMission, "swa_mission_reader",
       [this](msg::SwarmMission&& m, const dds::WriterGuid& writer) { onMission(std::move(m), writer); });
+  clock_reader_ = participant_->reader<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_watch_reader",
+                                                             [this](msg::Clock&& m) {
+                                                               const std::lock_guard<std::mutex> lock(mutex_);
+                                                               world_pause_.tick(m.step(), std::chrono::steady_clock::now());
+                                                             });
   imu_silence_.restart();
   detections_silence_.restart();
   peers_back_ = 0;

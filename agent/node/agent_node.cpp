@@ -189,7 +189,9 @@ int AgentNode::run() {
     const auto now = std::chrono::steady_clock::now();
     // The writer of its IMU samples stays matched (alive to discovery), the agent had samples and keeps running, and
     // none comes: a channel from the writer broke (silence_watch.h).
-    const bool running = own_stall_.check(now) == app::StallWatch::Clock::duration::zero();
+    // Nothing is owed either while a lockstep simulator waits for another agent (world_pause.h).
+    const bool running =
+        own_stall_.check(now) == app::StallWatch::Clock::duration::zero() && !world_pause_.waiting(now);
     const bool arriving = last_imu_at_ && now - *last_imu_at_ < kArrivingWindow;
     const std::optional<SilenceWatch::Clock::duration> silent =
         imu_silence_.poll(now, arriving, running && last_imu_at_.has_value(), matched[1]);

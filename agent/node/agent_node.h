@@ -24,6 +24,7 @@
 #include <variant>
 
 #include <swa/msg/AgentState.h>
+#include <swa/msg/Clock.h>
 #include <swa/msg/Detections.h>
 #include <swa/ros/Detection3DArray.h>
 #include <swa/ros/PoseWithCovarianceArrayStamped.h>
@@ -37,6 +38,7 @@
 #include "redelivery_filter.h"
 #include "sample_order.h"
 #include "silence_watch.h"
+#include "world_pause.h"
 #include "swa/agent/agent.h"
 #include "swa/agent/detection_adapter.h"
 #include "swa/app/program.h"
@@ -148,6 +150,7 @@ class AgentNode : public app::Role {
   std::optional<std::chrono::steady_clock::time_point> last_imu_at_;  // wall time of the last IMU sample let in
   // The same for SWA's own detections, watched while the IMU flows (agent_node.cpp).
   SilenceWatch detections_silence_{kSilentLimit};
+  WorldPause world_pause_;  // a lockstep simulator waiting for someone: silence owes nothing (world_pause.h)
   std::optional<std::chrono::steady_clock::time_point> last_detections_at_;
   app::StallWatch own_stall_{kPollGapLimit};  // whether run()'s polls come as often as they should
 
@@ -174,6 +177,7 @@ class AgentNode : public app::Role {
   // the three inputs above.
   dds::Reader<msg::SensorFrame> frame_reader_;
   dds::Reader<msg::SwarmMission> mission_reader_;
+  dds::Reader<msg::Clock> clock_reader_;  // only to tell a waiting lockstep run (world_pause.h)
 };
 
 }  // namespace swa::agent_node

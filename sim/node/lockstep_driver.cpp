@@ -13,6 +13,9 @@ namespace {
 constexpr auto kRepeatPeriod = std::chrono::milliseconds(50);
 // How many steps the monitors may fall behind in lockstep (awaitSensorAcks): the truth period, 0.1 s of simulated time.
 constexpr std::int64_t kMonitorLagSteps = 10;
+// How often a step that waits longer says so, with its clock tick again: the agents' silence watches take inputs
+// silent for 6 s with their writers matched for a broken channel, unless the world waits (agent/node/world_pause.h).
+constexpr auto kWaitingTickPeriod = std::chrono::seconds(1);
 }  // namespace
 
 LockstepDriver::LockstepDriver(const DriverContext& context) : Driver(context), lockstep_(n_) {}
@@ -23,6 +26,7 @@ void LockstepDriver::run() {
     ports_.publishStepOutputs(aliveFn());
     lockstep_.begin(ports_.publishSensors(std::nullopt));
     auto published = Clock::now();
+    auto ticked = published;
     drain(Clock::duration::zero());  // answers of dead agents are looked at even if nobody is waited for
     // An agent that never answered may still be matching our writers (discovery is not symmetric): it gets the
     // startup timeout, not the agent timeout, for its first answer.
@@ -46,6 +50,10 @@ void LockstepDriver::run() {
       if (now - published >= kRepeatPeriod) {
         ports_.repeatWhileWaiting(lockstep_.waitingFor());
         published = now;
+      }
+      if (now - ticked >= kWaitingTickPeriod) {
+        ports_.publishClockAgain();
+        ticked = now;
       }
       drain(std::min<Clock::duration>({deadline - now, kPollPeriod, kRepeatPeriod}));
     }

@@ -270,6 +270,10 @@ void SimPorts::publishStepOutputs(const AliveFn& alive) {
   if (world_.step_index() % 10 == 0) noteYoungerTwin();
   for (const sim::Event& e : world_.events()) publishEvent(record::eventOf(e));
   if (world_.step_index() % options_.truth_every == 0 || world_.finished()) publishTruth(alive);
+  publishClockAgain();
+}
+
+void SimPorts::publishClockAgain() {
   const wire::ClockTick tick{static_cast<std::uint64_t>(world_.step_index()), world_.time_ns(),
                              sim::stepPeriodNs(scenario_.dynamics.rate_hz)};
   msg::Clock m = wire::toMsg(tick, ++clock_seq_);

@@ -16,6 +16,7 @@
 #include "lockstep_tracker.h"
 #include "sample_order.h"
 #include "silence_watch.h"
+#include "world_pause.h"
 #include "sim_options.h"
 #include "swa/app/stall_watch.h"
 #include "swa/dds/options.h"
@@ -199,6 +200,39 @@ TEST(SilenceWatch, NothingIsOwedWhilePausedOrWithoutAWriter) {
   EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(5), false, true, 1));
   w.restart();
   EXPECT_FALSE(pollFor(w, now, std::chrono::seconds(5), false, true, 1));
+}
+
+// ---- WorldPause ----------------------------------------------------------------------------------------------
+
+TEST(WorldPause, ATickHeardTwiceMeansTheSimulatorWaitsForTheRepeatWindow) {
+  agent_node::WorldPause p;
+  WatchClock::time_point now{};
+  // a running lockstep simulator: a new step every tick, never a wait
+  for (std::uint64_t step = 0; step < 500; ++step, now += std::chrono::milliseconds(2)) {
+    p.tick(step, now);
+    EXPECT_FALSE(p.waiting(now)) << "step " << step;
+  }
+  // it waits on step 499 and says so once a second
+  now += std::chrono::seconds(1);
+  p.tick(499, now);
+  EXPECT_TRUE(p.waiting(now));
+  EXPECT_TRUE(p.waiting(now + agent_node::WorldPause::kRepeatWindow - std::chrono::milliseconds(1)));
+  // its ticks stop too (a simulator gone, or this agent's own port deaf): the pause is over after the window
+  EXPECT_FALSE(p.waiting(now + agent_node::WorldPause::kRepeatWindow));
+  // it goes on: a new step is no wait, even right after a repeat
+  now += std::chrono::seconds(1);
+  p.tick(500, now);
+  EXPECT_TRUE(p.waiting(now));  // the repeat a second ago still counts: the silence it covered owed nothing
+  now += agent_node::WorldPause::kRepeatWindow;
+  p.tick(501, now);
+  EXPECT_FALSE(p.waiting(now));
+}
+
+TEST(WorldPause, NoTickAtAllIsNoPause) {
+  // a drone with no simulator: nobody publishes the clock, and silence keeps its meaning
+  const agent_node::WorldPause p;
+  EXPECT_FALSE(p.waiting(WatchClock::time_point{}));
+  EXPECT_FALSE(p.waiting(WatchClock::time_point{} + std::chrono::hours(1)));
 }
 
 // ---- LockstepTracker ------------------------------------------------------------------------------------------

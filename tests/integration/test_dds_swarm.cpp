@@ -536,6 +536,33 @@ TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {
   EXPECT_EQ(agent_status_[2], 0);  // the stalled agent still shuts down cleanly
 }
 
+// In lockstep the simulator publishes no step until every live agent has answered: while it waits for one, the
+// others hear nothing with their writers matched, which their silence watches took for a broken channel (issue #46:
+// in a secure launch through PX4 the simulator waited 60 s at step 0 for one agent, the others re-created their
+// participants every 6 s, and one UAV ended on failsafe). Now the waiting simulator repeats its clock tick once a
+// second, and an agent that hears a tick twice knows the world waits (agent/node/world_pause.h).
+TEST_F(SwarmRun, AgentsWaitingWithTheLockstepSimulatorForAStoppedAgentKeepTheirParticipants) {
+  // GIVEN a lockstep run of 4 agents whose simulator waits up to 15 s for an answer
+  const std::vector<std::string> overrides{"duration_s=20"};
+  start(overrides, {"--agent-timeout-s", "15"});
+  ASSERT_FALSE(HasFatalFailure());
+  ASSERT_TRUE(monitor_->waitForSimTime(3.0, 60.0)) << logs();
+  // WHEN agent 2 is stopped for 9 s: longer than the agents' silence limit (6 s), shorter than the agent timeout
+  agents_[2]->signal(SIGSTOP);
+  std::this_thread::sleep_for(std::chrono::seconds(9));
+  agents_[2]->signal(SIGCONT);
+  // THEN the run completes with no agent dead
+  ASSERT_EQ(finish(), 0) << logs();
+  EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD), 0) << logs();
+  // AND no agent re-created its participant: the three that waited knew the world waited
+  for (int i = 0; i < 4; ++i) {
+    const std::string log = readFile(dir_ / ("agent" + std::to_string(i) + ".log"));
+    EXPECT_EQ(log.find("re-creating the participant"), std::string::npos) << "agent " << i << ":\n" << log;
+  }
+  // AND the run is still the in-process closed loop bit for bit: the wait changed nothing but the wall time
+  expectFinalTruthOfTheInProcessLoop(overrides, true);
+}
+
 // Issue #11: a second `swa_agent --id 1` in the same swarm started without a word, and any program could write a UAV's
 // cmd_vel. Now the younger agent refuses to run (exit 3) and the older one logs it; the simulator applies the
 // commands of one writer per UAV and refuses another's while the first is active.
@@ -754,8 +781,8 @@ bool holdsOpen(pid_t pid, const std::string& file) {
 // holds (in a run here it had asked for agent 0's participant id and Fast DDS gave it the next free ports, so they
 // cannot be computed from the id it asked for).
 TEST_F(SwarmRun, SimulatorDeafOnItsOwnSharedMemoryPortReCreatesItsParticipantAndTheRunGoesOn) {
-  // It plants files in /dev/shm: in a /dev/shm of its own (private_shm.h), a test beside it never counts them.
-  ASSERT_EQ(usePrivateShm(), "");
+  // It plants files in /dev/shm: in the /dev/shm of its own every SwarmRun has (private_shm.h), a test beside it
+  // never counts them.
   // GIVEN a realtime run of 4 agents, 3 s in
   start({"duration_s=15", "clock.mode=realtime"}, {});
   ASSERT_FALSE(HasFatalFailure());
@@ -884,6 +911,7 @@ class BadInput : public ::testing::Test {
     return {status.value_or(-1), readFile(log)};
   }
 
+  OwnShm own_shm_;  // first: this test's /dev/shm is its own (private_shm.h)
   ShmJanitor janitor_;
   fs::path dir_;
   int domain_ = testDomain(5);  // reserved: nothing of another test's may be counted as ours
