@@ -7,6 +7,9 @@
 //
 //   bench_record_reader --uav-count N [--domain D]          (SWA_SWARM, SWA_TRANSPORT, ... as for every SWA program)
 //   bench_record_reader --count-mcap FILE.mcap              the messages per channel of a recording, same JSON shape
+//   bench_record_reader --stamps-per-second FILE.mcap...    per channel and whole second of the samples' own stamps,
+//                                                           how many distinct stamps the recordings hold together
+//                                                           (a restarted monitor's files overlap; tests/soak)
 //
 // Topics are named as the recording names its channels (recordedTopic), so the two outputs compare key by key.
 
@@ -16,6 +19,7 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <memory>
 #include <string>
 #include <thread>
@@ -62,6 +66,30 @@ int countMcap(const std::string& path) {
   return 0;
 }
 
+// The samples' own stamps (the recording's log time: a sensor sample's stamp, or its publication time) are simulated
+// time, so a second here is a second of the run, whatever the recording monitor did meanwhile.
+int stampsPerSecond(const std::vector<std::string>& paths) {
+  std::map<std::string, std::set<std::uint64_t>> stamps;
+  nlohmann::ordered_json truncated = nlohmann::ordered_json::array();
+  for (const std::string& path : paths) {
+    swa::recording::McapReader reader(path);
+    while (const auto m = reader.next()) stamps[reader.channels().at(m->channel_id).topic].insert(m->log_time_ns);
+    if (reader.truncated()) truncated.push_back(path);
+  }
+  nlohmann::ordered_json per_topic = nlohmann::ordered_json::object();
+  for (const auto& [topic, set] : stamps) {
+    std::map<std::uint64_t, std::uint64_t> per_second;
+    for (const std::uint64_t t : set) ++per_second[t / 1'000'000'000ULL];
+    nlohmann::ordered_json seconds = nlohmann::ordered_json::object();
+    for (const auto& [second, n] : per_second) seconds[std::to_string(second)] = n;
+    per_topic[topic] = seconds;
+  }
+  std::printf("%s\n", nlohmann::ordered_json{{"files", paths}, {"truncated", truncated}, {"stamps_per_second", per_topic}}
+                          .dump()
+                          .c_str());
+  return 0;
+}
+
 int readRun(int uav_count, const std::optional<std::string>& domain) {
   swa::app::installShutdownHandlers();
   Counts counts;
@@ -94,6 +122,7 @@ int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (args.size() == 2 && args[0] == "--count-mcap") return countMcap(args[1]);
+    if (args.size() >= 2 && args[0] == "--stamps-per-second") return stampsPerSecond({args.begin() + 1, args.end()});
     int uav_count = -1;
     std::optional<std::string> domain;
     for (std::size_t k = 0; k + 1 < args.size(); k += 2) {
@@ -104,6 +133,7 @@ int main(int argc, char** argv) {
     if (uav_count < 1 || args.size() % 2 != 0) {
       std::fprintf(stderr,
                    "usage: bench_record_reader --uav-count N [--domain D] | --count-mcap FILE.mcap\n"
+                   "       | --stamps-per-second FILE.mcap...\n"
                    "  (see the comment at the top of tests/bench/bench_record_reader.cpp)\n");
       return 2;
     }
