@@ -96,12 +96,16 @@ void SimPorts::connect(int domain_id, const std::string& profiles_file) {
   const bool autopilot = scenario_.vehicle.interface != sim::VehicleInterface::kDirect;
   // With GNSS from the autopilot the bridges write swa/uav<i>/gnss; the simulator reports the fix as PX4 does.
   const bool own_gnss = !autopilot || scenario_.vehicle.gnss_source == sim::GnssSource::kSwa;
+  // In realtime a lost sample is repaired sooner, since it holds back the later ones (profiles.xml,
+  // swa_frame_writer_realtime); lockstep keeps the cheaper heartbeat.
+  const bool realtime = scenario_.clock.mode == sim::ClockMode::kRealtime;
   // In the ros2 naming each sample keeps its own topic, where ROS tools expect them.
   frames_ = frames_allowed_ && !autopilot && scenario_.agent.sensor.input == agent::DetectionInput::kSwa &&
             participant_->wireNames().naming == dds::Naming::kSwa;
   for (int i = 0; i < n_; ++i) {
     if (frames_) {
-      frame_.push_back(participant_->writer<msg::SensorFramePubSubType>(dds::topics::sensors(i), "swa_frame_writer"));
+      frame_.push_back(participant_->writer<msg::SensorFramePubSubType>(
+          dds::topics::sensors(i), realtime ? "swa_frame_writer_realtime" : "swa_frame_writer"));
       if (frame_seq_.size() < frame_.size()) frame_seq_.push_back(0);
     } else {
       makeSampleWriters(i, autopilot, own_gnss);
@@ -133,7 +137,11 @@ void SimPorts::makeSampleWriters(int i, bool autopilot, bool own_gnss) {
                                                                           "swa_detections_gnss_writer")
                            : dds::Writer<msg::GnssFix>());
   // With an autopilot its stand-in writes the attitude the bridge turns into swa/uav<i>/imu.
-  if (!autopilot) imu_.push_back(participant_->writer<msg::ImuPubSubType>(dds::topics::imu(i), "swa_sensor_writer"));
+  if (!autopilot) {
+    const bool realtime = scenario_.clock.mode == sim::ClockMode::kRealtime;
+    imu_.push_back(participant_->writer<msg::ImuPubSubType>(
+        dds::topics::imu(i), realtime ? "swa_sensor_writer_realtime" : "swa_sensor_writer"));
+  }
 }
 
 SimPorts::~SimPorts() {
