@@ -52,7 +52,7 @@ void LockstepDriver::run() {
         published = now;
       }
       if (now - ticked >= kWaitingTickPeriod) {
-        ports_.publishClockAgain();
+        ports_.publishClock();
         ticked = now;
       }
       drain(std::min<Clock::duration>({deadline - now, kPollPeriod, kRepeatPeriod}));

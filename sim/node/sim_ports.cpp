@@ -138,9 +138,9 @@ void SimPorts::makeSampleWriters(int i, bool autopilot, bool own_gnss) {
                            : dds::Writer<msg::GnssFix>());
   // With an autopilot its stand-in writes the attitude the bridge turns into swa/uav<i>/imu.
   if (!autopilot) {
-    const bool realtime = scenario_.clock.mode == sim::ClockMode::kRealtime;
     imu_.push_back(participant_->writer<msg::ImuPubSubType>(
-        dds::topics::imu(i), realtime ? "swa_sensor_writer_realtime" : "swa_sensor_writer"));
+        dds::topics::imu(i), scenario_.clock.mode == sim::ClockMode::kRealtime ? "swa_sensor_writer_realtime"
+                                                                               : "swa_sensor_writer"));
   }
 }
 
@@ -278,10 +278,10 @@ void SimPorts::publishStepOutputs(const AliveFn& alive) {
   if (world_.step_index() % 10 == 0) noteYoungerTwin();
   for (const sim::Event& e : world_.events()) publishEvent(record::eventOf(e));
   if (world_.step_index() % options_.truth_every == 0 || world_.finished()) publishTruth(alive);
-  publishClockAgain();
+  publishClock();
 }
 
-void SimPorts::publishClockAgain() {
+void SimPorts::publishClock() {
   const wire::ClockTick tick{static_cast<std::uint64_t>(world_.step_index()), world_.time_ns(),
                              sim::stepPeriodNs(scenario_.dynamics.rate_hz)};
   msg::Clock m = wire::toMsg(tick, ++clock_seq_);

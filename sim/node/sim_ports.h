@@ -57,8 +57,8 @@ class SimPorts {
   bool awaitDiscovery();
 
   void publishStepOutputs(const AliveFn& alive);  // the world's events, truth when due, the clock
-  // The clock tick of the current step once more: a lockstep run says it waits (agent/node/world_pause.h).
-  void publishClockAgain();
+  // The clock tick of the current step; sent again while a lockstep run waits (agent/node/world_pause.h).
+  void publishClock();
   // `due`: when the UAVs' next IMU samples are due (realtime), for the latency statistics; nullopt in lockstep.
   // With `due` every IMU sample is written before the step's detections and GNSS fixes, without it after them (the
   // reasons are at the definition). Returns the IMU stamp published to each UAV (nullopt: none this step).
