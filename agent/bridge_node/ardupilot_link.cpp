@@ -24,6 +24,7 @@
 #include "swa/autopilot/ardupilot.h"
 #include "swa/autopilot/navsat.h"
 #include "swa/autopilot/quaternion_order.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/wire/ardupilot.h"
 #include "vehicle_link.h"
@@ -40,23 +41,23 @@ class ArdupilotLink : public VehicleLink {
       : options_(options), ns_(apNamespace(options)), events_(std::move(events)), navsat_(options.navsat) {}
 
   void connect(dds::Participant& p) override {
-    cmd_vel_ = p.writer<geometry_msgs::msg::TwistStampedPubSubType>(topics::apTopic(ns_, "cmd_vel"), "ap_in_writer");
+    cmd_vel_ = p.writer<geometry_msgs::msg::TwistStampedPubSubType>(topics::apTopic(ns_, "cmd_vel"), dds::qos::kApInWriter);
     if (options_.odometry.mode != autopilot::OdometryMode::kOff) {
-      tf_ = p.writer<tf2_msgs::msg::TFMessagePubSubType>(odometryTopic(), "ap_in_writer");
+      tf_ = p.writer<tf2_msgs::msg::TFMessagePubSubType>(odometryTopic(), dds::qos::kApInWriter);
     }
     if (options_.core.engage) {
       arm_request_ = p.writer<srv::ArmMotors_RequestPubSubType>(topics::apRequest(ns_, "arm_motors"),
-                                                                "ap_service_writer");
+                                                                dds::qos::kApServiceWriter);
       mode_request_ = p.writer<srv::ModeSwitch_RequestPubSubType>(topics::apRequest(ns_, "mode_switch"),
-                                                                  "ap_service_writer");
+                                                                  dds::qos::kApServiceWriter);
       arm_reply_ = p.readerWithIds<srv::ArmMotors_ResponsePubSubType>(
-          topics::apReply(ns_, "arm_motors"), "ap_service_reader",
+          topics::apReply(ns_, "arm_motors"), dds::qos::kApServiceReader,
           [this](srv::ArmMotors_Response&& m, const dds::SampleIds& ids) {
             if (isOurs(ids)) events_.log(std::string("ArduPilot answered the arm request: ") +
                                          (m.result() ? "armed" : "refused"));
           });
       mode_reply_ = p.readerWithIds<srv::ModeSwitch_ResponsePubSubType>(
-          topics::apReply(ns_, "mode_switch"), "ap_service_reader",
+          topics::apReply(ns_, "mode_switch"), dds::qos::kApServiceReader,
           [this](srv::ModeSwitch_Response&& m, const dds::SampleIds& ids) {
             if (isOurs(ids)) {
               events_.log(std::string("ArduPilot answered the GUIDED request: ") +
@@ -67,13 +68,13 @@ class ArdupilotLink : public VehicleLink {
     }
     if (!options_.no_gnss) {
       navsat_reader_ = p.reader<sensor_msgs::msg::NavSatFixPubSubType>(
-          topics::apTopic(ns_, "navsat"), "ap_out_reader", [this](sensor_msgs::msg::NavSatFix&& m) {
+          topics::apTopic(ns_, "navsat"), dds::qos::kApOutReader, [this](sensor_msgs::msg::NavSatFix&& m) {
             const std::lock_guard<std::mutex> lock(gnss_mutex_);
             if (const auto g = navsat_.onNavSat(wire::navSatReportOf(m))) events_.gnss(*g);
           });
     }
     status_reader_ = p.reader<ardupilot_msgs::msg::StatusPubSubType>(
-        topics::apTopic(ns_, "status"), "ap_status_reader",
+        topics::apTopic(ns_, "status"), dds::qos::kApStatusReader,
         [this](ardupilot_msgs::msg::Status&& m) {
           disarmed_ = !m.armed();
           events_.status(m.armed(), m.mode());
@@ -81,7 +82,7 @@ class ArdupilotLink : public VehicleLink {
           events_.estimator(std::find(failsafes.begin(), failsafes.end(), ardupilot::kFailsafeEkf) != failsafes.end());
         });
     imu_reader_ = p.reader<sensor_msgs::msg::ImuPubSubType>(
-        topics::apTopic(ns_, "imu/experimental/data"), "ap_out_reader", [this](sensor_msgs::msg::Imu&& m) {
+        topics::apTopic(ns_, "imu/experimental/data"), dds::qos::kApOutReader, [this](sensor_msgs::msg::Imu&& m) {
           const std::optional<std::uint64_t> t = wire::timestampUsOf(m.header().stamp());
           if (!t) {  // a negative time or nanosec >= 1e9: no instant to stamp the sample with
             if (bad_stamps_++ == 0) {

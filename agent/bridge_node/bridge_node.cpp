@@ -16,6 +16,7 @@
 
 #include "swa/app/signals.h"
 #include "swa/autopilot/ardupilot.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/wire/agent_state.h"
 #include "swa/wire/px4.h"
@@ -80,17 +81,17 @@ void BridgeNode::connect() {
   handshake_.connected(std::chrono::steady_clock::now());
   requests_handshake_.connected(std::chrono::steady_clock::now());
   dds::Participant& p = *participant_;
-  imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), "swa_sensor_writer");
-  state_ = p.writer<msg::BridgeStatePubSubType>(topics::bridgeState(id_), "swa_state_writer");
-  if (!options_.no_gnss) gnss_ = p.writer<msg::GnssFixPubSubType>(topics::gnss(id_), "swa_detections_gnss_writer");
+  imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), dds::qos::kSensorWriter);
+  state_ = p.writer<msg::BridgeStatePubSubType>(topics::bridgeState(id_), dds::qos::kStateWriter);
+  if (!options_.no_gnss) gnss_ = p.writer<msg::GnssFixPubSubType>(topics::gnss(id_), dds::qos::kDetectionsGnssWriter);
   // The vehicle's endpoints before the command reader: a command arriving at once is sent through the new
   // participant's writers, never through those of a participant deleted by a reconnection.
   vehicle_->connect(p);
   cmd_reader_ = p.readerWithOrigin<msg::VelocitySetpointPubSubType>(
-      topics::cmdVel(id_), "swa_command_reader",
+      topics::cmdVel(id_), dds::qos::kCommandReader,
       [this](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) { onCommand(std::move(m), w); });
   if (options_.odometry.mode != autopilot::OdometryMode::kOff) {
-    state_reader_ = p.reader<msg::AgentStatePubSubType>(topics::state(id_), "swa_state_reader",
+    state_reader_ = p.reader<msg::AgentStatePubSubType>(topics::state(id_), dds::qos::kStateReader,
                                                         [this](msg::AgentState&& m) { onAgentState(std::move(m)); });
   }
 }

@@ -21,6 +21,7 @@
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/px4/accelerometer.h"
 #include "swa/px4/gnss.h"
@@ -44,43 +45,43 @@ class Px4Link : public VehicleLink {
 
   void connect(dds::Participant& p) override {
     setpoint_ = p.writer<px4_msgs::msg::TrajectorySetpointPubSubType>(topics::px4In(ns_, "trajectory_setpoint"),
-                                                                        "px4_in_writer");
+                                                                        dds::qos::kPx4InWriter);
     offboard_ = p.writer<px4_msgs::msg::OffboardControlModePubSubType>(topics::px4In(ns_, "offboard_control_mode"),
-                                                                         "px4_in_writer");
+                                                                         dds::qos::kPx4InWriter);
     if (options_.core.engage) {
       vehicle_command_ =
-          p.writer<px4_msgs::msg::VehicleCommandPubSubType>(topics::px4In(ns_, "vehicle_command"), "px4_in_writer");
+          p.writer<px4_msgs::msg::VehicleCommandPubSubType>(topics::px4In(ns_, "vehicle_command"), dds::qos::kPx4InWriter);
     }
     if (options_.odometry.mode != autopilot::OdometryMode::kOff) {
-      odometry_ = p.writer<px4_msgs::msg::VehicleOdometryPubSubType>(odometryTopic(), "px4_in_writer");
+      odometry_ = p.writer<px4_msgs::msg::VehicleOdometryPubSubType>(odometryTopic(), dds::qos::kPx4InWriter);
     }
     const auto status = [this](bool armed, std::uint8_t nav_state) { events_.status(armed, nav_state); };
     if (px4::hasV116VehicleStatus(options_.px4_release)) {
       status_reader_v1_16_ = p.reader<px4_v1_16::px4_msgs::msg::VehicleStatusPubSubType>(
-          topics::px4Out(ns_, status_topic_), "px4_out_reader",
+          topics::px4Out(ns_, status_topic_), dds::qos::kPx4OutReader,
           [status](px4_v1_16::px4_msgs::msg::VehicleStatus&& m) {
             status(m.arming_state() == px4::kArmingStateArmed, m.nav_state());
           });
     } else {
       status_reader_ = p.reader<px4_msgs::msg::VehicleStatusPubSubType>(
-          topics::px4Out(ns_, status_topic_), "px4_out_reader", [status](px4_msgs::msg::VehicleStatus&& m) {
+          topics::px4Out(ns_, status_topic_), dds::qos::kPx4OutReader, [status](px4_msgs::msg::VehicleStatus&& m) {
             status(m.arming_state() == px4::kArmingStateArmed, m.nav_state());
           });
     }
     ack_reader_ = p.reader<px4_msgs::msg::VehicleCommandAckPubSubType>(
-        topics::px4Out(ns_, "vehicle_command_ack"), "px4_out_reader",
+        topics::px4Out(ns_, "vehicle_command_ack"), dds::qos::kPx4OutReader,
         [this](px4_msgs::msg::VehicleCommandAck&& m) { onAck(m); });
     if (!options_.no_gnss) connectGnss(p);
     // The accelerometer first: each attitude takes the reading of its instant, if there is one (accelerometer.h).
     accel_reader_ = p.reader<px4_msgs::msg::SensorCombinedPubSubType>(
-        topics::px4Out(ns_, "sensor_combined"), "px4_out_reader", [this](px4_msgs::msg::SensorCombined&& m) {
+        topics::px4Out(ns_, "sensor_combined"), dds::qos::kPx4OutReader, [this](px4_msgs::msg::SensorCombined&& m) {
           const std::array<float, 3>& a = m.accelerometer_m_s2();
           const float accel[3] = {a[0], a[1], a[2]};
           const std::lock_guard<std::mutex> lock(accel_mutex_);
           accel_.onSensorCombined(m.timestamp(), m.accelerometer_timestamp_relative(), accel);
         });
     attitude_reader_ = p.reader<px4_msgs::msg::VehicleAttitudePubSubType>(
-        topics::px4Out(ns_, "vehicle_attitude"), "px4_out_reader", [this](px4_msgs::msg::VehicleAttitude&& m) {
+        topics::px4Out(ns_, "vehicle_attitude"), dds::qos::kPx4OutReader, [this](px4_msgs::msg::VehicleAttitude&& m) {
           std::optional<ardupilot::SpecificForce> force;
           {
             const std::lock_guard<std::mutex> lock(accel_mutex_);
@@ -149,19 +150,19 @@ class Px4Link : public VehicleLink {
     const std::string position_topic = topics::px4Out(ns_, px4::topicName(r, "vehicle_local_position"));
     if (px4::hasV117SensorGps(r)) {
       gps_reader_v1_17_ = p.reader<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>(
-          gps_topic, "px4_out_reader",
+          gps_topic, dds::qos::kPx4OutReader,
           [this](px4_v1_17::px4_msgs::msg::SensorGps&& m) { onGps(wire::gpsReportOf(m)); });
     } else {
       gps_reader_ = p.reader<px4_msgs::msg::SensorGpsPubSubType>(
-          gps_topic, "px4_out_reader", [this](px4_msgs::msg::SensorGps&& m) { onGps(wire::gpsReportOf(m)); });
+          gps_topic, dds::qos::kPx4OutReader, [this](px4_msgs::msg::SensorGps&& m) { onGps(wire::gpsReportOf(m)); });
     }
     if (px4::hasV116VehicleLocalPosition(r)) {
       position_reader_v1_16_ = p.reader<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
-          position_topic, "px4_out_reader",
+          position_topic, dds::qos::kPx4OutReader,
           [this](px4_v1_16::px4_msgs::msg::VehicleLocalPosition&& m) { onLocalPosition(wire::localPositionOf(m)); });
     } else {
       position_reader_ = p.reader<px4_msgs::msg::VehicleLocalPositionPubSubType>(
-          position_topic, "px4_out_reader",
+          position_topic, dds::qos::kPx4OutReader,
           [this](px4_msgs::msg::VehicleLocalPosition&& m) { onLocalPosition(wire::localPositionOf(m)); });
     }
   }

@@ -19,6 +19,7 @@
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
+#include "swa/dds/qos_profiles.h"
 #include "swa/wire/ros_detections.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/topics.h"
@@ -40,42 +41,42 @@ void AgentNode::connect() {
   participant_ = std::make_unique<dds::Participant>("swa_agent_" + std::to_string(id_), domain_id_, profiles_file_);
   handshake_.connected(std::chrono::steady_clock::now());
   // Writers first: a command must have somewhere to go as soon as the first IMU sample is processed.
-  cmd_writer_ = participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), "swa_command_writer");
-  state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), "swa_state_writer");
+  cmd_writer_ = participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), dds::qos::kCommandWriter);
+  state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), dds::qos::kStateWriter);
   if (participant_->wireNames().naming == dds::Naming::kRos2) {
     twist_writer_ = participant_->writer<geometry_msgs::msg::TwistStampedPubSubType>(dds::topics::cmdVelStamped(id_),
-                                                                                     "swa_command_writer");
+                                                                                     dds::qos::kCommandWriter);
   }
-  imu_reader_ = participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), "swa_sensor_reader",
+  imu_reader_ = participant_->reader<msg::ImuPubSubType>(dds::topics::imu(id_), dds::qos::kSensorReader,
                                                          [this](msg::Imu&& m) { onInput(Input(std::move(m))); });
   switch (agent_.config().sensor.input) {
     case agent::DetectionInput::kSwa:
       det_reader_ = participant_->reader<msg::DetectionsPubSubType>(
-          dds::topics::detections(id_), "swa_detections_gnss_reader",
+          dds::topics::detections(id_), dds::qos::kDetectionsGnssReader,
           [this](msg::Detections&& m) { onInput(Input(std::move(m))); });
       break;
     case agent::DetectionInput::kVisionMsgs:
       vision_reader_ = participant_->reader<vision_msgs::msg::Detection3DArrayPubSubType>(
-          dds::topics::visionDetections(id_), "foreign_detections_reader",
+          dds::topics::visionDetections(id_), dds::qos::kForeignDetectionsReader,
           [this](vision_msgs::msg::Detection3DArray&& m) { onForeign(wire::foreignOf(m)); });
       break;
     case agent::DetectionInput::kUvdar:
       uvdar_reader_ = participant_->reader<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(
-          dds::topics::uvdarPoses(id_), "foreign_detections_reader",
+          dds::topics::uvdarPoses(id_), dds::qos::kForeignDetectionsReader,
           [this](mrs_msgs::msg::PoseWithCovarianceArrayStamped&& m) { onForeign(wire::foreignOf(m)); });
       break;
   }
   gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
-      dds::topics::gnss(id_), "swa_detections_gnss_reader", [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
+      dds::topics::gnss(id_), dds::qos::kDetectionsGnssReader, [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
   if (agent_.config().sensor.input == agent::DetectionInput::kSwa &&
       participant_->wireNames().naming == dds::Naming::kSwa) {
     frame_reader_ = participant_->reader<msg::SensorFramePubSubType>(
-        dds::topics::sensors(id_), "swa_frame_reader", [this](msg::SensorFrame&& m) { onFrame(std::move(m)); });
+        dds::topics::sensors(id_), dds::qos::kFrameReader, [this](msg::SensorFrame&& m) { onFrame(std::move(m)); });
   }
   mission_reader_ = participant_->readerWithOrigin<msg::SwarmMissionPubSubType>(
-      dds::topics::kMission, "swa_mission_reader",
+      dds::topics::kMission, dds::qos::kMissionReader,
       [this](msg::SwarmMission&& m, const dds::WriterGuid& writer) { onMission(std::move(m), writer); });
-  clock_reader_ = participant_->reader<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_watch_reader",
+  clock_reader_ = participant_->reader<msg::ClockPubSubType>(dds::topics::kClock, dds::qos::kClockWatchReader,
                                                              [this](msg::Clock&& m) {
                                                                const std::lock_guard<std::mutex> lock(mutex_);
                                                                world_pause_.tick(m.step(), std::chrono::steady_clock::now());

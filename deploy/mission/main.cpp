@@ -13,6 +13,7 @@
 #include "swa/app/program.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/wire/mission.h"
 
@@ -27,7 +28,7 @@ class MissionSender : public app::Role {
  public:
   MissionSender(const MissionOptions& options, int domain, const std::string& profiles)
       : options_(options), participant_("swa_ground", domain, profiles) {
-    writer_ = participant_.writer<msg::SwarmMissionPubSubType>(dds::topics::kMission, "swa_mission_writer");
+    writer_ = participant_.writer<msg::SwarmMissionPubSubType>(dds::topics::kMission, dds::qos::kMissionWriter);
   }
 
   int run() override {

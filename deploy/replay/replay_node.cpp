@@ -16,6 +16,7 @@
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
 #include "swa/dds/options.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/recording/recording.h"
 
@@ -50,22 +51,22 @@ ReplayNode::ReplayNode(RecordedRun run, const ReplayOptions& options, int domain
     // The simulator's writer profiles: the agents' readers match them as they matched the simulator.
     Writers w;
     w.detections =
-        participant_->rawWriter<msg::DetectionsPubSubType>(topics::detections(uav), "swa_detections_gnss_writer");
-    w.gnss = participant_->rawWriter<msg::GnssFixPubSubType>(topics::gnss(uav), "swa_detections_gnss_writer");
-    w.imu = participant_->rawWriter<msg::ImuPubSubType>(topics::imu(uav), "swa_sensor_writer");
+        participant_->rawWriter<msg::DetectionsPubSubType>(topics::detections(uav), dds::qos::kDetectionsGnssWriter);
+    w.gnss = participant_->rawWriter<msg::GnssFixPubSubType>(topics::gnss(uav), dds::qos::kDetectionsGnssWriter);
+    w.imu = participant_->rawWriter<msg::ImuPubSubType>(topics::imu(uav), dds::qos::kSensorWriter);
     writers_[uav] = w;
     if (options_.lockstep) {
       participant_->rawReader<msg::VelocitySetpointPubSubType>(
-          topics::cmdVel(uav), "swa_command_reader",
+          topics::cmdVel(uav), dds::qos::kCommandReader,
           [this, id = uav](dds::RawSample&& s) { onCommand(id, std::move(s.payload)); });
     }
   }
   if (!options_.uav) {
     world_writers_[topics::kTruth] =
-        participant_->rawWriter<msg::SwarmTruthPubSubType>(topics::kTruth, "swa_truth_writer");
+        participant_->rawWriter<msg::SwarmTruthPubSubType>(topics::kTruth, dds::qos::kTruthWriter);
     world_writers_[topics::kEvents] =
-        participant_->rawWriter<msg::ScenarioEventPubSubType>(topics::kEvents, "swa_event_writer");
-    world_writers_[topics::kClock] = participant_->rawWriter<msg::ClockPubSubType>(topics::kClock, "swa_clock_writer");
+        participant_->rawWriter<msg::ScenarioEventPubSubType>(topics::kEvents, dds::qos::kEventWriter);
+    world_writers_[topics::kClock] = participant_->rawWriter<msg::ClockPubSubType>(topics::kClock, dds::qos::kClockWriter);
   }
 }
 

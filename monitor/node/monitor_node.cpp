@@ -18,16 +18,13 @@
 #include "msg_convert.h"
 #include "recording_taps.h"
 #include "swa/app/signals.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/wire/mission.h"
 
 namespace swa::monitor_node {
 namespace {
 
-using recording::kClockProfile;
-using recording::kEventProfile;
-using recording::kStateProfile;
-using recording::kTruthProfile;
 using recording::recordingChannel;
 using recording::tapClock;
 using recording::tapUavTopics;
@@ -103,7 +100,7 @@ void MonitorNode::connect() {
   if (recordsEveryTopic()) tapClock(*participant_, *options_.recording);
   // From the start, so that the time a command arrives is the time the agents got it, not when a reader came late.
   mission_reader_ = participant_->readerWithOrigin<msg::SwarmMissionPubSubType>(
-      dds::topics::kMission, "swa_mission_reader", [this](msg::SwarmMission&& m, const dds::WriterGuid& writer) {
+      dds::topics::kMission, dds::qos::kMissionReader, [this](msg::SwarmMission&& m, const dds::WriterGuid& writer) {
         queue_.push(MissionInput{writer, std::move(m)});
       });
   // With a known swarm, the truth and event readers wait until every agent's state writer is matched (see
@@ -114,10 +111,10 @@ void MonitorNode::connect() {
 }
 
 void MonitorNode::createRunReaders() {
-  readAndRecord<msg::ScenarioEventPubSubType>(dds::topics::kEvents, kEventProfile,
+  readAndRecord<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventReader,
                                               [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
   truth_reader_ = readAndRecord<msg::SwarmTruthPubSubType>(
-      dds::topics::kTruth, kTruthProfile, [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
+      dds::topics::kTruth, dds::qos::kTruthReader, [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
 }
 
 void MonitorNode::createRunReadersWhenReady() {
@@ -158,7 +155,7 @@ void MonitorNode::subscribeState(int uav) {
 
 void MonitorNode::createStateReader(int uav) {
   state_reader_handles_[uav] = readAndRecord<msg::AgentStatePubSubType>(
-      dds::topics::state(uav), kStateProfile,
+      dds::topics::state(uav), dds::qos::kStateReader,
       [this, uav](msg::AgentState&& m) { queue_.push(StateInput{uav, std::move(m)}); });
   if (recordsEveryTopic()) uav_taps_[uav] = tapUavTopics(*participant_, *options_.recording, uav);
 }

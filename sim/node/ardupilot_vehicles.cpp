@@ -9,6 +9,7 @@
 #include <swa/ros/TFMessagePubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/px4/frames.h"
 #include "swa/wire/ardupilot.h"
@@ -34,34 +35,34 @@ ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_coun
                                               : std::nullopt);
     v.ns = topics::apNamespace(i);
     v.imu.writer = participant.writer<sensor_msgs::msg::ImuPubSubType>(topics::apTopic(v.ns, "imu/experimental/data"),
-                                                                 "ap_out_writer");
+                                                                 dds::qos::kApOutWriter);
     v.imu.accelerometer_attitude = source == agent::ImuSource::kAccelerometer;
     v.status = participant.writer<ardupilot_msgs::msg::StatusPubSubType>(topics::apTopic(v.ns, "status"),
-                                                                          "ap_status_writer");
+                                                                          dds::qos::kApStatusWriter);
     if (setup.gnss_source == sim::GnssSource::kAutopilot) {
       v.navsat = participant.writer<sensor_msgs::msg::NavSatFixPubSubType>(topics::apTopic(v.ns, "navsat"),
-                                                                            "ap_out_writer");
+                                                                            dds::qos::kApOutWriter);
     }
     v.arm_reply = participant.writer<srv::ArmMotors_ResponsePubSubType>(topics::apReply(v.ns, "arm_motors"),
-                                                                         "ap_service_writer");
+                                                                         dds::qos::kApServiceWriter);
     v.mode_reply = participant.writer<srv::ModeSwitch_ResponsePubSubType>(topics::apReply(v.ns, "mode_switch"),
-                                                                           "ap_service_writer");
+                                                                           dds::qos::kApServiceWriter);
     v.cmd_vel = participant.readerWithOrigin<geometry_msgs::msg::TwistStampedPubSubType>(
-        topics::apTopic(v.ns, "cmd_vel"), "ap_in_reader",
+        topics::apTopic(v.ns, "cmd_vel"), dds::qos::kApInReader,
         [this, i](geometry_msgs::msg::TwistStamped&& m, const dds::WriterGuid& w) {
           queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
         });
     v.tf = participant.readerWithOrigin<tf2_msgs::msg::TFMessagePubSubType>(
-        topics::apTopic(v.ns, "tf"), "ap_in_reader", [this, i](tf2_msgs::msg::TFMessage&& m, const dds::WriterGuid& w) {
+        topics::apTopic(v.ns, "tf"), dds::qos::kApInReader, [this, i](tf2_msgs::msg::TFMessage&& m, const dds::WriterGuid& w) {
           queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
         });
     v.arm_request = participant.readerWithIds<srv::ArmMotors_RequestPubSubType>(
-        topics::apRequest(v.ns, "arm_motors"), "ap_service_reader",
+        topics::apRequest(v.ns, "arm_motors"), dds::qos::kApServiceReader,
         [this, i](srv::ArmMotors_Request&& m, const dds::SampleIds& ids) {
           queue_.push(Arrival{i, Input(ArmRequest{std::move(m), ids.self}), Clock::now(), ids.self.writer});
         });
     v.mode_request = participant.readerWithIds<srv::ModeSwitch_RequestPubSubType>(
-        topics::apRequest(v.ns, "mode_switch"), "ap_service_reader",
+        topics::apRequest(v.ns, "mode_switch"), dds::qos::kApServiceReader,
         [this, i](srv::ModeSwitch_Request&& m, const dds::SampleIds& ids) {
           queue_.push(Arrival{i, Input(ModeRequest{std::move(m), ids.self}), Clock::now(), ids.self.writer});
         });

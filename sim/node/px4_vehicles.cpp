@@ -18,6 +18,7 @@
 #include <swa/px4/VehicleStatus_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleStatus_v1_16PubSubTypes.h>
 
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/px4/frames.h"
 #include "swa/px4/release.h"
@@ -58,43 +59,43 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
                                                : std::nullopt);
     v.ns = topics::px4Namespace(i);
     v.attitude.writer = participant.writer<px4_msgs::msg::VehicleAttitudePubSubType>(
-        topics::px4Out(v.ns, "vehicle_attitude"), "px4_out_writer");
+        topics::px4Out(v.ns, "vehicle_attitude"), dds::qos::kPx4OutWriter);
     v.attitude.accelerometer_attitude = source == agent::ImuSource::kAccelerometer;
     v.accelerometer = participant.writer<px4_msgs::msg::SensorCombinedPubSubType>(
-        topics::px4Out(v.ns, "sensor_combined"), "px4_out_writer");
+        topics::px4Out(v.ns, "sensor_combined"), dds::qos::kPx4OutWriter);
     if (px4::hasV116VehicleStatus(setup.px4_release)) {
       v.status_v1_16 = participant.writer<px4_v1_16::px4_msgs::msg::VehicleStatusPubSubType>(
-          topics::px4Out(v.ns, status_topic), "px4_out_writer");
+          topics::px4Out(v.ns, status_topic), dds::qos::kPx4OutWriter);
     } else {
       v.status = participant.writer<px4_msgs::msg::VehicleStatusPubSubType>(topics::px4Out(v.ns, status_topic),
-                                                                             "px4_out_writer");
+                                                                             dds::qos::kPx4OutWriter);
     }
     if (gnss && px4::hasV117SensorGps(setup.px4_release)) {
       v.gps_v1_17 = participant.writer<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>(
-          topics::px4Out(v.ns, gps_topic), "px4_out_writer");
+          topics::px4Out(v.ns, gps_topic), dds::qos::kPx4OutWriter);
     } else if (gnss) {
-      v.gps = participant.writer<px4_msgs::msg::SensorGpsPubSubType>(topics::px4Out(v.ns, gps_topic), "px4_out_writer");
+      v.gps = participant.writer<px4_msgs::msg::SensorGpsPubSubType>(topics::px4Out(v.ns, gps_topic), dds::qos::kPx4OutWriter);
     }
     if (gnss && px4::hasV116VehicleLocalPosition(setup.px4_release)) {
       v.position_v1_16 = participant.writer<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
-          topics::px4Out(v.ns, position_topic), "px4_out_writer");
+          topics::px4Out(v.ns, position_topic), dds::qos::kPx4OutWriter);
     } else if (gnss) {
       v.position = participant.writer<px4_msgs::msg::VehicleLocalPositionPubSubType>(
-          topics::px4Out(v.ns, position_topic), "px4_out_writer");
+          topics::px4Out(v.ns, position_topic), dds::qos::kPx4OutWriter);
     }
     v.ack = participant.writer<px4_msgs::msg::VehicleCommandAckPubSubType>(
-        topics::px4Out(v.ns, "vehicle_command_ack"), "px4_out_writer");
+        topics::px4Out(v.ns, "vehicle_command_ack"), dds::qos::kPx4OutWriter);
     const auto arrive = [this, i](auto&& m, const dds::WriterGuid& w) {
       queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
     };
     v.setpoint = participant.readerWithOrigin<px4_msgs::msg::TrajectorySetpointPubSubType>(
-        topics::px4In(v.ns, "trajectory_setpoint"), "px4_in_reader", arrive);
+        topics::px4In(v.ns, "trajectory_setpoint"), dds::qos::kPx4InReader, arrive);
     v.mode = participant.readerWithOrigin<px4_msgs::msg::OffboardControlModePubSubType>(
-        topics::px4In(v.ns, "offboard_control_mode"), "px4_in_reader", arrive);
+        topics::px4In(v.ns, "offboard_control_mode"), dds::qos::kPx4InReader, arrive);
     v.command = participant.readerWithOrigin<px4_msgs::msg::VehicleCommandPubSubType>(
-        topics::px4In(v.ns, "vehicle_command"), "px4_in_reader", arrive);
+        topics::px4In(v.ns, "vehicle_command"), dds::qos::kPx4InReader, arrive);
     v.odometry = participant.readerWithOrigin<px4_msgs::msg::VehicleOdometryPubSubType>(
-        topics::px4In(v.ns, "vehicle_visual_odometry"), "px4_in_reader", arrive);
+        topics::px4In(v.ns, "vehicle_visual_odometry"), dds::qos::kPx4InReader, arrive);
     publishStatus(i, v, 0);  // TRANSIENT_LOCAL: a bridge that starts later learns the state at once
   }
 }

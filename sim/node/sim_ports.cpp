@@ -21,6 +21,7 @@
 #include <swa/ros/Detection3DArrayPubSubTypes.h>
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/sim/timing.h"
 #include "swa/wire/ros_detections.h"
@@ -90,9 +91,9 @@ void SimPorts::sayPorts() {
 
 void SimPorts::connect(int domain_id, const std::string& profiles_file) {
   participant_ = std::make_unique<dds::Participant>("swa_sim", domain_id, profiles_file);
-  events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
-  truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_writer");
-  clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, "swa_clock_writer");
+  events_ = participant_->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventWriter);
+  truth_ = participant_->writer<msg::SwarmTruthPubSubType>(dds::topics::kTruth, dds::qos::kTruthWriter);
+  clock_ = participant_->writer<msg::ClockPubSubType>(dds::topics::kClock, dds::qos::kClockWriter);
   const bool autopilot = scenario_.vehicle.interface != sim::VehicleInterface::kDirect;
   // With GNSS from the autopilot the bridges write swa/uav<i>/gnss; the simulator reports the fix as PX4 does.
   const bool own_gnss = !autopilot || scenario_.vehicle.gnss_source == sim::GnssSource::kSwa;
@@ -105,14 +106,14 @@ void SimPorts::connect(int domain_id, const std::string& profiles_file) {
   for (int i = 0; i < n_; ++i) {
     if (frames_) {
       frame_.push_back(participant_->writer<msg::SensorFramePubSubType>(
-          dds::topics::sensors(i), realtime ? "swa_frame_writer_realtime" : "swa_frame_writer"));
+          dds::topics::sensors(i), realtime ? dds::qos::kFrameWriterRealtime : dds::qos::kFrameWriter));
       if (frame_seq_.size() < frame_.size()) frame_seq_.push_back(0);
     } else {
       makeSampleWriters(i, autopilot, own_gnss);
     }
     if (autopilot) continue;
     cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
-        dds::topics::cmdVel(i), "swa_command_reader", [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
+        dds::topics::cmdVel(i), dds::qos::kCommandReader, [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
           queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
         }));
   }
@@ -122,25 +123,25 @@ void SimPorts::makeSampleWriters(int i, bool autopilot, bool own_gnss) {
   switch (scenario_.agent.sensor.input) {
     case agent::DetectionInput::kSwa:
       det_.push_back(participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i),
-                                                                      "swa_detections_gnss_writer"));
+                                                                      dds::qos::kDetectionsGnssWriter));
       break;
     case agent::DetectionInput::kVisionMsgs:
       vision_det_.push_back(participant_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(
-          dds::topics::visionDetections(i), "swa_detections_gnss_writer"));
+          dds::topics::visionDetections(i), dds::qos::kDetectionsGnssWriter));
       break;
     case agent::DetectionInput::kUvdar:
       uvdar_det_.push_back(participant_->writer<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(
-          dds::topics::uvdarPoses(i), "swa_detections_gnss_writer"));
+          dds::topics::uvdarPoses(i), dds::qos::kDetectionsGnssWriter));
       break;
   }
   gnss_.push_back(own_gnss ? participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i),
-                                                                          "swa_detections_gnss_writer")
+                                                                          dds::qos::kDetectionsGnssWriter)
                            : dds::Writer<msg::GnssFix>());
   // With an autopilot its stand-in writes the attitude the bridge turns into swa/uav<i>/imu.
   if (!autopilot) {
     imu_.push_back(participant_->writer<msg::ImuPubSubType>(
-        dds::topics::imu(i), scenario_.clock.mode == sim::ClockMode::kRealtime ? "swa_sensor_writer_realtime"
-                                                                               : "swa_sensor_writer"));
+        dds::topics::imu(i), scenario_.clock.mode == sim::ClockMode::kRealtime ? dds::qos::kSensorWriterRealtime
+                                                                               : dds::qos::kSensorWriter));
   }
 }
 

@@ -40,6 +40,7 @@
 #include "swa/app/cli.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/app/signals.h"
 
@@ -144,7 +145,7 @@ int echoMain(int domain, const std::string& mode, int index) {
   const bool in_listener = mode == "listener";
   auto participant = std::make_unique<dds::Participant>("swa_bench_echo", domain, dds::resolveProfilesFile());
   dds::Writer<msg::VelocitySetpoint> pong =
-      participant->writer<msg::VelocitySetpointPubSubType>(pongTopic(index), "swa_command_writer");
+      participant->writer<msg::VelocitySetpointPubSubType>(pongTopic(index), dds::qos::kCommandWriter);
   const auto answer = [&pong](const msg::Imu& ping) {
     msg::VelocitySetpoint out;
     out.header().stamp_ns(ping.header().stamp_ns());
@@ -154,7 +155,7 @@ int echoMain(int domain, const std::string& mode, int index) {
     out.answered_seq(ping.header().seq());
     pong.write(out);
   };
-  participant->reader<msg::ImuPubSubType>(pingTopic(index), "swa_sensor_reader", [&](msg::Imu&& m) {
+  participant->reader<msg::ImuPubSubType>(pingTopic(index), dds::qos::kSensorReader, [&](msg::Imu&& m) {
     if (in_listener) {
       answer(m);
     } else {
@@ -192,9 +193,9 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
     std::vector<dds::Writer<msg::Imu>> pings;
     std::vector<dds::Reader<msg::VelocitySetpoint>> pongs;
     for (int j = 0; j < peers; ++j) {
-      pings.push_back(p.writer<msg::ImuPubSubType>(pingTopic(j), "swa_sensor_writer"));
+      pings.push_back(p.writer<msg::ImuPubSubType>(pingTopic(j), dds::qos::kSensorWriter));
       pongs.push_back(p.reader<msg::VelocitySetpointPubSubType>(
-          pongTopic(j), "swa_command_reader",
+          pongTopic(j), dds::qos::kCommandReader,
           [&queue](msg::VelocitySetpoint&& m) { queue.push(Pong{m.uav_id(), m.answered_seq(), Clock::now()}); }));
     }
     app::acceptShutdownSignals();

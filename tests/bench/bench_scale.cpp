@@ -47,6 +47,7 @@
 #include "swa/app/udp_port.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/sample_queue.h"
 
 // Fast DDS declares a global `namespace dds`: stay inside namespace swa so `dds::` is ours.
@@ -183,9 +184,9 @@ FanOut rawFanOut(const Options& o, int n, int domain, const fs::path& dir) {
     std::vector<dds::Reader<msg::VelocitySetpoint>> pongs;
     const auto t0 = Clock::now();
     for (int j = 0; j < n; ++j) {
-      pings.push_back(p.writer<msg::ImuPubSubType>("swa/bench/ping" + std::to_string(j), "swa_sensor_writer"));
+      pings.push_back(p.writer<msg::ImuPubSubType>("swa/bench/ping" + std::to_string(j), dds::qos::kSensorWriter));
       pongs.push_back(p.reader<msg::VelocitySetpointPubSubType>(
-          "swa/bench/pong" + std::to_string(j), "swa_command_reader",
+          "swa/bench/pong" + std::to_string(j), dds::qos::kCommandReader,
           [&queue](msg::VelocitySetpoint&& m) { queue.push(Pong{m.uav_id(), m.answered_seq()}); }));
     }
     const auto allMatched = [&] {

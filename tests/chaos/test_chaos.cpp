@@ -36,6 +36,7 @@
 #include "../integration/process_support.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 
 namespace swa::testing {
@@ -87,7 +88,7 @@ class StateWatch {
       : participant_(std::make_unique<dds::Participant>("swa_test_chaos_observer", domain, dds::resolveProfilesFile())),
         seen_(static_cast<std::size_t>(uavs)) {
     for (int i = 0; i < uavs; ++i) {
-      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), "swa_state_reader",
+      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), dds::qos::kStateReader,
                                                       [this, i](msg::AgentState&& s) {
                                                         const std::lock_guard<std::mutex> lock(mutex_);
                                                         seen_[static_cast<std::size_t>(i)].push_back(

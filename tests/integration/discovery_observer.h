@@ -29,6 +29,7 @@
 #include "test_domain.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 
 namespace swa::testing {
 
@@ -111,8 +112,8 @@ class DiscoveryObserver {
       throw dds::DdsError("cannot load DDS XML profiles from " + profiles);
     }
     fdds::DomainParticipantQos qos;
-    if (factory->get_participant_qos_from_profile(dds::kParticipantProfile, qos) != ReturnCode_t::RETCODE_OK) {
-      throw dds::DdsError(std::string("participant profile '") + dds::kParticipantProfile + "' missing in " + profiles);
+    if (factory->get_participant_qos_from_profile(dds::qos::kParticipant, qos) != ReturnCode_t::RETCODE_OK) {
+      throw dds::DdsError(std::string("participant profile '") + dds::qos::kParticipant + "' missing in " + profiles);
     }
     qos.name(name);
     // The discovery callbacks do not depend on the mask; data callbacks are masked out as FASTDDS-NOTES advises

@@ -18,6 +18,7 @@
 #include "process_support.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 
 namespace swa::testing {
@@ -49,7 +50,7 @@ class StateStampWatch {
   StateStampWatch(int domain, int uav)
       : participant_(std::make_unique<dds::Participant>("swa_test_observer", domain, dds::resolveProfilesFile())) {
     participant_->reader<msg::AgentStatePubSubType>(
-        dds::topics::state(uav), "swa_state_reader",
+        dds::topics::state(uav), dds::qos::kStateReader,
         [this](msg::AgentState&& s) {
           newest_ns_.store(s.header().stamp_ns());
           // A new agent process numbers its states from 1 again.

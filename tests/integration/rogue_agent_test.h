@@ -17,6 +17,7 @@
 #include "swa/agent/samples.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 
 namespace swa::testing {
@@ -37,8 +38,8 @@ class RogueAgentTest : public ::testing::Test {
     }
     agent_ = std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, uav, domain_, config), dir_ / "agent.log");
     rogue_ = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
-    imu_ = rogue_->writer<msg::ImuPubSubType>(dds::topics::imu(uav), "swa_sensor_writer");
-    rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(uav), "swa_command_reader", cmds_.listener());
+    imu_ = rogue_->writer<msg::ImuPubSubType>(dds::topics::imu(uav), dds::qos::kSensorWriter);
+    rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(uav), dds::qos::kCommandReader, cmds_.listener());
   }
 
   void TearDown() override {

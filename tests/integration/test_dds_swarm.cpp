@@ -34,6 +34,7 @@
 #include "swa/agent/feed.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/dds/topics.h"
 #include "swa/sim/scenario_io.h"
@@ -145,10 +146,10 @@ class Monitor {
   Monitor(int domain, int uav_count)
       : participant_(std::make_unique<dds::Participant>("swa_test_monitor", domain, dds::resolveProfilesFile())) {
     for (int i = 0; i < uav_count; ++i) {
-      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), "swa_state_reader", states_.listener());
+      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), dds::qos::kStateReader, states_.listener());
     }
-    participant_->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader", truth_.listener());
-    participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_reader", events_.listener());
+    participant_->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, dds::qos::kTruthReader, truth_.listener());
+    participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventReader, events_.listener());
   }
   ~Monitor() { participant_.reset(); }
 
@@ -435,7 +436,7 @@ TEST_F(SwarmRun, RealtimeGroundMissionIsFollowedByEveryAgentAndASecondWritersMis
       << readFile(dir_ / "ground.log");
   // AND then a second writer, while the ground's is there, sends "west at 2 m/s for 30 s"
   auto rogue = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
-  auto rogue_writer = rogue->writer<msg::SwarmMissionPubSubType>(dds::topics::kMission, "swa_mission_writer");
+  auto rogue_writer = rogue->writer<msg::SwarmMissionPubSubType>(dds::topics::kMission, dds::qos::kMissionWriter);
   agent::MissionCommand west;
   west.legs = {{agent::MissionCommandLeg::Kind::kVelocity, agent::Vec2(-2, 0), 30.0, 0.0}};
   msg::SwarmMission m = wire::toMsg(west, 0, 1);
@@ -576,10 +577,10 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
   // WHEN a rogue in this process answers every IMU sample of UAV 2 at once with a full-speed command
   std::atomic<int> rogue_commands{0};
   auto rogue = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
-  auto rogue_cmd = rogue->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(2), "swa_command_writer");
+  auto rogue_cmd = rogue->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(2), dds::qos::kCommandWriter);
   std::mutex rogue_mutex;
   // (the simulator writes UAV 2's IMU samples in its frames)
-  rogue->reader<msg::SensorFramePubSubType>(dds::topics::sensors(2), "swa_frame_reader", [&](msg::SensorFrame&& f) {
+  rogue->reader<msg::SensorFramePubSubType>(dds::topics::sensors(2), dds::qos::kFrameReader, [&](msg::SensorFrame&& f) {
     const std::lock_guard<std::mutex> lock(rogue_mutex);
     for (const msg::Imu& imu : f.imu_sample()) {
       msg::VelocitySetpoint sp;
@@ -686,7 +687,7 @@ TEST_F(SwarmRun, AgentWhoseSamplesStopWhileTheirWriterStaysMatchedReconnects) {
   const fs::path log = dir_ / "agent1.log";
   Child agent(agentCommand(SWA_AGENT_BINARY, 1, domain_), log);
   auto source = std::make_unique<dds::Participant>("swa_test_imu_source", domain_, dds::resolveProfilesFile());
-  dds::Writer<msg::Imu> imu = source->writer<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_writer");
+  dds::Writer<msg::Imu> imu = source->writer<msg::ImuPubSubType>(dds::topics::imu(1), dds::qos::kSensorWriter);
   ASSERT_TRUE(waitFor([&] { return imu.matched() > 0; }, 30.0)) << readFile(log);
   // WHEN it writes 1 s of samples at 100 Hz, then nothing, while it stays matched
   for (std::uint32_t k = 0; k < 100; ++k) {
@@ -729,9 +730,9 @@ TEST_F(SwarmRun, AgentWhoseDetectionsStopWhileItsImuFlowsReconnects) {
   const fs::path log = dir_ / "agent1.log";
   Child agent(agentCommand(SWA_AGENT_BINARY, 1, domain_), log);
   auto source = std::make_unique<dds::Participant>("swa_test_sensor_source", domain_, dds::resolveProfilesFile());
-  dds::Writer<msg::Imu> imu = source->writer<msg::ImuPubSubType>(dds::topics::imu(1), "swa_sensor_writer");
+  dds::Writer<msg::Imu> imu = source->writer<msg::ImuPubSubType>(dds::topics::imu(1), dds::qos::kSensorWriter);
   dds::Writer<msg::Detections> detections =
-      source->writer<msg::DetectionsPubSubType>(dds::topics::detections(1), "swa_detections_gnss_writer");
+      source->writer<msg::DetectionsPubSubType>(dds::topics::detections(1), dds::qos::kDetectionsGnssWriter);
   ASSERT_TRUE(waitFor([&] { return imu.matched() > 0 && detections.matched() > 0; }, 30.0)) << readFile(log);
   // WHEN it writes IMU samples at 100 Hz for 10 s, with (empty) detection sets at 10 Hz for the first second only
   const std::string why = "swa_agent 1: no sample on swa/uav1/detections for";

@@ -11,6 +11,7 @@
 
 #include "launch_options.h"
 #include "swa/dds/deployment.h"
+#include "swa/dds/qos_profiles.h"
 #include "error_text.h"
 #include "fake_env.h"
 #include "scratch.h"
@@ -30,7 +31,7 @@ TEST(Deployment, DefaultsToLocalWithoutSecurity) {
   // THEN a process joins over the local transport with the local participant profile, without security
   EXPECT_EQ(d.transport, dds::Transport::kLocal);
   EXPECT_TRUE(d.security_dir.empty());
-  EXPECT_STREQ(dds::participantProfile(d.transport), "swa_participant");
+  EXPECT_STREQ(dds::participantProfile(d.transport), dds::qos::kParticipant);
   // AND an empty SWA_TRANSPORT means the same
   EXPECT_EQ(dds::parseDeployment(envOf({{"SWA_TRANSPORT", ""}})).transport, dds::Transport::kLocal);
 }
@@ -44,8 +45,8 @@ TEST(Deployment, EachTransportSelectsItsProfile) {
   EXPECT_EQ(ds.transport, dds::Transport::kDiscoveryServer);
   EXPECT_EQ(ds.discovery_servers, "10.1.0.1:11811;10.1.0.2:11812");
   // AND both network transports use the network participant profile
-  EXPECT_STREQ(dds::participantProfile(dds::Transport::kNetwork), "swa_participant_network");
-  EXPECT_STREQ(dds::participantProfile(dds::Transport::kDiscoveryServer), "swa_participant_network");
+  EXPECT_STREQ(dds::participantProfile(dds::Transport::kNetwork), dds::qos::kParticipantNetwork);
+  EXPECT_STREQ(dds::participantProfile(dds::Transport::kDiscoveryServer), dds::qos::kParticipantNetwork);
   // AND every transport's name parses back to it
   for (const auto t : {dds::Transport::kLocal, dds::Transport::kNetwork, dds::Transport::kDiscoveryServer}) {
     EXPECT_EQ(dds::parseTransport(dds::transportName(t)), t);

@@ -26,6 +26,7 @@
 #include "process_test.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 
 namespace swa::testing {
@@ -152,8 +153,8 @@ TEST_F(IsolationRun, AuditCatchesARogueParticipantReadingAnotherAgentsOutput) {
   // state and the ground truth (real readers: they match agent 2's and anyone's writers)
   agents_.push_back(std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, 2, domain_), dir_ / "agent2.log"));
   auto rogue = std::make_unique<dds::Participant>("swa_agent_1", domain_, dds::resolveProfilesFile());
-  rogue->reader<msg::AgentStatePubSubType>(dds::topics::state(2), "swa_state_reader", [](msg::AgentState&&) {});
-  rogue->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader", [](msg::SwarmTruth&&) {});
+  rogue->reader<msg::AgentStatePubSubType>(dds::topics::state(2), dds::qos::kStateReader, [](msg::AgentState&&) {});
+  rogue->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, dds::qos::kTruthReader, [](msg::SwarmTruth&&) {});
   // WHEN the observer has discovered both: every endpoint of agent 2 (its writer alone was once seen before its
   // readers, on a loaded host, and the completeness check below then named agent 2), and the rogue's readers
   const bool seen = waitFor(

@@ -21,6 +21,7 @@
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 
 #include "rogue_agent_test.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/wire/ros_detections.h"
 #include "swa/wire/ros_types.h"
@@ -67,10 +68,10 @@ class RogueDetections : public RogueAgentTest, public ::testing::WithParamInterf
                        "sensor:\n  input: " + GetParam() + "\n");
     if (GetParam() == "vision_msgs") {
       vision_ = rogue_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(dds::topics::visionDetections(kUav),
-                                                                            "ros2_default_writer");
+                                                                            dds::qos::kRos2DefaultWriter);
     } else {
       uvdar_ = rogue_->writer<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(dds::topics::uvdarPoses(kUav),
-                                                                                        "ros2_default_writer");
+                                                                                        dds::qos::kRos2DefaultWriter);
     }
   }
 

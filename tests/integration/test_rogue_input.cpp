@@ -25,6 +25,7 @@
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
 #include "rogue_agent_test.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/sample_queue.h"
 
 namespace swa::testing {
@@ -54,9 +55,9 @@ class RogueInput : public RogueAgentTest {
  protected:
   void SetUp() override {
     startAgentAndRogue("swa_rogue", /*dir_per_test=*/false, 37, kUav);
-    det_ = rogue_->writer<msg::DetectionsPubSubType>(dds::topics::detections(kUav), "swa_detections_gnss_writer");
-    gnss_ = rogue_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(kUav), "swa_detections_gnss_writer");
-    rogue_->reader<msg::AgentStatePubSubType>(dds::topics::state(kUav), "swa_state_reader", states_.listener());
+    det_ = rogue_->writer<msg::DetectionsPubSubType>(dds::topics::detections(kUav), dds::qos::kDetectionsGnssWriter);
+    gnss_ = rogue_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(kUav), dds::qos::kDetectionsGnssWriter);
+    rogue_->reader<msg::AgentStatePubSubType>(dds::topics::state(kUav), dds::qos::kStateReader, states_.listener());
   }
 
   bool waitMatched(double bound_s) {

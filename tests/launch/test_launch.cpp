@@ -24,6 +24,7 @@
 #include "../integration/private_shm.h"
 #include "../integration/process_test.h"
 #include "closed_loop.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/sim/scenario_io.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
@@ -266,7 +267,7 @@ TEST_F(LaunchTest, TwoSwarmsAndAStrayEndEventOnOneDomainDoNotMix) {
   Child b(b_args, dir_ / "b.log");
   // AND a stray publisher on the same domain (default partition) announcing the end of "the" scenario every 50 ms
   auto stray = std::make_unique<dds::Participant>("swa_test_stray", domain_, dds::resolveProfilesFile());
-  auto events = stray->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, "swa_event_writer");
+  auto events = stray->writer<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventWriter);
   msg::ScenarioEvent end;
   end.kind(msg::EVENT_SCENARIO_END);
   end.text("completed");

@@ -49,6 +49,7 @@
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 
 namespace swa::testing {
@@ -133,65 +134,65 @@ void createEndpoint(dds::Participant& p, Kind kind, const std::string& topic) {
   if (topic.rfind("rt/ap/", 0) == 0 || topic.rfind("rq/ap/", 0) == 0 || topic.rfind("rr/ap/", 0) == 0) {
     namespace srv = ardupilot_msgs::srv;
     if (endsWith(topic, "/imu/experimental/data")) {
-      return createWith<sensor_msgs::msg::ImuPubSubType>(p, kind, topic, "ap_out_writer", "ap_out_reader");
+      return createWith<sensor_msgs::msg::ImuPubSubType>(p, kind, topic, dds::qos::kApOutWriter, dds::qos::kApOutReader);
     }
     if (endsWith(topic, "/status")) {
-      return createWith<ardupilot_msgs::msg::StatusPubSubType>(p, kind, topic, "ap_status_writer", "ap_status_reader");
+      return createWith<ardupilot_msgs::msg::StatusPubSubType>(p, kind, topic, dds::qos::kApStatusWriter, dds::qos::kApStatusReader);
     }
     if (endsWith(topic, "/cmd_vel")) {
-      return createWith<geometry_msgs::msg::TwistStampedPubSubType>(p, kind, topic, "ap_in_writer", "ap_in_reader");
+      return createWith<geometry_msgs::msg::TwistStampedPubSubType>(p, kind, topic, dds::qos::kApInWriter, dds::qos::kApInReader);
     }
     if (endsWith(topic, "/tf")) {
-      return createWith<tf2_msgs::msg::TFMessagePubSubType>(p, kind, topic, "ap_in_writer", "ap_in_reader");
+      return createWith<tf2_msgs::msg::TFMessagePubSubType>(p, kind, topic, dds::qos::kApInWriter, dds::qos::kApInReader);
     }
     if (endsWith(topic, "/arm_motorsRequest")) {
-      return createWith<srv::ArmMotors_RequestPubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
+      return createWith<srv::ArmMotors_RequestPubSubType>(p, kind, topic, dds::qos::kApServiceWriter, dds::qos::kApServiceReader);
     }
     if (endsWith(topic, "/arm_motorsReply")) {
-      return createWith<srv::ArmMotors_ResponsePubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
+      return createWith<srv::ArmMotors_ResponsePubSubType>(p, kind, topic, dds::qos::kApServiceWriter, dds::qos::kApServiceReader);
     }
     if (endsWith(topic, "/mode_switchRequest")) {
-      return createWith<srv::ModeSwitch_RequestPubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
+      return createWith<srv::ModeSwitch_RequestPubSubType>(p, kind, topic, dds::qos::kApServiceWriter, dds::qos::kApServiceReader);
     }
     if (endsWith(topic, "/mode_switchReply")) {
-      return createWith<srv::ModeSwitch_ResponsePubSubType>(p, kind, topic, "ap_service_writer", "ap_service_reader");
+      return createWith<srv::ModeSwitch_ResponsePubSubType>(p, kind, topic, dds::qos::kApServiceWriter, dds::qos::kApServiceReader);
     }
     throw std::logic_error("test bug: no type for topic " + topic);
   }
   if (endsWith(topic, "/imu")) {
-    return createWith<msg::ImuPubSubType>(p, kind, topic, "swa_sensor_writer", "swa_sensor_reader");
+    return createWith<msg::ImuPubSubType>(p, kind, topic, dds::qos::kSensorWriter, dds::qos::kSensorReader);
   }
   if (endsWith(topic, "/detections")) {
-    return createWith<msg::DetectionsPubSubType>(p, kind, topic, "swa_detections_gnss_writer", "swa_sensor_reader");
+    return createWith<msg::DetectionsPubSubType>(p, kind, topic, dds::qos::kDetectionsGnssWriter, dds::qos::kSensorReader);
   }
   if (endsWith(topic, "/gnss")) {
-    return createWith<msg::GnssFixPubSubType>(p, kind, topic, "swa_detections_gnss_writer", "swa_sensor_reader");
+    return createWith<msg::GnssFixPubSubType>(p, kind, topic, dds::qos::kDetectionsGnssWriter, dds::qos::kSensorReader);
   }
   if (endsWith(topic, "/sensors")) {
-    return createWith<msg::SensorFramePubSubType>(p, kind, topic, "swa_frame_writer", "swa_frame_reader");
+    return createWith<msg::SensorFramePubSubType>(p, kind, topic, dds::qos::kFrameWriter, dds::qos::kFrameReader);
   }
   if (endsWith(topic, "/cmd_vel")) {
-    return createWith<msg::VelocitySetpointPubSubType>(p, kind, topic, "swa_command_writer", "swa_command_reader");
+    return createWith<msg::VelocitySetpointPubSubType>(p, kind, topic, dds::qos::kCommandWriter, dds::qos::kCommandReader);
   }
   if (endsWith(topic, "/state")) {
-    return createWith<msg::AgentStatePubSubType>(p, kind, topic, "swa_state_writer", "swa_state_reader");
+    return createWith<msg::AgentStatePubSubType>(p, kind, topic, dds::qos::kStateWriter, dds::qos::kStateReader);
   }
   if (topic == dds::topics::kTruth) {
-    return createWith<msg::SwarmTruthPubSubType>(p, kind, topic, "swa_truth_writer", "swa_truth_reader");
+    return createWith<msg::SwarmTruthPubSubType>(p, kind, topic, dds::qos::kTruthWriter, dds::qos::kTruthReader);
   }
   if (topic == dds::topics::kEvents) {
-    return createWith<msg::ScenarioEventPubSubType>(p, kind, topic, "swa_event_writer", "swa_event_reader");
+    return createWith<msg::ScenarioEventPubSubType>(p, kind, topic, dds::qos::kEventWriter, dds::qos::kEventReader);
   }
   if (topic == dds::topics::kClock) {
-    return createWith<msg::ClockPubSubType>(p, kind, topic, "swa_clock_writer", "swa_clock_reader");
+    return createWith<msg::ClockPubSubType>(p, kind, topic, dds::qos::kClockWriter, dds::qos::kClockReader);
   }
   if (endsWith(topic, "/bridge_state")) {
-    return createWith<msg::BridgeStatePubSubType>(p, kind, topic, "swa_state_writer", "swa_state_reader");
+    return createWith<msg::BridgeStatePubSubType>(p, kind, topic, dds::qos::kStateWriter, dds::qos::kStateReader);
   }
   // PX4's topics (the bridge's and the simulator's PX4 stand-in's), with PX4's QoS.
   const bool out = topic.find("/fmu/out/") != std::string::npos;
-  const char* writer = out ? "px4_out_writer" : "px4_in_writer";
-  const char* reader = out ? "px4_out_reader" : "px4_in_reader";
+  const char* writer = out ? dds::qos::kPx4OutWriter : dds::qos::kPx4InWriter;
+  const char* reader = out ? dds::qos::kPx4OutReader : dds::qos::kPx4InReader;
   if (endsWith(topic, "/vehicle_attitude")) {
     return createWith<px4_msgs::msg::VehicleAttitudePubSubType>(p, kind, topic, writer, reader);
   }
@@ -310,7 +311,7 @@ TEST_F(SecurityTest, SecureLaunchStaysCohesive) {
   // GIVEN this test's credentials, and an observer without credentials reading the ground truth
   std::atomic<int> observed{0};
   auto observer = makeParticipant("swa_test_observer", domain_, std::nullopt);
-  auto truth = observer->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, "swa_truth_reader",
+  auto truth = observer->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, dds::qos::kTruthReader,
                                                            [&observed](msg::SwarmTruth&&) { ++observed; });
   // WHEN swa_launch --secure runs the 4-UAV GNSS-loss scenario for 30 s
   const fs::path out = dir_ / "out";
@@ -483,9 +484,9 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
   // commands
   std::atomic<int> intruder_samples{0}, control_samples{0};
   auto intruder = makeParticipant("swa_intruder", domain_, std::nullopt);
-  auto intruder_imu = intruder->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_reader",
+  auto intruder_imu = intruder->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), dds::qos::kFrameReader,
                                                                    [&](msg::SensorFrame&&) { ++intruder_samples; });
-  auto intruder_cmd = intruder->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
+  auto intruder_cmd = intruder->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), dds::qos::kCommandWriter);
   // The control recovers from a stalled authentication handshake as an agent does (swa/dds/handshake_watch.h): Fast
   // DDS 2.9 now and then never completes one pair's (deploy/README.md; seen here in CI: the control matched nothing in
   // 20 s). That is the product's own reconnection, which a user's node gets too, not a retry of the check.
@@ -496,9 +497,9 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
   const auto connectControl = [&] {
     control.reset();
     control = makeParticipant("swa_agent_1", domain_, creds_);
-    control_imu = control->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_reader",
+    control_imu = control->reader<msg::SensorFramePubSubType>(dds::topics::sensors(1), dds::qos::kFrameReader,
                                                               [&](msg::SensorFrame&&) { ++control_samples; });
-    control_cmd = control->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), "swa_command_writer");
+    control_cmd = control->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), dds::qos::kCommandWriter);
     control_watch.connected(SteadyClock::now());
   };
   connectControl();
@@ -531,7 +532,7 @@ TEST_F(SecurityTest, ParticipantWithoutCredentialsMatchesNothing) {
 
   // AND the intruder itself can match: an unsecured peer's writer on the same topic is found within seconds
   auto peer = makeParticipant("swa_intruder_peer", domain_, std::nullopt);
-  auto peer_imu = peer->writer<msg::SensorFramePubSubType>(dds::topics::sensors(1), "swa_frame_writer");
+  auto peer_imu = peer->writer<msg::SensorFramePubSubType>(dds::topics::sensors(1), dds::qos::kFrameWriter);
   EXPECT_TRUE(waitFor([&] { return intruder_imu.matched() == 1 && peer_imu.matched() == 1; }, 10.0))
       << "the unsecured reader did not even match an unsecured writer: intruder " << intruder_imu.matched()
       << ", peer " << peer_imu.matched();

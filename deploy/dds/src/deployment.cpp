@@ -8,6 +8,7 @@
 
 #include "name_table.h"
 #include "swa/app/number.h"
+#include "swa/dds/qos_profiles.h"
 
 namespace swa::dds {
 namespace {
@@ -38,7 +39,7 @@ std::optional<Transport> parseTransport(const std::string& name) { return detail
 const char* participantProfile(Transport t) {
   // discovery-server uses the network profile: the CLIENT role and the servers are set from SWA_DISCOVERY_SERVER
   // (addresses known only at deployment, not in a shipped XML file).
-  return t == Transport::kLocal ? "swa_participant" : "swa_participant_network";
+  return t == Transport::kLocal ? qos::kParticipant : qos::kParticipantNetwork;
 }
 
 std::vector<std::string> checkServerList(const std::string& list) {

@@ -2,6 +2,7 @@
 
 #include <type_traits>
 
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/raw_type.h"
 
 namespace swa::recording {
@@ -89,7 +90,7 @@ UavTaps tapUavTopics(dds::Participant& participant, Recording& recording, int ua
 }
 
 void tapClock(dds::Participant& participant, Recording& recording) {
-  tap<msg::ClockPubSubType>(participant, recording, dds::topics::kClock, kClockProfile);
+  tap<msg::ClockPubSubType>(participant, recording, dds::topics::kClock, dds::qos::kClockReader);
 }
 
 }  // namespace swa::recording

@@ -19,6 +19,7 @@
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
 #include "swa/recording/recording.h"
 
@@ -41,10 +42,6 @@ std::uint16_t recordingChannel(Recording& recording, const dds::Participant& par
 
 // The reader profiles of the monitor's own inputs (deploy/dds/profiles.xml), named once for the monitor and for the
 // bare-reader baseline of tests/bench/bench_record_reader.cpp.
-constexpr const char* kTruthProfile = "swa_truth_reader";
-constexpr const char* kEventProfile = "swa_event_reader";
-constexpr const char* kStateProfile = "swa_state_reader";
-constexpr const char* kClockProfile = "swa_clock_reader";
 
 // The topics the monitor reads only to record them, per UAV, each with the reader profile matching its writer:
 // `visit.template operator()<PubSubType>(swa_topic, profile)`. cmd_vel comes last.
@@ -77,22 +74,22 @@ void tapClock(dds::Participant& participant, Recording& recording);
 template <class Visit>
 void forEachUavTap(int uav, Visit&& visit) {
   namespace topics = dds::topics;
-  visit.template operator()<msg::DetectionsPubSubType>(topics::detections(uav), "swa_detections_gnss_reader");
-  visit.template operator()<msg::ImuPubSubType>(topics::imu(uav), "swa_sensor_reader");
-  visit.template operator()<msg::GnssFixPubSubType>(topics::gnss(uav), "swa_detections_gnss_reader");
+  visit.template operator()<msg::DetectionsPubSubType>(topics::detections(uav), dds::qos::kDetectionsGnssReader);
+  visit.template operator()<msg::ImuPubSubType>(topics::imu(uav), dds::qos::kSensorReader);
+  visit.template operator()<msg::GnssFixPubSubType>(topics::gnss(uav), dds::qos::kDetectionsGnssReader);
   // The simulator's frames (SWA naming): the recorder files each part under its own topic (recording_taps.cpp).
-  visit.template operator()<msg::SensorFramePubSubType>(topics::sensors(uav), "swa_frame_reader");
-  visit.template operator()<msg::BridgeStatePubSubType>(topics::bridgeState(uav), kStateProfile);
-  visit.template operator()<msg::VelocitySetpointPubSubType>(topics::cmdVel(uav), "swa_command_reader");
+  visit.template operator()<msg::SensorFramePubSubType>(topics::sensors(uav), dds::qos::kFrameReader);
+  visit.template operator()<msg::BridgeStatePubSubType>(topics::bridgeState(uav), dds::qos::kStateReader);
+  visit.template operator()<msg::VelocitySetpointPubSubType>(topics::cmdVel(uav), dds::qos::kCommandReader);
 }
 
 template <class Visit>
 void forEachRecordedTopic(int uav_count, Visit&& visit) {
-  visit.template operator()<msg::SwarmTruthPubSubType>(dds::topics::kTruth, kTruthProfile);
-  visit.template operator()<msg::ScenarioEventPubSubType>(dds::topics::kEvents, kEventProfile);
-  visit.template operator()<msg::ClockPubSubType>(dds::topics::kClock, kClockProfile);
+  visit.template operator()<msg::SwarmTruthPubSubType>(dds::topics::kTruth, dds::qos::kTruthReader);
+  visit.template operator()<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventReader);
+  visit.template operator()<msg::ClockPubSubType>(dds::topics::kClock, dds::qos::kClockReader);
   for (int uav = 0; uav < uav_count; ++uav) {
-    visit.template operator()<msg::AgentStatePubSubType>(dds::topics::state(uav), kStateProfile);
+    visit.template operator()<msg::AgentStatePubSubType>(dds::topics::state(uav), dds::qos::kStateReader);
     forEachUavTap(uav, visit);
   }
 }

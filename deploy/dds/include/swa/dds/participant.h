@@ -2,8 +2,8 @@
 // RAII Fast DDS participant with typed writer / reader helpers, shared by every SWA node.
 //
 //   swa::dds::Participant p("swa_agent_3", domain, swa::dds::resolveProfilesFile());
-//   auto cmd = p.writer<swa::msg::VelocitySetpointPubSubType>(topics::cmdVel(3), "swa_command_writer");
-//   auto imu = p.reader<swa::msg::ImuPubSubType>(topics::imu(3), "swa_sensor_reader",
+//   auto cmd = p.writer<swa::msg::VelocitySetpointPubSubType>(topics::cmdVel(3), qos::kCommandWriter);
+//   auto imu = p.reader<swa::msg::ImuPubSubType>(topics::imu(3), qos::kSensorReader,
 //                                                [&](swa::msg::Imu&& m) { queue.push(std::move(m)); });
 //
 // QoS comes only from the XML profiles (deploy/dds/profiles.xml, loaded before anything else); the code names a
@@ -43,6 +43,7 @@
 
 #include "swa/dds/naming.h"
 #include "swa/dds/peer_book.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/raw_type.h"
 
 namespace swa::dds {
@@ -53,7 +54,6 @@ class DdsError : public std::runtime_error {
 };
 
 // Name of the participant profile every SWA participant is created from.
-constexpr const char* kParticipantProfile = "swa_participant";
 
 // Longest wait for outstanding acknowledgments on destruction: above the profile's 4 s participant lease.
 constexpr double kShutdownAckWaitS = 6.0;
@@ -192,7 +192,7 @@ class Reader {
 class Participant {
  public:
   // Loads `profiles_file` (once per process; a second Participant must name the same file), then creates the
-  // participant `name` on `domain_id` from the profile kParticipantProfile. Throws DdsError with a readable reason.
+  // participant `name` on `domain_id` from the profile qos::kParticipant. Throws DdsError with a readable reason.
   Participant(const std::string& name, int domain_id, const std::string& profiles_file);
   ~Participant();
   Participant(const Participant&) = delete;
