@@ -6,9 +6,10 @@ set -euo pipefail
 # libgmock-dev: Debian's GTestConfig.cmake declares the gmock targets too and fails to import without it.
 # libnetfilter-queue-dev: the packet-loss emulator of the `loss` tests (tests/loss/swa_netem.cpp).
 # libwebsocketpp-dev, libasio-dev: the monitor's live view (swa_monitor --live: a WebSocket server, standalone asio).
+# clang-format: the ctest sources_are_clang_formatted (tests/layers/test_format.sh).
 # ninja-build, ccache, mold: build speed only (deploy/build.sh, CMakeLists.txt); the build works without them.
 packages=(
-  build-essential cmake ninja-build ccache mold
+  build-essential cmake ninja-build ccache mold clang-format
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools openssl libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev

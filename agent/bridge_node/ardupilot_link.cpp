@@ -41,28 +41,29 @@ class ArdupilotLink : public VehicleLink {
       : options_(options), ns_(apNamespace(options)), events_(std::move(events)), navsat_(options.navsat) {}
 
   void connect(dds::Participant& p) override {
-    cmd_vel_ = p.writer<geometry_msgs::msg::TwistStampedPubSubType>(topics::apTopic(ns_, "cmd_vel"), dds::qos::kApInWriter);
+    cmd_vel_ =
+        p.writer<geometry_msgs::msg::TwistStampedPubSubType>(topics::apTopic(ns_, "cmd_vel"), dds::qos::kApInWriter);
     if (options_.odometry.mode != autopilot::OdometryMode::kOff) {
       tf_ = p.writer<tf2_msgs::msg::TFMessagePubSubType>(odometryTopic(), dds::qos::kApInWriter);
     }
     if (options_.core.engage) {
-      arm_request_ = p.writer<srv::ArmMotors_RequestPubSubType>(topics::apRequest(ns_, "arm_motors"),
-                                                                dds::qos::kApServiceWriter);
+      arm_request_ =
+          p.writer<srv::ArmMotors_RequestPubSubType>(topics::apRequest(ns_, "arm_motors"), dds::qos::kApServiceWriter);
       mode_request_ = p.writer<srv::ModeSwitch_RequestPubSubType>(topics::apRequest(ns_, "mode_switch"),
                                                                   dds::qos::kApServiceWriter);
       arm_reply_ = p.readerWithIds<srv::ArmMotors_ResponsePubSubType>(
           topics::apReply(ns_, "arm_motors"), dds::qos::kApServiceReader,
           [this](srv::ArmMotors_Response&& m, const dds::SampleIds& ids) {
-            if (isOurs(ids)) events_.log(std::string("ArduPilot answered the arm request: ") +
-                                         (m.result() ? "armed" : "refused"));
+            if (isOurs(ids))
+              events_.log(std::string("ArduPilot answered the arm request: ") + (m.result() ? "armed" : "refused"));
           });
       mode_reply_ = p.readerWithIds<srv::ModeSwitch_ResponsePubSubType>(
           topics::apReply(ns_, "mode_switch"), dds::qos::kApServiceReader,
           [this](srv::ModeSwitch_Response&& m, const dds::SampleIds& ids) {
             if (isOurs(ids)) {
               events_.log(std::string("ArduPilot answered the GUIDED request: ") +
-                          (m.status() ? "switched" : "refused") + ", mode now " + ardupilot::copterModeName(m.curr_mode()) + " (" +
-                          std::to_string(m.curr_mode()) + ")");
+                          (m.status() ? "switched" : "refused") + ", mode now " +
+                          ardupilot::copterModeName(m.curr_mode()) + " (" + std::to_string(m.curr_mode()) + ")");
             }
           });
     }
@@ -74,8 +75,7 @@ class ArdupilotLink : public VehicleLink {
           });
     }
     status_reader_ = p.reader<ardupilot_msgs::msg::StatusPubSubType>(
-        topics::apTopic(ns_, "status"), dds::qos::kApStatusReader,
-        [this](ardupilot_msgs::msg::Status&& m) {
+        topics::apTopic(ns_, "status"), dds::qos::kApStatusReader, [this](ardupilot_msgs::msg::Status&& m) {
           disarmed_ = !m.armed();
           events_.status(m.armed(), m.mode());
           const auto& failsafes = m.failsafe();
@@ -138,16 +138,18 @@ class ArdupilotLink : public VehicleLink {
   std::string description() const override {
     const std::string order = options_.ap_quaternion ? ardupilot::quaternionLayoutName(*options_.ap_quaternion)
                                                      : "the quaternion order gravity tells";
-    return "ArduPilot namespace '" + ns_ + "' (" + topics::apTopic(ns_, "imu/experimental/data") + " read as " +
-           order + ", " + topics::apTopic(ns_, "status") + ")";
+    return "ArduPilot namespace '" + ns_ + "' (" + topics::apTopic(ns_, "imu/experimental/data") + " read as " + order +
+           ", " + topics::apTopic(ns_, "status") + ")";
   }
   std::string commandTopic() const override { return topics::apTopic(ns_, "cmd_vel"); }
   std::string noReaderHint() const override {
     return "is ArduPilot's DDS client (DDS_ENABLE 1) connected to a Micro XRCE-DDS agent on this domain, with its "
-           "topics under '" + ns_ + "' (DDS_USE_NS 1 puts them under ap/v<MAV_SYSID>; without it, --ap-namespace ap)?";
+           "topics under '" +
+           ns_ + "' (DDS_USE_NS 1 puts them under ap/v<MAV_SYSID>; without it, --ap-namespace ap)?";
   }
   std::string noStatusHint() const override {
-    return "no " + topics::apTopic(ns_, "status") + ": ArduPilot releases before the status message (Copter 4.6) "
+    return "no " + topics::apTopic(ns_, "status") +
+           ": ArduPilot releases before the status message (Copter 4.6) "
            "do not send it; --engage needs it";
   }
 
@@ -197,14 +199,14 @@ class ArdupilotLink : public VehicleLink {
   std::atomic<std::uint64_t> bad_stamps_{0};
   ardupilot::QuaternionOrderFinder order_;  // --ap-quaternion auto
   std::atomic<bool> disarmed_{false};       // the status says so (no status yet: not known to be on the ground)
-  std::mutex gnss_mutex_;  // the fixes and the IMU's time arrive on two readers (two threads)
+  std::mutex gnss_mutex_;                   // the fixes and the IMU's time arrive on two readers (two threads)
   ardupilot::NavSatForward navsat_;
   std::mutex requests_mutex_;
   std::array<dds::SampleId, 8> requests_{};  // the newest requests sent
   std::size_t next_ = 0;
 
   dds::Writer<geometry_msgs::msg::TwistStamped> cmd_vel_;
-  dds::Writer<tf2_msgs::msg::TFMessage> tf_;  // not with --odometry off
+  dds::Writer<tf2_msgs::msg::TFMessage> tf_;           // not with --odometry off
   dds::Writer<srv::ArmMotors_Request> arm_request_;    // --engage only
   dds::Writer<srv::ModeSwitch_Request> mode_request_;  // --engage only
   dds::Reader<srv::ArmMotors_Response> arm_reply_;

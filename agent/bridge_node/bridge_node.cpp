@@ -56,13 +56,14 @@ BridgeNode::BridgeNode(const BridgeOptions& options, int domain_id, const std::s
       domain_id_(domain_id),
       profiles_file_(profiles_file),
       started_(std::chrono::steady_clock::now()),
-      vehicle_(makeLink(options,
-                        VehicleEvents{[this](std::uint64_t t, const px4::Quaternion& q,
-                                             const std::optional<ardupilot::SpecificForce>& f) { onAttitude({t, q, f}); },
-                                      [this](bool armed, std::uint8_t mode) { onStatus(armed, mode); },
-                                      [this](const agent::GnssSample& g) { onGnss(g); },
-                                      [this](const std::string& line) { onVehicleLog(line); },
-                                      [this](bool unaided) { onEstimator(unaided); }})),
+      vehicle_(makeLink(options, VehicleEvents{[this](std::uint64_t t, const px4::Quaternion& q,
+                                                      const std::optional<ardupilot::SpecificForce>& f) {
+                                                 onAttitude({t, q, f});
+                                               },
+                                               [this](bool armed, std::uint8_t mode) { onStatus(armed, mode); },
+                                               [this](const agent::GnssSample& g) { onGnss(g); },
+                                               [this](const std::string& line) { onVehicleLog(line); },
+                                               [this](bool unaided) { onEstimator(unaided); }})),
       core_(options.core),
       gate_(1, kCommandHandover),
       odometry_(options.odometry),
@@ -142,8 +143,7 @@ void BridgeNode::forward(const Attitude& a, std::chrono::steady_clock::time_poin
   if (const std::optional<agent::ImuSample> imu = core_.onAttitude(a.timestamp_us, a.q, now, a.force_frd)) {
     if (imu_seq_ == 0) {
       std::fprintf(stderr, "swa_px4_bridge %d: first attitude from %s (timestamp %llu us), forwarding to %s\n", id_,
-                   core_.autopilot().name, static_cast<unsigned long long>(a.timestamp_us),
-                   topics::imu(id_).c_str());
+                   core_.autopilot().name, static_cast<unsigned long long>(a.timestamp_us), topics::imu(id_).c_str());
     }
     // With an order given by hand (auto decides it from gravity, which a wrong order contradicts).
     if (!upside_down_reported_ && options_.autopilot == AutopilotKind::kArdupilot && options_.ap_quaternion &&
@@ -213,8 +213,7 @@ void BridgeNode::onAgentState(msg::AgentState&& m) {
   const agent::Diagnostics d = wire::fromMsg(m).diagnostics;
   const bool was_feeding = odometry_.feeding();
   const std::uint64_t vehicle_us = newest_attitude_->timestamp_us;
-  const std::optional<autopilot::Odometry> o =
-      odometry_.onState(d, px4::stampNsOf(vehicle_us).value_or(0));
+  const std::optional<autopilot::Odometry> o = odometry_.onState(d, px4::stampNsOf(vehicle_us).value_or(0));
   if (o) vehicle_->sendOdometry(*o, newest_attitude_->q);
   if (odometry_.feeding() == was_feeding) return;
   if (odometry_.feeding()) {
@@ -248,14 +247,15 @@ void BridgeNode::onEstimator(bool unaided) {
     return;
   }
   not_fusing_reported_ = true;
-  std::fprintf(stderr,
-               "swa_px4_bridge %d: %s reports no aiding (%s) although this bridge has fed it the agent's estimate on "
-               "%s for %.1f s: it is not fusing it; %s\n",
-               id_, core_.autopilot().name,
-               options_.autopilot == AutopilotKind::kArdupilot ? "EKF failsafe" : "vehicle_local_position.dead_reckoning",
-               vehicle_->odometryTopic().c_str(),
-               static_cast<double>(newest_attitude_->timestamp_us - *feeding_since_us_) * 1e-6,
-               vehicle_->odometryHint().c_str());
+  std::fprintf(
+      stderr,
+      "swa_px4_bridge %d: %s reports no aiding (%s) although this bridge has fed it the agent's estimate on "
+      "%s for %.1f s: it is not fusing it; %s\n",
+      id_, core_.autopilot().name,
+      options_.autopilot == AutopilotKind::kArdupilot ? "EKF failsafe" : "vehicle_local_position.dead_reckoning",
+      vehicle_->odometryTopic().c_str(),
+      static_cast<double>(newest_attitude_->timestamp_us - *feeding_since_us_) * 1e-6,
+      vehicle_->odometryHint().c_str());
 }
 
 void BridgeNode::onVehicleLog(const std::string& line) {
@@ -345,11 +345,12 @@ int BridgeNode::run() {
     // mend it).
     if (handshake_.stalled(running, reads && agent_matched && vehicle_->attitudeMatched() && !agent_lost,
                            std::chrono::steady_clock::now(), participant_->lastAuthentication())) {
-      std::fprintf(stderr,
-                   "swa_px4_bridge %d: the vehicle's or the agent's endpoints not matched, or the agent lost while they "
-                   "are, with DDS Security on (a stalled handshake or a broken channel, see deploy/README.md): "
-                   "re-creating the participant (reconnection %d)\n",
-                   id_, handshake_.reconnects());
+      std::fprintf(
+          stderr,
+          "swa_px4_bridge %d: the vehicle's or the agent's endpoints not matched, or the agent lost while they "
+          "are, with DDS Security on (a stalled handshake or a broken channel, see deploy/README.md): "
+          "re-creating the participant (reconnection %d)\n",
+          id_, handshake_.reconnects());
       reconnect();
       continue;
     }
@@ -371,8 +372,8 @@ int BridgeNode::run() {
     } else if (!vehicle_reads_ && !waiting_reported &&
                std::chrono::steady_clock::now() - started_ > std::chrono::seconds(5)) {
       waiting_reported = true;
-      std::fprintf(stderr, "swa_px4_bridge %d: no reader of %s after 5 s: %s\n", id_,
-                   vehicle_->commandTopic().c_str(), vehicle_->noReaderHint().c_str());
+      std::fprintf(stderr, "swa_px4_bridge %d: no reader of %s after 5 s: %s\n", id_, vehicle_->commandTopic().c_str(),
+                   vehicle_->noReaderHint().c_str());
     }
     // PX4 sends vehicle_status at least every second, ArduPilot its status on every change (transient local: a late
     // reader gets the newest); attitude but no status is the mark of another release.
@@ -393,23 +394,20 @@ int BridgeNode::run() {
 
 void BridgeNode::logFinalCounts() const {
   const autopilot::BridgeCounters& c = core_.counters();
-  std::fprintf(stderr,
-               "swa_px4_bridge %d: stopping on signal %d after %llu attitude samples (%llu rejected, %llu out of "
-               "order), %llu commands (%llu applied, %llu replayed, %llu not newer, %llu for unknown samples, %llu "
-               "non-finite, %llu clamped, %llu from another writer); sent %llu setpoints (and %llu answers again to a "
-               "repeated sample), %llu heartbeats, %llu requests\n",
-               id_, app::shutdownSignal(), static_cast<unsigned long long>(c.attitude_in),
-               static_cast<unsigned long long>(c.attitude_rejected),
-               static_cast<unsigned long long>(c.attitude_out_of_order), static_cast<unsigned long long>(c.commands_in),
-               static_cast<unsigned long long>(c.commands_applied),
-               static_cast<unsigned long long>(c.commands_replayed),
-               static_cast<unsigned long long>(c.commands_not_newer),
-               static_cast<unsigned long long>(c.commands_unknown_sample),
-               static_cast<unsigned long long>(c.commands_nonfinite),
-               static_cast<unsigned long long>(c.commands_clamped), static_cast<unsigned long long>(gate_.refused()),
-               static_cast<unsigned long long>(c.setpoints_out), static_cast<unsigned long long>(answers_repeated_),
-               static_cast<unsigned long long>(c.heartbeats_out),
-               static_cast<unsigned long long>(c.requests_out));
+  std::fprintf(
+      stderr,
+      "swa_px4_bridge %d: stopping on signal %d after %llu attitude samples (%llu rejected, %llu out of "
+      "order), %llu commands (%llu applied, %llu replayed, %llu not newer, %llu for unknown samples, %llu "
+      "non-finite, %llu clamped, %llu from another writer); sent %llu setpoints (and %llu answers again to a "
+      "repeated sample), %llu heartbeats, %llu requests\n",
+      id_, app::shutdownSignal(), static_cast<unsigned long long>(c.attitude_in),
+      static_cast<unsigned long long>(c.attitude_rejected), static_cast<unsigned long long>(c.attitude_out_of_order),
+      static_cast<unsigned long long>(c.commands_in), static_cast<unsigned long long>(c.commands_applied),
+      static_cast<unsigned long long>(c.commands_replayed), static_cast<unsigned long long>(c.commands_not_newer),
+      static_cast<unsigned long long>(c.commands_unknown_sample), static_cast<unsigned long long>(c.commands_nonfinite),
+      static_cast<unsigned long long>(c.commands_clamped), static_cast<unsigned long long>(gate_.refused()),
+      static_cast<unsigned long long>(c.setpoints_out), static_cast<unsigned long long>(answers_repeated_),
+      static_cast<unsigned long long>(c.heartbeats_out), static_cast<unsigned long long>(c.requests_out));
   if (const std::optional<px4::GnssForwardCounters> g = vehicle_->gnssCounters()) logGnssCounts(*g);
   const auto us = [](const app::LogHistogram& h, double q) { return h.quantileNs(q) * 1e-3; };
   std::fprintf(stderr,
@@ -442,14 +440,14 @@ void BridgeNode::writeSummary() const {
       << ",\n  \"commands_applied\": " << c.commands_applied << ",\n  \"setpoints_out\": " << c.setpoints_out
       << ",\n  \"heartbeats_out\": " << c.heartbeats_out << ",\n  \"answered_samples\": " << hop_.count()
       << ",\n  \"hop_p50_us\": " << us(hop_, 0.5) << ",\n  \"hop_p99_us\": " << us(hop_, 0.99)
-      << ",\n  \"agent_loop_p50_us\": " << us(agent_loop_, 0.5) << ",\n  \"agent_loop_p99_us\": "
-      << us(agent_loop_, 0.99) << ",\n  \"bridge_part_p50_us\": " << us(bridge_part_, 0.5)
+      << ",\n  \"agent_loop_p50_us\": " << us(agent_loop_, 0.5)
+      << ",\n  \"agent_loop_p99_us\": " << us(agent_loop_, 0.99)
+      << ",\n  \"bridge_part_p50_us\": " << us(bridge_part_, 0.5)
       << ",\n  \"bridge_part_p99_us\": " << us(bridge_part_, 0.99);
   // GNSS forwarded from the vehicle only (PX4 without --no-gnss): a count of nothing would claim a fact.
   if (const std::optional<px4::GnssForwardCounters> g = vehicle_->gnssCounters()) {
     out << ",\n  \"gnss_forwarded\": " << g->forwarded << ",\n  \"gnss_invalid_forwarded\": " << g->invalid_forwarded
-        << ",\n  \"origin_changes\": " << g->origin_changes
-        << ",\n  \"unusable_reference\": " << g->unusable_reference;
+        << ",\n  \"origin_changes\": " << g->origin_changes << ",\n  \"unusable_reference\": " << g->unusable_reference;
   }
   out << "\n}\n";
   if (!out.flush()) {

@@ -93,7 +93,7 @@ class BridgeNode : public app::Role {
   std::uint32_t gnss_seq_ = 0;
   bool gnss_reported_ = false, last_gnss_valid_ = false;
   dds::CommandGate gate_;
-  std::optional<Attitude> pending_;  // before the vehicle reads our stream
+  std::optional<Attitude> pending_;          // before the vehicle reads our stream
   std::optional<Attitude> newest_attitude_;  // the vehicle's clock and attitude for the odometry
   autopilot::OdometryFeed odometry_;
   std::optional<std::uint64_t> feeding_since_us_;  // vehicle time the feed last started

@@ -62,11 +62,11 @@ Writes
 The same rules as for PX4, but ArduPilot has no heartbeat: when the stream stops, its GUIDED velocity timeout (GUID_TIMEOUT) stops the vehicle. ArduPilot accepts velocity commands only when armed and in GUIDED.)";
 
 app::Cli makeCli(BridgeOptions& o) {
-  app::Cli cli("swa_px4_bridge",
-               "the autopilot bridge of one UAV: PX4 " + px4::releaseList() +
-                   " (uXRCE-DDS topics) or ArduPilot (AP_DDS) <-> its swa_agent.");
-  cli.usage("swa_px4_bridge --id I [--autopilot px4|ardupilot] [--px4-release R] [--px4-namespace NS] [--engage] "
-            "[--domain D] [options]");
+  app::Cli cli("swa_px4_bridge", "the autopilot bridge of one UAV: PX4 " + px4::releaseList() +
+                                     " (uXRCE-DDS topics) or ArduPilot (AP_DDS) <-> its swa_agent.");
+  cli.usage(
+      "swa_px4_bridge --id I [--autopilot px4|ardupilot] [--px4-release R] [--px4-namespace NS] [--engage] "
+      "[--domain D] [options]");
   cli.details(kDetails);
   cli.integer("--id", "I", o.id, 0, kMaxUavId, "a UAV id", "UAV index (its agent's --id); participant swa_bridge_<I>");
   cli.required("--id");
@@ -157,15 +157,17 @@ app::Cli makeCli(BridgeOptions& o) {
   cli.choice(
       "--odometry", "WHEN", {"gnss-loss", "always", "off"},
       [&o](std::size_t k) {
-        o.odometry.mode = k == 0 ? autopilot::OdometryMode::kWhileGnssLost
-                                 : k == 1 ? autopilot::OdometryMode::kAlways : autopilot::OdometryMode::kOff;
+        o.odometry.mode = k == 0   ? autopilot::OdometryMode::kWhileGnssLost
+                          : k == 1 ? autopilot::OdometryMode::kAlways
+                                   : autopilot::OdometryMode::kOff;
       },
       "when the agent's estimate goes to the autopilot as external odometry, which keeps its estimator valid without "
       "GNSS: gnss-loss (default: while the agent has no GNSS, so the autopilot's own GNSS is never fought), always, "
       "or off (a real autopilot then leaves SWA's control seconds after GNSS is lost)");
   cli.flag("--no-odometry", o.no_odometry, "the same as --odometry off");
   cli.flag("--engage", o.core.engage,
-           "arm and switch to PX4's offboard or ArduPilot's GUIDED once the agent's stream has run for 1 s (bench tests, simulation; "
+           "arm and switch to PX4's offboard or ArduPilot's GUIDED once the agent's stream has run for 1 s (bench "
+           "tests, simulation; "
            "never on a flight without a pilot who can take over)");
   cli.domain(o.domain, dds::kMaxDomainId);
   cli.path("--summary-out", "FILE", o.summary_out,
@@ -186,7 +188,8 @@ void finish(BridgeOptions& o, const app::Cli&, app::Problems& problems) {
   if (o.autopilot == AutopilotKind::kArdupilot) {
     o.core.autopilot = autopilot::ardupilotAutopilot();
     if (o.px4_namespace || o.px4_release_given || o.target_system != 0) {
-      problems.push_back("--px4-namespace, --px4-release and --target-system are PX4's: not with --autopilot ardupilot");
+      problems.push_back(
+          "--px4-namespace, --px4-release and --target-system are PX4's: not with --autopilot ardupilot");
     }
   } else if (o.ap_namespace || o.gnss_silence_given) {
     problems.push_back("--ap-namespace and --gnss-silence-s are ArduPilot's: add --autopilot ardupilot");

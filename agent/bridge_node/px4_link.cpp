@@ -45,12 +45,12 @@ class Px4Link : public VehicleLink {
 
   void connect(dds::Participant& p) override {
     setpoint_ = p.writer<px4_msgs::msg::TrajectorySetpointPubSubType>(topics::px4In(ns_, "trajectory_setpoint"),
-                                                                        dds::qos::kPx4InWriter);
+                                                                      dds::qos::kPx4InWriter);
     offboard_ = p.writer<px4_msgs::msg::OffboardControlModePubSubType>(topics::px4In(ns_, "offboard_control_mode"),
-                                                                         dds::qos::kPx4InWriter);
+                                                                       dds::qos::kPx4InWriter);
     if (options_.core.engage) {
-      vehicle_command_ =
-          p.writer<px4_msgs::msg::VehicleCommandPubSubType>(topics::px4In(ns_, "vehicle_command"), dds::qos::kPx4InWriter);
+      vehicle_command_ = p.writer<px4_msgs::msg::VehicleCommandPubSubType>(topics::px4In(ns_, "vehicle_command"),
+                                                                           dds::qos::kPx4InWriter);
     }
     if (options_.odometry.mode != autopilot::OdometryMode::kOff) {
       odometry_ = p.writer<px4_msgs::msg::VehicleOdometryPubSubType>(odometryTopic(), dds::qos::kPx4InWriter);
@@ -85,7 +85,8 @@ class Px4Link : public VehicleLink {
           std::optional<ardupilot::SpecificForce> force;
           {
             const std::lock_guard<std::mutex> lock(accel_mutex_);
-            if (const auto r = accel_.pairWith(m.timestamp_sample())) force = ardupilot::SpecificForce{r->x, r->y, r->z};
+            if (const auto r = accel_.pairWith(m.timestamp_sample()))
+              force = ardupilot::SpecificForce{r->x, r->y, r->z};
           }
           events_.attitude(m.timestamp(), wire::quaternionOf(m), force);
         });
@@ -204,7 +205,7 @@ class Px4Link : public VehicleLink {
   dds::Writer<px4_msgs::msg::VehicleCommand> vehicle_command_;  // --engage only
   dds::Writer<px4_msgs::msg::VehicleOdometry> odometry_;        // not with --odometry off
   dds::Reader<px4_msgs::msg::VehicleAttitude> attitude_reader_;
-  dds::Reader<px4_msgs::msg::SensorCombined> accel_reader_;  // sensor_combined: the accelerometer
+  dds::Reader<px4_msgs::msg::SensorCombined> accel_reader_;                   // sensor_combined: the accelerometer
   dds::Reader<px4_msgs::msg::VehicleStatus> status_reader_;                   // v1.15
   dds::Reader<px4_v1_16::px4_msgs::msg::VehicleStatus> status_reader_v1_16_;  // v1.16 and later
   dds::Reader<px4_msgs::msg::VehicleCommandAck> ack_reader_;

@@ -29,7 +29,7 @@ struct VehicleEvents {
       attitude;
   std::function<void(bool armed, std::uint8_t mode)> status;
   std::function<void(const agent::GnssSample& gnss)> gnss;  // the vehicle's fix, in SWA's terms (PX4 only so far)
-  std::function<void(const std::string& line)> log;          // an answer to a request, for the log
+  std::function<void(const std::string& line)> log;         // an answer to a request, for the log
   // The vehicle's estimator says it has no aiding (PX4: vehicle_local_position.dead_reckoning, read with GNSS
   // forwarding; ArduPilot: the EKF failsafe in its status): with odometry fed, it is not fusing it.
   std::function<void(bool unaided)> estimator;
@@ -59,10 +59,10 @@ class VehicleLink {
   virtual std::optional<px4::GnssForwardCounters> gnssCounters() const { return std::nullopt; }
 
   // For the log.
-  virtual std::string description() const = 0;    // the autopilot, its namespace and topics
-  virtual std::string commandTopic() const = 0;   // where the stream goes
-  virtual std::string noReaderHint() const = 0;   // nothing reads the stream after 5 s
-  virtual std::string noStatusHint() const = 0;   // attitude but no state after 5 s
+  virtual std::string description() const = 0;   // the autopilot, its namespace and topics
+  virtual std::string commandTopic() const = 0;  // where the stream goes
+  virtual std::string noReaderHint() const = 0;  // nothing reads the stream after 5 s
+  virtual std::string noStatusHint() const = 0;  // attitude but no state after 5 s
 };
 
 std::unique_ptr<VehicleLink> makePx4Link(const BridgeOptions& options, VehicleEvents events);

@@ -24,16 +24,17 @@ constexpr double kMaxMissionTime_s = 1e6;
 // mission.legs: a list of legs, each a velocity over a time or a point at a speed (mission.h).
 params::Spec legsSpec() {
   params::Spec s = params::makeSpec("mission.legs", params::Kind::kRecordList, "");
-  s.meaning = "the swarm's plan, the same for every agent: legs flown one after the other from mission.start, then "
-              "a hold; a velocity over a time, or a point (relative to where the swarm was at the start) at a speed";
+  s.meaning =
+      "the swarm's plan, the same for every agent: legs flown one after the other from mission.start, then "
+      "a hold; a velocity over a time, or a point (relative to where the swarm was at the start) at a speed";
   params::Spec velocity = params::makeSpec("velocity_mps", params::Kind::kReal, "m/s",
                                            params::closed(-kMaxMissionSpeed_mps, kMaxMissionSpeed_mps));
   velocity.components = 2;
-  params::Spec to = params::makeSpec("to_m", params::Kind::kReal, "m",
-                                     params::closed(-kMaxMissionDistance_m, kMaxMissionDistance_m));
+  params::Spec to =
+      params::makeSpec("to_m", params::Kind::kReal, "m", params::closed(-kMaxMissionDistance_m, kMaxMissionDistance_m));
   to.components = 2;
-  s.fields = {velocity, params::makeSpec("duration_s", params::Kind::kReal, "s", openClosed(0, kMaxMissionTime_s)),
-              to, params::makeSpec("speed_mps", params::Kind::kReal, "m/s", openClosed(0, kMaxMissionSpeed_mps))};
+  s.fields = {velocity, params::makeSpec("duration_s", params::Kind::kReal, "s", openClosed(0, kMaxMissionTime_s)), to,
+              params::makeSpec("speed_mps", params::Kind::kReal, "m/s", openClosed(0, kMaxMissionSpeed_mps))};
   s.forms = {{"velocity_mps", "duration_s"}, {"to_m", "speed_mps"}};
   s.example = "{velocity_mps: [-4, 0], duration_s: 125}";
   s.expected = "a list of legs such as [{velocity_mps: [3, 0], duration_s: 10}, {to_m: [0, 0], speed_mps: 4}] or []";
@@ -218,22 +219,24 @@ params::Table<AgentConfig> makeTable() {
       applies.push_back({s.key, "mode", {"swa", "anchored"}, "the modes that fly in formation"});
     }
   }
-  applies.insert(applies.end(), {
-      {"formation.k", "formation.neighbourhood", {"k_nearest"}, "the k_nearest rule"},
-      {"formation.max_edge_factor", "formation.neighbourhood", {"gabriel"}, "the gabriel rule"},
-      {"formation.far_neighbour_weight", "formation.circle_fit", {"fixed_radius"}, "the fixed_radius fit"},
-      {"anchor.gain", "mode", {"anchored"}, "anchored mode"},
-      {"anchor.regain_ramp_s", "mode", {"anchored"}, "anchored mode"},
-      {"anchor.gnss_min_std_m", "mode", {"standalone", "anchored"}, "the modes that use GNSS"},
-      {"focal.bias_freeze_speed_mps", "focal.bias_window_s", {}, "IMU-bias removal"},
-      {"focal.bias_freeze_hold_s", "focal.bias_window_s", {}, "IMU-bias removal"},
-      {"sensor.detector_frame", "sensor.input", {"vision_msgs", "uvdar"}, "a real detector's messages"},
-      {"sensor.detector_yaw_deg", "sensor.detector_frame", {}, "a detector in its own frame"},
-      {"sensor.detector_x_m", "sensor.detector_frame", {}, "a detector in its own frame"},
-      {"sensor.detector_y_m", "sensor.detector_frame", {}, "a detector in its own frame"},
-      {"sensor.detector_classes", "sensor.input", {"vision_msgs"}, "vision_msgs detections"},
-      {"mission.start_s", "mission.start", {"time"}, "a mission started at a time"},
-  });
+  applies.insert(
+      applies.end(),
+      {
+          {"formation.k", "formation.neighbourhood", {"k_nearest"}, "the k_nearest rule"},
+          {"formation.max_edge_factor", "formation.neighbourhood", {"gabriel"}, "the gabriel rule"},
+          {"formation.far_neighbour_weight", "formation.circle_fit", {"fixed_radius"}, "the fixed_radius fit"},
+          {"anchor.gain", "mode", {"anchored"}, "anchored mode"},
+          {"anchor.regain_ramp_s", "mode", {"anchored"}, "anchored mode"},
+          {"anchor.gnss_min_std_m", "mode", {"standalone", "anchored"}, "the modes that use GNSS"},
+          {"focal.bias_freeze_speed_mps", "focal.bias_window_s", {}, "IMU-bias removal"},
+          {"focal.bias_freeze_hold_s", "focal.bias_window_s", {}, "IMU-bias removal"},
+          {"sensor.detector_frame", "sensor.input", {"vision_msgs", "uvdar"}, "a real detector's messages"},
+          {"sensor.detector_yaw_deg", "sensor.detector_frame", {}, "a detector in its own frame"},
+          {"sensor.detector_x_m", "sensor.detector_frame", {}, "a detector in its own frame"},
+          {"sensor.detector_y_m", "sensor.detector_frame", {}, "a detector in its own frame"},
+          {"sensor.detector_classes", "sensor.input", {"vision_msgs"}, "vision_msgs detections"},
+          {"mission.start_s", "mission.start", {"time"}, "a mission started at a time"},
+      });
   t.schema().checks = configChecks("");
   t.schema().relations = {
       {"surroundings.tentative_timeout_s", false, "surroundings.track_timeout_s",
@@ -268,9 +271,9 @@ std::vector<params::Check> configChecks(const std::string& prefix) {
                if (velocity_form) {
                  legs.push_back({Vec2(r[0], r[1]), r[2]});
                } else if (appendLegTo(legs, Vec2(r[3], r[4]), r[5]) && legs.size() == before) {
-                 problems.push_back(name + " goes to [" + params::formatYamlNumber(r[3]) + ", " +
-                                    params::formatYamlNumber(r[4]) +
-                                    "], where the plan already is: a leg that goes nowhere (the hold follows the last)");
+                 problems.push_back(
+                     name + " goes to [" + params::formatYamlNumber(r[3]) + ", " + params::formatYamlNumber(r[4]) +
+                     "], where the plan already is: a leg that goes nowhere (the hold follows the last)");
                }
              }
            }}};

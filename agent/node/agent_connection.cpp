@@ -10,19 +10,19 @@
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/ClockPubSubTypes.h>
 #include <swa/msg/DetectionsPubSubTypes.h>
-#include <swa/ros/Detection3DArrayPubSubTypes.h>
-#include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/SwarmMissionPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
+#include <swa/ros/Detection3DArrayPubSubTypes.h>
+#include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
-#include "swa/dds/qos_profiles.h"
-#include "swa/wire/ros_detections.h"
 #include "swa/dds/deployment.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
+#include "swa/wire/ros_detections.h"
 
 namespace swa::agent_node {
 namespace {
@@ -41,7 +41,8 @@ void AgentNode::connect() {
   participant_ = std::make_unique<dds::Participant>("swa_agent_" + std::to_string(id_), domain_id_, profiles_file_);
   handshake_.connected(std::chrono::steady_clock::now());
   // Writers first: a command must have somewhere to go as soon as the first IMU sample is processed.
-  cmd_writer_ = participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), dds::qos::kCommandWriter);
+  cmd_writer_ =
+      participant_->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(id_), dds::qos::kCommandWriter);
   state_writer_ = participant_->writer<msg::AgentStatePubSubType>(dds::topics::state(id_), dds::qos::kStateWriter);
   if (participant_->wireNames().naming == dds::Naming::kRos2) {
     twist_writer_ = participant_->writer<geometry_msgs::msg::TwistStampedPubSubType>(dds::topics::cmdVelStamped(id_),
@@ -66,8 +67,9 @@ void AgentNode::connect() {
           [this](mrs_msgs::msg::PoseWithCovarianceArrayStamped&& m) { onForeign(wire::foreignOf(m)); });
       break;
   }
-  gnss_reader_ = participant_->reader<msg::GnssFixPubSubType>(
-      dds::topics::gnss(id_), dds::qos::kDetectionsGnssReader, [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
+  gnss_reader_ =
+      participant_->reader<msg::GnssFixPubSubType>(dds::topics::gnss(id_), dds::qos::kDetectionsGnssReader,
+                                                   [this](msg::GnssFix&& m) { onInput(Input(std::move(m))); });
   if (agent_.config().sensor.input == agent::DetectionInput::kSwa &&
       participant_->wireNames().naming == dds::Naming::kSwa) {
     frame_reader_ = participant_->reader<msg::SensorFramePubSubType>(
@@ -76,11 +78,11 @@ void AgentNode::connect() {
   mission_reader_ = participant_->readerWithOrigin<msg::SwarmMissionPubSubType>(
       dds::topics::kMission, dds::qos::kMissionReader,
       [this](msg::SwarmMission&& m, const dds::WriterGuid& writer) { onMission(std::move(m), writer); });
-  clock_reader_ = participant_->reader<msg::ClockPubSubType>(dds::topics::kClock, dds::qos::kClockWatchReader,
-                                                             [this](msg::Clock&& m) {
-                                                               const std::lock_guard<std::mutex> lock(mutex_);
-                                                               world_pause_.tick(m.step(), std::chrono::steady_clock::now());
-                                                             });
+  clock_reader_ = participant_->reader<msg::ClockPubSubType>(
+      dds::topics::kClock, dds::qos::kClockWatchReader, [this](msg::Clock&& m) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        world_pause_.tick(m.step(), std::chrono::steady_clock::now());
+      });
   imu_silence_.restart();
   detections_silence_.restart();
   peers_back_ = 0;
@@ -101,9 +103,12 @@ AgentNode::Matched AgentNode::matchedNow() const {
 
 std::string AgentNode::detectionsTopic() const {
   switch (agent_.config().sensor.input) {
-    case agent::DetectionInput::kVisionMsgs: return dds::topics::visionDetections(id_);
-    case agent::DetectionInput::kUvdar: return dds::topics::uvdarPoses(id_);
-    case agent::DetectionInput::kSwa: break;
+    case agent::DetectionInput::kVisionMsgs:
+      return dds::topics::visionDetections(id_);
+    case agent::DetectionInput::kUvdar:
+      return dds::topics::uvdarPoses(id_);
+    case agent::DetectionInput::kSwa:
+      break;
   }
   return dds::topics::detections(id_);
 }
@@ -112,10 +117,9 @@ void AgentNode::reportWaiting(const Matched& matched) {
   // A silent agent that never got a sample looks exactly like one that is fine: say once what it is waiting for.
   if (waiting_reported_ || stats_.imu > 0 || std::chrono::steady_clock::now() - connected_at_ < kWaitReport) return;
   waiting_reported_ = true;
-  const std::string frames =
-      frame_reader_ ? " (each counting the " + std::to_string(frame_reader_.matched()) + " of " +
-                          dds::topics::sensors(id_) + ")"
-                    : std::string();
+  const std::string frames = frame_reader_ ? " (each counting the " + std::to_string(frame_reader_.matched()) + " of " +
+                                                 dds::topics::sensors(id_) + ")"
+                                           : std::string();
   std::fprintf(stderr,
                "swa_agent %d: no IMU sample %.0f s after connecting; matched: %d reader(s) of %s, %d writer(s) of %s, "
                "%d of %s, %d of %s%s\n",
@@ -125,12 +129,13 @@ void AgentNode::reportWaiting(const Matched& matched) {
   // What a person who started the agent by hand needs to know: what it waits for, and where. A swarm started by
   // swa_launch is a partition of its own, which an agent outside it never sees.
   const std::string swarm = dds::resolveDeployment().swarm;
-  std::fprintf(stderr,
-               "swa_agent %d: it waits for a simulator (swa_sim) or an autopilot bridge writing UAV %d's samples on DDS "
-               "domain %d, %s; a swa_launch run is a swarm of its own (named on its first line) unless launched with "
-               "--swarm none: to join one, start this agent with that SWA_SWARM\n",
-               id_, id_, domain_id_,
-               swarm.empty() ? "in the default swarm (SWA_SWARM unset)" : ("in swarm " + swarm + " (SWA_SWARM)").c_str());
+  std::fprintf(
+      stderr,
+      "swa_agent %d: it waits for a simulator (swa_sim) or an autopilot bridge writing UAV %d's samples on DDS "
+      "domain %d, %s; a swa_launch run is a swarm of its own (named on its first line) unless launched with "
+      "--swarm none: to join one, start this agent with that SWA_SWARM\n",
+      id_, id_, domain_id_,
+      swarm.empty() ? "in the default swarm (SWA_SWARM unset)" : ("in swarm " + swarm + " (SWA_SWARM)").c_str());
 }
 
 std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn(const Matched& matched) {
@@ -160,8 +165,8 @@ std::optional<std::string> AgentNode::endpointsLostAfterPeerReturn(const Matched
     if (matched_once_[k] && !endpoints[k].second) lost += " " + endpoints[k].first;
   }
   if (!lost.empty()) {
-    return "participant " + peer_back_name_ + " came back after its DDS lease expired and these did not re-match:" +
-           lost;
+    return "participant " + peer_back_name_ +
+           " came back after its DDS lease expired and these did not re-match:" + lost;
   }
   // The reader of our commands may have dropped us while it was silent and not learnt our writer again: it looks
   // matched from here and hears nothing (CI: the simulator stopped 5 s, one agent declared dead for the rest of the
@@ -180,8 +185,7 @@ void AgentNode::refuseAsTwin() {
                "swa_agent %d: REFUSING to run: another swa_agent %d (pid %ld on host %s) was already running in %s on "
                "domain %d; two agents for one UAV would both command it. Stop one of them, or give this one another "
                "--id or SWA_SWARM.\n",
-               id_, id_, twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?", swarm.c_str(),
-               domain_id_);
+               id_, id_, twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?", swarm.c_str(), domain_id_);
   participant_.reset();
 }
 

@@ -9,21 +9,21 @@
 
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/DetectionsPubSubTypes.h>
-#include <swa/ros/Detection3DArrayPubSubTypes.h>
-#include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 #include <swa/msg/GnssFixPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
+#include <swa/ros/Detection3DArrayPubSubTypes.h>
+#include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
+#include "swa/app/cpu_time.h"
+#include "swa/app/signals.h"
+#include "swa/dds/topics.h"
 #include "swa/wire/agent_state.h"
 #include "swa/wire/mission.h"
 #include "swa/wire/ros_detections.h"
 #include "swa/wire/ros_types.h"
 #include "swa/wire/samples.h"
-#include "swa/app/cpu_time.h"
-#include "swa/app/signals.h"
-#include "swa/dds/topics.h"
 
 namespace swa::agent_node {
 namespace {
@@ -129,8 +129,7 @@ void AgentNode::onMission(msg::SwarmMission&& m, const dds::WriterGuid& writer) 
   const std::variant<agent::MissionCommand, std::string> read = wire::missionCommandOf(m);
   if (const auto* why = std::get_if<std::string>(&read)) {
     ++stats_.missions_unreadable;
-    std::fprintf(stderr, "swa_agent %d: dropped mission %u from the ground: %s\n", id_, m.header().seq(),
-                 why->c_str());
+    std::fprintf(stderr, "swa_agent %d: dropped mission %u from the ground: %s\n", id_, m.header().seq(), why->c_str());
     return;
   }
   const agent::MissionCommand& command = std::get<agent::MissionCommand>(read);
@@ -141,13 +140,12 @@ void AgentNode::onMission(msg::SwarmMission&& m, const dds::WriterGuid& writer) 
   }
   if (agent_.diagnostics().mission_commands_refused <= kMissionRefusalsLogged) {
     const agent::AgentConfig& c = agent_.config();
-    std::fprintf(stderr, "swa_agent %d: dropped mission %u from the ground, it cannot be flown: %s%s\n", id_,
-                 m.header().seq(),
-                 agent::missionCommandProblem(command, c.mission.max_speed_mps, c.limits.max_abs_position_m)
-                     .value_or("?")
-                     .c_str(),
-                 agent_.diagnostics().mission_commands_refused == kMissionRefusalsLogged ? " (further ones counted)"
-                                                                                         : "");
+    std::fprintf(
+        stderr, "swa_agent %d: dropped mission %u from the ground, it cannot be flown: %s%s\n", id_, m.header().seq(),
+        agent::missionCommandProblem(command, c.mission.max_speed_mps, c.limits.max_abs_position_m)
+            .value_or("?")
+            .c_str(),
+        agent_.diagnostics().mission_commands_refused == kMissionRefusalsLogged ? " (further ones counted)" : "");
   }
 }
 
@@ -201,11 +199,11 @@ int AgentNode::run() {
     // simulator after its first, and its UAV left SWA's control (bench_secure_launch.sh). Foreign detection sources
     // may publish only what they see: not watched.
     const bool detections_arriving = last_detections_at_ && now - *last_detections_at_ < kArrivingWindow;
-    const std::optional<SilenceWatch::Clock::duration> detections_silent = detections_silence_.poll(
-        now, detections_arriving,
-        running && arriving && last_detections_at_.has_value() &&
-            agent_.config().sensor.input == agent::DetectionInput::kSwa,
-        matched[2]);
+    const std::optional<SilenceWatch::Clock::duration> detections_silent =
+        detections_silence_.poll(now, detections_arriving,
+                                 running && arriving && last_detections_at_.has_value() &&
+                                     agent_.config().sensor.input == agent::DetectionInput::kSwa,
+                                 matched[2]);
     if (pending_state_ns_ && std::chrono::steady_clock::now() - last_input_ >= kQuietPeriod) {
       publishState(*pending_state_ns_);
       pending_state_ns_.reset();
@@ -224,7 +222,7 @@ int AgentNode::run() {
     // What it needs before it can start: a reader of its commands and a writer of its detections (the simulator, or
     // the detection source on a drone); through PX4 these are two peers, and either handshake can stall.
     if (handshake_.stalled(stats_.imu > 0, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now(),
-                          participant_->lastAuthentication())) {
+                           participant_->lastAuthentication())) {
       why = "no reader of " + dds::topics::cmdVel(id_) + " or no writer of " + detectionsTopic() +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {
@@ -279,8 +277,9 @@ void AgentNode::logFinalCounts() const {
   // Where the agent stood at the end: a supervisor (or a person reading the log) sees whether it was flying
   // relative to its neighbours when it stopped.
   const agent::Diagnostics& d = agent_.diagnostics();
-  const char* stage = d.stage == agent::Stage::kTracking ? "tracking" : d.stage == agent::Stage::kLost ? "lost"
-                                                                                                      : "initializing";
+  const char* stage = d.stage == agent::Stage::kTracking ? "tracking"
+                      : d.stage == agent::Stage::kLost   ? "lost"
+                                                         : "initializing";
   std::fprintf(stderr, "swa_agent %d: final stage %s, %d confirmed track(s), frame fitted on %d neighbour(s)\n", id_,
                stage, d.confirmed_tracks, d.neighbour_count);
   const agent::RejectCounters& r = d.rejected;
@@ -297,8 +296,7 @@ void AgentNode::logFinalCounts() const {
     std::fprintf(stderr,
                  "swa_agent %d: missions from the ground: %llu received, %llu flown, %llu that could not be flown, "
                  "%llu unreadable, %llu from a second writer refused, %llu sent again after a reconnection dropped\n",
-                 id_, static_cast<unsigned long long>(s.missions),
-                 static_cast<unsigned long long>(d.mission_commands),
+                 id_, static_cast<unsigned long long>(s.missions), static_cast<unsigned long long>(d.mission_commands),
                  static_cast<unsigned long long>(d.mission_commands_refused),
                  static_cast<unsigned long long>(s.missions_unreadable),
                  static_cast<unsigned long long>(s.missions_other_writer),
@@ -363,8 +361,8 @@ void AgentNode::handle(Input& in) {
   const auto foreign = [&](std::uint32_t named) {
     if (feed_.isFor(named)) return false;
     if (stats_.foreign++ == 0) {
-      std::fprintf(stderr, "swa_agent %d: dropping a sample addressed to UAV %u (further ones counted silently)\n",
-                   id_, named);
+      std::fprintf(stderr, "swa_agent %d: dropping a sample addressed to UAV %u (further ones counted silently)\n", id_,
+                   named);
     }
     return true;
   };

@@ -1,8 +1,8 @@
 #pragma once
 // The agent of one UAV as a Fast DDS node: a thin adapter around swa::agent::Agent. Reads only
-// swa/uav<id>/{imu,detections,gnss,sensors}, writes only swa/uav<id>/{cmd_vel,state}. Samples are processed one at a time,
-// in stamp order (sample_order.h), in the listener that delivers them: handing them to a worker thread cost one more
-// thread wake-up per sample, which with 8 agents on 2 vCPUs added ~35 % to the sensor-to-command latency
+// swa/uav<id>/{imu,detections,gnss,sensors}, writes only swa/uav<id>/{cmd_vel,state}. Samples are processed one at a
+// time, in stamp order (sample_order.h), in the listener that delivers them: handing them to a worker thread cost one
+// more thread wake-up per sample, which with 8 agents on 2 vCPUs added ~35 % to the sensor-to-command latency
 // (BENCHMARKS.md). Fast DDS delivers one transport port's samples on one receive thread; a mutex serialises the
 // processing should samples come in through two (e.g. shared memory and UDP). Per sample the agent:
 //   - one VelocitySetpoint per IMU sample, echoing the IMU's stamp and seq (the lockstep simulator waits for it), and
@@ -26,19 +26,18 @@
 #include <swa/msg/AgentState.h>
 #include <swa/msg/Clock.h>
 #include <swa/msg/Detections.h>
-#include <swa/ros/Detection3DArray.h>
-#include <swa/ros/PoseWithCovarianceArrayStamped.h>
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
 #include <swa/msg/SensorFrame.h>
 #include <swa/msg/SwarmMission.h>
 #include <swa/msg/VelocitySetpoint.h>
+#include <swa/ros/Detection3DArray.h>
+#include <swa/ros/PoseWithCovarianceArrayStamped.h>
 #include <swa/ros/TwistStamped.h>
 
 #include "redelivery_filter.h"
 #include "sample_order.h"
 #include "silence_watch.h"
-#include "world_pause.h"
 #include "swa/agent/agent.h"
 #include "swa/agent/detection_adapter.h"
 #include "swa/app/program.h"
@@ -47,13 +46,14 @@
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/wire/agent_feed.h"
+#include "world_pause.h"
 
 namespace swa::agent_node {
 
 struct AgentNodeStats {
   std::uint64_t imu = 0, detections = 0, gnss = 0;
   std::uint64_t commands = 0, states = 0;
-  std::uint64_t foreign = 0;         // samples naming another UAV (a wiring error upstream): dropped
+  std::uint64_t foreign = 0;  // samples naming another UAV (a wiring error upstream): dropped
   std::uint64_t write_failures = 0;
   std::uint64_t forced_releases = 0;  // samples the stamp orderer let through early (sample_order.h)
   std::uint64_t replayed = 0;         // history sent again to a re-created participant, dropped (redelivery_filter.h)
@@ -88,12 +88,12 @@ class AgentNode : public app::Role {
  private:
   using Input = std::variant<msg::Imu, msg::Detections, msg::GnssFix>;
 
-  void connect();             // creates the participant and the endpoints
-  void onInput(Input&& in);  // listener threads
-  void onFrame(msg::SensorFrame&& frame);  // listener threads: each part through onInput
+  void connect();                                         // creates the participant and the endpoints
+  void onInput(Input&& in);                               // listener threads
+  void onFrame(msg::SensorFrame&& frame);                 // listener threads: each part through onInput
   void onForeign(const agent::ForeignDetectionSet& set);  // listener threads: through adapter_, then onInput
   void onMission(msg::SwarmMission&& m, const dds::WriterGuid& writer);  // listener thread
-  void reportMission();  // handle(): a ground command the agent has just taken over
+  void reportMission();                 // handle(): a ground command the agent has just taken over
   std::string detectionsTopic() const;  // of sensor.input
   void handle(Input& in);
   void publishState(agent::StampNs stamp_ns, bool no_input = false);

@@ -20,8 +20,7 @@ Writes only  swa/uav<I>/cmd_vel (one VelocitySetpoint per IMU sample, echoing it
   cli.path("--config", "FILE", o.config_path,
            "agent parameters (YAML, layout of deploy/config/agent.yaml); default: built-in defaults. "
            "`swa_sim --export-agent-config FILE` writes the one a scenario implies.");
-  cli.scenario(o.scenario_path,
-               "the `agent:` section of a scenario file (swa_launch passes its run's scenario.yaml)");
+  cli.scenario(o.scenario_path, "the `agent:` section of a scenario file (swa_launch passes its run's scenario.yaml)");
   cli.overrides(o.overrides, "override one parameter, e.g. --set formation.radius_m=12");
   cli.domain(o.domain, dds::kMaxDomainId);
   cli.answer("--parameters", o.list_parameters, "list every agent parameter (key, unit, bounds, default) and exit");

@@ -26,8 +26,8 @@ app::Plan prepare(const std::vector<std::string>& args) {
   return app::startWith([options, config, domain]() -> std::unique_ptr<app::Role> {
     const std::string profiles = dds::resolveProfilesFile();
     auto node = std::make_unique<AgentNode>(options.id, config, domain, profiles);
-    std::fprintf(stderr, "swa_agent %d: up on domain %d (mode %s, neighbourhood %s), profiles %s\n", options.id,
-                 domain, agent::toString(config.mode).c_str(), agent::toString(config.formation.neighbourhood).c_str(),
+    std::fprintf(stderr, "swa_agent %d: up on domain %d (mode %s, neighbourhood %s), profiles %s\n", options.id, domain,
+                 agent::toString(config.mode).c_str(), agent::toString(config.formation.neighbourhood).c_str(),
                  profiles.c_str());
     return node;
   });

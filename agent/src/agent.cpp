@@ -113,9 +113,11 @@ VelocityCommand Agent::onImu(const ImuSample& imu) {
   if (!finite || !acc_finite) {
     ++diag_.rejected.nonfinite;
   } else if (std::abs(imu.heading_rad) > lim.max_abs_heading_rad ||
-             (reads_tilt && (std::abs(imu.roll_rad) > lim.max_tilt_rad || std::abs(imu.pitch_rad) > lim.max_tilt_rad))) {
+             (reads_tilt &&
+              (std::abs(imu.roll_rad) > lim.max_tilt_rad || std::abs(imu.pitch_rad) > lim.max_tilt_rad))) {
     // The tilt is judged only where it is read: an agent fusing the accelerometer takes its attitude from there (a
-    // mission's 7 m/s turn-round takes the tilt model's q_c-scaled angles past the limit while the attitude is 0.6 rad).
+    // mission's 7 m/s turn-round takes the tilt model's q_c-scaled angles past the limit while the attitude is 0.6
+    // rad).
     ++diag_.rejected.implausible;
   } else if (use_accelerometer && acc != nullptr &&
              (std::abs(acc->roll_rad) > lim.max_tilt_rad || std::abs(acc->pitch_rad) > lim.max_tilt_rad ||
@@ -233,9 +235,9 @@ void Agent::updateFrame(StampNs stamp) {
     focal_.resetPosition(z, r_fit);
     ++diag_.frame_resets;
   } else if (!next.sameFrameAs(neighbours_, rankedFit())) {
-    // The frame jumps when the neighbour set changes (or, with the weighted fit, which two are the nearest). Where the old neighbours are all still tracked, evaluate the
-    // old frame now and move the estimate by the jump, so the filter never sees it as an innovation; otherwise
-    // restart the position from this measurement.
+    // The frame jumps when the neighbour set changes (or, with the weighted fit, which two are the nearest). Where the
+    // old neighbours are all still tracked, evaluate the old frame now and move the estimate by the jump, so the filter
+    // never sees it as an innovation; otherwise restart the position from this measurement.
     NeighbourPositions old;
     FrameFit old_fit;
     if (frame_valid_ && positionsOf(bank_.tracks(), neighbours_, old)) {
@@ -290,8 +292,7 @@ void Agent::onGnss(const GnssSample& g) {
       ++diag_.rejected.nonfinite;
       return;
     }
-    if (g.std_m <= 0.0 || g.std_m * g.std_m > kMaxVariance ||
-        g.position_m.norm() > config_.limits.max_abs_position_m) {
+    if (g.std_m <= 0.0 || g.std_m * g.std_m > kMaxVariance || g.position_m.norm() > config_.limits.max_abs_position_m) {
       ++diag_.rejected.implausible;
       return;
     }

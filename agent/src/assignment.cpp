@@ -22,7 +22,8 @@ const std::vector<int>& Assignment::solve(const std::vector<double>& cost, int r
   if (transpose) {
     transposed_.resize(static_cast<std::size_t>(n) * m);
     for (int i = 0; i < rows; ++i)
-      for (int j = 0; j < cols; ++j) transposed_[static_cast<std::size_t>(j) * m + i] = cost[static_cast<std::size_t>(i) * cols + j];
+      for (int j = 0; j < cols; ++j)
+        transposed_[static_cast<std::size_t>(j) * m + i] = cost[static_cast<std::size_t>(i) * cols + j];
     a = transposed_.data();
   }
   auto at = [a, m](int i, int j) { return a[static_cast<std::size_t>(i - 1) * m + (j - 1)]; };

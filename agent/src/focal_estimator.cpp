@@ -6,16 +6,16 @@ namespace swa::agent {
 namespace {
 
 // Priors at initialisation: a UAV that loses GNSS may be moving at cruise speed; tilt tells acceleration within R_a.
-constexpr double kInitVelVar = 1.0;  // m^2/s^2
-constexpr double kInitAccVar = 2.25; // m^2/s^4
+constexpr double kInitVelVar = 1.0;   // m^2/s^2
+constexpr double kInitAccVar = 2.25;  // m^2/s^4
 constexpr double kMaxPredictionS = 10.0;
 
 }  // namespace
 
 FocalEstimator::FocalEstimator(const FocalConfig& config)
     : config_(config),
-      noise_{config.q_pos_m2 * config.q_scale, config.q_vel_m2ps2 * config.q_scale,
-             config.q_acc_m2ps4 * config.q_scale, config.q_ref_dt_s} {}
+      noise_{config.q_pos_m2 * config.q_scale, config.q_vel_m2ps2 * config.q_scale, config.q_acc_m2ps4 * config.q_scale,
+             config.q_ref_dt_s} {}
 
 void FocalEstimator::initialize(StampNs stamp, const Vec2& position, const Mat2& position_cov) {
   state_.x.setZero();

@@ -11,9 +11,7 @@ constexpr double kMinAveragingS = 1.0;
 }  // namespace
 
 ImuBiasRemover::ImuBiasRemover(double window_s, double freeze_speed_mps, double freeze_hold_s)
-    : window_s_(window_s),
-      freeze_speed_mps_(freeze_speed_mps),
-      freeze_hold_s_(freeze_hold_s) {}
+    : window_s_(window_s), freeze_speed_mps_(freeze_speed_mps), freeze_hold_s_(freeze_hold_s) {}
 
 void ImuBiasRemover::reset() {
   bias_.setZero();

@@ -46,8 +46,8 @@ std::optional<std::string> missionProblem(const MissionConfig& config) {
     } else if (l.duration_s <= 0.0) {
       why << "mission.legs[" << i << "].duration_s = " << l.duration_s << " must be > 0";
     } else if (speed > config.max_speed_mps) {
-      why << "mission.legs[" << i << "] flies at " << speed << " m/s, above mission.max_speed_mps = "
-          << config.max_speed_mps << " m/s";
+      why << "mission.legs[" << i << "] flies at " << speed
+          << " m/s, above mission.max_speed_mps = " << config.max_speed_mps << " m/s";
     } else {
       continue;
     }

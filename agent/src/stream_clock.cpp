@@ -26,9 +26,9 @@ StreamClock::Verdict StreamClock::check(StampNs stamp_ns) {
       // Running mean over ~10 steps, each clipped to a factor 2 of the mean: it follows a change of rate within a
       // few dozen samples, while one bogus or late sample moves it by 10 % at most.
       const double step = static_cast<double>(stamp_ns - last_ns_);
-      period_ns_ = period_ns_ <= 0.0 ? step
-                                     : period_ns_ + 0.1 * (std::clamp(step, 0.5 * period_ns_, 2.0 * period_ns_) -
-                                                           period_ns_);
+      period_ns_ = period_ns_ <= 0.0
+                       ? step
+                       : period_ns_ + 0.1 * (std::clamp(step, 0.5 * period_ns_, 2.0 * period_ns_) - period_ns_);
     }
     started_ = true;
     last_ns_ = stamp_ns;

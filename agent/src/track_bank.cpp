@@ -49,8 +49,7 @@ void TrackBank::predict(Track& track, StampNs stamp) {
 }
 
 bool TrackBank::correct(Track& track, const StableDetection& det, StampNs stamp) {
-  const Innovation<2> in =
-      Pva::innovation<2>(track.estimate, positionObservation(), det.position_m, det.covariance_m2);
+  const Innovation<2> in = Pva::innovation<2>(track.estimate, positionObservation(), det.position_m, det.covariance_m2);
   return correct(track, det, in, stamp);
 }
 
@@ -69,8 +68,8 @@ int TrackBank::startTrack(const StableDetection& det, StampNs stamp, bool anonym
   if (anonymous) {
     t.id = next_anonymous_id_;
     // Wraps after ~1.1e9 tracks (years of clutter at 10 Hz); by then every early id is long gone.
-    next_anonymous_id_ = next_anonymous_id_ == std::numeric_limits<int>::max() ? kFirstAnonymousTrackId
-                                                                                 : next_anonymous_id_ + 1;
+    next_anonymous_id_ =
+        next_anonymous_id_ == std::numeric_limits<int>::max() ? kFirstAnonymousTrackId : next_anonymous_id_ + 1;
   }
   t.anonymous = anonymous;
   t.created_ns = stamp;

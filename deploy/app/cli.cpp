@@ -189,7 +189,8 @@ void Cli::integer(const std::string& name, const std::string& value_name, int& o
 
 void Cli::list(const std::string& name, const std::string& value_name, std::vector<std::string>& out,
                const std::string& meaning, bool several) {
-  value(name, value_name, [&out](const std::string& v, Problems&) { out.push_back(v); }, meaning, several);
+  value(
+      name, value_name, [&out](const std::string& v, Problems&) { out.push_back(v); }, meaning, several);
 }
 
 void Cli::value(const std::string& name, const std::string& value_name, Read read, const std::string& meaning,
@@ -201,14 +202,15 @@ void Cli::value(const std::string& name, const std::string& value_name, Read rea
 void Cli::choice(const std::string& name, const std::string& value_name, const std::vector<std::string>& names,
                  std::function<void(std::size_t)> take, const std::string& meaning) {
   const std::string problem = name + " must be " + oneOf(names) + ", got '";
-  impl_->value(name, value_name, meaning + "; one of " + oneOf(names), "", [names, take = std::move(take), problem](const std::string& v, Problems& p) {
-    const auto it = std::find(names.begin(), names.end(), v);
-    if (it == names.end()) {
-      p.push_back(problem + v + "'");
-    } else {
-      take(static_cast<std::size_t>(it - names.begin()));
-    }
-  });
+  impl_->value(name, value_name, meaning + "; one of " + oneOf(names), "",
+               [names, take = std::move(take), problem](const std::string& v, Problems& p) {
+                 const auto it = std::find(names.begin(), names.end(), v);
+                 if (it == names.end()) {
+                   p.push_back(problem + v + "'");
+                 } else {
+                   take(static_cast<std::size_t>(it - names.begin()));
+                 }
+               });
 }
 
 void Cli::flagChoice(const std::string& name, const std::vector<std::string>& names,
@@ -221,7 +223,8 @@ void Cli::flagChoice(const std::string& name, const std::vector<std::string>& na
   for (std::size_t k = 0; k < names.size(); ++k) shown += (k ? "|" : "") + names[k];
   o->option_text(shown + "]");
   const std::string problem = name + " must be " + oneOf(names) + ", got '";
-  impl_->entries.push_back({o, [names, take = std::move(take), problem](const std::string& v, Problems& p) {
+  impl_->entries.push_back({o,
+                            [names, take = std::move(take), problem](const std::string& v, Problems& p) {
                               const auto it = std::find(names.begin(), names.end(), v);
                               if (it == names.end()) {
                                 p.push_back(problem + v + "'");

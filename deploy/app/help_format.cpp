@@ -181,7 +181,8 @@ bool isFlagChoice(const CLI::Option* option) {
 
 }  // namespace
 
-HelpFormat::HelpFormat(std::string usage, std::string details) : usage_(std::move(usage)), details_(std::move(details)) {
+HelpFormat::HelpFormat(std::string usage, std::string details)
+    : usage_(std::move(usage)), details_(std::move(details)) {
   column_width(kColumn);
 }
 

@@ -48,8 +48,8 @@ double LogHistogram::quantileNs(double q) const {
   for (int b = 0; b < kBins + 2; ++b) {
     cumulative += bins_[static_cast<std::size_t>(b)];
     if (cumulative < rank) continue;
-    if (b == 0) return minNs();           // below the range: the best we know is the smallest value
-    if (b == kBins + 1) return maxNs();   // above the range
+    if (b == 0) return minNs();          // below the range: the best we know is the smallest value
+    if (b == kBins + 1) return maxNs();  // above the range
     return std::clamp(binCentreNs(b), minNs(), maxNs());
   }
   return maxNs();

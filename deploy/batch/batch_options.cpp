@@ -14,7 +14,8 @@ app::Cli makeCli(BatchOptions& o) {
        swa_batch --scenario FILE [--set key=value]... --sweep KEY=V1,V2,... [--sweep ...] [--seeds N]
                  [--jobs J] [--shard I/N] [--out DIR] [--dry-run]
        swa_batch merge DIR... --out DIR)");
-  cli.details(R"(Runs the simulator and one SWA agent core per UAV in one process, deterministically per seed, seeds in parallel.
+  cli.details(
+      R"(Runs the simulator and one SWA agent core per UAV in one process, deterministically per seed, seeds in parallel.
 Prints one line per finished seed and an aggregate table; writes DIR/summary.json (aggregate and per seed) and
 DIR/<mode>/seed_<S>.csv (time series, one row per 100 ms) and DIR/<mode>/seed_<S>_events.csv (GNSS loss,
 collisions, failsafe).
@@ -46,7 +47,8 @@ swa_batch --scenario FILE then runs the study; --sweep KEY=... replaces the file
   cli.scenario(o.scenario_path, "scenario YAML (see deploy/scenarios/)");
   cli.required("--scenario");
   cli.overrides(o.overrides, "override any scenario key, e.g. --set uav_count=16 --set imu.bias_std=0.15");
-  cli.integer("--seeds", "N", o.seeds, 1, 100000, "a count", "number of seeds, starting at the scenario's `seed` (a study: at every grid point)");
+  cli.integer("--seeds", "N", o.seeds, 1, 100000, "a count",
+              "number of seeds, starting at the scenario's `seed` (a study: at every grid point)");
   cli.integer("--jobs", "J", o.jobs, 1, 256, "a count", "seeds run in parallel; this machine has 2 cores");
   cli.path("--out", "DIR", o.out_dir, "output directory; the files an earlier run wrote there are removed first");
   cli.choice("--compare", "MODE", {agent::Mode::kStandalone, agent::Mode::kSwa, agent::Mode::kAnchored}, o.compare,

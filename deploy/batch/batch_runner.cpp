@@ -37,12 +37,16 @@ void runEach(const std::vector<sim::Scenario>& scenarios, int jobs, const RunDon
 std::vector<RunResult> runSeeds(const sim::Scenario& scenario, int seeds, int jobs, const SeedDone& on_done,
                                 const std::atomic<bool>& stop) {
   std::vector<sim::Scenario> scenarios(static_cast<std::size_t>(seeds), scenario);
-  for (int k = 0; k < seeds; ++k) scenarios[static_cast<std::size_t>(k)].seed = scenario.seed + static_cast<std::uint64_t>(k);
+  for (int k = 0; k < seeds; ++k)
+    scenarios[static_cast<std::size_t>(k)].seed = scenario.seed + static_cast<std::uint64_t>(k);
   std::vector<RunResult> results(scenarios.size());
-  runEach(scenarios, jobs, [&](std::size_t k, RunResult&& r) {
-    if (on_done) on_done(r);
-    results[k] = std::move(r);
-  }, stop);
+  runEach(
+      scenarios, jobs,
+      [&](std::size_t k, RunResult&& r) {
+        if (on_done) on_done(r);
+        results[k] = std::move(r);
+      },
+      stop);
   return results;
 }
 

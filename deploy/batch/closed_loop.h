@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "swa/monitor/accumulator.h"
-#include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/sim/scenario.h"
 #include "swa/sim/world.h"
 
@@ -17,9 +17,9 @@ struct RunResult {
   std::uint64_t seed = 0;
   agent::Mode mode = agent::Mode::kSwa;
   monitor::Summary summary;
-  std::vector<monitor::TimeSeriesRow> series;  // one row per metrics sample
-  std::uint64_t rejected_inputs = 0;           // summed over agents: should be 0 for simulated sensors
-  std::vector<sim::Event> events;              // everything the world raised (GNSS loss, collisions, failsafe)
+  std::vector<monitor::TimeSeriesRow> series;        // one row per metrics sample
+  std::uint64_t rejected_inputs = 0;                 // summed over agents: should be 0 for simulated sensors
+  std::vector<sim::Event> events;                    // everything the world raised (GNSS loss, collisions, failsafe)
   std::vector<monitor::UavTrajectory> trajectories;  // true positions, one point per UAV every 0.5 s
 };
 

@@ -19,22 +19,22 @@
 #include "study_runner.h"
 #include "swa/agent/config_io.h"
 #include "swa/app/program.h"
+#include "swa/app/run_directory.h"
+#include "swa/app/version.h"
 #include "swa/monitor/output_dir.h"
 #include "swa/run_record/events.h"
 #include "swa/run_record/run_dir.h"
 #include "swa/run_record/scoring.h"
 #include "swa/sim/scenario_io.h"
-#include "swa/app/run_directory.h"
-#include "swa/app/version.h"
 
 namespace fs = std::filesystem;
 using namespace swa;
 
 namespace {
 
-constexpr const char* kColumns[] = {"mean_neighbor_distance_m", "min_separation_m", "collisions",
-                                    "drift_velocity_mps",       "uav_displacement_m", "groups",
-                                    "anees_position"};
+constexpr const char* kColumns[] = {
+    "mean_neighbor_distance_m", "min_separation_m", "collisions",    "drift_velocity_mps",
+    "uav_displacement_m",       "groups",           "anees_position"};
 // With a mission (issue #45), also: the swarm's centroid against the plan, d_NB while moving, and each UAV's own end
 // error and the scatter of their end points (what --compare standalone is read by).
 constexpr const char* kMissionColumns[] = {"mission_end_error_m", "mission_path_error_m", "mission_d_nb_moving_m",
@@ -47,12 +47,12 @@ double field(const monitor::Summary& s, const std::string& key) {
 }
 
 void printSeed(const batch::RunResult& r) {
-  std::printf("%-10s seed %-6llu d_NB %6.2f m  min_sep %6.2f m  collisions %3.0f  drift %.3f m/s  disp %6.2f m  "
-              "groups %2.0f  ANEES_p %5.2f\n",
-              agent::toString(r.mode).c_str(), static_cast<unsigned long long>(r.seed),
-              field(r.summary, kColumns[0]), field(r.summary, kColumns[1]), field(r.summary, kColumns[2]),
-              field(r.summary, kColumns[3]), field(r.summary, kColumns[4]), field(r.summary, kColumns[5]),
-              field(r.summary, kColumns[6]));
+  std::printf(
+      "%-10s seed %-6llu d_NB %6.2f m  min_sep %6.2f m  collisions %3.0f  drift %.3f m/s  disp %6.2f m  "
+      "groups %2.0f  ANEES_p %5.2f\n",
+      agent::toString(r.mode).c_str(), static_cast<unsigned long long>(r.seed), field(r.summary, kColumns[0]),
+      field(r.summary, kColumns[1]), field(r.summary, kColumns[2]), field(r.summary, kColumns[3]),
+      field(r.summary, kColumns[4]), field(r.summary, kColumns[5]), field(r.summary, kColumns[6]));
   std::fflush(stdout);
 }
 
@@ -94,7 +94,8 @@ void printAggregate(const std::vector<std::vector<batch::RunResult>>& modes) {
   }
   std::vector<const char*> keys(std::begin(kColumns), std::end(kColumns));
   const monitor::Statistic* mission = aggs.front().find(kMissionColumns[0]);
-  if (mission != nullptr && mission->runs > 0) keys.insert(keys.end(), std::begin(kMissionColumns), std::end(kMissionColumns));
+  if (mission != nullptr && mission->runs > 0)
+    keys.insert(keys.end(), std::begin(kMissionColumns), std::end(kMissionColumns));
   for (const char* key : keys) {
     std::printf("%-26s", key);
     for (const auto& a : aggs) {
@@ -167,8 +168,8 @@ int Batch::run() {
   std::vector<monitor::RunReport> report_runs;
   for (const auto& runs : results) {
     const batch::RunResult& r = runs.front();
-    report_runs.push_back({agent::toString(r.mode) + " (seed " + std::to_string(r.seed) + ")", r.summary, r.series,
-                           r.trajectories, ""});
+    report_runs.push_back(
+        {agent::toString(r.mode) + " (seed " + std::to_string(r.seed) + ")", r.summary, r.series, r.trajectories, ""});
   }
   monitor::ReportNotes notes;
   notes.title = "SWA batch report";
@@ -223,9 +224,8 @@ app::Plan prepare(const std::vector<std::string>& args) {
     // A study uses every core unless told otherwise.
     const int jobs = opt.jobs_given ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     monitor::prepareOutputDir(opt.out_dir);
-    return app::startWith([opt, study, jobs]() -> std::unique_ptr<app::Role> {
-      return std::make_unique<Study>(opt, study, jobs);
-    });
+    return app::startWith(
+        [opt, study, jobs]() -> std::unique_ptr<app::Role> { return std::make_unique<Study>(opt, study, jobs); });
   }
   const sim::Scenario scenario = sim::loadScenario(opt.scenario_path, opt.overrides);
   if (opt.dry_run) {
@@ -235,7 +235,8 @@ app::Plan prepare(const std::vector<std::string>& args) {
     return app::exitWith(0);
   }
   monitor::prepareOutputDir(opt.out_dir);  // before hours of seeds, not after
-  return app::startWith([opt, scenario]() -> std::unique_ptr<app::Role> { return std::make_unique<Batch>(opt, scenario); });
+  return app::startWith(
+      [opt, scenario]() -> std::unique_ptr<app::Role> { return std::make_unique<Batch>(opt, scenario); });
 }
 
 }  // namespace

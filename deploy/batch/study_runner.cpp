@@ -45,9 +45,8 @@ PreparedStudy prepareStudy(const BatchOptions& o, const study::StudySection& sec
   PreparedStudy p;
   std::vector<std::string> problems;
   try {
-    p.record.plan =
-        study::combinePlan(section, o.sweeps, o.variants, o.seeds_given ? o.seeds : 0, o.seeds,
-                            sim::canonicalScenarioKey);
+    p.record.plan = study::combinePlan(section, o.sweeps, o.variants, o.seeds_given ? o.seeds : 0, o.seeds,
+                                       sim::canonicalScenarioKey);
   } catch (const std::invalid_argument& e) {
     problems.push_back(e.what());
   }
@@ -122,8 +121,7 @@ PreparedStudy prepareStudy(const BatchOptions& o, const study::StudySection& sec
 void printStudyPlan(const PreparedStudy& p) {
   const study::StudyPlan& plan = p.record.plan;
   std::printf("study %s (version %s)\nscenario %s, seeds %llu..%llu at every grid point\n", p.record.study_id.c_str(),
-              p.record.version.c_str(), p.record.scenario.c_str(),
-              static_cast<unsigned long long>(p.record.first_seed),
+              p.record.version.c_str(), p.record.scenario.c_str(), static_cast<unsigned long long>(p.record.first_seed),
               static_cast<unsigned long long>(p.record.first_seed + static_cast<std::uint64_t>(plan.seeds) - 1));
   for (const study::Axis& a : plan.axes) {
     if (a.key == study::kVariantAxis) continue;
@@ -136,8 +134,8 @@ void printStudyPlan(const PreparedStudy& p) {
     for (const std::string& o : v.overrides) overrides += (overrides.empty() ? "" : ", ") + o;
     std::printf("variant %s: %s\n", v.name.c_str(), overrides.c_str());
   }
-  std::printf("%zu grid point(s) x %d seed(s) = %zu runs; shard %d/%d: %zu runs\n", study::pointCount(plan),
-              plan.seeds, study::runCount(plan), p.record.shard.index, p.record.shard.count, p.runs.size());
+  std::printf("%zu grid point(s) x %d seed(s) = %zu runs; shard %d/%d: %zu runs\n", study::pointCount(plan), plan.seeds,
+              study::runCount(plan), p.record.shard.index, p.record.shard.count, p.runs.size());
 }
 
 std::vector<sim::Scenario> runScenarios(const PreparedStudy& prepared) {
@@ -175,21 +173,24 @@ int runStudy(const BatchOptions& o, const PreparedStudy& prepared, int jobs, con
   }
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t done = 0;
-  runEach(scenarios, jobs, [&](std::size_t k, RunResult&& r) {
-    const study::RunRef& ref = prepared.runs[k];
-    record.runs[k] = {ref.index, ref.point, r.seed, monitor::summaryFields(r.summary)};
-    ++done;
-    cost_done += cost[k];
-    cost_left -= cost[k];
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double eta = cost_done > 0.0 ? elapsed / cost_done * std::max(cost_left, 0.0) : 0.0;
-    std::printf("[%*zu/%zu] %s seed %llu  d_NB %.2f m  drift %.3f m/s  collisions %.0f  ETA %s\n",
-                static_cast<int>(std::to_string(scenarios.size()).size()), done, scenarios.size(),
-                describe(plan, ref.point).c_str(), static_cast<unsigned long long>(r.seed),
-                metric(r.summary, "mean_neighbor_distance_m"), metric(r.summary, "drift_velocity_mps"),
-                metric(r.summary, "collisions"), duration(eta).c_str());
-    std::fflush(stdout);
-  }, stop);
+  runEach(
+      scenarios, jobs,
+      [&](std::size_t k, RunResult&& r) {
+        const study::RunRef& ref = prepared.runs[k];
+        record.runs[k] = {ref.index, ref.point, r.seed, monitor::summaryFields(r.summary)};
+        ++done;
+        cost_done += cost[k];
+        cost_left -= cost[k];
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double eta = cost_done > 0.0 ? elapsed / cost_done * std::max(cost_left, 0.0) : 0.0;
+        std::printf("[%*zu/%zu] %s seed %llu  d_NB %.2f m  drift %.3f m/s  collisions %.0f  ETA %s\n",
+                    static_cast<int>(std::to_string(scenarios.size()).size()), done, scenarios.size(),
+                    describe(plan, ref.point).c_str(), static_cast<unsigned long long>(r.seed),
+                    metric(r.summary, "mean_neighbor_distance_m"), metric(r.summary, "drift_velocity_mps"),
+                    metric(r.summary, "collisions"), duration(eta).c_str());
+        std::fflush(stdout);
+      },
+      stop);
   if (stop) {
     std::fprintf(stderr, "swa_batch: interrupted before every run of the study ran: nothing written\n");
     return 3;
@@ -204,8 +205,7 @@ int runStudy(const BatchOptions& o, const PreparedStudy& prepared, int jobs, con
   } else {
     study::writeShard(o.out_dir, record);
     std::printf("swa_batch: shard %d/%d: %zu runs in %s; wrote %s/study.json (swa_batch merge the shards)\n",
-                record.shard.index, record.shard.count, record.runs.size(), duration(wall).c_str(),
-                o.out_dir.c_str());
+                record.shard.index, record.shard.count, record.runs.size(), duration(wall).c_str(), o.out_dir.c_str());
   }
   return 0;
 }

@@ -6,15 +6,15 @@
 #include <vector>
 
 #include "batch_options.h"
-#include "swa/sim/scenario.h"
 #include "study_record.h"
 #include "study_section.h"
+#include "swa/sim/scenario.h"
 
 namespace swa::batch {
 
 struct PreparedStudy {
-  study::StudyRecord record;                // id, version, plan, base scenario, shard; no runs yet
-  std::vector<study::RunRef> runs;          // of this shard
+  study::StudyRecord record;                   // id, version, plan, base scenario, shard; no runs yet
+  std::vector<study::RunRef> runs;             // of this shard
   std::vector<sim::Scenario> point_scenarios;  // per grid point (seed: the first)
 };
 

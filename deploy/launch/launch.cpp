@@ -10,8 +10,8 @@
 #include <set>
 
 #include "child_process.h"
-#include "swa/app/run_directory.h"
 #include "shm_janitor.h"
+#include "swa/app/run_directory.h"
 
 namespace swa::launch {
 
@@ -60,9 +60,10 @@ int Launch::run() {
         std::printf("swa_launch [%s]:   %s\n", spec.label.c_str(), why.c_str());
       }
       if (runs_.size() > 1 && spec.scenario.agent.mode == agent::Mode::kStandalone && r.verdict == "FAIL") {
-        std::printf("swa_launch [%s]: as expected of the baseline: without GNSS each UAV flies on its own dead "
-                    "reckoning, which is what SWA is compared with\n",
-                    spec.label.c_str());
+        std::printf(
+            "swa_launch [%s]: as expected of the baseline: without GNSS each UAV flies on its own dead "
+            "reckoning, which is what SWA is compared with\n",
+            spec.label.c_str());
       }
     }
   } catch (const std::exception& e) {

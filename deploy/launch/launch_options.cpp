@@ -42,10 +42,8 @@ app::Cli makeCli(LaunchOptions& o) {
   cli.domain(o.domain, dds::kMaxDomainId, "use distinct domains for launches that run at the same time");
   cli.path("--bin-dir", "DIR", o.bin_dir, "where swa_sim, swa_agent, swa_monitor are (default: next to swa_launch)");
   cli.integer("--max-restarts", "N", o.max_restarts, 0, 1000, "a count", "restarts per agent and run");
-  cli.real("--restart-backoff-s", "T", o.restart_backoff_s, 0.0, 600.0, "a delay in seconds",
-           "first restart delay");
-  cli.real("--restart-backoff-max-s", "T", o.restart_backoff_max_s, 0.0, 3600.0, "a delay in seconds",
-           "back-off cap");
+  cli.real("--restart-backoff-s", "T", o.restart_backoff_s, 0.0, 600.0, "a delay in seconds", "first restart delay");
+  cli.real("--restart-backoff-max-s", "T", o.restart_backoff_max_s, 0.0, 3600.0, "a delay in seconds", "back-off cap");
   cli.real("--agent-timeout-s", "T", o.agent_timeout_s, 1e-3, 3600.0, "a timeout in seconds",
            "lockstep: an agent silent this long is declared dead by the simulator");
   cli.real("--timeout-s", "T", o.timeout_s, 0.0, 1e6, "a timeout in seconds",
@@ -59,30 +57,32 @@ app::Cli makeCli(LaunchOptions& o) {
         if (!o.stagger_s) problems.push_back("--stagger-s '" + v + "' is not a delay in seconds in [0, 10]");
       },
       "start the simulator and the monitor first, then one UAV process (agent, bridge) every T s; 0 starts all at "
-      "once, the simulator last (default: " + app::formatNumber(kSecureStaggerS) +
+      "once, the simulator last (default: " +
+          app::formatNumber(kSecureStaggerS) +
           " with --secure, whose authentication handshakes stall when many processes start together; else 0)");
   std::vector<std::string> transports;
   for (const auto t : {dds::Transport::kLocal, dds::Transport::kNetwork, dds::Transport::kDiscoveryServer}) {
     transports.emplace_back(dds::transportName(t));
   }
-  cli.choice("--transport", "T", transports, [&o, transports](std::size_t k) { o.transport = transports[k]; },
-             "local: shared memory + UDP, one host; network: UDPv4 only, multicast discovery; discovery-server: "
-             "UDPv4, discovery through a Fast DDS Discovery Server. Sets SWA_TRANSPORT for every child (default: "
-             "$SWA_TRANSPORT, else local, or discovery-server past " +
-                 std::to_string(kMaxUavProcessesForSimpleDiscovery) +
-                 " UAV processes; deploy/README.md: when to use which)");
+  cli.choice(
+      "--transport", "T", transports, [&o, transports](std::size_t k) { o.transport = transports[k]; },
+      "local: shared memory + UDP, one host; network: UDPv4 only, multicast discovery; discovery-server: "
+      "UDPv4, discovery through a Fast DDS Discovery Server. Sets SWA_TRANSPORT for every child (default: "
+      "$SWA_TRANSPORT, else local, or discovery-server past " +
+          std::to_string(kMaxUavProcessesForSimpleDiscovery) + " UAV processes; deploy/README.md: when to use which)");
   cli.text("--discovery-server", "LIST", o.discovery_server,
            "with discovery-server: the servers' IP:PORT[;IP:PORT...]; without it swa_launch starts one "
            "(fast-discovery-server -i 0) on 127.0.0.1:--discovery-port and stops it at the end");
-  cli.value("--discovery-port", "P",
-            [&o](const std::string& v, app::Problems& p) {
-              if (const auto port = app::parseInteger(v, 1024, 65535)) {
-                o.discovery_port = static_cast<int>(*port);
-              } else {
-                p.push_back("--discovery-port '" + v + "' is not a port in [1024, 65535]");
-              }
-            },
-            "port of the server swa_launch starts (default: the first free one from 11811)");
+  cli.value(
+      "--discovery-port", "P",
+      [&o](const std::string& v, app::Problems& p) {
+        if (const auto port = app::parseInteger(v, 1024, 65535)) {
+          o.discovery_port = static_cast<int>(*port);
+        } else {
+          p.push_back("--discovery-port '" + v + "' is not a port in [1024, 65535]");
+        }
+      },
+      "port of the server swa_launch starts (default: the first free one from 11811)");
   cli.text("--secure", "DIR", o.secure_dir,
            "DDS Security: authenticated, encrypted, per-UAV permissions, with the credentials in DIR (create them "
            "with deploy/security/make-credentials.sh DIR N); sets SWA_SECURITY_DIR",
@@ -94,38 +94,42 @@ app::Cli makeCli(LaunchOptions& o) {
            "'none': the default partition (for a process started by hand, a bridge or a DDS tool to join the run)",
            "a swarm name, or none");
   const std::vector<std::string> vehicles{"direct", "px4", "ardupilot"};
-  cli.choice("--vehicle", "V", vehicles, [&o, vehicles](std::size_t k) { o.vehicle = vehicles[k]; },
-             "how the agents reach their UAVs: direct (the simulator reads cmd_vel), px4 (each UAV a PX4 autopilot "
-             "played by the simulator, one swa_px4_bridge --engage per agent, supervised like the agents; the release "
-             "is vehicle.px4_release, default the newest) or ardupilot (each UAV an ArduPilot Copter, one "
-             "swa_px4_bridge --autopilot ardupilot --engage per agent); the same as --set vehicle.interface=V");
+  cli.choice(
+      "--vehicle", "V", vehicles, [&o, vehicles](std::size_t k) { o.vehicle = vehicles[k]; },
+      "how the agents reach their UAVs: direct (the simulator reads cmd_vel), px4 (each UAV a PX4 autopilot "
+      "played by the simulator, one swa_px4_bridge --engage per agent, supervised like the agents; the release "
+      "is vehicle.px4_release, default the newest) or ardupilot (each UAV an ArduPilot Copter, one "
+      "swa_px4_bridge --autopilot ardupilot --engage per agent); the same as --set vehicle.interface=V");
   std::vector<std::string> namings;
   for (const auto n : {dds::Naming::kSwa, dds::Naming::kRos2}) namings.emplace_back(dds::namingName(n));
-  cli.choice("--naming", "N", namings, [&o, namings](std::size_t k) { o.naming = namings[k]; },
-             "swa: topics swa/uav1/imu, types swa::msg::Imu; ros2: ROS 2's mapping (rt/swa/uav1/imu, "
-             "swa_msgs::msg::dds_::Imu_) so ros2 topic list / echo / bag see the run (with --swarm none: ROS tools "
-             "use the default partition). Sets SWA_NAMING for every child (default: $SWA_NAMING, else swa)");
+  cli.choice(
+      "--naming", "N", namings, [&o, namings](std::size_t k) { o.naming = namings[k]; },
+      "swa: topics swa/uav1/imu, types swa::msg::Imu; ros2: ROS 2's mapping (rt/swa/uav1/imu, "
+      "swa_msgs::msg::dds_::Imu_) so ros2 topic list / echo / bag see the run (with --swarm none: ROS tools "
+      "use the default partition). Sets SWA_NAMING for every child (default: $SWA_NAMING, else swa)");
   cli.text("--ros-namespace", "NS", o.ros_namespace,
            "with --naming ros2: a ROS namespace in front of every SWA topic (/NS/swa/uav1/imu), so two swarms can "
            "share a domain; sets SWA_ROS_NAMESPACE",
            "a ROS namespace");
   const std::vector<std::string> sets = recording::recordSetNames();
-  cli.flagChoice("--record", sets,
-                 [&o, sets](std::size_t k) {
-                   o.record = true;
-                   o.record_set = *recording::recordSetFromName(sets[k]);
-                 },
-                 "record each run into its directory's run.mcap (swa_monitor --record FILE --record-set SET). "
-                 "--record (= all): every topic's payloads unchanged, with their swa_msgs schemas, and the monitor's "
-                 "metrics; opens in Foxglove, Lichtblick, PlotJuggler; replays with swa_replay; costs the monitor "
-                 "what receiving every UAV's sensors costs. --record=monitor: only truth, events, the agents' states "
-                 "and the metrics, a small file at little cost, not replayable. A restarted monitor records into "
-                 "run_restart<K>.mcap");
+  cli.flagChoice(
+      "--record", sets,
+      [&o, sets](std::size_t k) {
+        o.record = true;
+        o.record_set = *recording::recordSetFromName(sets[k]);
+      },
+      "record each run into its directory's run.mcap (swa_monitor --record FILE --record-set SET). "
+      "--record (= all): every topic's payloads unchanged, with their swa_msgs schemas, and the monitor's "
+      "metrics; opens in Foxglove, Lichtblick, PlotJuggler; replays with swa_replay; costs the monitor "
+      "what receiving every UAV's sensors costs. --record=monitor: only truth, events, the agents' states "
+      "and the metrics, a small file at little cost, not replayable. A restarted monitor records into "
+      "run_restart<K>.mcap");
   cli.text("--live", "[ADDR:]PORT", o.live,
            "watch the run while it flies: the monitor serves a live page and the Foxglove WebSocket protocol on this "
            "port (swa_monitor --live; 127.0.0.1 unless ADDR); the URL is printed",
            "[ADDR:]PORT");
-  cli.footer(R"(Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 5 % of r, no collision, one
+  cli.footer(
+      R"(Exit status: the monitor's verdict of the first run: 0 PASS (cohesive: d_NB within 5 % of r, no collision, one
 group, no UAV on failsafe at the end), 1 FAIL, 3 INCOMPLETE (interrupted, timed out, or a process failed); 2 bad
 arguments or scenario, or a missing executable (nothing started).)");
   return cli;
@@ -136,7 +140,8 @@ void finish(LaunchOptions& o, const app::Cli& cli, app::Problems& problems) {
     if (const auto problem = dds::swarmNameProblem(o.swarm)) problems.push_back("--swarm " + *problem);
   }
   if (cli.given("--discovery-server")) {
-    for (const std::string& p : dds::checkServerList(o.discovery_server)) problems.push_back("--discovery-server: " + p);
+    for (const std::string& p : dds::checkServerList(o.discovery_server))
+      problems.push_back("--discovery-server: " + p);
   }
   if (o.restart_backoff_max_s < o.restart_backoff_s) {
     problems.push_back("--restart-backoff-max-s must not be below --restart-backoff-s");

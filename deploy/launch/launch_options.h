@@ -27,32 +27,32 @@ constexpr int kMaxUavProcessesForSimpleDiscovery = 32;
 constexpr double kSecureStaggerS = 0.5;
 
 struct LaunchOptions {
-  std::string scenario_path;              // --scenario FILE (required)
-  std::vector<std::string> overrides;     // --set key=value, in order; passed to sim, agents' config and monitor
-  std::string out_dir = "out/launch";     // --out DIR
-  std::optional<agent::Mode> compare;     // --compare MODE: a second run in that mode, same seed, one report
-  std::optional<std::string> domain;      // --domain D (else SWA_DOMAIN, else 0)
-  std::string bin_dir;                    // --bin-dir DIR (default: the directory of swa_launch itself)
-  int max_restarts = 5;                   // per agent and run; then the agent stays down
-  double restart_backoff_s = 0.5;         // first restart delay; doubles per restart of the same agent
+  std::string scenario_path;           // --scenario FILE (required)
+  std::vector<std::string> overrides;  // --set key=value, in order; passed to sim, agents' config and monitor
+  std::string out_dir = "out/launch";  // --out DIR
+  std::optional<agent::Mode> compare;  // --compare MODE: a second run in that mode, same seed, one report
+  std::optional<std::string> domain;   // --domain D (else SWA_DOMAIN, else 0)
+  std::string bin_dir;                 // --bin-dir DIR (default: the directory of swa_launch itself)
+  int max_restarts = 5;                // per agent and run; then the agent stays down
+  double restart_backoff_s = 0.5;      // first restart delay; doubles per restart of the same agent
   double restart_backoff_max_s = 8.0;
-  double agent_timeout_s = 2.0;           // passed to swa_sim --agent-timeout-s
-  double timeout_s = 0.0;                 // wall bound of each run; 0 = none
-  double grace_s = 10.0;                  // SIGTERM -> SIGKILL grace when stopping children
+  double agent_timeout_s = 2.0;  // passed to swa_sim --agent-timeout-s
+  double timeout_s = 0.0;        // wall bound of each run; 0 = none
+  double grace_s = 10.0;         // SIGTERM -> SIGKILL grace when stopping children
   // --stagger-s T: the simulator and the monitor first, then one UAV process every T seconds (0: all at once, the
   // simulator last). Unset: kSecureStaggerS with --secure, else 0.
   std::optional<double> stagger_s;
-  std::string transport;                  // --transport local|network|discovery-server (else $SWA_TRANSPORT)
-  std::string discovery_server;           // --discovery-server IP:PORT[;...]: use these instead of starting one
-  std::optional<int> discovery_port;      // --discovery-port: of the server swa_launch starts on 127.0.0.1
-  std::string secure_dir;                 // --secure DIR: DDS Security with the credentials in DIR
-  std::string swarm;                      // --swarm NAME | none (else $SWA_SWARM, else a new name per launch)
-  std::string vehicle;                    // --vehicle direct|px4|ardupilot: sets vehicle.interface (one bridge per agent)
-  std::string naming;                     // --naming swa|ros2 (else $SWA_NAMING, else swa)
-  std::string ros_namespace;              // --ros-namespace NS (ros2 naming; else $SWA_ROS_NAMESPACE)
-  bool record = false;                    // --record[=SET]: each run's monitor records it into <run dir>/run.mcap
+  std::string transport;              // --transport local|network|discovery-server (else $SWA_TRANSPORT)
+  std::string discovery_server;       // --discovery-server IP:PORT[;...]: use these instead of starting one
+  std::optional<int> discovery_port;  // --discovery-port: of the server swa_launch starts on 127.0.0.1
+  std::string secure_dir;             // --secure DIR: DDS Security with the credentials in DIR
+  std::string swarm;                  // --swarm NAME | none (else $SWA_SWARM, else a new name per launch)
+  std::string vehicle;                // --vehicle direct|px4|ardupilot: sets vehicle.interface (one bridge per agent)
+  std::string naming;                 // --naming swa|ros2 (else $SWA_NAMING, else swa)
+  std::string ros_namespace;          // --ros-namespace NS (ros2 naming; else $SWA_ROS_NAMESPACE)
+  bool record = false;                // --record[=SET]: each run's monitor records it into <run dir>/run.mcap
   recording::RecordSet record_set = recording::RecordSet::kAll;  // --record=monitor: only the monitor's own topics
-  std::string live;                       // --live [ADDR:]PORT: passed to the monitor (empty: no live view)
+  std::string live;  // --live [ADDR:]PORT: passed to the monitor (empty: no live view)
   bool help = false;
 };
 

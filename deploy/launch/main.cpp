@@ -21,12 +21,12 @@
 #include "shm_janitor.h"
 #include "swa/agent/config_io.h"
 #include "swa/app/program.h"
+#include "swa/app/run_directory.h"
 #include "swa/app/udp_port.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
 #include "swa/monitor/output_dir.h"
 #include "swa/sim/scenario_io.h"
-#include "swa/app/run_directory.h"
 
 namespace swa::launch {
 namespace {
@@ -58,9 +58,10 @@ std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_cou
   const int uav_processes = max_uav_count * (bridges ? 2 : 1);
   if (const auto automatic = automaticTransport(o, std::getenv("SWA_TRANSPORT"), uav_processes)) {
     ::setenv("SWA_TRANSPORT", automatic->c_str(), 1);
-    std::printf("swa_launch: %d UAV processes: discovery through a discovery server (past %d on one host it starts "
-                "and steps faster than multicast discovery; --transport local forces that)\n",
-                uav_processes, kMaxUavProcessesForSimpleDiscovery);
+    std::printf(
+        "swa_launch: %d UAV processes: discovery through a discovery server (past %d on one host it starts "
+        "and steps faster than multicast discovery; --transport local forces that)\n",
+        uav_processes, kMaxUavProcessesForSimpleDiscovery);
   }
   if (!o.transport.empty()) ::setenv("SWA_TRANSPORT", o.transport.c_str(), 1);
   if (!o.discovery_server.empty()) ::setenv("SWA_DISCOVERY_SERVER", o.discovery_server.c_str(), 1);
@@ -81,7 +82,8 @@ std::vector<std::string> applyDeployment(const LaunchOptions& o, int max_uav_cou
         o.discovery_port ? std::optional<int>(*o.discovery_port) : app::firstFreeUdpPort(kDefaultDiscoveryPort, 100);
     if (!free_port) {
       throw std::runtime_error("no free UDP port in " + std::to_string(kDefaultDiscoveryPort) + ".." +
-                               std::to_string(kDefaultDiscoveryPort + 99) + " for the discovery server (--discovery-port)");
+                               std::to_string(kDefaultDiscoveryPort + 99) +
+                               " for the discovery server (--discovery-port)");
     }
     const std::string port = std::to_string(*free_port);
     ::setenv("SWA_DISCOVERY_SERVER", ("127.0.0.1:" + port).c_str(), 1);

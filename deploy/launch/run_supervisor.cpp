@@ -47,7 +47,7 @@ struct UavProcess {
   int restarts = 0;
   std::optional<Clock::time_point> restart_due;
   bool given_up = false;
-  int last_exit = 0;          // of the process being restarted (restarts.csv)
+  int last_exit = 0;  // of the process being restarted (restarts.csv)
   double last_backoff = 0.0;
 
   std::string name() const { return (bridge ? "bridge " : "agent ") + std::to_string(uav); }
@@ -175,9 +175,9 @@ class Supervisor {
   void startSim() {
     std::vector<std::string> argv{bin_.sim};
     for (const std::string& a : scenarioArgs()) argv.push_back(a);
-    for (const std::string& a :
-         {std::string("--wait-monitors"), std::string("1"), std::string("--agent-timeout-s"),
-          std::to_string(o_.agent_timeout_s), std::string("--summary-out"), (spec_.dir / "sim_summary.json").string()}) {
+    for (const std::string& a : {std::string("--wait-monitors"), std::string("1"), std::string("--agent-timeout-s"),
+                                 std::to_string(o_.agent_timeout_s), std::string("--summary-out"),
+                                 (spec_.dir / "sim_summary.json").string()}) {
       argv.push_back(a);
     }
     sim_ = std::make_unique<ChildProcess>(argv, (logs_ / "sim.log").string());
@@ -196,8 +196,14 @@ class Supervisor {
     const std::string uav = std::to_string(p.uav);
     const sim::VehicleSetup& vehicle = spec_.scenario.vehicle;
     std::vector<std::string> argv =
-        p.bridge ? std::vector<std::string>{bin_.bridge, "--id", uav, "--domain", domain_, "--engage",
-                                            "--summary-out", (logs_ / ("bridge_" + uav + "_summary.json")).string()}
+        p.bridge ? std::vector<std::string>{bin_.bridge,
+                                            "--id",
+                                            uav,
+                                            "--domain",
+                                            domain_,
+                                            "--engage",
+                                            "--summary-out",
+                                            (logs_ / ("bridge_" + uav + "_summary.json")).string()}
                  : std::vector<std::string>{bin_.agent, "--id", uav, "--domain", domain_, "--scenario", scenarioFile()};
     if (p.bridge && vehicle.interface == sim::VehicleInterface::kArdupilot) {
       // The stand-ins write the ROS order. Told, not found out: a stand-in facing north looks level in either order,
@@ -253,9 +259,9 @@ class Supervisor {
       p.restart_due.reset();
       ++p.restarts;
       ++(p.bridge ? outcome_.bridge_restarts : outcome_.restarts);
-      std::ofstream(logs_ / "restarts.csv", std::ios::app) << secondsSince(t0_) << ',' << p.subject() << ','
-                                                           << p.last_exit << ',' << p.restarts << ','
-                                                           << p.last_backoff << '\n';
+      std::ofstream(logs_ / "restarts.csv", std::ios::app)
+          << secondsSince(t0_) << ',' << p.subject() << ',' << p.last_exit << ',' << p.restarts << ',' << p.last_backoff
+          << '\n';
       start(p);
     }
   }
@@ -263,7 +269,8 @@ class Supervisor {
   void supervise() {
     std::optional<Clock::time_point> sim_done_at, monitor_done_at;
     while (true) {
-      if (stop_) requestStop(app::shutdownSignal() == SIGINT ? "SIGINT" : app::shutdownSignal() == 0 ? "stop" : "SIGTERM");
+      if (stop_)
+        requestStop(app::shutdownSignal() == SIGINT ? "SIGINT" : app::shutdownSignal() == 0 ? "stop" : "SIGTERM");
       if (o_.timeout_s > 0.0 && secondsSince(t0_) > o_.timeout_s) requestStop("--timeout-s reached");
 
       if (!sim_done_at) {
@@ -280,9 +287,9 @@ class Supervisor {
         if (Clock::now() >= *monitor_restart_due_) {
           monitor_restart_due_.reset();
           ++monitor_restarts_;
-          std::ofstream(logs_ / "restarts.csv", std::ios::app) << secondsSince(t0_) << ",monitor,"
-                                                               << monitor_exit_ << ',' << monitor_restarts_ << ','
-                                                               << monitor_backoff_s_ << '\n';
+          std::ofstream(logs_ / "restarts.csv", std::ios::app)
+              << secondsSince(t0_) << ",monitor," << monitor_exit_ << ',' << monitor_restarts_ << ','
+              << monitor_backoff_s_ << '\n';
           startMonitor();
         }
       } else if (const auto m = monitor_->poll()) {
@@ -294,8 +301,8 @@ class Supervisor {
             const double delay = policy_.delay(monitor_restarts_);
             std::printf("swa_launch [%s]: swa_monitor ended (%s) at %.1f s; restarting it in %.1f s\n",
                         spec_.label.c_str(), describeStatus(*m).c_str(), secondsSince(t0_), delay);
-            monitor_restart_due_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                      std::chrono::duration<double>(delay));
+            monitor_restart_due_ =
+                Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(delay));
             monitor_exit_ = *m;
             monitor_backoff_s_ = delay;
             continue;
@@ -340,7 +347,8 @@ class Supervisor {
     }
     if (monitor_->running()) monitor_->signal(SIGTERM);
     const double grace_s = stopping_ ? std::min(o_.grace_s, kStopGraceS) : o_.grace_s;
-    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(grace_s));
+    const auto deadline =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(grace_s));
     while (Clock::now() < deadline) {
       bool any = false;
       for (ChildProcess* c : all) any = any || (c != nullptr && c->running());

@@ -27,10 +27,10 @@ struct RunSpec {
 struct RunOutcome {
   int monitor_status = 3;  // 0 PASS, 1 FAIL, 3 INCOMPLETE (also when the monitor itself failed)
   int sim_status = -1;
-  int restarts = 0;         // of agents
-  int bridge_restarts = 0;  // of autopilot bridges (vehicle.interface = px4)
-  bool interrupted = false;  // SIGINT / SIGTERM or --timeout-s
-  std::string verdict;       // the monitor's verdict line from summary.json, if any
+  int restarts = 0;                          // of agents
+  int bridge_restarts = 0;                   // of autopilot bridges (vehicle.interface = px4)
+  bool interrupted = false;                  // SIGINT / SIGTERM or --timeout-s
+  std::string verdict;                       // the monitor's verdict line from summary.json, if any
   std::vector<std::string> verdict_reasons;  // why it did not pass, from summary.json
 };
 

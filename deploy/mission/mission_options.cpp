@@ -12,8 +12,9 @@ namespace {
 
 app::Cli makeCli(MissionOptions& o) {
   app::Cli cli("swa_mission", "send a swarm mission from the ground to every agent of a running swarm.");
-  cli.usage("swa_mission (--leg vel:E,N,SECONDS | --leg to:E,N,SPEED)... [--expect N] [--stay] [--domain D]\n"
-            "       swa_mission --hold [--expect N] [--domain D]");
+  cli.usage(
+      "swa_mission (--leg vel:E,N,SECONDS | --leg to:E,N,SPEED)... [--expect N] [--stay] [--domain D]\n"
+      "       swa_mission --hold [--expect N] [--domain D]");
   cli.details(R"(Writes swa/swarm/mission (SwarmMission) as the participant swa_ground: every agent and the monitor read
 it, and each agent flies it from its next IMU sample, from the point its plan has reached (started there if none ran):
   vel:E,N,SECONDS  fly east E, north N m/s for SECONDS, then hold (a plain group velocity: it ends by itself, so a

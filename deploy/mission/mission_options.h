@@ -11,14 +11,14 @@
 namespace swa::mission_tool {
 
 struct MissionOptions {
-  agent::MissionCommand command;       // --leg ..., or --hold
-  std::vector<std::string> legs;       // --leg as written, in order
-  bool hold = false;                   // --hold
-  double max_speed_mps = 5.0;          // --max-speed: the agents' mission.max_speed_mps
-  int expect = 1;                      // --expect N readers matched before sending
-  double wait_s = 10.0;                // --wait-s: for the readers, then for their acknowledgment
-  bool stay = false;                   // --stay: keep the writer until SIGINT / SIGTERM
-  std::optional<std::string> domain;   // --domain D (else SWA_DOMAIN, else 0)
+  agent::MissionCommand command;      // --leg ..., or --hold
+  std::vector<std::string> legs;      // --leg as written, in order
+  bool hold = false;                  // --hold
+  double max_speed_mps = 5.0;         // --max-speed: the agents' mission.max_speed_mps
+  int expect = 1;                     // --expect N readers matched before sending
+  double wait_s = 10.0;               // --wait-s: for the readers, then for their acknowledgment
+  bool stay = false;                  // --stay: keep the writer until SIGINT / SIGTERM
+  std::optional<std::string> domain;  // --domain D (else SWA_DOMAIN, else 0)
   bool help = false;
 };
 

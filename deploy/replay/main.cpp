@@ -35,9 +35,8 @@ app::Plan prepare(const std::vector<std::string>& args) {
   }
   if (run.record_set && *run.record_set != recording::toString(recording::RecordSet::kAll)) {
     // Without the sensors and commands there is nothing to re-run or re-send; say why rather than "no input".
-    throw std::invalid_argument(options.file + " is a '" + *run.record_set +
-                                "' recording (swa_monitor --record-set " + *run.record_set +
-                                ", swa_launch --record=" + *run.record_set +
+    throw std::invalid_argument(options.file + " is a '" + *run.record_set + "' recording (swa_monitor --record-set " +
+                                *run.record_set + ", swa_launch --record=" + *run.record_set +
                                 "): it holds no sensors or commands; swa_replay needs a complete recording "
                                 "(--record, the set 'all')");
   }

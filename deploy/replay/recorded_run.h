@@ -40,7 +40,7 @@ struct WorldSample {
 
 struct RecordedRun {
   std::map<int, UavRecording> uavs;
-  std::vector<WorldSample> world;           // by (log time, order)
+  std::vector<WorldSample> world;            // by (log time, order)
   std::optional<std::string> scenario_yaml;  // the run's effective scenario, if the recorder knew it
   std::optional<std::string> record_set;     // which topics the recorder took (swa/recording/record_set.h), if it said
   std::string profile;

@@ -61,13 +61,13 @@ UavCheck checkUav(int uav, const UavRecording& recording, const agent::AgentConf
       ++c.differing;
       msg::VelocitySetpoint was;
       dds::decodePayload<msg::VelocitySetpointPubSubType>(*it->second, was);
-      c.max_speed_difference_mps = std::max(
-          c.max_speed_difference_mps, std::hypot(out.vx_mps() - was.vx_mps(), out.vy_mps() - was.vy_mps()));
+      c.max_speed_difference_mps =
+          std::max(c.max_speed_difference_mps, std::hypot(out.vx_mps() - was.vx_mps(), out.vy_mps() - was.vy_mps()));
       c.max_yaw_rate_difference_radps =
           std::max(c.max_yaw_rate_difference_radps, std::abs(out.yaw_rate_radps() - was.yaw_rate_radps()));
       if (!c.first_difference) {
-        c.first_difference = CommandDifference{it->first,        was.vx_mps(), was.vy_mps(), was.yaw_rate_radps(),
-                                               out.vx_mps(),     out.vy_mps(), out.yaw_rate_radps()};
+        c.first_difference = CommandDifference{it->first,    was.vx_mps(), was.vy_mps(),        was.yaw_rate_radps(),
+                                               out.vx_mps(), out.vy_mps(), out.yaw_rate_radps()};
       }
     } else if (in.input == Input::kDetections) {
       msg::Detections det;
@@ -106,8 +106,8 @@ std::string formatChecks(const std::vector<UavCheck>& checks) {
                   c.uav, static_cast<unsigned long long>(c.inputs), static_cast<unsigned long long>(c.replayed),
                   static_cast<unsigned long long>(c.recorded), static_cast<unsigned long long>(c.identical),
                   static_cast<unsigned long long>(c.differing), c.max_speed_difference_mps,
-                  c.max_yaw_rate_difference_radps,
-                  static_cast<unsigned long long>(c.not_recorded), static_cast<unsigned long long>(c.not_replayed),
+                  c.max_yaw_rate_difference_radps, static_cast<unsigned long long>(c.not_recorded),
+                  static_cast<unsigned long long>(c.not_replayed),
                   c.undecodable > 0 ? (", " + std::to_string(c.undecodable) + " inputs skipped").c_str() : "");
     out += line;
     if (c.first_difference) {

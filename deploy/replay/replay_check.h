@@ -32,10 +32,10 @@ struct UavCheck {
   std::uint64_t recorded = 0;     // commands in the recording
   // Replayed commands whose payload equals the recorded one of the same stamp, byte for byte.
   std::uint64_t identical = 0;
-  std::uint64_t differing = 0;    // same stamp, other bytes
-  std::uint64_t not_recorded = 0;  // replayed, no recorded command of that stamp
-  std::uint64_t not_replayed = 0;  // recorded, not produced by the replay
-  double max_speed_difference_mps = 0.0;  // largest |replayed - recorded| velocity among the differing ones
+  std::uint64_t differing = 0;                 // same stamp, other bytes
+  std::uint64_t not_recorded = 0;              // replayed, no recorded command of that stamp
+  std::uint64_t not_replayed = 0;              // recorded, not produced by the replay
+  double max_speed_difference_mps = 0.0;       // largest |replayed - recorded| velocity among the differing ones
   double max_yaw_rate_difference_radps = 0.0;  // and yaw rate
   std::optional<CommandDifference> first_difference;
   std::optional<std::int64_t> first_not_recorded_ns;  // stamp of the first replayed command the recording lacks

@@ -36,7 +36,7 @@ struct Item {
              // next step's sensors), then detections and GNSS, then the IMU sample, as the simulator writes them in
              // lockstep (sim_ports.cpp)
   std::uint64_t order;
-  int uav;                   // -1: a world topic
+  int uav;             // -1: a world topic
   InputSample* input;  // or
   WorldSample* world;
 };
@@ -66,7 +66,8 @@ ReplayNode::ReplayNode(RecordedRun run, const ReplayOptions& options, int domain
         participant_->rawWriter<msg::SwarmTruthPubSubType>(topics::kTruth, dds::qos::kTruthWriter);
     world_writers_[topics::kEvents] =
         participant_->rawWriter<msg::ScenarioEventPubSubType>(topics::kEvents, dds::qos::kEventWriter);
-    world_writers_[topics::kClock] = participant_->rawWriter<msg::ClockPubSubType>(topics::kClock, dds::qos::kClockWriter);
+    world_writers_[topics::kClock] =
+        participant_->rawWriter<msg::ClockPubSubType>(topics::kClock, dds::qos::kClockWriter);
   }
 }
 
@@ -96,8 +97,8 @@ void ReplayNode::waitForReaders() {
       if (w.imu.matched() < 1) waiting.push_back(uav);
     }
     // A monitor's truth reader appears once it has matched every agent (monitor_node.cpp): wait for it too.
-    const bool truth_waiting = world_writers_.count(dds::topics::kTruth) > 0 &&
-                               world_writers_.at(dds::topics::kTruth).matched() < 1;
+    const bool truth_waiting =
+        world_writers_.count(dds::topics::kTruth) > 0 && world_writers_.at(dds::topics::kTruth).matched() < 1;
     if (waiting.empty() && !truth_waiting) return;
     if (Clock::now() >= until) {
       std::string list;
@@ -217,26 +218,28 @@ int ReplayNode::report() {
       }
     }
     const std::uint64_t unanswered = recorded.size() - std::min<std::uint64_t>(recorded.size(), identical + differing);
-    std::printf("swa_replay: uav %d: %llu answers, %llu recorded commands: %llu identical, %llu differ, %llu not "
-                "recorded, %llu not answered\n",
-                uav, static_cast<unsigned long long>(answers), static_cast<unsigned long long>(recorded.size()),
-                static_cast<unsigned long long>(identical), static_cast<unsigned long long>(differing),
-                static_cast<unsigned long long>(unrecorded), static_cast<unsigned long long>(unanswered));
+    std::printf(
+        "swa_replay: uav %d: %llu answers, %llu recorded commands: %llu identical, %llu differ, %llu not "
+        "recorded, %llu not answered\n",
+        uav, static_cast<unsigned long long>(answers), static_cast<unsigned long long>(recorded.size()),
+        static_cast<unsigned long long>(identical), static_cast<unsigned long long>(differing),
+        static_cast<unsigned long long>(unrecorded), static_cast<unsigned long long>(unanswered));
     all_identical = all_identical && differing == 0 && unrecorded == 0 && unanswered == 0 && answers > 0;
   }
   if (unacknowledged_ > 0) {
-    std::printf("swa_replay: %llu steps whose detections or GNSS fix were not acknowledged within %lld s (the "
-                "next IMU sample may have overtaken them)\n",
-                static_cast<unsigned long long>(unacknowledged_),
-                static_cast<long long>(std::chrono::duration_cast<std::chrono::seconds>(kAnswerTimeout).count()));
+    std::printf(
+        "swa_replay: %llu steps whose detections or GNSS fix were not acknowledged within %lld s (the "
+        "next IMU sample may have overtaken them)\n",
+        static_cast<unsigned long long>(unacknowledged_),
+        static_cast<long long>(std::chrono::duration_cast<std::chrono::seconds>(kAnswerTimeout).count()));
   }
   if (answers_missed_ > 0) {
     std::printf("swa_replay: %llu steps without every answer within %lld s\n",
                 static_cast<unsigned long long>(answers_missed_),
                 static_cast<long long>(std::chrono::duration_cast<std::chrono::seconds>(kAnswerTimeout).count()));
   }
-  std::printf("swa_replay: %s\n", all_identical ? "IDENTICAL: every answer equals the recorded command"
-                                                : "DIFFERENT: see the lines above");
+  std::printf("swa_replay: %s\n",
+              all_identical ? "IDENTICAL: every answer equals the recorded command" : "DIFFERENT: see the lines above");
   return all_identical ? kExitOk : kExitDifferent;
 }
 

@@ -10,7 +10,8 @@
 namespace swa::replay {
 namespace {
 
-const char* const kDetails = R"(FILE.mcap (the first argument) is a recording of swa_launch --record or swa_monitor --record.
+const char* const kDetails =
+    R"(FILE.mcap (the first argument) is a recording of swa_launch --record or swa_monitor --record.
 
 --check  re-runs the agent core in this process on the recorded inputs of every UAV (or --uav I): IMU, detections
   and GNSS in the order swa_agent processes them in a lockstep run (by stamp; at equal stamps IMU, detections,
@@ -32,18 +33,19 @@ app::Cli makeCli(ReplayOptions& o) {
   cli.usage(R"(swa_replay FILE.mcap --check [--uav I] [--scenario FILE] [--set key=value]...
        swa_replay FILE.mcap [--uav I] [--speed X] [--lockstep] [--domain D] [--wait-s S])");
   cli.details(kDetails);
-  cli.value("--uav", "I",
-            [&o](const std::string& v, app::Problems& p) {
-              try {
-                std::size_t used = 0;
-                const int i = std::stoi(v, &used);
-                if (used != v.size() || i < 0 || i > 100'000) throw std::invalid_argument(v);
-                o.uav = i;
-              } catch (const std::exception&) {
-                p.push_back("--uav '" + v + "' is not a UAV index in [0, 100000]");
-              }
-            },
-            "only this UAV (default: every UAV of the recording)");
+  cli.value(
+      "--uav", "I",
+      [&o](const std::string& v, app::Problems& p) {
+        try {
+          std::size_t used = 0;
+          const int i = std::stoi(v, &used);
+          if (used != v.size() || i < 0 || i > 100'000) throw std::invalid_argument(v);
+          o.uav = i;
+        } catch (const std::exception&) {
+          p.push_back("--uav '" + v + "' is not a UAV index in [0, 100000]");
+        }
+      },
+      "only this UAV (default: every UAV of the recording)");
   cli.flag("--check", o.check, "re-run the agent core in-process and compare its commands (see below)");
   cli.real("--speed", "X", o.speed, 0.0, 1000.0, "a speed factor",
            "recorded seconds per wall second; 0: as fast as possible (with --lockstep: as fast as the agents answer)");
@@ -71,24 +73,24 @@ ReplayOptions parseReplayOptions(const std::vector<std::string>& args) {
     file = rest.front();
     rest.erase(rest.begin());
   }
-  return app::parseOptions<ReplayOptions>(rest, makeCli, [&file](ReplayOptions& o, const app::Cli& cli,
-                                                                  app::Problems& problems) {
-    o.file = file;
-    if (o.help) return;
-    if (o.file.empty()) problems.push_back("the recording FILE.mcap (first argument) is missing");
-    if (o.check) {
-      for (const char* live : {"--speed", "--lockstep", "--domain", "--wait-s"}) {
-        if (cli.given(live)) problems.push_back(std::string(live) + " replays on DDS: not with --check");
-      }
-    } else {
-      for (const char* offline : {"--scenario", "--set"}) {
-        if (cli.given(offline)) {
-          problems.push_back(std::string(offline) + " applies to --check (agents replayed into get their own)");
+  return app::parseOptions<ReplayOptions>(
+      rest, makeCli, [&file](ReplayOptions& o, const app::Cli& cli, app::Problems& problems) {
+        o.file = file;
+        if (o.help) return;
+        if (o.file.empty()) problems.push_back("the recording FILE.mcap (first argument) is missing");
+        if (o.check) {
+          for (const char* live : {"--speed", "--lockstep", "--domain", "--wait-s"}) {
+            if (cli.given(live)) problems.push_back(std::string(live) + " replays on DDS: not with --check");
+          }
+        } else {
+          for (const char* offline : {"--scenario", "--set"}) {
+            if (cli.given(offline)) {
+              problems.push_back(std::string(offline) + " applies to --check (agents replayed into get their own)");
+            }
+          }
+          if (o.speed == 0.0 && !o.lockstep) problems.push_back("--speed 0 needs --lockstep (nothing else paces it)");
         }
-      }
-      if (o.speed == 0.0 && !o.lockstep) problems.push_back("--speed 0 needs --lockstep (nothing else paces it)");
-    }
-  });
+      });
 }
 
 std::string replayUsage() { return app::helpText(makeCli); }

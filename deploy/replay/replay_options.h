@@ -8,15 +8,15 @@
 namespace swa::replay {
 
 struct ReplayOptions {
-  std::string file;                   // FILE.mcap, the first argument
-  std::optional<int> uav;             // --uav I: only this UAV's inputs (and, with --check, commands)
-  double speed = 1.0;                 // --speed X: recorded seconds per wall second; 0 = as fast as possible
-  bool lockstep = false;              // --lockstep: wait for the agents' answer to each IMU sample
-  bool check = false;                 // --check: in-process, no DDS
-  std::string scenario_path;          // --scenario FILE: parameters instead of the recorded ones
+  std::string file;                    // FILE.mcap, the first argument
+  std::optional<int> uav;              // --uav I: only this UAV's inputs (and, with --check, commands)
+  double speed = 1.0;                  // --speed X: recorded seconds per wall second; 0 = as fast as possible
+  bool lockstep = false;               // --lockstep: wait for the agents' answer to each IMU sample
+  bool check = false;                  // --check: in-process, no DDS
+  std::string scenario_path;           // --scenario FILE: parameters instead of the recorded ones
   std::vector<std::string> overrides;  // --set key=value on top of them
-  std::optional<std::string> domain;  // --domain D
-  double wait_s = 30.0;               // --wait-s S: for the agents' readers before replaying
+  std::optional<std::string> domain;   // --domain D
+  double wait_s = 30.0;                // --wait-s S: for the agents' readers before replaying
   bool help = false;
 };
 

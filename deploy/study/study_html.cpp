@@ -103,8 +103,7 @@ constexpr const char* kStyle =
 std::string studyTitle(const StudyRecord& s) {
   std::vector<std::string> keys;
   for (const Axis& a : s.plan.axes) keys.push_back(axisName(a));
-  return "Formation, drift, safety and consistency against " + listed(keys) + " — scenario " +
-         scenarioName(s.scenario);
+  return "Formation, drift, safety and consistency against " + listed(keys) + " — scenario " + scenarioName(s.scenario);
 }
 
 std::string studyHtml(const StudyRecord& s) {
@@ -123,8 +122,9 @@ std::string studyHtml(const StudyRecord& s) {
     html += "<h2>Against " + esc(axisName(s.plan.axes[axis])) + "</h2>\n";
     for (const StudyMetric& m : studyMetrics()) html += figure(studyPlot(view, axis, m));
   }
-  html += "<h2 id=\"numbers\">The numbers</h2>\n<p class=\"note\">Per grid point: the mean over its seeds, the sample "
-          "standard deviation (— with fewer than two) and n, the seeds with a value.</p>\n";
+  html +=
+      "<h2 id=\"numbers\">The numbers</h2>\n<p class=\"note\">Per grid point: the mean over its seeds, the sample "
+      "standard deviation (— with fewer than two) and n, the seeds with a value.</p>\n";
   for (const StudyMetric& m : studyMetrics()) html += numbersTable(view, m);
   html += "</body></html>\n";
   return html;

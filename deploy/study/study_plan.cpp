@@ -83,9 +83,9 @@ Variant parseVariant(const std::string& text) {
 }
 
 void setVariants(StudyPlan& plan, std::vector<Variant> variants) {
-  plan.axes.erase(std::remove_if(plan.axes.begin(), plan.axes.end(),
-                                 [](const Axis& a) { return a.key == kVariantAxis; }),
-                  plan.axes.end());
+  plan.axes.erase(
+      std::remove_if(plan.axes.begin(), plan.axes.end(), [](const Axis& a) { return a.key == kVariantAxis; }),
+      plan.axes.end());
   plan.variants = std::move(variants);
   if (plan.variants.empty()) return;
   Axis axis{kVariantAxis, {}};
@@ -109,8 +109,9 @@ std::vector<std::string> planProblems(const StudyPlan& plan) {
     if (!keys.insert(a.key).second) problems.push_back(a.key + " is swept twice: give its values once");
   }
   if (plan.axes.empty()) {
-    problems.push_back("a study sweeps at least one key or compares variants (--sweep KEY=V1,V2, study.sweep, "
-                       "--variant NAME:KEY=V or study.variants)");
+    problems.push_back(
+        "a study sweeps at least one key or compares variants (--sweep KEY=V1,V2, study.sweep, "
+        "--variant NAME:KEY=V or study.variants)");
   }
   std::set<std::string> names;
   for (const Variant& v : plan.variants) {

@@ -26,9 +26,9 @@ struct Variant {
 constexpr const char* kVariantAxis = "variant";
 
 struct StudyPlan {
-  std::vector<Axis> axes;  // in the order given; the first varies slowest; "variant" (if any) last
+  std::vector<Axis> axes;         // in the order given; the first varies slowest; "variant" (if any) last
   std::vector<Variant> variants;  // what each value of the "variant" axis sets
-  int seeds = 1;           // seeds scenario.seed .. scenario.seed + seeds - 1 at every grid point
+  int seeds = 1;                  // seeds scenario.seed .. scenario.seed + seeds - 1 at every grid point
 };
 
 struct Shard {
@@ -37,8 +37,9 @@ struct Shard {
   bool whole() const { return count == 1; }
 };
 
-// An axis with its values checked: a key, at least one value, none empty, none twice (key and values trimmed). `what` names the source in the
-// std::invalid_argument thrown ("--sweep 'uav_count=4,,8'", "study.sweep.uav_count (line 3, column 14)").
+// An axis with its values checked: a key, at least one value, none empty, none twice (key and values trimmed). `what`
+// names the source in the std::invalid_argument thrown ("--sweep 'uav_count=4,,8'", "study.sweep.uav_count (line 3,
+// column 14)").
 Axis makeAxis(std::string key, std::vector<std::string> values, const std::string& what);
 // "KEY=V1,V2,..." -> an axis. Throws std::invalid_argument saying what is wrong (no '=', no key, an empty value, a
 // value given twice).

@@ -149,8 +149,8 @@ std::vector<PointSeries> seriesAlong(const StudyPlan& plan, std::size_t axis) {
       const bool one_other = plan.axes.size() == 2;
       for (std::size_t k = 0; k < plan.axes.size(); ++k) {
         if (k == axis) continue;
-        s.label += (s.label.empty() ? "" : ", ") + (one_other ? "" : plan.axes[k].key + " = ") +
-                   plan.axes[k].values[index[k]];
+        s.label +=
+            (s.label.empty() ? "" : ", ") + (one_other ? "" : plan.axes[k].key + " = ") + plan.axes[k].values[index[k]];
       }
       if (s.label.empty()) s.label = "mean ± sd over the seeds";
     }
@@ -297,10 +297,11 @@ void addDriftGuide(StudyPlot& plot, const StudyView& view, const XAxis& x, std::
     guide.y.push_back(anchor.mean * std::pow(v / *smallest, kDriftExponent));
   }
   plot.spec.series.push_back(std::move(guide));
-  plot.notes.push_back("Log-log axes. Dashed: a guide ∝ N^-1/2 (DESIGN §5's expected trend) drawn through the mean "
-                       "drift of all runs at N = " +
-                       x.axis->values[j0] + " (" + monitor::formatFixed(anchor.mean, 4) +
-                       " m/s); it is anchored there, not fitted: how the other sizes sit against it is the result.");
+  plot.notes.push_back(
+      "Log-log axes. Dashed: a guide ∝ N^-1/2 (DESIGN §5's expected trend) drawn through the mean "
+      "drift of all runs at N = " +
+      x.axis->values[j0] + " (" + monitor::formatFixed(anchor.mean, 4) +
+      " m/s); it is anchored there, not fitted: how the other sizes sit against it is the result.");
 }
 
 // The series' means ± standard deviations, each series its own colour, marker and dash.
@@ -459,8 +460,8 @@ StudyPlot studyPlot(const StudyView& view, std::size_t axis, const StudyMetric& 
         if (scoring) distance = scoring->collision_distance_m;
       }
       spec.y_include_zero = true;
-      spec.lines.push_back({monitor::LineOrientation::kHorizontal, distance, "collision " + metres(distance),
-                            kCollisionColour, true});
+      spec.lines.push_back(
+          {monitor::LineOrientation::kHorizontal, distance, "collision " + metres(distance), kCollisionColour, true});
       break;
     }
     case MetricKind::kCollisions:

@@ -7,8 +7,8 @@
 #include <set>
 
 #include "study_html.h"
-#include "swa/run_record/csv.h"
 #include "swa/app/version.h"
+#include "swa/run_record/csv.h"
 
 namespace swa::study {
 namespace {
@@ -78,15 +78,9 @@ Json studyJson(const StudyRecord& s) {
     for (const monitor::NamedValue& m : r.metrics) metrics[m.key] = number(m.value);
     runs.push_back({{"index", r.index}, {"point", r.point}, {"seed", r.seed}, {"metrics", metrics}});
   }
-  return {{"format", kFormat},
-          {"study_id", s.study_id},
-          {"version", s.version},
-          {"scenario", s.scenario},
-          {"first_seed", s.first_seed},
-          {"plan", planJson(s.plan)},
-          {"shard", shardText(s.shard)},
-          {"scenario_yaml", s.scenario_yaml},
-          {"runs", runs}};
+  return {{"format", kFormat},           {"study_id", s.study_id},           {"version", s.version},
+          {"scenario", s.scenario},      {"first_seed", s.first_seed},       {"plan", planJson(s.plan)},
+          {"shard", shardText(s.shard)}, {"scenario_yaml", s.scenario_yaml}, {"runs", runs}};
 }
 
 StudyRecord studyFromJson(const Json& j, const std::string& source) {
@@ -160,7 +154,8 @@ StudyRecord mergeShards(const std::vector<StudyRecord>& shards) {
   const std::size_t total = runCount(first.plan);
   std::set<int> missing_shards;
   for (std::size_t i = 0; i < total; ++i) {
-    if (by_index.count(i) == 0) missing_shards.insert(static_cast<int>(i % static_cast<std::size_t>(first.shard.count)) + 1);
+    if (by_index.count(i) == 0)
+      missing_shards.insert(static_cast<int>(i % static_cast<std::size_t>(first.shard.count)) + 1);
   }
   if (!missing_shards.empty() || by_index.size() != total) {
     std::string list;

@@ -25,8 +25,8 @@ namespace swa::study {
 
 struct StudySection {
   bool present = false;
-  int seeds = 0;           // 0: not given
-  std::vector<Axis> axes;  // in file order
+  int seeds = 0;                  // 0: not given
+  std::vector<Axis> axes;         // in file order
   std::vector<Variant> variants;  // in file order
 };
 

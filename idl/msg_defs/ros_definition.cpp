@@ -10,9 +10,9 @@ namespace swa::msg_defs {
 namespace {
 
 const std::set<std::string_view>& primitives() {
-  static const std::set<std::string_view> names = {"bool",   "byte",   "char",   "float32", "float64", "int8",
-                                                   "uint8",  "int16",  "uint16", "int32",   "uint32",  "int64",
-                                                   "uint64", "string", "wstring"};
+  static const std::set<std::string_view> names = {"bool",   "byte",  "char",   "float32", "float64",
+                                                   "int8",   "uint8", "int16",  "uint16",  "int32",
+                                                   "uint32", "int64", "uint64", "string",  "wstring"};
   return names;
 }
 
@@ -21,8 +21,8 @@ std::string_view fieldType(std::string_view line) {
   const std::size_t start = line.find_first_not_of(" \t");
   if (start == std::string_view::npos || line[start] == '#') return {};
   std::string_view type = line.substr(start, line.find_first_of(" \t", start) - start);
-  type = type.substr(0, type.find('['));                  // arrays: T[], T[3], T[<=3]
-  if (type.rfind("string<=", 0) == 0) return "string";    // bounded strings
+  type = type.substr(0, type.find('['));                // arrays: T[], T[3], T[<=3]
+  if (type.rfind("string<=", 0) == 0) return "string";  // bounded strings
   if (type.rfind("wstring<=", 0) == 0) return "wstring";
   return type;
 }

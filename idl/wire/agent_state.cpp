@@ -8,37 +8,50 @@ namespace {
 
 msg::AgentMode toMsg(agent::Mode m) {
   switch (m) {
-    case agent::Mode::kSwa: return msg::MODE_SWA;
-    case agent::Mode::kStandalone: return msg::MODE_STANDALONE;
-    case agent::Mode::kAnchored: return msg::MODE_ANCHORED;
+    case agent::Mode::kSwa:
+      return msg::MODE_SWA;
+    case agent::Mode::kStandalone:
+      return msg::MODE_STANDALONE;
+    case agent::Mode::kAnchored:
+      return msg::MODE_ANCHORED;
   }
   return msg::MODE_SWA;
 }
 
 msg::AgentStage toMsg(agent::Stage s) {
   switch (s) {
-    case agent::Stage::kInitializing: return msg::STAGE_INITIALIZING;
-    case agent::Stage::kTracking: return msg::STAGE_TRACKING;
-    case agent::Stage::kLost: return msg::STAGE_LOST;
+    case agent::Stage::kInitializing:
+      return msg::STAGE_INITIALIZING;
+    case agent::Stage::kTracking:
+      return msg::STAGE_TRACKING;
+    case agent::Stage::kLost:
+      return msg::STAGE_LOST;
   }
   return msg::STAGE_INITIALIZING;
 }
 
 std::optional<agent::Mode> fromMsg(msg::AgentMode m) {
   switch (m) {
-    case msg::MODE_SWA: return agent::Mode::kSwa;
-    case msg::MODE_STANDALONE: return agent::Mode::kStandalone;
-    case msg::MODE_ANCHORED: return agent::Mode::kAnchored;
+    case msg::MODE_SWA:
+      return agent::Mode::kSwa;
+    case msg::MODE_STANDALONE:
+      return agent::Mode::kStandalone;
+    case msg::MODE_ANCHORED:
+      return agent::Mode::kAnchored;
   }
   return std::nullopt;  // an out-of-range value off the wire
 }
 
 std::optional<agent::Stage> fromMsg(msg::AgentStage s) {
   switch (s) {
-    case msg::STAGE_INITIALIZING: return agent::Stage::kInitializing;
-    case msg::STAGE_TRACKING: return agent::Stage::kTracking;
-    case msg::STAGE_LOST: return agent::Stage::kLost;
-    case msg::STAGE_NO_INPUT: return agent::Stage::kLost;  // not tracking: no estimate to score
+    case msg::STAGE_INITIALIZING:
+      return agent::Stage::kInitializing;
+    case msg::STAGE_TRACKING:
+      return agent::Stage::kTracking;
+    case msg::STAGE_LOST:
+      return agent::Stage::kLost;
+    case msg::STAGE_NO_INPUT:
+      return agent::Stage::kLost;  // not tracking: no estimate to score
   }
   return std::nullopt;
 }
@@ -71,8 +84,8 @@ msg::AgentState toMsg(const agent::Diagnostics& d, std::uint32_t uav_id, std::ui
   m.frame_centre_x_m(d.frame_centre_m.x());
   m.frame_centre_y_m(d.frame_centre_m.y());
   m.frame_valid(d.frame_valid);
-  const std::size_t n = std::min({static_cast<std::size_t>(std::max(d.neighbour_count, 0)), d.neighbour_ids.size(),
-                                  kMaxStateNeighbourIds});
+  const std::size_t n = std::min(
+      {static_cast<std::size_t>(std::max(d.neighbour_count, 0)), d.neighbour_ids.size(), kMaxStateNeighbourIds});
   m.neighbour_ids().assign(d.neighbour_ids.begin(), d.neighbour_ids.begin() + static_cast<std::ptrdiff_t>(n));
   m.confirmed_tracks(count(d.confirmed_tracks));
   m.tentative_tracks(count(d.tentative_tracks));

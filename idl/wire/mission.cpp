@@ -23,9 +23,13 @@ msg::SwarmMission toMsg(const agent::MissionCommand& command, std::int64_t stamp
 std::variant<agent::MissionCommand, std::string> missionCommandOf(const msg::SwarmMission& m) {
   agent::MissionCommand command;
   switch (m.command()) {
-    case msg::MISSION_LEGS: break;
-    case msg::MISSION_HOLD: command.hold = true; break;
-    default: return "unknown command kind " + std::to_string(static_cast<std::uint32_t>(m.command()));
+    case msg::MISSION_LEGS:
+      break;
+    case msg::MISSION_HOLD:
+      command.hold = true;
+      break;
+    default:
+      return "unknown command kind " + std::to_string(static_cast<std::uint32_t>(m.command()));
   }
   // Not more than the agent will take: a flood of legs is refused on its count, without being copied first.
   if (m.legs().size() > agent::kMaxMissionLegs) {
@@ -36,8 +40,12 @@ std::variant<agent::MissionCommand, std::string> missionCommandOf(const msg::Swa
     const msg::MissionLeg& leg = m.legs()[i];
     agent::MissionCommandLeg l;
     switch (leg.kind()) {
-      case msg::LEG_VELOCITY: l.kind = agent::MissionCommandLeg::Kind::kVelocity; break;
-      case msg::LEG_TO: l.kind = agent::MissionCommandLeg::Kind::kTo; break;
+      case msg::LEG_VELOCITY:
+        l.kind = agent::MissionCommandLeg::Kind::kVelocity;
+        break;
+      case msg::LEG_TO:
+        l.kind = agent::MissionCommandLeg::Kind::kTo;
+        break;
       default:
         return "leg " + std::to_string(i) + " has unknown kind " +
                std::to_string(static_cast<std::uint32_t>(leg.kind()));

@@ -13,12 +13,18 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 msg::BridgeLink linkOf(autopilot::Link link) {
   switch (link) {
-    case autopilot::Link::kNoAttitude: return msg::LINK_NO_ATTITUDE;
-    case autopilot::Link::kNoAgent: return msg::LINK_NO_AGENT;
-    case autopilot::Link::kFresh: return msg::LINK_FRESH;
-    case autopilot::Link::kStale: return msg::LINK_STALE;
-    case autopilot::Link::kAgentLost: return msg::LINK_AGENT_LOST;
-    case autopilot::Link::kAttitudeLost: return msg::LINK_ATTITUDE_LOST;
+    case autopilot::Link::kNoAttitude:
+      return msg::LINK_NO_ATTITUDE;
+    case autopilot::Link::kNoAgent:
+      return msg::LINK_NO_AGENT;
+    case autopilot::Link::kFresh:
+      return msg::LINK_FRESH;
+    case autopilot::Link::kStale:
+      return msg::LINK_STALE;
+    case autopilot::Link::kAgentLost:
+      return msg::LINK_AGENT_LOST;
+    case autopilot::Link::kAttitudeLost:
+      return msg::LINK_ATTITUDE_LOST;
   }
   return msg::LINK_NO_ATTITUDE;
 }
@@ -53,8 +59,8 @@ px4_msgs::msg::TrajectorySetpoint trajectorySetpoint(const autopilot::Setpoint& 
   px4_msgs::msg::TrajectorySetpoint m;
   m.timestamp(s.timestamp_us);
   m.position({kNaN, kNaN, kNaN});
-  m.velocity({static_cast<float>(s.velocity.north), static_cast<float>(s.velocity.east),
-              static_cast<float>(s.velocity.down)});
+  m.velocity(
+      {static_cast<float>(s.velocity.north), static_cast<float>(s.velocity.east), static_cast<float>(s.velocity.down)});
   m.acceleration({kNaN, kNaN, kNaN});
   m.jerk({kNaN, kNaN, kNaN});
   m.yaw(kNaN);
@@ -129,8 +135,8 @@ msg::BridgeState bridgeState(const autopilot::BridgeCore& core, std::uint32_t ua
 }
 
 px4_msgs::msg::VehicleOdometry vehicleOdometry(const autopilot::Odometry& o) {
-  constexpr std::uint8_t kNed = 1;                    // POSE_FRAME_NED, VELOCITY_FRAME_NED
-  constexpr float kUnknownVariance = 1e4f;            // [m^2], [m^2/s^2]: down is not SWA's
+  constexpr std::uint8_t kNed = 1;          // POSE_FRAME_NED, VELOCITY_FRAME_NED
+  constexpr float kUnknownVariance = 1e4f;  // [m^2], [m^2/s^2]: down is not SWA's
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const std::uint64_t t = px4::timestampUsOf(o.stamp_ns).value_or(0);
   px4_msgs::msg::VehicleOdometry m;
@@ -142,11 +148,11 @@ px4_msgs::msg::VehicleOdometry vehicleOdometry(const autopilot::Odometry& o) {
   m.velocity_frame(kNed);
   m.velocity({static_cast<float>(o.velocity_mps.y()), static_cast<float>(o.velocity_mps.x()), 0.0f});
   m.angular_velocity({nan, nan, nan});
-  m.position_variance({static_cast<float>(o.position_var_m2.y()), static_cast<float>(o.position_var_m2.x()),
-                       kUnknownVariance});
+  m.position_variance(
+      {static_cast<float>(o.position_var_m2.y()), static_cast<float>(o.position_var_m2.x()), kUnknownVariance});
   m.orientation_variance({nan, nan, nan});
-  m.velocity_variance({static_cast<float>(o.velocity_var_m2ps2.y()), static_cast<float>(o.velocity_var_m2ps2.x()),
-                       kUnknownVariance});
+  m.velocity_variance(
+      {static_cast<float>(o.velocity_var_m2ps2.y()), static_cast<float>(o.velocity_var_m2ps2.x()), kUnknownVariance});
   m.reset_counter(o.reset_counter);
   m.quality(0);
   return m;

@@ -71,8 +71,7 @@ SwarmTruth fromMsg(const msg::SwarmTruth& m) {
 }
 
 msg::ScenarioEvent toMsg(const record::EventRecord& event, std::uint32_t seq) {
-  const auto it = std::find_if(kKinds.begin(), kKinds.end(),
-                               [&](const auto& k) { return event.kind == k.second; });
+  const auto it = std::find_if(kKinds.begin(), kKinds.end(), [&](const auto& k) { return event.kind == k.second; });
   if (it == kKinds.end()) throw std::invalid_argument("no ScenarioEvent kind for event '" + event.kind + "'");
   msg::ScenarioEvent m;
   m.header(header(std::llround(event.t_s * 1e9), seq));

@@ -13,9 +13,7 @@ using Json = nlohmann::ordered_json;
 
 Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
-Json numberSchema(const char* meaning) {
-  return {{"type", Json::array({"number", "null"})}, {"description", meaning}};
-}
+Json numberSchema(const char* meaning) { return {{"type", Json::array({"number", "null"})}, {"description", meaning}}; }
 
 }  // namespace
 
@@ -31,15 +29,16 @@ std::string swarmJsonSchema() {
                       {"vy_mps", numberSchema("[m/s]")},
                       {"agent_alive", {{"type", "boolean"}}}}},
                     {"required", {"id", "x_m", "y_m", "vx_mps", "vy_mps", "agent_alive"}}};
-  const Json centre = {{"type", "object"},
-                       {"properties",
-                        {{"uav", {{"type", "integer"}}}, {"x_m", numberSchema("east [m]")},
-                         {"y_m", numberSchema("north [m]")}}},
-                       {"required", {"uav", "x_m", "y_m"}}};
+  const Json centre = {
+      {"type", "object"},
+      {"properties",
+       {{"uav", {{"type", "integer"}}}, {"x_m", numberSchema("east [m]")}, {"y_m", numberSchema("north [m]")}}},
+      {"required", {"uav", "x_m", "y_m"}}};
   const Json schema = {
       {"title", kSwarmSchemaName},
-      {"description", "the swarm at one truth sample: UAVs (world frame, x east, y north), the neighbour links the "
-                      "agents fitted their floating frames on, each agent's floating-frame centre in the world"},
+      {"description",
+       "the swarm at one truth sample: UAVs (world frame, x east, y north), the neighbour links the "
+       "agents fitted their floating frames on, each agent's floating-frame centre in the world"},
       {"type", "object"},
       {"properties",
        {{"t_s", {{"type", "number"}, {"description", "simulated time [s]"}}},
@@ -51,26 +50,24 @@ std::string swarmJsonSchema() {
 }
 
 std::string agentStateJsonSchema() {
-  const Json schema = {
-      {"title", kAgentStateSchemaName},
-      {"description", "one agent's state: its estimate in its floating frame"},
-      {"type", "object"},
-      {"properties",
-       {{"t_s", {{"type", "number"}}},
-        {"uav", {{"type", "integer"}}},
-        {"mode", {{"type", "string"}}},
-        {"valid", {{"type", "boolean"}, {"description", "a tracked floating-frame estimate"}}},
-        {"x_m", numberSchema("own position in the floating frame [m]")},
-        {"y_m", numberSchema("[m]")},
-        {"vx_mps", numberSchema("own velocity relative to the floating frame [m/s]")},
-        {"vy_mps", numberSchema("[m/s]")},
-        {"neighbours", {{"type", "array"}, {"items", {{"type", "integer"}}}}}}},
-      {"required", {"t_s", "uav", "mode", "valid", "x_m", "y_m", "vx_mps", "vy_mps", "neighbours"}}};
+  const Json schema = {{"title", kAgentStateSchemaName},
+                       {"description", "one agent's state: its estimate in its floating frame"},
+                       {"type", "object"},
+                       {"properties",
+                        {{"t_s", {{"type", "number"}}},
+                         {"uav", {{"type", "integer"}}},
+                         {"mode", {{"type", "string"}}},
+                         {"valid", {{"type", "boolean"}, {"description", "a tracked floating-frame estimate"}}},
+                         {"x_m", numberSchema("own position in the floating frame [m]")},
+                         {"y_m", numberSchema("[m]")},
+                         {"vx_mps", numberSchema("own velocity relative to the floating frame [m/s]")},
+                         {"vy_mps", numberSchema("[m/s]")},
+                         {"neighbours", {{"type", "array"}, {"items", {{"type", "integer"}}}}}}},
+                       {"required", {"t_s", "uav", "mode", "valid", "x_m", "y_m", "vx_mps", "vy_mps", "neighbours"}}};
   return schema.dump();
 }
 
-SwarmScene swarmScene(const monitor_node::TruthSample& truth,
-                      const std::map<int, monitor_node::StateSample>& latest) {
+SwarmScene swarmScene(const monitor_node::TruthSample& truth, const std::map<int, monitor_node::StateSample>& latest) {
   SwarmScene scene;
   scene.t_s = monitor_node::stampSeconds(truth.stamp_ns);
   std::map<int, const monitor::UavTruth*> by_id;

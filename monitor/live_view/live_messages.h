@@ -48,8 +48,7 @@ struct SwarmScene {
 
 // `latest`: each agent's newest state (its estimate gives the links and the centre: the centre of agent i's floating
 // frame in the world is its true position minus its estimated position in that frame).
-SwarmScene swarmScene(const monitor_node::TruthSample& truth,
-                      const std::map<int, monitor_node::StateSample>& latest);
+SwarmScene swarmScene(const monitor_node::TruthSample& truth, const std::map<int, monitor_node::StateSample>& latest);
 std::string swarmJson(const SwarmScene& scene);
 std::string agentStateJson(const monitor_node::StateSample& state);
 

@@ -29,17 +29,20 @@ Json pictureSchema(const char* title, const char* description, const Json& prope
                    std::initializer_list<const char*> required) {
   Json names = Json::array();
   for (const char* r : required) names.push_back(r);
-  return {{"title", title}, {"description", description}, {"type", "object"}, {"properties", properties},
+  return {{"title", title},
+          {"description", description},
+          {"type", "object"},
+          {"properties", properties},
           {"required", names}};
 }
 
 }  // namespace
 
 std::string pictureJsonSchema() {
-  return pictureSchema(kPictureSchemaName, "the swarm from above as an SVG document, drawn by the monitor",
-                       {{"t_s", {{"type", "number"}, {"description", "simulated time [s]"}}},
-                        {"svg", {{"type", "string"}}}},
-                       {"t_s", "svg"})
+  return pictureSchema(
+             kPictureSchemaName, "the swarm from above as an SVG document, drawn by the monitor",
+             {{"t_s", {{"type", "number"}, {"description", "simulated time [s]"}}}, {"svg", {{"type", "string"}}}},
+             {"t_s", "svg"})
       .dump();
 }
 

@@ -25,9 +25,7 @@ using Handle = websocketpp::connection_hdl;
 // memory stays bounded whatever happens to the clients.
 constexpr int kMaxPending = 10'000;
 
-std::string sessionId() {
-  return std::to_string(std::chrono::system_clock::now().time_since_epoch().count());
-}
+std::string sessionId() { return std::to_string(std::chrono::system_clock::now().time_since_epoch().count()); }
 
 }  // namespace
 

@@ -5,11 +5,11 @@
 #include <optional>
 #include <system_error>
 
+#include "swa/app/version.h"
 #include "swa/run_record/run_dir.h"
 #include "swa/run_record/run_report.h"
 #include "swa/run_record/scoring.h"
 #include "swa/sim/scenario_io.h"
-#include "swa/app/version.h"
 
 namespace swa::monitor_node {
 
@@ -51,7 +51,8 @@ int runCombine(const MonitorOptions& options, std::ostream& out, std::ostream& e
     record::writeTextFile((fs::path(options.out_dir) / record::kSummaryFile).string(),
                           record::jsonText(record::Json{{"runs", std::move(list)}}));
     const std::vector<std::string> written = monitor::writeReport(options.out_dir, record::reportRuns(runs), notes);
-    for (const record::RunRecord& r : runs) out << "swa_monitor: " << r.label << ": " << record::verdictText(r.verdict) << "\n";
+    for (const record::RunRecord& r : runs)
+      out << "swa_monitor: " << r.label << ": " << record::verdictText(r.verdict) << "\n";
     out << "swa_monitor: report " << written.front() << "\n";
   } catch (const std::exception& e) {
     err << "swa_monitor --combine: " << e.what() << "\n";

@@ -7,13 +7,13 @@
 
 #include "live_record.h"
 #include "swa/app/cpu_time.h"
+#include "swa/app/version.h"
 #include "swa/dds/options.h"
 #include "swa/monitor/report_html.h"
 #include "swa/run_record/restarts.h"
 #include "swa/run_record/run_dir.h"
 #include "swa/run_record/run_report.h"
 #include "swa/sim/scenario_io.h"
-#include "swa/app/version.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -37,7 +37,7 @@ int writeOutputs(const std::string& dir, const RunRecord& run) {
 }  // namespace
 
 LiveMode::LiveMode(const MonitorOptions& options, const std::optional<sim::Scenario>& scenario,
-                         const LiveRunConfig& config, int domain_id)
+                   const LiveRunConfig& config, int domain_id)
     : options_(options), scenario_(scenario), config_(config), run_(config_) {
   MonitorNodeOptions node_options;
   if (scenario_) node_options.uav_count = scenario_->uav_count;
@@ -53,16 +53,16 @@ LiveMode::LiveMode(const MonitorOptions& options, const std::optional<sim::Scena
     recording_->writeMetadata(recording::kRecordingMetadata,
                               {{recording::kRecordSetKey, recording::toString(options_.record_set)}});
     if (scenario_) {
-      recording_->writeMetadata(recording::kScenarioMetadata,
-                                {{recording::kScenarioYamlKey, sim::scenarioToYaml(*scenario_)},
-                                 {"source", options_.scenario_path}});
+      recording_->writeMetadata(
+          recording::kScenarioMetadata,
+          {{recording::kScenarioYamlKey, sim::scenarioToYaml(*scenario_)}, {"source", options_.scenario_path}});
     }
   }
   if (options_.live_address) {
     live_ = std::make_unique<live::LiveView>(*options_.live_address, options_.live_port, config_.metrics);
     const std::string host = options_.live_address->find(':') != std::string::npos ? "[" + *options_.live_address + "]"
-                             : *options_.live_address == "0.0.0.0"                   ? std::string("127.0.0.1")
-                                                                                     : *options_.live_address;
+                             : *options_.live_address == "0.0.0.0"                 ? std::string("127.0.0.1")
+                                                                                   : *options_.live_address;
     std::fprintf(stderr, "swa_monitor: live view at http://%s:%d/ (Foxglove: ws://%s:%d)\n", host.c_str(),
                  live_->port(), host.c_str(), live_->port());
     node_options.live = live_.get();

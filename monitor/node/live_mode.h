@@ -6,9 +6,9 @@
 #include <optional>
 
 #include "live_run.h"
-#include "step_metrics_json.h"
 #include "monitor_node.h"
 #include "monitor_options.h"
+#include "step_metrics_json.h"
 #include "swa/app/program.h"
 #include "swa/recording/recording.h"
 #include "swa/sim/scenario.h"
@@ -19,7 +19,7 @@ class LiveMode : public app::Role {
  public:
   // Creates the DDS node; throws swa::dds::DdsError.
   LiveMode(const MonitorOptions& options, const std::optional<sim::Scenario>& scenario, const LiveRunConfig& config,
-              int domain_id);
+           int domain_id);
 
   // The verdict's exit status (0 PASS, 1 FAIL, 3 INCOMPLETE).
   int run() override;

@@ -77,16 +77,15 @@ dds::Reader<dds::Payload> MonitorNode::readAndRecord(const std::string& topic, c
   if (options_.recording != nullptr) {
     channel = recordingChannel<PubSubType>(*options_.recording, *participant_, topic);
   }
-  return participant_->rawReader<PubSubType>(
-      topic, profile, [this, channel, push](dds::RawSample&& s) {
-        if (channel) options_.recording->writeCdr(*channel, s.payload, s.source_time_ns);
-        typename PubSubType::type m;
-        if (dds::decodePayload<PubSubType>(s.payload, m)) {
-          push(std::move(m));
-        } else {
-          ++undecodable_;
-        }
-      });
+  return participant_->rawReader<PubSubType>(topic, profile, [this, channel, push](dds::RawSample&& s) {
+    if (channel) options_.recording->writeCdr(*channel, s.payload, s.source_time_ns);
+    typename PubSubType::type m;
+    if (dds::decodePayload<PubSubType>(s.payload, m)) {
+      push(std::move(m));
+    } else {
+      ++undecodable_;
+    }
+  });
 }
 
 void MonitorNode::connect() {
@@ -113,8 +112,8 @@ void MonitorNode::connect() {
 void MonitorNode::createRunReaders() {
   readAndRecord<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventReader,
                                               [this](msg::ScenarioEvent&& m) { queue_.push(std::move(m)); });
-  truth_reader_ = readAndRecord<msg::SwarmTruthPubSubType>(
-      dds::topics::kTruth, dds::qos::kTruthReader, [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
+  truth_reader_ = readAndRecord<msg::SwarmTruthPubSubType>(dds::topics::kTruth, dds::qos::kTruthReader,
+                                                           [this](msg::SwarmTruth&& m) { queue_.push(std::move(m)); });
 }
 
 void MonitorNode::createRunReadersWhenReady() {
@@ -154,9 +153,10 @@ void MonitorNode::subscribeState(int uav) {
 }
 
 void MonitorNode::createStateReader(int uav) {
-  state_reader_handles_[uav] = readAndRecord<msg::AgentStatePubSubType>(
-      dds::topics::state(uav), dds::qos::kStateReader,
-      [this, uav](msg::AgentState&& m) { queue_.push(StateInput{uav, std::move(m)}); });
+  state_reader_handles_[uav] = readAndRecord<msg::AgentStatePubSubType>(dds::topics::state(uav), dds::qos::kStateReader,
+                                                                        [this, uav](msg::AgentState&& m) {
+                                                                          queue_.push(StateInput{uav, std::move(m)});
+                                                                        });
   if (recordsEveryTopic()) uav_taps_[uav] = tapUavTopics(*participant_, *options_.recording, uav);
 }
 
@@ -164,7 +164,8 @@ void MonitorNode::reconnectIfHandshakeStalled() {
   // The stalled DDS Security handshake of swa_agent (handshake_watch.h), here with the simulator: before the first
   // truth sample, with no truth writer matched.
   if (!handshake_.stalled(truth_seen_, truth_reader_.matched() > 0, std::chrono::steady_clock::now(),
-                          participant_->lastAuthentication())) return;
+                          participant_->lastAuthentication()))
+    return;
   std::fprintf(stderr,
                "swa_monitor: no writer of %s with DDS Security on: re-creating the participant (reconnection %d; a "
                "stalled authentication handshake, see deploy/README.md)\n",

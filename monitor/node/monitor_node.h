@@ -18,11 +18,11 @@
 #include <swa/msg/SwarmTruth.h>
 
 #include "live_record.h"
-#include "step_metrics_json.h"
 #include "live_run.h"
 #include "live_view.h"
 #include "recording_taps.h"
 #include "status_line.h"
+#include "step_metrics_json.h"
 #include "swa/agent/config.h"
 #include "swa/dds/command_gate.h"
 #include "swa/dds/handshake_watch.h"
@@ -74,7 +74,7 @@ class MonitorNode {
   };
   using Input = std::variant<msg::SwarmTruth, StateInput, msg::ScenarioEvent, MissionInput>;
 
-  void connect();  // the participant and every reader (again after a stalled secure handshake)
+  void connect();                    // the participant and every reader (again after a stalled secure handshake)
   void createRunReaders();           // swa/events and swa/truth
   void createRunReadersWhenReady();  // ... once every agent's state writer is matched
   void subscribeState(int uav);

@@ -101,42 +101,45 @@ app::Cli makeCli(MonitorOptions& o) {
            "report, by default the first run's");
   cli.path("--record", "FILE.mcap", o.record_path, "also record the run into this MCAP file (see below)");
   const std::vector<std::string> sets = recording::recordSetNames();
-  cli.choice("--record-set", "SET", sets,
-             [&o, sets](std::size_t k) { o.record_set = *recording::recordSetFromName(sets[k]); },
-             "what --record holds: all, every topic of the run (default; what swa_replay needs), or monitor, only "
-             "truth, events, the agents' states and the metrics (see below); needs --record");
-  cli.value("--live", "[ADDR:]PORT",
-            [&o](const std::string& v, app::Problems& p) {
-              const std::size_t colon = v.rfind(':');
-              const std::string address = colon == std::string::npos ? "127.0.0.1" : v.substr(0, colon);
-              const std::string port = colon == std::string::npos ? v : v.substr(colon + 1);
-              try {
-                std::size_t used = 0;
-                const int n = std::stoi(port, &used);
-                if (used != port.size() || n < 0 || n > 65535 || address.empty()) throw std::invalid_argument(v);
-                o.live_address = address;
-                o.live_port = n;
-              } catch (const std::exception&) {
-                p.push_back("--live '" + v + "' is not [ADDR:]PORT with PORT in [0, 65535]");
-              }
-            },
-            "serve the live view (page and Foxglove WebSocket) on this port, 127.0.0.1 unless ADDR (see below)");
+  cli.choice(
+      "--record-set", "SET", sets, [&o, sets](std::size_t k) { o.record_set = *recording::recordSetFromName(sets[k]); },
+      "what --record holds: all, every topic of the run (default; what swa_replay needs), or monitor, only "
+      "truth, events, the agents' states and the metrics (see below); needs --record");
+  cli.value(
+      "--live", "[ADDR:]PORT",
+      [&o](const std::string& v, app::Problems& p) {
+        const std::size_t colon = v.rfind(':');
+        const std::string address = colon == std::string::npos ? "127.0.0.1" : v.substr(0, colon);
+        const std::string port = colon == std::string::npos ? v : v.substr(colon + 1);
+        try {
+          std::size_t used = 0;
+          const int n = std::stoi(port, &used);
+          if (used != port.size() || n < 0 || n > 65535 || address.empty()) throw std::invalid_argument(v);
+          o.live_address = address;
+          o.live_port = n;
+        } catch (const std::exception&) {
+          p.push_back("--live '" + v + "' is not [ADDR:]PORT with PORT in [0, 65535]");
+        }
+      },
+      "serve the live view (page and Foxglove WebSocket) on this port, 127.0.0.1 unless ADDR (see below)");
   cli.flag("--quiet", o.quiet,
            "no status line (default: refreshed in place on a terminal, else a line every 10 s of sim time, on "
            "stderr)");
-  cli.value("--combine", "LABEL=DIR",
-            [&o](const std::string& entry, app::Problems& p) {
-              const auto eq = entry.find('=');
-              if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size()) {
-                p.push_back("--combine '" + entry + "' is not LABEL=DIR");
-              } else {
-                o.combine.push_back({entry.substr(0, eq), entry.substr(eq + 1)});
-              }
-            },
-            "offline mode: one report of these run directories, one column per LABEL (see below); the list goes "
-            "on up to the next option, and --combine may be repeated",
-            true);
-  cli.footer(R"(Exit status: 0 PASS; 1 FAIL; 3 INCOMPLETE; 2 bad arguments or scenario, output directory not writable, DDS
+  cli.value(
+      "--combine", "LABEL=DIR",
+      [&o](const std::string& entry, app::Problems& p) {
+        const auto eq = entry.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size()) {
+          p.push_back("--combine '" + entry + "' is not LABEL=DIR");
+        } else {
+          o.combine.push_back({entry.substr(0, eq), entry.substr(eq + 1)});
+        }
+      },
+      "offline mode: one report of these run directories, one column per LABEL (see below); the list goes "
+      "on up to the next option, and --combine may be repeated",
+      true);
+  cli.footer(
+      R"(Exit status: 0 PASS; 1 FAIL; 3 INCOMPLETE; 2 bad arguments or scenario, output directory not writable, DDS
              participant not created (nothing started). --combine: the verdict of the FIRST run (0, 1 or 3),
              2 for bad arguments or an unreadable run directory.
 

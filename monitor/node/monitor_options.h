@@ -35,7 +35,7 @@ struct MonitorOptions {
   double timeout_s = 0.0;              // --timeout-s S: wall seconds without EVENT_SCENARIO_END; 0 = none
   double tolerance = monitor::kDefaultRadiusTolerance;  // --tolerance F: PASS needs |d_NB - r| <= F r
   bool tolerance_given = false;
-  std::string record_path;            // --record FILE.mcap: empty, no recording
+  std::string record_path;                                       // --record FILE.mcap: empty, no recording
   recording::RecordSet record_set = recording::RecordSet::kAll;  // --record-set SET: which topics it holds
   std::optional<std::string> live_address;  // --live [ADDR:]PORT: the live view (nullopt: none); ADDR 127.0.0.1
   int live_port = 0;

@@ -248,9 +248,12 @@ void McapWriter::close() {
   group(op::kChannel, records);
 
   Bytes counts;
-  for (std::size_t i = 0; i < channel_counts_.size(); ++i) counts.u16(static_cast<std::uint16_t>(i)).u64(channel_counts_[i]);
+  for (std::size_t i = 0; i < channel_counts_.size(); ++i)
+    counts.u16(static_cast<std::uint16_t>(i)).u64(channel_counts_[i]);
   Bytes stats;
-  stats.u64(message_count_).u16(static_cast<std::uint16_t>(schemas_.size())).u32(static_cast<std::uint32_t>(channels_.size()));
+  stats.u64(message_count_)
+      .u16(static_cast<std::uint16_t>(schemas_.size()))
+      .u32(static_cast<std::uint32_t>(channels_.size()));
   stats.u32(0).u32(static_cast<std::uint32_t>(metadata_indexes_.size()));  // attachments, metadata
   stats.u32(static_cast<std::uint32_t>(chunk_indexes_.size()));
   stats.u64(message_count_ > 0 ? start_ns_ : 0).u64(message_count_ > 0 ? end_ns_ : 0).sized(counts);

@@ -32,7 +32,8 @@ std::optional<PayloadStamp> payloadStamp(const std::uint8_t* data, std::size_t s
   if (size < kBody + 12 || data[0] != 0x00 || data[1] > 0x01) return std::nullopt;
   const bool little = data[1] == 0x01;
   const std::uint64_t stamp = little ? littleEndian(data + kBody, 8) : bigEndian(data + kBody, 8);
-  const auto seq = static_cast<std::uint32_t>(little ? littleEndian(data + kBody + 8, 4) : bigEndian(data + kBody + 8, 4));
+  const auto seq =
+      static_cast<std::uint32_t>(little ? littleEndian(data + kBody + 8, 4) : bigEndian(data + kBody + 8, 4));
   if (static_cast<std::int64_t>(stamp) < 0) return std::nullopt;
   return PayloadStamp{stamp, seq};
 }
@@ -142,10 +143,8 @@ void writeRecordingManifest(const std::string& path, const Recording& recording)
                          {"message_encoding", c.message_encoding},
                          {"messages", c.messages}};
   }
-  const nlohmann::ordered_json manifest = {{"file", recording.path()},
-                                           {"profile", "ros2"},
-                                           {"unstamped", recording.unstamped()},
-                                           {"channels", channels}};
+  const nlohmann::ordered_json manifest = {
+      {"file", recording.path()}, {"profile", "ros2"}, {"unstamped", recording.unstamped()}, {"channels", channels}};
   std::ofstream out(path);
   out << manifest.dump(2) << "\n";
   if (!out) throw std::runtime_error("cannot write " + path);

@@ -4,8 +4,8 @@
 #include <limits>
 #include <optional>
 
-#include "swa/run_record/csv.h"
 #include "swa/app/number.h"
+#include "swa/run_record/csv.h"
 
 namespace swa::record {
 namespace {

@@ -141,7 +141,8 @@ RunRecord runFromSummaryJson(const Json& j, const std::string& source) {
     }
   }
   for (const auto& [key, value] : j.items()) {
-    if (key.rfind("dropped_", 0) == 0 && value.is_number_unsigned()) run.counts.emplace_back(key, value.get<std::uint64_t>());
+    if (key.rfind("dropped_", 0) == 0 && value.is_number_unsigned())
+      run.counts.emplace_back(key, value.get<std::uint64_t>());
   }
   return run;
 }

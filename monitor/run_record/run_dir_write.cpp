@@ -11,14 +11,17 @@ namespace {
 
 Json restartJson(const AgentRestart& r) {
   const char* process = r.bridge ? "bridge" : r.uav == AgentRestart::kMonitor ? "monitor" : "agent";
-  return Json{{"wall_s", r.wall_s},           {"uav", r.uav},
-              {"process", process},           {"exit_status", r.exit_status},
-              {"restart_count", r.restart_count}, {"backoff_s", r.backoff_s}};
+  return Json{{"wall_s", r.wall_s},
+              {"uav", r.uav},
+              {"process", process},
+              {"exit_status", r.exit_status},
+              {"restart_count", r.restart_count},
+              {"backoff_s", r.backoff_s}};
 }
 
 Json eventJson(const EventRecord& e) {
-  return Json{{"t_s", e.t_s},     {"kind", e.kind},   {"uav", e.uav},
-              {"other_uav", e.other_uav}, {"value", e.value}, {"text", e.text}};
+  return Json{{"t_s", e.t_s},     {"kind", e.kind}, {"uav", e.uav}, {"other_uav", e.other_uav},
+              {"value", e.value}, {"text", e.text}};
 }
 
 }  // namespace

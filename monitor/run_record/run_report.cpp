@@ -71,9 +71,12 @@ monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs) {
       "events", "Scenario events", runs, {"sim time [s]", "event", "UAV", "other UAV", "value", "detail"},
       [](const RunRecord& run) -> const auto& { return run.events; },
       [](const EventRecord& e) -> std::vector<std::string> {
-        return {monitor::formatFixed(e.t_s, 2), e.kind, uavText(e.uav),
+        return {monitor::formatFixed(e.t_s, 2),
+                e.kind,
+                uavText(e.uav),
                 e.other_uav < 0 ? "" : std::to_string(e.other_uav),
-                e.value == 0.0 ? "" : monitor::formatReportValue(e.value), e.text};
+                e.value == 0.0 ? "" : monitor::formatReportValue(e.value),
+                e.text};
       });
   t.note =
       "As published by the simulator on swa/events, at the sim time they took effect. value: separation [m] of a "
@@ -92,9 +95,8 @@ monitor::ReportTable restartsTable(const std::vector<RunRecord>& runs) {
       {"wall time [s]", "UAV", "exit status", "restart count", "backoff [s]"},
       [](const RunRecord& run) -> const auto& { return run.restarts.restarts; },
       [](const AgentRestart& r) -> std::vector<std::string> {
-        return {monitor::formatFixed(r.wall_s, 2),
-                restartSubject(r), r.exit_status,
-                std::to_string(r.restart_count), monitor::formatFixed(r.backoff_s, 2)};
+        return {monitor::formatFixed(r.wall_s, 2), restartSubject(r), r.exit_status, std::to_string(r.restart_count),
+                monitor::formatFixed(r.backoff_s, 2)};
       });
   int malformed = 0;
   for (const RunRecord& run : runs) malformed += run.restarts.malformed_rows;

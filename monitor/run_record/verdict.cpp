@@ -86,9 +86,12 @@ Verdict judge(const VerdictInput& in) {
 
 const char* toString(Outcome outcome) {
   switch (outcome) {
-    case Outcome::kPass: return "PASS";
-    case Outcome::kFail: return "FAIL";
-    case Outcome::kIncomplete: return "INCOMPLETE";
+    case Outcome::kPass:
+      return "PASS";
+    case Outcome::kFail:
+      return "FAIL";
+    case Outcome::kIncomplete:
+      return "INCOMPLETE";
   }
   return "INCOMPLETE";
 }
@@ -102,9 +105,12 @@ std::optional<Outcome> parseOutcome(const std::string& text) {
 
 int exitCode(Outcome outcome) {
   switch (outcome) {
-    case Outcome::kPass: return 0;
-    case Outcome::kFail: return 1;
-    case Outcome::kIncomplete: return 3;
+    case Outcome::kPass:
+      return 0;
+    case Outcome::kFail:
+      return 1;
+    case Outcome::kIncomplete:
+      return 3;
   }
   return 3;
 }

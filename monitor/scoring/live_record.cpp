@@ -41,8 +41,8 @@ RunRecord makeRunRecord(const LiveRun& run, const LiveRunConfig& config, const R
   r.scoring.radius_tolerance = context.tolerance;
   r.scoring.window_start_s = run.windowStartS();
   r.summary = run.summary();
-  r.verdict = record::judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.scoring,
-                             run.coverage().missed(), run.failsafeNow(), run.outOfControlNow(), config.failure_hint});
+  r.verdict = record::judge({r.completed, r.end_reason, run.sawTruth(), r.summary, r.scoring, run.coverage().missed(),
+                             run.failsafeNow(), run.outOfControlNow(), config.failure_hint});
   r.counts = inputCounts(run);
   r.restarts = context.restarts;
   r.events = run.events();

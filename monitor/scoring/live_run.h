@@ -10,11 +10,11 @@
 
 #include "monitor_inputs.h"
 #include "step_joiner.h"
-#include "truth_coverage.h"
 #include "swa/agent/config.h"
 #include "swa/monitor/accumulator.h"
-#include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
+#include "swa/monitor/summary_format.h"
+#include "truth_coverage.h"
 
 namespace swa::monitor_node {
 
@@ -28,8 +28,8 @@ struct LiveRunConfig {
   bool window_from_events = false;
   // false: no NEES at all (standalone agents estimate in their take-off frame, nothing to score; as swa_batch).
   bool score_estimates = true;
-  std::string failure_hint;          // record::Scoring's, said with a FAIL verdict
-  std::optional<agent::Mode> mode;   // the scenario's; without one, the first mode an agent reports
+  std::string failure_hint;         // record::Scoring's, said with a FAIL verdict
+  std::optional<agent::Mode> mode;  // the scenario's; without one, the first mode an agent reports
   // StepJoiner horizon, in truth samples (10 Hz): 3 s. A state lost on the way is repaired by the reliable protocol
   // after the writer's next heartbeat (100 ms) and holds back that agent's later states until then; with 30 % loss
   // each repair round (heartbeat, acknack, data) gets through only about one time in three, so a step must wait

@@ -72,9 +72,8 @@ std::string stepMetricsJson(const monitor::TimeSeriesRow& row) {
 void MetricsRecorder::writeNew(const std::vector<monitor::TimeSeriesRow>& series) {
   if (written_ >= series.size()) return;
   if (!channel_) channel_ = recording_.jsonChannel(kMetricsTopic, kMetricsSchemaName, stepMetricsJsonSchema());
-  const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                          std::chrono::system_clock::now().time_since_epoch())
-                          .count();
+  const auto now_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
   for (; written_ < series.size(); ++written_) {
     const monitor::TimeSeriesRow& row = series[written_];
     const auto log_ns = static_cast<std::uint64_t>(std::llround(std::max(row.t_s, 0.0) * 1e9));

@@ -39,7 +39,8 @@ MetricsAccumulator::MetricsAccumulator(const MetricsConfig& config)
       final_window_ns_(toNs(config.final_window_s)),
       drift_window_ns_(toNs(config.drift_window_s)),
       drift_segment_ns_(toNs(config.drift_segment_s)) {
-  if (!config.mission_legs.empty()) mission_ = MissionScore(agent::MissionPlan(config.mission_legs), config.mission_start_s);
+  if (!config.mission_legs.empty())
+    mission_ = MissionScore(agent::MissionPlan(config.mission_legs), config.mission_start_s);
 }
 
 void MetricsAccumulator::replanMission(const std::vector<agent::MissionLeg>& legs, double start_s) {
@@ -69,8 +70,8 @@ const StepMetrics& MetricsAccumulator::add(const StepInput& step) {
   m.drift_mps = updateDrift(step.stamp_ns, m.geometry);
   min_separation_m_ = nanMin(min_separation_m_, m.geometry.min_separation_m);
 
-  final_samples_.push_back({step.stamp_ns, m.geometry.mean_neighbor_distance_m, m.geometry.formation_error_m,
-                            m.geometry.edge_length_m});
+  final_samples_.push_back(
+      {step.stamp_ns, m.geometry.mean_neighbor_distance_m, m.geometry.formation_error_m, m.geometry.edge_length_m});
   while (final_samples_.front().stamp_ns < step.stamp_ns - final_window_ns_) final_samples_.pop_front();
 
   last_positions_.clear();

@@ -288,8 +288,8 @@ std::vector<ReportPlot> reportTimePlots(const std::vector<RunReport>& runs, cons
 
   ReportPlot d_nb{"d_nb", "",
                   timePlot("Mean neighbour distance d_NB", "d_NB", "m", runs, &TimeSeriesRow::d_nb_m, notes)};
-  d_nb.spec.bands.push_back({r * (1.0 - tolerance), r * (1.0 + tolerance),
-                             "r ± " + percentText(tolerance), kBandColour, 0.15});
+  d_nb.spec.bands.push_back(
+      {r * (1.0 - tolerance), r * (1.0 + tolerance), "r ± " + percentText(tolerance), kBandColour, 0.15});
   d_nb.spec.lines.push_back({LineOrientation::kHorizontal, r, "r = " + metresText(r), "#333333", true});
   d_nb.caption =
       "Each UAV's mean distance to its nearest neighbours, averaged over the swarm. Shaded: the "
@@ -309,7 +309,8 @@ std::vector<ReportPlot> reportTimePlots(const std::vector<RunReport>& runs, cons
                         timePlot("Minimum separation", "closest pair", "m", runs, &TimeSeriesRow::min_sep_m, notes)};
   separation.spec.y_include_zero = true;
   separation.spec.lines.push_back({LineOrientation::kHorizontal, notes.scoring.collision_distance_m,
-                                   "collision " + metresText(notes.scoring.collision_distance_m), kCollisionColour, true});
+                                   "collision " + metresText(notes.scoring.collision_distance_m), kCollisionColour,
+                                   true});
   separation.caption = "Smallest distance between any two UAVs; below the red line a pair is in collision.";
   plots.push_back(std::move(separation));
 

@@ -13,7 +13,7 @@ namespace swa::monitor::svg {
 constexpr double kCoordLimit = 1e6;  // pixel coordinates are clamped to this (a clipped far-away point stays short)
 constexpr double kLegendSwatch = 24.0;
 
-std::string px(double v);  // a pixel coordinate, clamped, 2 decimals
+std::string px(double v);                                // a pixel coordinate, clamped, 2 decimals
 std::string dashAttr(bool dashed, const char* pattern);  // " stroke-dasharray=..." or ""
 
 enum class LegendKind : unsigned char { kSeries, kBand, kLine, kStart, kEnd };
@@ -25,8 +25,8 @@ struct LegendEntry {
   bool dashed = false;
   double opacity = 1.0;
   MarkerShape marker = MarkerShape::kNone;  // kSeries: a marker series' swatch is its marker
-  std::string dash = "";  // kSeries: its own dash pattern (PlotSeries::dash_pattern)
-  bool joined = false;     // kSeries: a marker series joined by a line: the swatch is the line with the marker on it
+  std::string dash = "";                    // kSeries: its own dash pattern (PlotSeries::dash_pattern)
+  bool joined = false;  // kSeries: a marker series joined by a line: the swatch is the line with the marker on it
 };
 
 // A series without a colour of its own takes the palette's; past the palette's 10 colours it is dashed.

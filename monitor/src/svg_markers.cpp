@@ -34,8 +34,8 @@ void renderMarker(std::string& out, MarkerShape shape, double x, double y, doubl
     }
     case MarkerShape::kDiamond: {
       const double r = 1.1 * radius;
-      out += "<path" + attributes + " d=\"M" + px(x) + " " + px(y - r) + "L" + px(x + r) + " " + px(y) + "L" +
-             px(x) + " " + px(y + r) + "L" + px(x - r) + " " + px(y) + "Z" + rim;
+      out += "<path" + attributes + " d=\"M" + px(x) + " " + px(y - r) + "L" + px(x + r) + " " + px(y) + "L" + px(x) +
+             " " + px(y + r) + "L" + px(x - r) + " " + px(y) + "Z" + rim;
       return;
     }
     default:
@@ -80,11 +80,10 @@ void renderTrackMarkers(std::string& out, const PlotSpec& spec, const PlotLayout
     if (first == s.x.size()) continue;
     const std::string colour = escapeXml(seriesColour(s, si));
     const std::string index = std::to_string(si);
-    out += "<circle class=\"start-marker\" data-series=\"" + index + "\" cx=\"" + px(l.xToPx(s.x[first])) +
-           "\" cy=\"" + px(l.yToPx(s.y[first])) + "\" r=\"4\" fill=\"#ffffff\" stroke=\"" + colour +
-           "\" stroke-width=\"1.5\"/>\n";
-    out += "<rect class=\"end-marker\" data-series=\"" + index + "\" x=\"" + px(l.xToPx(s.x[last]) - 3.5) +
-           "\" y=\"" + px(l.yToPx(s.y[last]) - 3.5) + "\" width=\"7\" height=\"7\" fill=\"" + colour + "\"/>\n";
+    out += "<circle class=\"start-marker\" data-series=\"" + index + "\" cx=\"" + px(l.xToPx(s.x[first])) + "\" cy=\"" +
+           px(l.yToPx(s.y[first])) + "\" r=\"4\" fill=\"#ffffff\" stroke=\"" + colour + "\" stroke-width=\"1.5\"/>\n";
+    out += "<rect class=\"end-marker\" data-series=\"" + index + "\" x=\"" + px(l.xToPx(s.x[last]) - 3.5) + "\" y=\"" +
+           px(l.yToPx(s.y[last]) - 3.5) + "\" width=\"7\" height=\"7\" fill=\"" + colour + "\"/>\n";
   }
 }
 

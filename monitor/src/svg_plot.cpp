@@ -79,7 +79,6 @@ void validateSpec(const PlotSpec& spec) {
   }
 }
 
-
 // Indices of the points of one finite run [begin, end) that are drawn.
 std::vector<std::size_t> thin(const std::vector<double>& sx, const std::vector<double>& sy, std::size_t begin,
                               std::size_t end) {
@@ -181,7 +180,7 @@ AxisTicks logAxisTicks(const Range& data, double forced_lo, double forced_hi, in
 // The caller's ticks (those within the axis) replace the automatic ones.
 void useGivenTicks(AxisTicks& t, const std::vector<double>& ticks, const std::vector<std::string>& labels) {
   if (ticks.empty()) return;
-  constexpr double kSlack = 1e-9;  // a tick on the axis end, give or take rounding, is drawn
+  constexpr double kSlack = 1e-9;    // a tick on the axis end, give or take rounding, is drawn
   constexpr int kGivenDecimals = 6;  // an unlabelled given tick is written as the number it is (0.25, not "0")
   t.values.clear();
   t.labels.clear();
@@ -217,8 +216,8 @@ void renderErrorBars(std::string& out, const PlotSeries& s, std::size_t index, c
     // Below what a log axis shows: down to the plot's bottom edge (and no cap there, as the bar goes on).
     const bool cut = !l.plottable(s.x[i], low);
     const double bottom = cut ? l.bottom_px : l.yToPx(low);
-    std::string d = "M" + px(x) + " " + px(top) + "V" + px(bottom) + "M" + px(x - kCapHalfWidth) + " " + px(top) +
-                    "H" + px(x + kCapHalfWidth);
+    std::string d = "M" + px(x) + " " + px(top) + "V" + px(bottom) + "M" + px(x - kCapHalfWidth) + " " + px(top) + "H" +
+                    px(x + kCapHalfWidth);
     if (!cut) d += "M" + px(x - kCapHalfWidth) + " " + px(bottom) + "H" + px(x + kCapHalfWidth);
     out += "<path class=\"error-bar\" data-series=\"" + std::to_string(index) + "\" d=\"" + d +
            "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"1.25\"/>\n";
@@ -276,7 +275,6 @@ const std::string& paletteColour(std::size_t index) {
                                                     "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
   return kPalette[index % kPalette.size()];
 }
-
 
 PlotLayout layoutPlot(const PlotSpec& spec) {
   validateSpec(spec);
@@ -418,9 +416,9 @@ std::string renderSvg(const PlotSpec& spec) {
     const double y_bottom = onAxis(low, l.y.log) ? l.yToPx(low) : l.bottom_px;
     const double x_left = onAxis(b.x_low, l.x.log) ? l.xToPx(b.x_low) : l.left_px;
     const double x_right = onAxis(b.x_high, l.x.log) ? l.xToPx(b.x_high) : l.right_px;
-    out += "<rect class=\"band\" x=\"" + px(x_left) + "\" y=\"" + px(y_top) + "\" width=\"" +
-           px(x_right - x_left) + "\" height=\"" + px(y_bottom - y_top) + "\" fill=\"" + escapeXml(b.colour) +
-           "\" fill-opacity=\"" + formatFixed(b.opacity, 3) + "\"/>\n";
+    out += "<rect class=\"band\" x=\"" + px(x_left) + "\" y=\"" + px(y_top) + "\" width=\"" + px(x_right - x_left) +
+           "\" height=\"" + px(y_bottom - y_top) + "\" fill=\"" + escapeXml(b.colour) + "\" fill-opacity=\"" +
+           formatFixed(b.opacity, 3) + "\"/>\n";
   }
   for (const PlotLine& line : spec.lines) {
     const bool horizontal = line.orientation == LineOrientation::kHorizontal;

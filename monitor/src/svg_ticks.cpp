@@ -19,7 +19,6 @@ const double kMinLogSpan = std::log10(3.0);
 // Room beside the extreme points of a log axis, as a fraction of its decades (a marker on the edge stays whole).
 constexpr double kLogPad = 0.05;
 
-
 Step next(Step s) {
   if (s.mantissa == 1) return {2, s.exponent};
   if (s.mantissa == 2) return {5, s.exponent};
@@ -65,7 +64,6 @@ long long tickCount(const Step& step, double lo, double hi, bool extend) {
          static_cast<long long>(std::ceil(lo / s - kTolerance)) + 1;
 }
 
-
 // Ticks at the multiples of `step` inside [lo, hi] (with a little slack so an end on a multiple counts).
 std::vector<double> multiplesWithin(const Step& step, double lo, double hi) {
   const double s = step.value();
@@ -75,7 +73,6 @@ std::vector<double> multiplesWithin(const Step& step, double lo, double hi) {
   for (long long k = first; k <= last && k - first < kMaxTicks; ++k) values.push_back(step.multiple(k));
   return values;
 }
-
 
 }  // namespace
 
@@ -210,8 +207,8 @@ AxisTicks logTicks(double lo, double hi, int target_ticks) {
   t.lo = std::pow(10.0, a - pad);
   t.hi = std::pow(10.0, b + pad);
   // The first mantissa set with enough ticks inside; 1..9 always has 2 in a factor-3 range.
-  static const std::array<std::vector<int>, 3> kMantissas{
-      std::vector<int>{1}, std::vector<int>{1, 2, 5}, std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9}};
+  static const std::array<std::vector<int>, 3> kMantissas{std::vector<int>{1}, std::vector<int>{1, 2, 5},
+                                                          std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9}};
   constexpr std::size_t kEnoughTicks = 3;
   for (const std::vector<int>& mantissas : kMantissas) {
     t.values.clear();

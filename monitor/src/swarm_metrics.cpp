@@ -178,8 +178,8 @@ double meanGabrielEdgeLength(const std::vector<Vec2>& p) {
   return edges > 0 ? sum / edges : kNaN;
 }
 
-TruthInFrame truthInFloatingFrame(const UavTruth& self, const std::vector<UavTruth>& uavs,
-                                  const EstimateRecord& record, FrameVelocity method) {
+TruthInFrame truthInFloatingFrame(const UavTruth& self, const std::vector<UavTruth>& uavs, const EstimateRecord& record,
+                                  FrameVelocity method) {
   TruthInFrame out;
   if (!isPresent(self)) {
     out.status = TruthStatus::kSelfAbsent;

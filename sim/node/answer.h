@@ -13,8 +13,8 @@ namespace swa::sim_node {
 
 struct Answer {
   int uav = 0;
-  msg::VelocitySetpoint setpoint;                    // stable frame; answered_stamp_ns / _seq name the sample answered
-                                                     // (px4: yaw_rate_radps from yawspeed, world_command.h)
+  msg::VelocitySetpoint setpoint;                  // stable frame; answered_stamp_ns / _seq name the sample answered
+                                                   // (px4: yaw_rate_radps from yawspeed, world_command.h)
   std::chrono::steady_clock::time_point received;  // when the listener got it (not when the driver drained it)
   dds::WriterGuid writer{};
   bool velocity_only = true;  // px4: position NaN (PX4 flies velocity-only setpoints in velocity control)

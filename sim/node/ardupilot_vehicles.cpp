@@ -29,31 +29,32 @@ ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_coun
                                      agent::ImuSource source) {
   vehicles_.reserve(static_cast<std::size_t>(uav_count));
   for (int i = 0; i < uav_count; ++i) {
-    Vehicle& v = vehicles_.emplace_back(
-        setup.guid_timeout_s, setup.estimator ? std::optional<sim::ArdupilotEstimatorParams>(
-                                                    sim::ArdupilotEstimatorParams{setup.ap_external_nav})
-                                              : std::nullopt);
+    Vehicle& v = vehicles_.emplace_back(setup.guid_timeout_s,
+                                        setup.estimator ? std::optional<sim::ArdupilotEstimatorParams>(
+                                                              sim::ArdupilotEstimatorParams{setup.ap_external_nav})
+                                                        : std::nullopt);
     v.ns = topics::apNamespace(i);
     v.imu.writer = participant.writer<sensor_msgs::msg::ImuPubSubType>(topics::apTopic(v.ns, "imu/experimental/data"),
-                                                                 dds::qos::kApOutWriter);
+                                                                       dds::qos::kApOutWriter);
     v.imu.accelerometer_attitude = source == agent::ImuSource::kAccelerometer;
     v.status = participant.writer<ardupilot_msgs::msg::StatusPubSubType>(topics::apTopic(v.ns, "status"),
-                                                                          dds::qos::kApStatusWriter);
+                                                                         dds::qos::kApStatusWriter);
     if (setup.gnss_source == sim::GnssSource::kAutopilot) {
       v.navsat = participant.writer<sensor_msgs::msg::NavSatFixPubSubType>(topics::apTopic(v.ns, "navsat"),
-                                                                            dds::qos::kApOutWriter);
+                                                                           dds::qos::kApOutWriter);
     }
     v.arm_reply = participant.writer<srv::ArmMotors_ResponsePubSubType>(topics::apReply(v.ns, "arm_motors"),
-                                                                         dds::qos::kApServiceWriter);
+                                                                        dds::qos::kApServiceWriter);
     v.mode_reply = participant.writer<srv::ModeSwitch_ResponsePubSubType>(topics::apReply(v.ns, "mode_switch"),
-                                                                           dds::qos::kApServiceWriter);
+                                                                          dds::qos::kApServiceWriter);
     v.cmd_vel = participant.readerWithOrigin<geometry_msgs::msg::TwistStampedPubSubType>(
         topics::apTopic(v.ns, "cmd_vel"), dds::qos::kApInReader,
         [this, i](geometry_msgs::msg::TwistStamped&& m, const dds::WriterGuid& w) {
           queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
         });
     v.tf = participant.readerWithOrigin<tf2_msgs::msg::TFMessagePubSubType>(
-        topics::apTopic(v.ns, "tf"), dds::qos::kApInReader, [this, i](tf2_msgs::msg::TFMessage&& m, const dds::WriterGuid& w) {
+        topics::apTopic(v.ns, "tf"), dds::qos::kApInReader,
+        [this, i](tf2_msgs::msg::TFMessage&& m, const dds::WriterGuid& w) {
           queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
         });
     v.arm_request = participant.readerWithIds<srv::ArmMotors_RequestPubSubType>(
@@ -72,7 +73,8 @@ ArdupilotVehicles::ArdupilotVehicles(dds::Participant& participant, int uav_coun
 
 void ArdupilotVehicles::unmatched(int uav, std::vector<std::string>& missing) const {
   const Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
-  if (v.imu.writer.matched() < 1) missing.push_back(topics::apTopic(v.ns, "imu/experimental/data") + " (no bridge reading)");
+  if (v.imu.writer.matched() < 1)
+    missing.push_back(topics::apTopic(v.ns, "imu/experimental/data") + " (no bridge reading)");
   if (v.cmd_vel.matched() < 1) missing.push_back(topics::apTopic(v.ns, "cmd_vel") + " (no bridge writing)");
   // GNSS from the autopilot (best effort, as ArduPilot sends it): a fix sent before the bridge reads would be lost.
   if (v.navsat && v.navsat.matched() < 1) missing.push_back(topics::apTopic(v.ns, "navsat") + " (no bridge reading)");
@@ -103,9 +105,7 @@ bool ArdupilotVehicles::publishGnss(int uav, const agent::GnssSample& g) {
   return v.navsat.write(m);
 }
 
-void ArdupilotVehicles::repeatAttitude(int uav) {
-  vehicles_.at(static_cast<std::size_t>(uav)).imu.repeat();
-}
+void ArdupilotVehicles::repeatAttitude(int uav) { vehicles_.at(static_cast<std::size_t>(uav)).imu.repeat(); }
 
 void ArdupilotVehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now,
                               const AdmitFn& admit) {

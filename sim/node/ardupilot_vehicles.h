@@ -75,7 +75,7 @@ class ArdupilotVehicles : public AutopilotVehicles {
     dds::Reader<tf2_msgs::msg::TFMessage> tf;  // ap/tf: the bridge's external odometry
     dds::Reader<ardupilot_msgs::srv::ArmMotors_Request> arm_request;
     dds::Reader<ardupilot_msgs::srv::ModeSwitch_Request> mode_request;
-    double yaw_rate_radps = 0.0;   // of the newest cmd_vel given to the stand-in
+    double yaw_rate_radps = 0.0;  // of the newest cmd_vel given to the stand-in
     bool status_sent = false, status_armed = false, status_ekf_failsafe = false;
     std::uint8_t status_mode = 0;
   };

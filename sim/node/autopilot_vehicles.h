@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "answer.h"
+#include "swa/agent/samples.h"
 #include "swa/dds/participant.h"
 #include "swa/px4/frames.h"
-#include "swa/agent/samples.h"
 #include "swa/sim/standin_event.h"
 #include "swa/sim/world.h"
 
@@ -93,9 +93,8 @@ struct AttitudeStream {
     const std::optional<std::uint64_t> timestamp = px4::timestampUsOf(s.stamp_ns);
     if (!timestamp) return false;
     const bool acc = accelerometer_attitude && s.accelerometer;
-    const px4::Quaternion q = px4::quaternionOf(px4::px4Euler({acc ? s.accelerometer->roll_rad : s.roll_rad,
-                                                              acc ? s.accelerometer->pitch_rad : s.pitch_rad,
-                                                              s.heading_rad}));
+    const px4::Quaternion q = px4::quaternionOf(px4::px4Euler(
+        {acc ? s.accelerometer->roll_rad : s.roll_rad, acc ? s.accelerometer->pitch_rad : s.pitch_rad, s.heading_rad}));
     last = make(*timestamp, q);
     published.add(s.stamp_ns, seq);
     return writer.write(*last);

@@ -18,7 +18,6 @@ namespace swa::sim_node {
 using app::LogHistogram;
 using app::WallNs;
 
-
 // What one run's commands looked like (see CommandLatencyTracker).
 struct LatencyReport {
   std::uint64_t published = 0;   // samples judged: answered + missing (the last samples, still in time, excluded)
@@ -28,8 +27,8 @@ struct LatencyReport {
   std::uint64_t duplicates = 0;  // further answers to an already answered sample
   std::uint64_t unmatched = 0;   // answers naming no sample in the window (older than the window, or foreign)
   double p50_us = 0.0, p99_us = 0.0, max_us = 0.0, mean_us = 0.0;  // NaN when nothing was answered
-  double lateFraction() const;     // late / published, 0 when nothing was judged
-  double missingFraction() const;  // missing / published, 0 when nothing was judged
+  double lateFraction() const;                                     // late / published, 0 when nothing was judged
+  double missingFraction() const;                                  // missing / published, 0 when nothing was judged
 };
 
 // Per UAV, a ring of the last `window` samples published (slot = seq mod window). published() records a sample
@@ -42,8 +41,7 @@ class CommandLatencyTracker {
  public:
   CommandLatencyTracker(int uav_count, int window = 512);
 
-  void published(int uav, std::uint32_t seq, std::int64_t stamp_ns, WallNs published_ns,
-                 std::optional<WallNs> due_ns);
+  void published(int uav, std::uint32_t seq, std::int64_t stamp_ns, WallNs published_ns, std::optional<WallNs> due_ns);
   void answered(int uav, std::uint32_t seq, std::int64_t stamp_ns, WallNs received_ns);
   // The simulator took the next step (applied the commands it had) at `taken_ns`. Until then an answer to each UAV's
   // newest sample is in time even past its deadline, because it is still applied (a simulator that is itself late
@@ -73,7 +71,7 @@ class CommandLatencyTracker {
 
   int uav_count_;
   int window_;
-  std::vector<Slot> slots_;  // uav_count * window
+  std::vector<Slot> slots_;                           // uav_count * window
   std::vector<std::optional<std::uint32_t>> newest_;  // per UAV: the seq of its newest sample
   LogHistogram histogram_;
   std::uint64_t late_ = 0, missing_ = 0, duplicates_ = 0, unmatched_ = 0;

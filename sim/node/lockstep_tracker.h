@@ -48,7 +48,7 @@ class LockstepTracker {
   std::vector<bool> ever_answered_;
   std::vector<std::optional<agent::StampNs>> current_;
   std::vector<std::optional<agent::StampNs>> previous_;
-  std::vector<std::optional<agent::StampNs>> dead_since_;   // the stamp it did not answer
+  std::vector<std::optional<agent::StampNs>> dead_since_;    // the stamp it did not answer
   std::vector<std::optional<agent::StampNs>> caught_up_to_;  // the newest answer that earned a wait
   std::vector<bool> catching_up_;
 

@@ -68,13 +68,14 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
           topics::px4Out(v.ns, status_topic), dds::qos::kPx4OutWriter);
     } else {
       v.status = participant.writer<px4_msgs::msg::VehicleStatusPubSubType>(topics::px4Out(v.ns, status_topic),
-                                                                             dds::qos::kPx4OutWriter);
+                                                                            dds::qos::kPx4OutWriter);
     }
     if (gnss && px4::hasV117SensorGps(setup.px4_release)) {
-      v.gps_v1_17 = participant.writer<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>(
-          topics::px4Out(v.ns, gps_topic), dds::qos::kPx4OutWriter);
+      v.gps_v1_17 = participant.writer<px4_v1_17::px4_msgs::msg::SensorGpsPubSubType>(topics::px4Out(v.ns, gps_topic),
+                                                                                      dds::qos::kPx4OutWriter);
     } else if (gnss) {
-      v.gps = participant.writer<px4_msgs::msg::SensorGpsPubSubType>(topics::px4Out(v.ns, gps_topic), dds::qos::kPx4OutWriter);
+      v.gps = participant.writer<px4_msgs::msg::SensorGpsPubSubType>(topics::px4Out(v.ns, gps_topic),
+                                                                     dds::qos::kPx4OutWriter);
     }
     if (gnss && px4::hasV116VehicleLocalPosition(setup.px4_release)) {
       v.position_v1_16 = participant.writer<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
@@ -83,8 +84,8 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
       v.position = participant.writer<px4_msgs::msg::VehicleLocalPositionPubSubType>(
           topics::px4Out(v.ns, position_topic), dds::qos::kPx4OutWriter);
     }
-    v.ack = participant.writer<px4_msgs::msg::VehicleCommandAckPubSubType>(
-        topics::px4Out(v.ns, "vehicle_command_ack"), dds::qos::kPx4OutWriter);
+    v.ack = participant.writer<px4_msgs::msg::VehicleCommandAckPubSubType>(topics::px4Out(v.ns, "vehicle_command_ack"),
+                                                                           dds::qos::kPx4OutWriter);
     const auto arrive = [this, i](auto&& m, const dds::WriterGuid& w) {
       queue_.push(Arrival{i, Input(std::move(m)), Clock::now(), w});
     };
@@ -102,7 +103,8 @@ Px4Vehicles::Px4Vehicles(dds::Participant& participant, int uav_count, const sim
 
 void Px4Vehicles::unmatched(int uav, std::vector<std::string>& missing) const {
   const Vehicle& v = vehicles_.at(static_cast<std::size_t>(uav));
-  if (v.attitude.writer.matched() < 1) missing.push_back(topics::px4Out(v.ns, "vehicle_attitude") + " (no bridge reading)");
+  if (v.attitude.writer.matched() < 1)
+    missing.push_back(topics::px4Out(v.ns, "vehicle_attitude") + " (no bridge reading)");
   if (v.setpoint.matched() < 1) missing.push_back(topics::px4In(v.ns, "trajectory_setpoint") + " (no bridge writing)");
   if (v.mode.matched() < 1) missing.push_back(topics::px4In(v.ns, "offboard_control_mode") + " (no bridge writing)");
   // GNSS from the autopilot (best effort, as PX4 sends it): a fix sent before the bridge reads would be lost.
@@ -153,8 +155,8 @@ bool Px4Vehicles::publishGnss(int uav, const agent::GnssSample& g) {
                                                                                         dead_reckoning, reference);
     ok = v.position_v1_16.write(m) && ok;
   } else {
-    auto m = wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(*timestamp, local, valid,
-                                                                             dead_reckoning, reference);
+    auto m = wire::vehicleLocalPosition<px4_msgs::msg::VehicleLocalPosition>(*timestamp, local, valid, dead_reckoning,
+                                                                             reference);
     ok = v.position.write(m) && ok;
   }
   return ok;
@@ -184,9 +186,7 @@ agent::GnssSample Px4Vehicles::inLocalFrame(const Vehicle& v, agent::GnssSample 
   return g;
 }
 
-void Px4Vehicles::repeatAttitude(int uav) {
-  vehicles_.at(static_cast<std::size_t>(uav)).attitude.repeat();
-}
+void Px4Vehicles::repeatAttitude(int uav) { vehicles_.at(static_cast<std::size_t>(uav)).attitude.repeat(); }
 
 void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agent::StampNs now, const AdmitFn& admit) {
   arrived_.clear();
@@ -196,8 +196,8 @@ void Px4Vehicles::drain(std::vector<Answer>& answers, Clock::duration wait, agen
     if (const auto* sp = std::get_if<px4_msgs::msg::TrajectorySetpoint>(&a.message)) {
       const px4::NedVelocity ned = wire::velocityOf(*sp);
       const agent::Vec2 stable = px4::stableOf(ned);
-      Answer answer = answerOf(a.uav, a.received, a.writer, stable, worldYawRate(wire::yawspeedOf(*sp)),
-                               wire::isVelocityOnly(*sp));
+      Answer answer =
+          answerOf(a.uav, a.received, a.writer, stable, worldYawRate(wire::yawspeedOf(*sp)), wire::isVelocityOnly(*sp));
       const std::optional<agent::StampNs> answered = px4::stampNsOf(sp->timestamp());
       const std::optional<std::uint32_t> seq = answered ? v.attitude.published.answer(*answered) : std::nullopt;
       if (!seq) {

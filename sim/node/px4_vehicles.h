@@ -1,16 +1,17 @@
 #pragma once
 // swa_sim's UAVs as PX4 autopilots (vehicle.interface = px4) of one release (vehicle.px4_release): for each UAV, under
 // PX4's topics of the namespace px4_<i>, the simulator publishes vehicle_attitude (its IMU sample as PX4's quaternion,
-// stamped on the vehicle's clock = simulation time) and vehicle_status (the release's layout and topic name), reads trajectory_setpoint, offboard_control_mode and vehicle_command with
-// PX4's QoS, and lets a stand-in (swa/sim/px4_standin.h) decide what the vehicle flies. The agents are reached through
-// one swa_px4_bridge each; detections go to the agents on their own topics, GNSS too unless
-// vehicle.gnss_source = autopilot (then vehicle_gps_position and vehicle_local_position, forwarded by the bridges).
-// The first trajectory_setpoint stamped with a recent attitude sample's timestamp is that sample's answer: it goes to
-// the drivers' lockstep / realtime rules like an agent's cmd_vel (answer.h). The bridge's own setpoints (zero velocity
-// for a stale agent, stamped like the last answer), heartbeats and commands go to the stand-in at once.
-// vehicle_local_position carries its global reference as PX4's does (xy_global, ref_timestamp, ref_lat, ref_lon): a
-// fixed airfield at the world's origin, set with the first report; vehicle.px4_origin_shift_at_s moves it once, mid-
-// flight, and re-bases x, y on it as EKF2 does when its global origin is re-set (issue #46).
+// stamped on the vehicle's clock = simulation time) and vehicle_status (the release's layout and topic name), reads
+// trajectory_setpoint, offboard_control_mode and vehicle_command with PX4's QoS, and lets a stand-in
+// (swa/sim/px4_standin.h) decide what the vehicle flies. The agents are reached through one swa_px4_bridge each;
+// detections go to the agents on their own topics, GNSS too unless vehicle.gnss_source = autopilot (then
+// vehicle_gps_position and vehicle_local_position, forwarded by the bridges). The first trajectory_setpoint stamped
+// with a recent attitude sample's timestamp is that sample's answer: it goes to the drivers' lockstep / realtime rules
+// like an agent's cmd_vel (answer.h). The bridge's own setpoints (zero velocity for a stale agent, stamped like the
+// last answer), heartbeats and commands go to the stand-in at once. vehicle_local_position carries its global reference
+// as PX4's does (xy_global, ref_timestamp, ref_lat, ref_lon): a fixed airfield at the world's origin, set with the
+// first report; vehicle.px4_origin_shift_at_s moves it once, mid- flight, and re-bases x, y on it as EKF2 does when its
+// global origin is re-set (issue #46).
 
 #include <chrono>
 #include <cstdint>
@@ -23,10 +24,10 @@
 #include <vector>
 
 #include <swa/px4/OffboardControlMode_v1_15.h>
+#include <swa/px4/SensorCombined_v1_15.h>
 #include <swa/px4/SensorGps_v1_15.h>
 #include <swa/px4/SensorGps_v1_17.h>
 #include <swa/px4/TrajectorySetpoint_v1_15.h>
-#include <swa/px4/SensorCombined_v1_15.h>
 #include <swa/px4/VehicleAttitude_v1_15.h>
 #include <swa/px4/VehicleCommandAck_v1_15.h>
 #include <swa/px4/VehicleCommand_v1_15.h>
@@ -49,7 +50,6 @@ namespace swa::sim_node {
 
 class Px4Vehicles : public AutopilotVehicles {
  public:
-
   // Creates every UAV's PX4 endpoints on `participant` (which must outlive this). Throws swa::dds::DdsError.
   // `source`: what the agents fuse, which decides the attitude vehicle_attitude reports (AttitudeStream).
   Px4Vehicles(dds::Participant& participant, int uav_count, const sim::VehicleSetup& setup, agent::ImuSource source);
@@ -93,14 +93,14 @@ class Px4Vehicles : public AutopilotVehicles {
         : standin(com_of_loss_t_s, ekf) {}
     sim::Px4Standin standin;
     AttitudeStream<px4_msgs::msg::VehicleAttitude> attitude;
-    dds::Writer<px4_msgs::msg::SensorCombined> accelerometer;  // sensor_combined
-    dds::Writer<px4_msgs::msg::VehicleStatus> status;                // v1.15
+    dds::Writer<px4_msgs::msg::SensorCombined> accelerometer;           // sensor_combined
+    dds::Writer<px4_msgs::msg::VehicleStatus> status;                   // v1.15
     dds::Writer<px4_v1_16::px4_msgs::msg::VehicleStatus> status_v1_16;  // v1.16 and later
     // vehicle.gnss_source = autopilot only, in the release's layouts.
-    dds::Writer<px4_msgs::msg::SensorGps> gps;                                        // v1.15, v1.16
-    dds::Writer<px4_v1_17::px4_msgs::msg::SensorGps> gps_v1_17;                       // v1.17
-    dds::Writer<px4_msgs::msg::VehicleLocalPosition> position;                        // v1.15
-    dds::Writer<px4_v1_16::px4_msgs::msg::VehicleLocalPosition> position_v1_16;       // v1.16, v1.17
+    dds::Writer<px4_msgs::msg::SensorGps> gps;                                   // v1.15, v1.16
+    dds::Writer<px4_v1_17::px4_msgs::msg::SensorGps> gps_v1_17;                  // v1.17
+    dds::Writer<px4_msgs::msg::VehicleLocalPosition> position;                   // v1.15
+    dds::Writer<px4_v1_16::px4_msgs::msg::VehicleLocalPosition> position_v1_16;  // v1.16, v1.17
     dds::Writer<px4_msgs::msg::VehicleCommandAck> ack;
     dds::Reader<px4_msgs::msg::TrajectorySetpoint> setpoint;
     dds::Reader<px4_msgs::msg::OffboardControlMode> mode;

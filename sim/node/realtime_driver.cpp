@@ -119,8 +119,7 @@ void RealtimeDriver::drain(Clock::duration wait) {
     if (!alive_[k]) {
       alive_[k] = true;
       ++summary_.agent_rejoined_events;
-      std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n", sim::stampSeconds(now_ns),
-                   a.uav);
+      std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n", sim::stampSeconds(now_ns), a.uav);
       ports_.publishEvent(record::event_kind::kAgentRejoined, a.uav, 0.0, "answering again");
     }
   }

@@ -113,7 +113,8 @@ void SimPorts::connect(int domain_id, const std::string& profiles_file) {
     }
     if (autopilot) continue;
     cmd_.push_back(participant_->readerWithOrigin<msg::VelocitySetpointPubSubType>(
-        dds::topics::cmdVel(i), dds::qos::kCommandReader, [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
+        dds::topics::cmdVel(i), dds::qos::kCommandReader,
+        [this, i](msg::VelocitySetpoint&& m, const dds::WriterGuid& w) {
           queue_.push(Answer{i, std::move(m), Clock::now(), w, true});
         }));
   }
@@ -122,8 +123,8 @@ void SimPorts::connect(int domain_id, const std::string& profiles_file) {
 void SimPorts::makeSampleWriters(int i, bool autopilot, bool own_gnss) {
   switch (scenario_.agent.sensor.input) {
     case agent::DetectionInput::kSwa:
-      det_.push_back(participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i),
-                                                                      dds::qos::kDetectionsGnssWriter));
+      det_.push_back(
+          participant_->writer<msg::DetectionsPubSubType>(dds::topics::detections(i), dds::qos::kDetectionsGnssWriter));
       break;
     case agent::DetectionInput::kVisionMsgs:
       vision_det_.push_back(participant_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(
@@ -134,14 +135,14 @@ void SimPorts::makeSampleWriters(int i, bool autopilot, bool own_gnss) {
           dds::topics::uvdarPoses(i), dds::qos::kDetectionsGnssWriter));
       break;
   }
-  gnss_.push_back(own_gnss ? participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i),
-                                                                          dds::qos::kDetectionsGnssWriter)
-                           : dds::Writer<msg::GnssFix>());
+  gnss_.push_back(
+      own_gnss ? participant_->writer<msg::GnssFixPubSubType>(dds::topics::gnss(i), dds::qos::kDetectionsGnssWriter)
+               : dds::Writer<msg::GnssFix>());
   // With an autopilot its stand-in writes the attitude the bridge turns into swa/uav<i>/imu.
   if (!autopilot) {
     imu_.push_back(participant_->writer<msg::ImuPubSubType>(
-        dds::topics::imu(i), scenario_.clock.mode == sim::ClockMode::kRealtime ? dds::qos::kSensorWriterRealtime
-                                                                               : dds::qos::kSensorWriter));
+        dds::topics::imu(i),
+        scenario_.clock.mode == sim::ClockMode::kRealtime ? dds::qos::kSensorWriterRealtime : dds::qos::kSensorWriter));
   }
 }
 
@@ -186,7 +187,7 @@ std::vector<std::string> SimPorts::unmatchedEndpoints() const {
       continue;
     }
     if (detectionsMatched(k) < 1) {
-      const std::string topic = !det_.empty()        ? dds::topics::detections(i)
+      const std::string topic = !det_.empty()          ? dds::topics::detections(i)
                                 : !vision_det_.empty() ? dds::topics::visionDetections(i)
                                                        : dds::topics::uvdarPoses(i);
       missing.push_back(topic + " (no reader)");
@@ -265,8 +266,9 @@ void SimPorts::reconnect() {
     std::fprintf(stderr, "swa_sim: every endpoint matched again %.2f s after re-creating the participant\n",
                  secondsSince(t0));
   } else if (!stop_) {
-    std::fprintf(stderr, "swa_sim: %zu endpoint(s) still unmatched %.0f s after re-creating the participant (first: "
-                         "%s); the run goes on\n",
+    std::fprintf(stderr,
+                 "swa_sim: %zu endpoint(s) still unmatched %.0f s after re-creating the participant (first: "
+                 "%s); the run goes on\n",
                  missing.size(), secondsSince(t0), missing.front().c_str());
   }
 }
@@ -322,8 +324,8 @@ std::vector<std::optional<agent::StampNs>> SimPorts::publishSensors(std::optiona
     // One message per UAV: its parts arrive together and in order, so the lockstep simulator waits for no
     // acknowledgment (side_written_ stays false) and realtime needs no IMU-first order.
     for (std::size_t k = 0; k < n; ++k) {
-      if (writeFrame(k, sensors[k], due_ns)) imu_stamps[k] = sensors[k].imu ? std::optional(sensors[k].imu->stamp_ns)
-                                                                            : std::nullopt;
+      if (writeFrame(k, sensors[k], due_ns))
+        imu_stamps[k] = sensors[k].imu ? std::optional(sensors[k].imu->stamp_ns) : std::nullopt;
     }
     return imu_stamps;
   }
@@ -357,8 +359,8 @@ void SimPorts::publishTruth(const AliveFn& alive) {
       truth_csv_ << world_.step_index() << ',' << world_.time_ns() << ',' << t.id << ',' << t.position_m.x() << ','
                  << t.position_m.y() << ',' << t.velocity_mps.x() << ',' << t.velocity_mps.y() << ','
                  << t.acceleration_mps2.x() << ',' << t.acceleration_mps2.y() << ',' << t.heading_rad << ','
-                 << (truth.agent_alive.back() ? 1 : 0) << ',' << (t.gnss_valid ? 1 : 0) << ','
-                 << (t.failsafe ? 1 : 0) << '\n';
+                 << (truth.agent_alive.back() ? 1 : 0) << ',' << (t.gnss_valid ? 1 : 0) << ',' << (t.failsafe ? 1 : 0)
+                 << '\n';
     }
   }
   msg::SwarmTruth m = wire::toMsg(truth, ++truth_seq_);
@@ -526,8 +528,9 @@ void SimPorts::noteYoungerTwin() {
   const std::optional<dds::Peer> twin = participant_->twin();
   if (!twin || twin->key == reported_twin_) return;
   reported_twin_ = twin->key;
-  std::fprintf(stderr, "swa_sim: a second swa_sim (pid %ld on host %s) joined this swarm; it started later and must "
-                       "refuse to run\n",
+  std::fprintf(stderr,
+               "swa_sim: a second swa_sim (pid %ld on host %s) joined this swarm; it started later and must "
+               "refuse to run\n",
                twin->card->pid, twin->card->host.c_str());
 }
 

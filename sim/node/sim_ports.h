@@ -1,9 +1,9 @@
 #pragma once
 // The simulator's DDS side, shared by its lockstep and realtime drivers: publishes each UAV's sensor samples on its
 // own topics (with vehicle.interface = px4 or ardupilot the attitude as the autopilot's, autopilot_vehicles.h) and the
-// world's truth, events and clock, and collects the agents' setpoints (one commander per UAV, swa/dds/command_gate.h; their loop latency,
-// latency_stats.h). Owns the participant and every endpoint. Message contents come from the wire bridge (idl/wire);
-// which step to publish and when is the driver's.
+// world's truth, events and clock, and collects the agents' setpoints (one commander per UAV, swa/dds/command_gate.h;
+// their loop latency, latency_stats.h). Owns the participant and every endpoint. Message contents come from the wire
+// bridge (idl/wire); which step to publish and when is the driver's.
 
 #include <atomic>
 #include <chrono>
@@ -26,13 +26,13 @@
 #include <swa/ros/Detection3DArray.h>
 #include <swa/ros/PoseWithCovarianceArrayStamped.h>
 
-#include "swa/dds/command_gate.h"
 #include "answer.h"
-#include "latency_stats.h"
 #include "ardupilot_vehicles.h"
+#include "latency_stats.h"
 #include "px4_vehicles.h"
 #include "sim_options.h"
 #include "sim_summary.h"
+#include "swa/dds/command_gate.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/run_record/events.h"
@@ -74,7 +74,8 @@ class SimPorts {
   // (refused, ignored) and dropped. Their loop latency is recorded while timing is on.
   const std::vector<Answer>& drain(Clock::duration wait);
   void apply(const Answer& a);  // to the world (an autopilot interface: to the UAV's autopilot)
-  // Before the world steps: with an autopilot interface, what each autopilot flies (autopilot_vehicles.h); else nothing.
+  // Before the world steps: with an autopilot interface, what each autopilot flies (autopilot_vehicles.h); else
+  // nothing.
   void vehiclesStep();
   // Lockstep, while waiting for `uavs`' answers: with an autopilot interface their attitude once more (PX4 streams
   // it; best effort may have lost it); else, once after a reconnection (healDeafness), the step's samples again (the
@@ -98,9 +99,9 @@ class SimPorts {
  private:
   // Whether `a` comes from the UAV's current commander (admitted at `at`); refusals counted and reported.
   bool fromCommander(const Answer& a, Clock::time_point at);
-  void admit(Answer&& a);  // an answer of the commander: checked, timed, into admitted_
+  void admit(Answer&& a);                   // an answer of the commander: checked, timed, into admitted_
   std::string commandTopic(int uav) const;  // where a UAV's setpoints come from (for the log)
-  bool olderTwinRuns();                 // another swa_sim older than us in this swarm: refuse (logged)
+  bool olderTwinRuns();                     // another swa_sim older than us in this swarm: refuse (logged)
   void noteYoungerTwin();
   // The participant and every endpoint (the stand-ins' apart), at the start and when re-created.
   void connect(int domain_id, const std::string& profiles_file);

@@ -68,8 +68,8 @@ std::string summaryLine(const SimSummary& s, const sim::Scenario& scenario) {
                 static_cast<unsigned long long>(s.agent_dead_events),
                 static_cast<unsigned long long>(s.agent_rejoined_events),
                 static_cast<unsigned long long>(s.ignored_commands),
-                static_cast<unsigned long long>(s.latency.answered), s.latency.p50_us, s.latency.p99_us, s.latency.max_us,
-                static_cast<unsigned long long>(s.latency.late), 100.0 * s.latency.lateFraction(),
+                static_cast<unsigned long long>(s.latency.answered), s.latency.p50_us, s.latency.p99_us,
+                s.latency.max_us, static_cast<unsigned long long>(s.latency.late), 100.0 * s.latency.lateFraction(),
                 static_cast<unsigned long long>(s.latency.missing), 100.0 * s.latency.missingFraction());
   return line;
 }

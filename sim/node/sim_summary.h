@@ -12,12 +12,12 @@
 namespace swa::sim_node {
 
 struct SimSummary {
-  bool completed = false;        // reached the scenario's duration (false: interrupted)
+  bool completed = false;  // reached the scenario's duration (false: interrupted)
   std::int64_t steps = 0;
   double sim_time_s = 0.0;
-  double wall_time_s = 0.0;      // from the first step to the end (discovery and the realtime handshake excluded)
+  double wall_time_s = 0.0;  // from the first step to the end (discovery and the realtime handshake excluded)
   double discovery_s = 0.0;
-  double handshake_s = 0.0;      // realtime: from publishing step 0 until every agent answered it
+  double handshake_s = 0.0;  // realtime: from publishing step 0 until every agent answered it
   int collisions = 0;
   std::uint64_t applied_commands = 0;
   std::uint64_t ignored_commands = 0;  // stale, duplicate, naming the wrong UAV, or with a non-finite number
@@ -26,7 +26,7 @@ struct SimSummary {
   std::uint64_t refused_commands = 0;
   std::size_t refused_writers = 0;
   std::uint64_t command_handovers = 0;
-  bool refused_as_twin = false;  // an older simulator runs in this swarm: this one did not start
+  bool refused_as_twin = false;                   // an older simulator runs in this swarm: this one did not start
   std::uint64_t unacknowledged_sensor_steps = 0;  // lockstep: detections / GNSS not acknowledged in time
   std::uint64_t unacknowledged_clock_steps = 0;   // lockstep: a monitor more than 10 steps behind at the deadline
   std::uint64_t agent_dead_events = 0;
@@ -41,9 +41,9 @@ struct SimSummary {
   std::vector<int> dead_at_end;
   std::uint64_t write_failures = 0;
   // Loop latency: wall time from publishing a UAV's IMU sample to receiving the cmd_vel that answers it (its
-  // answered_seq / answered_stamp_ns), taken in the reader's listener. Late (realtime only): missed the step it answers,
-  // i.e. received after the UAV's next IMU sample was due and after the simulator took that step. Missing: never
-  // answered although that deadline passed (lockstep: never answered).
+  // answered_seq / answered_stamp_ns), taken in the reader's listener. Late (realtime only): missed the step it
+  // answers, i.e. received after the UAV's next IMU sample was due and after the simulator took that step. Missing:
+  // never answered although that deadline passed (lockstep: never answered).
   LatencyReport latency;
   // Realtime only: how late the simulator itself stepped and published against its wall-clock schedule (us; NaN in
   // lockstep). A large lag means the simulator thread, not the agents, is what falls behind.

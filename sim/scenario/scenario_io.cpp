@@ -108,15 +108,16 @@ std::vector<params::Check> scenarioChecks() {
                                          " m must be < mps.range_m = " + formatYamlNumber(range) +
                                          " m: otherwise no UAV detects its neighbours");
                     }});
-  checks.push_back({{"vehicle.px4_origin_shift_at_s", "vehicle.px4_origin_shift_east_m",
-                     "vehicle.px4_origin_shift_north_m"},
-                    [](const Values& v, auto& problems) {
-                      const bool moved = params::number(v, "vehicle.px4_origin_shift_east_m") != 0.0 ||
-                                         params::number(v, "vehicle.px4_origin_shift_north_m") != 0.0;
-                      if (!moved || std::isfinite(params::number(v, "vehicle.px4_origin_shift_at_s"))) return;
-                      problems.push_back("vehicle.px4_origin_shift_east_m / _north_m move the PX4 stand-ins' local "
-                                         "origin, but vehicle.px4_origin_shift_at_s is .inf (never): give the time");
-                    }});
+  checks.push_back(
+      {{"vehicle.px4_origin_shift_at_s", "vehicle.px4_origin_shift_east_m", "vehicle.px4_origin_shift_north_m"},
+       [](const Values& v, auto& problems) {
+         const bool moved = params::number(v, "vehicle.px4_origin_shift_east_m") != 0.0 ||
+                            params::number(v, "vehicle.px4_origin_shift_north_m") != 0.0;
+         if (!moved || std::isfinite(params::number(v, "vehicle.px4_origin_shift_at_s"))) return;
+         problems.push_back(
+             "vehicle.px4_origin_shift_east_m / _north_m move the PX4 stand-ins' local "
+             "origin, but vehicle.px4_origin_shift_at_s is .inf (never): give the time");
+       }});
   return checks;
 }
 
@@ -274,18 +275,17 @@ params::Table<Scenario> makeTable() {
   SWA_PARAM(t, number, vehicle.guid_timeout_s, "s", openClosed(0, 60),
             "ardupilot: ArduPilot's GUID_TIMEOUT, no cmd_vel this long in GUIDED -> the vehicle stops and holds");
   SWA_PARAM(t, choice, vehicle.px4_release,
-            std::vector<std::pair<px4::Release, std::string>>{{px4::Release::kV1_15, "v1.15"},
-                                                              {px4::Release::kV1_16, "v1.16"},
-                                                              {px4::Release::kV1_17, "v1.17"}},
+            std::vector<std::pair<px4::Release, std::string>>{
+                {px4::Release::kV1_15, "v1.15"}, {px4::Release::kV1_16, "v1.16"}, {px4::Release::kV1_17, "v1.17"}},
             "px4: the PX4 release the stand-ins play (message layouts, versioned topic names such as "
             "vehicle_status_v1); swa_launch gives every bridge the same --px4-release");
-  SWA_PARAM(t, choice, vehicle.gnss_source,
-            std::vector<std::pair<GnssSource, std::string>>{{GnssSource::kSwa, "swa"},
-                                                            {GnssSource::kAutopilot, "autopilot"}},
-            "px4, ardupilot: swa (the simulator publishes swa/uav<i>/gnss) or autopilot (each PX4 stand-in reports "
-            "its fix on vehicle_gps_position and vehicle_local_position, losing both when the scenario drops GNSS; "
-            "each ArduPilot stand-in on navsat, silent while GNSS is dropped; the bridges forward them as "
-            "swa/uav<i>/gnss)");
+  SWA_PARAM(
+      t, choice, vehicle.gnss_source,
+      std::vector<std::pair<GnssSource, std::string>>{{GnssSource::kSwa, "swa"}, {GnssSource::kAutopilot, "autopilot"}},
+      "px4, ardupilot: swa (the simulator publishes swa/uav<i>/gnss) or autopilot (each PX4 stand-in reports "
+      "its fix on vehicle_gps_position and vehicle_local_position, losing both when the scenario drops GNSS; "
+      "each ArduPilot stand-in on navsat, silent while GNSS is dropped; the bridges forward them as "
+      "swa/uav<i>/gnss)");
   SWA_PARAM(t, choice, vehicle.odometry,
             std::vector<std::pair<autopilot::OdometryMode, std::string>>{
                 {autopilot::OdometryMode::kWhileGnssLost, "gnss-loss"},
@@ -327,32 +327,34 @@ params::Table<Scenario> makeTable() {
   schema.checks = scenarioChecks();
   for (params::Check& c : agent::configChecks("agent.")) schema.checks.push_back(std::move(c));
   // After the mount, which brought the agent's own (agent.formation.k, ...).
-  schema.applies.insert(schema.applies.end(), {
-      {"clock.speed", "clock.mode", {"realtime"}, "realtime mode"},
-      {"mps.noise_var_m2", "mps.noise_model", {"isotropic"}, "the isotropic noise model"},
-      {"mps.range_std_m", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
-      {"mps.bearing_std_rad", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
-      {"vehicle.com_of_loss_t_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
-      {"vehicle.px4_release", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
-      {"vehicle.gnss_source", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
-      {"vehicle.guid_timeout_s", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
-      {"vehicle.estimator", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
-      {"vehicle.odometry", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
-      {"vehicle.ekf2_noaid_tout_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
-      {"vehicle.ekf2_ev_ctrl", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
-      {"vehicle.ap_external_nav", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
-      {"vehicle.px4_origin_shift_at_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
-      {"vehicle.px4_origin_shift_east_m", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
-      {"vehicle.px4_origin_shift_north_m", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
-      {"vehicle.px4_origin_shift_at_s", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
-      {"vehicle.px4_origin_shift_east_m", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
-      {"vehicle.px4_origin_shift_north_m", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
-      {"wind.direction_deg", "wind.mean_mps", {}, "a mean wind"},
-      {"wind.turn_rate_dps", "wind.mean_mps", {}, "a mean wind"},
-      {"imu.attitude_error_std_rad", "imu.source", {"accelerometer"}, "the accelerometer source"},
-      {"imu.accel_bias_std_mps2", "imu.source", {"accelerometer"}, "the accelerometer source"},
-      {"imu.accel_noise_std_mps2", "imu.source", {"accelerometer"}, "the accelerometer source"},
-  });
+  schema.applies.insert(
+      schema.applies.end(),
+      {
+          {"clock.speed", "clock.mode", {"realtime"}, "realtime mode"},
+          {"mps.noise_var_m2", "mps.noise_model", {"isotropic"}, "the isotropic noise model"},
+          {"mps.range_std_m", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
+          {"mps.bearing_std_rad", "mps.noise_model", {"range_bearing"}, "the range_bearing noise model"},
+          {"vehicle.com_of_loss_t_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+          {"vehicle.px4_release", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+          {"vehicle.gnss_source", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
+          {"vehicle.guid_timeout_s", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
+          {"vehicle.estimator", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
+          {"vehicle.odometry", "vehicle.interface", {"px4", "ardupilot"}, "an autopilot vehicle interface"},
+          {"vehicle.ekf2_noaid_tout_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+          {"vehicle.ekf2_ev_ctrl", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+          {"vehicle.ap_external_nav", "vehicle.interface", {"ardupilot"}, "the ardupilot vehicle interface"},
+          {"vehicle.px4_origin_shift_at_s", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+          {"vehicle.px4_origin_shift_east_m", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+          {"vehicle.px4_origin_shift_north_m", "vehicle.interface", {"px4"}, "the px4 vehicle interface"},
+          {"vehicle.px4_origin_shift_at_s", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
+          {"vehicle.px4_origin_shift_east_m", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
+          {"vehicle.px4_origin_shift_north_m", "vehicle.gnss_source", {"autopilot"}, "GNSS from the autopilot"},
+          {"wind.direction_deg", "wind.mean_mps", {}, "a mean wind"},
+          {"wind.turn_rate_dps", "wind.mean_mps", {}, "a mean wind"},
+          {"imu.attitude_error_std_rad", "imu.source", {"accelerometer"}, "the accelerometer source"},
+          {"imu.accel_bias_std_mps2", "imu.source", {"accelerometer"}, "the accelerometer source"},
+          {"imu.accel_noise_std_mps2", "imu.source", {"accelerometer"}, "the accelerometer source"},
+      });
   // The mission is the agents' (each holds the plan), written at the top of a scenario as in an agent's file.
   schema.aliases = {{"agent.k", "agent.formation.k"},
                     {"agent.circle_fit", "agent.formation.circle_fit"},

@@ -22,7 +22,8 @@ bool ArdupilotStandin::externalOdometry(agent::StampNs now, agent::StampNs stamp
 void ArdupilotStandin::cmdVel(agent::StampNs now, bool map_frame, const ardupilot::EnuTwist& twist) {
   if (!map_frame) {
     if (!other_frame_reported_) {
-      events_.push_back({StandinEvent::Control::kNone, "a cmd_vel in a frame other than \"map\" is not simulated: dropped"});
+      events_.push_back(
+          {StandinEvent::Control::kNone, "a cmd_vel in a frame other than \"map\" is not simulated: dropped"});
       other_frame_reported_ = true;
     }
     return;
@@ -35,14 +36,15 @@ void ArdupilotStandin::cmdVel(agent::StampNs now, bool map_frame, const ardupilo
 }
 
 bool ArdupilotStandin::armMotors(bool arm) {
-  if (arm != armed_) events_.push_back({StandinEvent::Control::kNone, arm ? "armed on request" : "disarmed on request"});
+  if (arm != armed_)
+    events_.push_back({StandinEvent::Control::kNone, arm ? "armed on request" : "disarmed on request"});
   armed_ = arm;
   return true;
 }
 
 ArdupilotStandin::ModeReply ArdupilotStandin::modeSwitch(std::uint8_t mode) {
-  const bool simulated = mode == ardupilot::kModeGuided || mode == ardupilot::kModeLoiter ||
-                         mode == ardupilot::kModeBrake;
+  const bool simulated =
+      mode == ardupilot::kModeGuided || mode == ardupilot::kModeLoiter || mode == ardupilot::kModeBrake;
   // A position mode needs a position while armed (Copter::set_mode: "requires position"); the EKF failsafe refuses
   // them all until it clears.
   if (simulated && armed_ && !positionOk()) return ModeReply{false, mode_};
@@ -63,7 +65,8 @@ ArdupilotStandin::Decision ArdupilotStandin::step(agent::StampNs now) {
     if (ekf_->ekfFailsafe() && armed_ && mode_ != ardupilot::kModeLand) {
       events_.push_back({StandinEvent::Control::kLost,
                          std::string("EKF failsafe: no position for 1 s (7 s after the last GPS fix or external "
-                                     "navigation): FS_EKF_ACTION LAND from ") + ardupilot::copterModeName(mode_)});
+                                     "navigation): FS_EKF_ACTION LAND from ") +
+                             ardupilot::copterModeName(mode_)});
       mode_ = ardupilot::kModeLand;
     }
   }

@@ -64,8 +64,8 @@ agent::ImuSample ImuModel::sample(agent::StampNs stamp_ns, const agent::Vec2& ac
   const agent::Vec3 f_level(a_level.x(), a_level.y(), agent::kStandardGravity_mps2);
   const agent::Vec3 noise(accel_noise_rng_.normal(), accel_noise_rng_.normal(), accel_noise_rng_.normal());
   agent::AccelerometerSample acc;
-  acc.specific_force_body_mps2 = agent::tiltRotation(roll, pitch).transpose() * f_level + accel_bias_mps2_ +
-                                 setup_.accel_noise_std_mps2 * noise;
+  acc.specific_force_body_mps2 =
+      agent::tiltRotation(roll, pitch).transpose() * f_level + accel_bias_mps2_ + setup_.accel_noise_std_mps2 * noise;
   acc.roll_rad = roll + attitude_error_roll_rad_;
   acc.pitch_rad = pitch + attitude_error_pitch_rad_;
   imu.accelerometer = acc;

@@ -24,7 +24,7 @@ bool MpsModel::inFieldOfView(double bearing_rad) const {
 }
 
 agent::Mat2 MpsModel::rangeBearingCovariance(double range_m, double bearing_rad, double range_std_m,
-                                              double bearing_std_rad) {
+                                             double bearing_std_rad) {
   const double range = std::max(std::abs(range_m), std::max(range_std_m, kMinCovStd));
   const double sr = std::max(range_std_m, kMinCovStd);
   const double sb = std::max(bearing_std_rad, kMinBearingStd);

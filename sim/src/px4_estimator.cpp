@@ -6,8 +6,8 @@ namespace swa::sim {
 namespace {
 
 constexpr agent::StampNs kSecond = 1'000'000'000;
-constexpr agent::StampNs kNoAidTimeoutMax = kSecond;      // common.h no_aid_timeout_max
-constexpr agent::StampNs kEvMaxInterval = 200'000'000;    // common.h EV_MAX_INTERVAL
+constexpr agent::StampNs kNoAidTimeoutMax = kSecond;    // common.h no_aid_timeout_max
+constexpr agent::StampNs kEvMaxInterval = 200'000'000;  // common.h EV_MAX_INTERVAL
 constexpr int kEvCtrlHorizontalPosition = 1 << 0;
 constexpr int kEvCtrlVelocity = 1 << 2;
 

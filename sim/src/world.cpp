@@ -133,8 +133,8 @@ void World::step() {
     // ArduPilot's PSC_VELXY_I), so the path stays the lagged response above; what drag changes is the thrust the
     // UAV needs, a = T - k (v - w) + gust, and with it the attitude: T = a + k (v - w) - gust. A UAV holding still
     // in a 5 m/s wind leans into it as if it were accelerating at 0.75 m/s^2 (k = 0.15 1/s).
-    u.thrust_mps2 = u.state.acceleration_mps2 - u.last_gust_mps2 +
-                    scenario_.dynamics.drag_per_s * (u.state.velocity_mps - wind);
+    u.thrust_mps2 =
+        u.state.acceleration_mps2 - u.last_gust_mps2 + scenario_.dynamics.drag_per_s * (u.state.velocity_mps - wind);
     // Heading: the yaw rate follows the commanded one with a first-order lag, like velocity; the failsafe holds
     // the heading. Kept apart from the closed-form turn of heading_rate_std_radps, and exactly 0 while nothing
     // was ever commanded, so an all-round swarm's headings are bit for bit those of a world without yaw control.
@@ -215,8 +215,9 @@ void World::generateSensors() {
       u.in_flight.push_back({time_ns_ + delay_ns, u.mps.scan(time_ns_, static_cast<int>(i), positions_, heading)});
     }
     // The set due first, if it is due (the earlier scan of two due at once: min_element keeps the first minimum).
-    const auto first = std::min_element(u.in_flight.begin(), u.in_flight.end(),
-                                        [](const Uav::InFlight& a, const Uav::InFlight& b) { return a.due_ns < b.due_ns; });
+    const auto first =
+        std::min_element(u.in_flight.begin(), u.in_flight.end(),
+                         [](const Uav::InFlight& a, const Uav::InFlight& b) { return a.due_ns < b.due_ns; });
     if (first != u.in_flight.end() && first->due_ns <= time_ns_) {
       out.detections = std::move(first->set);
       u.in_flight.erase(first);

@@ -40,8 +40,8 @@ static_assert((kRing & kMask) == 0, "kRing must be a power of two");
 constexpr StampNs kImuPeriodNs = 10'000'000;   // 100 Hz
 constexpr StampNs kDetPeriodNs = 100'000'000;  // 10 Hz
 constexpr double kTwoPi = 6.283185307179586;
-constexpr double kRadius = 10.0;               // formation radius r
-constexpr double kDetNoiseVar = 0.1;           // R_o default: detection noise std sqrt(0.1) m
+constexpr double kRadius = 10.0;      // formation radius r
+constexpr double kDetNoiseVar = 0.1;  // R_o default: detection noise std sqrt(0.1) m
 constexpr std::uint64_t kSeed = 20240502;
 
 double ringPhase(std::size_t k) { return kTwoPi * static_cast<double>(k) / static_cast<double>(kRing); }
@@ -261,8 +261,8 @@ void runSelectAndFit(benchmark::State& state, const FormationConfig& formation, 
   std::int64_t wrong = 0;
   for (auto _ : state) {
     const Neighbourhood nb = selectNeighbours(rings[i & kMask], formation);
-    const FrameFit f = fitFloatingFrame(nb.positions, formation.radius_m, formation.circle_fit,
-                                        formation.far_neighbour_weight);
+    const FrameFit f =
+        fitFloatingFrame(nb.positions, formation.radius_m, formation.circle_fit, formation.far_neighbour_weight);
     ++i;
     benchmark::DoNotOptimize(f);
     wrong += (f.valid && nb.count() == expected_neighbours) ? 0 : 1;
@@ -292,8 +292,8 @@ BENCHMARK(BM_KNearestFit);
 constexpr int kSwarmNeighbours = 8;
 
 struct AgentInputs {
-  std::vector<ImuSample> imu;         // kRing samples, stamps filled in by the loop
-  std::vector<DetectionSet> det;      // kRing sets, stamps filled in by the loop
+  std::vector<ImuSample> imu;     // kRing samples, stamps filled in by the loop
+  std::vector<DetectionSet> det;  // kRing sets, stamps filled in by the loop
 };
 
 // Heading wanders slowly; tilt is small noise. Neighbours sit near a circle of radius r round the focal UAV and
@@ -384,8 +384,8 @@ bool agentHealthy(const Agent& agent, int tracks = kSwarmNeighbours) {
   const Diagnostics& d = agent.diagnostics();
   const FormationConfig& f = agent.config().formation;
   // Gabriel keeps the tracks that no nearer track hides; the 8 inputs are spread all round, so at least 3.
-  const bool neighbours_ok = f.neighbourhood == NeighbourhoodRule::kKNearest ? d.neighbour_count == f.k
-                                                                             : d.neighbour_count >= 3;
+  const bool neighbours_ok =
+      f.neighbourhood == NeighbourhoodRule::kKNearest ? d.neighbour_count == f.k : d.neighbour_count >= 3;
   return d.stage == Stage::kTracking && d.confirmed_tracks == tracks && d.tentative_tracks == 0 &&
          d.rejected.total() == 0 && neighbours_ok;
 }

@@ -26,8 +26,7 @@ int main(int argc, char** argv) {
     }
     std::sort(cpu.begin(), cpu.end());
     const double median = cpu[2];
-    std::printf("| %d | %.4f | %.0fx | %.1f us |\n", n, median, s.duration_s / median,
-                median / s.duration_s / n * 1e6);
+    std::printf("| %d | %.4f | %.0fx | %.1f us |\n", n, median, s.duration_s / median, median / s.duration_s / n * 1e6);
   }
   return 0;
 }

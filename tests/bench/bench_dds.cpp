@@ -35,23 +35,23 @@
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "process_support.h"
 #include "proc_stats.h"
+#include "process_support.h"
 #include "swa/app/cli.h"
+#include "swa/app/signals.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/qos_profiles.h"
 #include "swa/dds/sample_queue.h"
-#include "swa/app/signals.h"
 
 // Fast DDS declares a global `namespace dds`: stay inside namespace swa so `dds::` is ours.
 namespace swa::bench {
 namespace {
 
 using testing::Child;
-using testing::ShmJanitor;
 using testing::jsonNumber;
 using testing::readFile;
+using testing::ShmJanitor;
 namespace fs = std::filesystem;
 
 const std::string kSource = SWA_SOURCE_DIR;
@@ -60,16 +60,15 @@ std::string pingTopic(int peer) { return "swa/bench/ping" + std::to_string(peer)
 std::string pongTopic(int peer) { return "swa/bench/pong" + std::to_string(peer); }
 constexpr auto kPingPeriod = std::chrono::milliseconds(10);  // 100 Hz, as the IMU
 
-
 // ---- options ----------------------------------------------------------------------------------------------------
 
 struct Options {
   bool quick = false;
-  std::string only;           // "", latency, lockstep, scale
-  double duration_s = 30.0;   // realtime swarm runs of (b); (d) uses 2/3 of it, (c) 2x
-  int reps = 1;               // repetitions of (a)+(b) and of each (c) run; medians reported
-  int pings = 3000;           // round trips per ping-pong
-  std::string keep;           // keep logs and summaries here
+  std::string only;          // "", latency, lockstep, scale
+  double duration_s = 30.0;  // realtime swarm runs of (b); (d) uses 2/3 of it, (c) 2x
+  int reps = 1;              // repetitions of (a)+(b) and of each (c) run; medians reported
+  int pings = 3000;          // round trips per ping-pong
+  std::string keep;          // keep logs and summaries here
   bool help = false;
 };
 
@@ -77,7 +76,8 @@ app::Cli makeCli(Options& o) {
   app::Cli cli("bench_dds", "the SWA swarm over Fast DDS, measured (see BENCHMARKS.md).");
   cli.usage(R"(bench_dds [--quick] [--only latency|lockstep|scale|pingpong|security] [--duration S] [--reps R]
                  [--pings N] [--keep DIR])");
-  cli.details(R"(  --only latency   (a) raw ping-pong (Imu -> VelocitySetpoint, the loop's profiles) and (b) the realtime loop
+  cli.details(
+      R"(  --only latency   (a) raw ping-pong (Imu -> VelocitySetpoint, the loop's profiles) and (b) the realtime loop
                    with 8 agents, plus the loop with 1, 2, 4 agents (informative: how it grows with N)
   --only pingpong  (a) alone
   --only lockstep  (c) lockstep speed N = 4, 8, 16, 32
@@ -87,7 +87,8 @@ app::Cli makeCli(Options& o) {
   Without --only: all of them but (f). SWA_DDS_PROFILES (as for swa_sim / swa_agent) applies to every process.)");
   cli.flag("--quick", o.quick, "shorter runs: --duration 10 and --pings 500 unless given");
   const std::vector<std::string> parts{"latency", "lockstep", "scale", "pingpong", "security"};
-  cli.choice("--only", "PART", parts, [&o, parts](std::size_t k) { o.only = parts[k]; }, "run only this part (above)");
+  cli.choice(
+      "--only", "PART", parts, [&o, parts](std::size_t k) { o.only = parts[k]; }, "run only this part (above)");
   cli.real("--duration", "S", o.duration_s, 2.0, 3600.0, "a duration in seconds",
            "wall seconds of the realtime run of (b); (d) runs 2/3 of it, (c) 2x of simulated time");
   cli.integer("--reps", "R", o.reps, 1, 100, "a count", "repeat (a)+(b) and each (c) run R times, report medians");
@@ -195,8 +196,9 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
     for (int j = 0; j < peers; ++j) {
       pings.push_back(p.writer<msg::ImuPubSubType>(pingTopic(j), dds::qos::kSensorWriter));
       pongs.push_back(p.reader<msg::VelocitySetpointPubSubType>(
-          pongTopic(j), dds::qos::kCommandReader,
-          [&queue](msg::VelocitySetpoint&& m) { queue.push(Pong{m.uav_id(), m.answered_seq(), Clock::now()}); }));
+          pongTopic(j), dds::qos::kCommandReader, [&queue](msg::VelocitySetpoint&& m) {
+            queue.push(Pong{m.uav_id(), m.answered_seq(), Clock::now()});
+          }));
     }
     app::acceptShutdownSignals();
     const auto allMatched = [&] {
@@ -232,7 +234,8 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
             continue;
           }
           double& cell = rtt_us[at(x.peer, x.seq)];
-          if (std::isnan(cell)) cell = std::chrono::duration<double, std::micro>(x.received - sent[at(x.peer, x.seq)]).count();
+          if (std::isnan(cell))
+            cell = std::chrono::duration<double, std::micro>(x.received - sent[at(x.peer, x.seq)]).count();
         }
       } while (Clock::now() < until && !app::shutdownRequested());
     };
@@ -279,12 +282,12 @@ PingResult pingPong(const Options& opt, const fs::path& dir, const std::string& 
 // ---- (b)-(e) swarm runs -----------------------------------------------------------------------------------------
 
 struct SwarmSpec {
-  std::string scenario;               // file under deploy/scenarios/
+  std::string scenario;  // file under deploy/scenarios/
   int n = 8;
   bool realtime = true;
-  double duration_s = 30.0;           // simulated
-  std::string tag;                    // names the run's files
-  std::vector<std::string> env;       // extra environment of the simulator and the agents
+  double duration_s = 30.0;      // simulated
+  std::string tag;               // names the run's files
+  std::vector<std::string> env;  // extra environment of the simulator and the agents
 };
 
 struct SwarmResult {
@@ -302,8 +305,12 @@ SwarmResult runSwarm(const SwarmSpec& spec, const fs::path& dir) {
   const int domain = nextDomain();
   const fs::path base = dir / spec.tag;
   fs::create_directories(base);
-  std::vector<std::string> sim_args = {SWA_SIM_BINARY, "--scenario", kSource + "/deploy/scenarios/" + spec.scenario,
-                                       "--set", "uav_count=" + std::to_string(spec.n), "--set",
+  std::vector<std::string> sim_args = {SWA_SIM_BINARY,
+                                       "--scenario",
+                                       kSource + "/deploy/scenarios/" + spec.scenario,
+                                       "--set",
+                                       "uav_count=" + std::to_string(spec.n),
+                                       "--set",
                                        "duration_s=" + std::to_string(spec.duration_s)};
   if (spec.realtime) sim_args.insert(sim_args.end(), {"--set", "clock.mode=realtime"});
   {
@@ -404,13 +411,13 @@ int latencySection(const Options& opt, const fs::path& dir) {
     const PingResult thr = pingPong(opt, dir, "thread", 1);
     const PingResult fan = pingPong(opt, dir, "listener", kFanOut);
     const PingResult fanthr = pingPong(opt, dir, "thread", kFanOut);
-    std::printf("rep %d ping-pong (%d round trips at 100 Hz): 1 peer, echo in listener p50 %.1f us p99 %.1f us max "
-                "%.1f us (%d lost); 1 peer via worker thread p50 %.1f us p99 %.1f us (%d lost); %d peers in listener "
-                "p50 %.1f us p99 %.1f us max %.1f us (%d lost); %d peers via worker thread p50 %.1f us p99 %.1f us "
-                "(%d lost)\n",
-                rep + 1, opt.pings, raw.p50_us, raw.p99_us, raw.max_us, raw.lost, thr.p50_us, thr.p99_us, thr.lost,
-                kFanOut, fan.p50_us, fan.p99_us, fan.max_us, fan.lost, kFanOut, fanthr.p50_us, fanthr.p99_us,
-                fanthr.lost);
+    std::printf(
+        "rep %d ping-pong (%d round trips at 100 Hz): 1 peer, echo in listener p50 %.1f us p99 %.1f us max "
+        "%.1f us (%d lost); 1 peer via worker thread p50 %.1f us p99 %.1f us (%d lost); %d peers in listener "
+        "p50 %.1f us p99 %.1f us max %.1f us (%d lost); %d peers via worker thread p50 %.1f us p99 %.1f us "
+        "(%d lost)\n",
+        rep + 1, opt.pings, raw.p50_us, raw.p99_us, raw.max_us, raw.lost, thr.p50_us, thr.p99_us, thr.lost, kFanOut,
+        fan.p50_us, fan.p99_us, fan.max_us, fan.lost, kFanOut, fanthr.p50_us, fanthr.p99_us, fanthr.lost);
     std::fflush(stdout);
     raw50.push_back(raw.p50_us);
     raw99.push_back(raw.p99_us);
@@ -428,11 +435,11 @@ int latencySection(const Options& opt, const fs::path& dir) {
       std::printf("rep %d loop N = 8 realtime FAILED: %s\n", rep + 1, s.error.c_str());
       continue;
     }
-    std::printf("rep %d loop N = 8 realtime %.0f s: %.0f commands, p50 %.1f us p99 %.1f us max %.1f us, late %.0f, "
-                "missing %.0f; agent RSS %.1f MB PSS %.1f MB (medians)\n",
-                rep + 1, opt.duration_s, s.get("latency_commands_answered"), s.get("latency_p50_us"),
-                s.get("latency_p99_us"), s.get("latency_max_us"), s.get("late_commands"), s.get("missing_answers"),
-                s.rss_median_mb, s.pss_median_mb);
+    std::printf(
+        "rep %d loop N = 8 realtime %.0f s: %.0f commands, p50 %.1f us p99 %.1f us max %.1f us, late %.0f, "
+        "missing %.0f; agent RSS %.1f MB PSS %.1f MB (medians)\n",
+        rep + 1, opt.duration_s, s.get("latency_commands_answered"), s.get("latency_p50_us"), s.get("latency_p99_us"),
+        s.get("latency_max_us"), s.get("late_commands"), s.get("missing_answers"), s.rss_median_mb, s.pss_median_mb);
     std::fflush(stdout);
     loop50.push_back(s.get("latency_p50_us"));
     loop99.push_back(s.get("latency_p99_us"));
@@ -445,32 +452,37 @@ int latencySection(const Options& opt, const fs::path& dir) {
   const double r50 = median(raw50), r99 = median(raw99), l50 = median(loop50), l99 = median(loop99);
   std::printf("\n### Loop latency (medians of %d repetition(s))\n\n", opt.reps);
   std::printf("| measurement | p50 | p99 | target |\n|---|---|---|---|\n");
-  std::printf("| (a) raw ping-pong, echo in the listener (Imu -> VelocitySetpoint, %d round trips at 100 Hz) | %s us "
-              "| %s us | reference |\n",
-              opt.pings, fmt(r50).c_str(), fmt(r99).c_str());
+  std::printf(
+      "| (a) raw ping-pong, echo in the listener (Imu -> VelocitySetpoint, %d round trips at 100 Hz) | %s us "
+      "| %s us | reference |\n",
+      opt.pings, fmt(r50).c_str(), fmt(r99).c_str());
   std::printf("| (a') ping-pong, echo through a worker thread as in swa_agent (informative) | %s us | %s us | — |\n",
               fmt(median(thr50)).c_str(), fmt(median(thr99)).c_str());
   const double f50 = median(fan50), f99 = median(fan99);
-  std::printf("| (a8) raw ping-pong with %d echo peers at once, echo in the listener (the raw floor at the loop's N) "
-              "| %s us | %s us | reference at N = %d |\n",
-              kFanOut, fmt(f50).c_str(), fmt(f99).c_str(), kFanOut);
+  std::printf(
+      "| (a8) raw ping-pong with %d echo peers at once, echo in the listener (the raw floor at the loop's N) "
+      "| %s us | %s us | reference at N = %d |\n",
+      kFanOut, fmt(f50).c_str(), fmt(f99).c_str(), kFanOut);
   std::printf("| (a8') %d echo peers at once, echo through a worker thread (informative) | %s us | %s us | — |\n",
               kFanOut, fmt(median(fanthr50)).c_str(), fmt(median(fanthr99)).c_str());
   if (opt.only != "pingpong") {
-    std::printf("| (b) loop: IMU published by swa_sim -> its cmd_vel received, N = 8 realtime, %.0f s | %s us | %s us "
-                "| |\n",
-                opt.duration_s, fmt(l50).c_str(), fmt(l99).c_str());
+    std::printf(
+        "| (b) loop: IMU published by swa_sim -> its cmd_vel received, N = 8 realtime, %.0f s | %s us | %s us "
+        "| |\n",
+        opt.duration_s, fmt(l50).c_str(), fmt(l99).c_str());
     std::printf("| (b) / (a) | %s x | %s x | p50 <= 1.3 x, p99 <= 1.5 x |\n", fmt(l50 / r50, 2).c_str(),
                 fmt(l99 / r99, 2).c_str());
     std::printf("| (a8) / (a): the fan-out alone, no agent code | %s x | %s x | — |\n", fmt(f50 / r50, 2).c_str(),
                 fmt(f99 / r99, 2).c_str());
-    std::printf("| (b) / (a8): what the agent and simulator add at the same N | %s x | %s x | p50 <= 1.3 x, p99 <= "
-                "1.5 x |\n",
-                fmt(l50 / f50, 2).c_str(), fmt(l99 / f99, 2).c_str());
-    std::printf("\nloop N = 8: max %s us, late %s %%, missing %s %%; per-agent RSS %s MB, PSS %s MB (median over "
-                "agents)\n",
-                fmt(median(loopmax)).c_str(), fmt(100.0 * median(late), 3).c_str(),
-                fmt(100.0 * median(missing), 3).c_str(), fmt(median(rss)).c_str(), fmt(median(pss), 2).c_str());
+    std::printf(
+        "| (b) / (a8): what the agent and simulator add at the same N | %s x | %s x | p50 <= 1.3 x, p99 <= "
+        "1.5 x |\n",
+        fmt(l50 / f50, 2).c_str(), fmt(l99 / f99, 2).c_str());
+    std::printf(
+        "\nloop N = 8: max %s us, late %s %%, missing %s %%; per-agent RSS %s MB, PSS %s MB (median over "
+        "agents)\n",
+        fmt(median(loopmax)).c_str(), fmt(100.0 * median(late), 3).c_str(), fmt(100.0 * median(missing), 3).c_str(),
+        fmt(median(rss)).c_str(), fmt(median(pss), 2).c_str());
   }
   std::fflush(stdout);
   if (opt.only == "pingpong") return failures;
@@ -501,14 +513,15 @@ int lockstepSection(const Options& opt, const fs::path& dir) {
   int failures = 0;
   const double sim_s = 2.0 * opt.duration_s;
   std::printf("\n### Lockstep speed (%.0f s simulated per run, median of %d)\n\n", sim_s, opt.reps);
-  std::printf("| N | scenario | sim s / wall s (each run) | wall s per run | loop latency p50 / p99 | target |\n"
-              "|---|---|---|---|---|---|\n");
+  std::printf(
+      "| N | scenario | sim s / wall s (each run) | wall s per run | loop latency p50 / p99 | target |\n"
+      "|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   for (const int n : {4, 8, 16, 32}) {
     std::vector<double> speed, wall, p50, p99;
     for (int rep = 0; rep < opt.reps && !app::shutdownRequested(); ++rep) {
-      const SwarmSpec spec{scenarioFor(n), n, false, sim_s,
-                           "lockstep_n" + std::to_string(n) + "_rep" + std::to_string(rep + 1), {}};
+      const SwarmSpec spec{
+          scenarioFor(n), n, false, sim_s, "lockstep_n" + std::to_string(n) + "_rep" + std::to_string(rep + 1), {}};
       const SwarmResult s = runSwarm(spec, dir);
       if (!s.ok || s.get("agent_dead_events") != 0.0) {
         ++failures;
@@ -524,9 +537,8 @@ int lockstepSection(const Options& opt, const fs::path& dir) {
     std::string each;
     for (const double x : speed) each += (each.empty() ? "" : ", ") + fmt(x);
     std::printf("| %d | %s | %sx (%s) | %s | %s / %s us | %s |\n", n, scenarioFor(n).c_str(),
-                fmt(median(speed)).c_str(), each.c_str(),
-                fmt(median(wall), 2).c_str(), fmt(median(p50)).c_str(), fmt(median(p99)).c_str(),
-                n == 8 ? ">= 20x" : "—");
+                fmt(median(speed)).c_str(), each.c_str(), fmt(median(wall), 2).c_str(), fmt(median(p50)).c_str(),
+                fmt(median(p99)).c_str(), n == 8 ? ">= 20x" : "—");
     std::fflush(stdout);
   }
   return failures;
@@ -537,14 +549,15 @@ int scaleSection(const Options& opt, const fs::path& dir) {
   int failures = 0;
   const double run_s = std::max(5.0, opt.duration_s * 2.0 / 3.0);
   std::printf("\n### Scale: realtime at 100 Hz, %.0f s per N (late + missing < 1 %% passes)\n\n", run_s);
-  std::printf("| N | judged commands | late | missing | late + missing | latency p50 / p99 / max | sim step lag "
-              "p99 / max | CPU sim / all agents (%% of one core) | per-agent RSS / PSS (median) | passes |\n"
-              "|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| N | judged commands | late | missing | late + missing | latency p50 / p99 / max | sim step lag "
+      "p99 / max | CPU sim / all agents (%% of one core) | per-agent RSS / PSS (median) | passes |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   int largest = 0;
   for (const int n : {8, 16, 24, 32, 40, 48}) {
     if (app::shutdownRequested() || largest != n - 8) break;  // stop at the first failure
-    if (n > 32 && largest < 32) break;                         // 40 and 48 only if 32 passes
+    if (n > 32 && largest < 32) break;                        // 40 and 48 only if 32 passes
     const SwarmSpec spec{scenarioFor(n), n, true, run_s, "scale_n" + std::to_string(n), {}};
     const SwarmResult s = runSwarm(spec, dir);
     if (!s.ok) {
@@ -555,15 +568,15 @@ int scaleSection(const Options& opt, const fs::path& dir) {
     const double bad = s.get("late_fraction") + s.get("missing_fraction");
     const bool pass = bad < 0.01 && s.get("agent_dead_events") == 0.0;
     if (pass) largest = n;
-    std::printf("| %d | %.0f | %.0f (%s %%) | %.0f | %s %% | %s / %s / %s us | %s / %s us | %s / %s | %s / %s MB | "
-                "%s |\n",
-                n, s.get("latency_commands_judged"), s.get("late_commands"),
-                fmt(100.0 * s.get("late_fraction"), 2).c_str(), s.get("missing_answers"), fmt(100.0 * bad, 2).c_str(),
-                fmt(s.get("latency_p50_us")).c_str(), fmt(s.get("latency_p99_us")).c_str(),
-                fmt(s.get("latency_max_us"), 0).c_str(), fmt(s.get("step_lag_p99_us")).c_str(),
-                fmt(s.get("step_lag_max_us"), 0).c_str(), fmt(s.sim_cpu_pct, 0).c_str(),
-                fmt(s.agents_cpu_pct, 0).c_str(), fmt(s.rss_median_mb).c_str(), fmt(s.pss_median_mb, 2).c_str(),
-                pass ? "yes" : "no");
+    std::printf(
+        "| %d | %.0f | %.0f (%s %%) | %.0f | %s %% | %s / %s / %s us | %s / %s us | %s / %s | %s / %s MB | "
+        "%s |\n",
+        n, s.get("latency_commands_judged"), s.get("late_commands"), fmt(100.0 * s.get("late_fraction"), 2).c_str(),
+        s.get("missing_answers"), fmt(100.0 * bad, 2).c_str(), fmt(s.get("latency_p50_us")).c_str(),
+        fmt(s.get("latency_p99_us")).c_str(), fmt(s.get("latency_max_us"), 0).c_str(),
+        fmt(s.get("step_lag_p99_us")).c_str(), fmt(s.get("step_lag_max_us"), 0).c_str(), fmt(s.sim_cpu_pct, 0).c_str(),
+        fmt(s.agents_cpu_pct, 0).c_str(), fmt(s.rss_median_mb).c_str(), fmt(s.pss_median_mb, 2).c_str(),
+        pass ? "yes" : "no");
     std::fflush(stdout);
   }
   std::printf("\nlargest N realtime at 100 Hz with < 1 %% late or missing commands: %d (target >= 32)\n", largest);
@@ -586,8 +599,12 @@ int securitySection(const Options& opt, const fs::path& dir) {
   std::vector<double> off50, off99, on50, on99, late_on;
   for (int rep = 0; rep < opt.reps && !app::shutdownRequested(); ++rep) {
     for (const bool secure : {rep % 2 == 1, rep % 2 == 0}) {
-      SwarmSpec spec{"dropout_8.yaml", 8, true, opt.duration_s,
-                     std::string(secure ? "secure" : "plain") + "_rep" + std::to_string(rep + 1), {}};
+      SwarmSpec spec{"dropout_8.yaml",
+                     8,
+                     true,
+                     opt.duration_s,
+                     std::string(secure ? "secure" : "plain") + "_rep" + std::to_string(rep + 1),
+                     {}};
       if (secure) spec.env = {"SWA_SECURITY_DIR=" + creds.string()};
       const SwarmResult s = runSwarm(spec, dir);
       if (!s.ok) {
@@ -595,10 +612,11 @@ int securitySection(const Options& opt, const fs::path& dir) {
         std::printf("rep %d security %s FAILED: %s\n", rep + 1, secure ? "on" : "off", s.error.c_str());
         continue;
       }
-      std::printf("rep %d loop N = 8 realtime, security %s: p50 %.1f us p99 %.1f us max %.1f us, late %.0f, "
-                  "missing %.0f; agent PSS %.1f MB\n",
-                  rep + 1, secure ? "on " : "off", s.get("latency_p50_us"), s.get("latency_p99_us"),
-                  s.get("latency_max_us"), s.get("late_commands"), s.get("missing_answers"), s.pss_median_mb);
+      std::printf(
+          "rep %d loop N = 8 realtime, security %s: p50 %.1f us p99 %.1f us max %.1f us, late %.0f, "
+          "missing %.0f; agent PSS %.1f MB\n",
+          rep + 1, secure ? "on " : "off", s.get("latency_p50_us"), s.get("latency_p99_us"), s.get("latency_max_us"),
+          s.get("late_commands"), s.get("missing_answers"), s.pss_median_mb);
       std::fflush(stdout);
       (secure ? on50 : off50).push_back(s.get("latency_p50_us"));
       (secure ? on99 : off99).push_back(s.get("latency_p99_us"));
@@ -618,9 +636,8 @@ int securitySection(const Options& opt, const fs::path& dir) {
 
 int benchMain(const Options& opt) {
   app::installShutdownHandlers();
-  const fs::path dir = opt.keep.empty()
-                           ? fs::temp_directory_path() / ("swa_bench_dds_" + std::to_string(::getpid()))
-                           : fs::path(opt.keep);
+  const fs::path dir = opt.keep.empty() ? fs::temp_directory_path() / ("swa_bench_dds_" + std::to_string(::getpid()))
+                                        : fs::path(opt.keep);
   fs::create_directories(dir);
   std::printf("bench_dds: logs in %s; load average at start %s; %u CPUs; profiles %s\n", dir.c_str(),
               loadAverage().c_str(), std::thread::hardware_concurrency(), dds::resolveProfilesFile().c_str());

@@ -47,7 +47,6 @@ void MetricPictures(benchmark::State& state) {
 }
 BENCHMARK(MetricPictures)->Unit(benchmark::kMicrosecond);
 
-
 }  // namespace
 }  // namespace swa::live
 

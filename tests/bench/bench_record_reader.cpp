@@ -19,8 +19,8 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
-#include <set>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -60,9 +60,9 @@ int countMcap(const std::string& path) {
   while (const auto m = reader.next()) ++per_channel[m->channel_id];
   nlohmann::ordered_json counts = nlohmann::ordered_json::object();
   for (const auto& [id, channel] : reader.channels()) counts[channel.topic] = per_channel[id];
-  std::printf("%s\n", nlohmann::ordered_json{{"file", path}, {"truncated", reader.truncated()}, {"counts", counts}}
-                          .dump()
-                          .c_str());
+  std::printf(
+      "%s\n",
+      nlohmann::ordered_json{{"file", path}, {"truncated", reader.truncated()}, {"counts", counts}}.dump().c_str());
   return 0;
 }
 
@@ -84,9 +84,10 @@ int stampsPerSecond(const std::vector<std::string>& paths) {
     for (const auto& [second, n] : per_second) seconds[std::to_string(second)] = n;
     per_topic[topic] = seconds;
   }
-  std::printf("%s\n", nlohmann::ordered_json{{"files", paths}, {"truncated", truncated}, {"stamps_per_second", per_topic}}
-                          .dump()
-                          .c_str());
+  std::printf("%s\n",
+              nlohmann::ordered_json{{"files", paths}, {"truncated", truncated}, {"stamps_per_second", per_topic}}
+                  .dump()
+                  .c_str());
   return 0;
 }
 
@@ -126,9 +127,12 @@ int main(int argc, char** argv) {
     int uav_count = -1;
     std::optional<std::string> domain;
     for (std::size_t k = 0; k + 1 < args.size(); k += 2) {
-      if (args[k] == "--uav-count") uav_count = std::stoi(args[k + 1]);
-      else if (args[k] == "--domain") domain = args[k + 1];
-      else uav_count = -1, k = args.size();
+      if (args[k] == "--uav-count")
+        uav_count = std::stoi(args[k + 1]);
+      else if (args[k] == "--domain")
+        domain = args[k + 1];
+      else
+        uav_count = -1, k = args.size();
     }
     if (uav_count < 1 || args.size() % 2 != 0) {
       std::fprintf(stderr,

@@ -12,8 +12,8 @@
 // Then SIGTERM to a launch of --stop-size UAVs (time until every process is gone), and realtime at 100 Hz for each N
 // of --realtime-sizes: late + missing commands.
 // The transport is swa_launch's own choice unless --transport: local up to 32 UAV processes, a discovery server
-// beyond (launch_options.h). Each N runs on a DDS domain reserved among SWA's tests and benchmarks, and the next one too (past 118
-// participants the ports spill into it: swa/dds/participant_id.h). Prints Markdown tables; not a ctest.
+// beyond (launch_options.h). Each N runs on a DDS domain reserved among SWA's tests and benchmarks, and the next one
+// too (past 118 participants the ports spill into it: swa/dds/participant_id.h). Prints Markdown tables; not a ctest.
 //
 // Usage: bench_scale [--sizes 8,16,32,64,100,128] [--duration S] [--realtime-sizes 8,16,32,48,64]
 //                    [--realtime-duration S] [--rounds R] [--transport auto|local|discovery-server]
@@ -61,7 +61,6 @@ namespace fs = std::filesystem;
 const std::string kSource = SWA_SOURCE_DIR;
 const std::string kScenario = kSource + "/deploy/scenarios/dropout_8.yaml";
 
-
 struct Options {
   std::vector<int> sizes{8, 16, 32, 64, 100, 128};
   std::vector<int> realtime_sizes{8, 16, 32, 48, 64};
@@ -92,10 +91,12 @@ app::Cli::Read sizesInto(std::vector<int>& out, const std::string& option) {
 }
 
 app::Cli makeCli(Options& o) {
-  app::Cli cli("bench_scale", "how many UAV processes one host runs, against the raw Fast DDS fan-out "
-                              "(BENCHMARKS.md).");
-  cli.usage("bench_scale [--sizes N,N,..] [--duration S] [--realtime-sizes N,N,..] [--realtime-duration S]\n"
-            "                   [--rounds R] [--transport auto|local|discovery-server] [--stop-size N] [--out DIR]");
+  app::Cli cli("bench_scale",
+               "how many UAV processes one host runs, against the raw Fast DDS fan-out "
+               "(BENCHMARKS.md).");
+  cli.usage(
+      "bench_scale [--sizes N,N,..] [--duration S] [--realtime-sizes N,N,..] [--realtime-duration S]\n"
+      "                   [--rounds R] [--transport auto|local|discovery-server] [--stop-size N] [--out DIR]");
   cli.value("--sizes", "N,..", sizesInto(o.sizes, "--sizes"), "lockstep runs (default 8,16,32,64,100,128)");
   cli.value("--realtime-sizes", "N,..", sizesInto(o.realtime_sizes, "--realtime-sizes"),
             "realtime runs at 100 Hz (default 8,16,32,48,64; '' for none)");
@@ -104,8 +105,9 @@ app::Cli makeCli(Options& o) {
            "simulated seconds per realtime run");
   cli.integer("--rounds", "R", o.rounds, 10, 100000, "a count", "fan-out rounds of the raw floor per N");
   const std::vector<std::string> transports{"auto", "local", "discovery-server"};
-  cli.choice("--transport", "T", transports, [&o, transports](std::size_t k) { o.transport = transports[k]; },
-             "auto (default): swa_launch's choice, local up to 32 UAV processes, then a discovery server");
+  cli.choice(
+      "--transport", "T", transports, [&o, transports](std::size_t k) { o.transport = transports[k]; },
+      "auto (default): swa_launch's choice, local up to 32 UAV processes, then a discovery server");
   cli.integer("--stop-size", "N", o.stop_size, 0, 200, "a UAV count",
               "SIGTERM to a launch of N UAVs 3 s after discovery: time until every process is gone (0: skip)");
   cli.path("--out", "DIR", o.out, "where the runs' files go (default /tmp/swa_bench_scale)");
@@ -186,8 +188,9 @@ FanOut rawFanOut(const Options& o, int n, int domain, const fs::path& dir) {
     for (int j = 0; j < n; ++j) {
       pings.push_back(p.writer<msg::ImuPubSubType>("swa/bench/ping" + std::to_string(j), dds::qos::kSensorWriter));
       pongs.push_back(p.reader<msg::VelocitySetpointPubSubType>(
-          "swa/bench/pong" + std::to_string(j), dds::qos::kCommandReader,
-          [&queue](msg::VelocitySetpoint&& m) { queue.push(Pong{m.uav_id(), m.answered_seq()}); }));
+          "swa/bench/pong" + std::to_string(j), dds::qos::kCommandReader, [&queue](msg::VelocitySetpoint&& m) {
+            queue.push(Pong{m.uav_id(), m.answered_seq()});
+          }));
     }
     const auto allMatched = [&] {
       for (std::size_t j = 0; j < pings.size(); ++j) {
@@ -230,7 +233,8 @@ FanOut rawFanOut(const Options& o, int n, int domain, const fs::path& dir) {
           ++r.lost_rounds;
           continue;
         }
-        if (round > kWarmup) rounds_us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+        if (round > kWarmup)
+          rounds_us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
       }
       const double sent = static_cast<double>(n) * static_cast<double>(o.rounds);
       r.ping_cpu_per_peer_round_us = 1e6 * (cpuSecondsFine(::getpid()).value_or(NAN) - ping_cpu0_s) / sent;
@@ -283,8 +287,15 @@ LaunchRun launchRun(const Options& o, int n, bool realtime, int domain, const fs
   const double duration_s = realtime ? o.realtime_duration_s : o.duration_s;
   const std::vector<std::string> sets{"uav_count=" + std::to_string(n), "duration_s=" + std::to_string(duration_s),
                                       std::string("clock.mode=") + (realtime ? "realtime" : "lockstep")};
-  std::vector<std::string> argv{SWA_LAUNCH_BINARY, "--scenario", kScenario, "--out", dir.string(), "--domain",
-                                std::to_string(domain), "--timeout-s", std::to_string(300.0 + 30.0 * duration_s)};
+  std::vector<std::string> argv{SWA_LAUNCH_BINARY,
+                                "--scenario",
+                                kScenario,
+                                "--out",
+                                dir.string(),
+                                "--domain",
+                                std::to_string(domain),
+                                "--timeout-s",
+                                std::to_string(300.0 + 30.0 * duration_s)};
   for (const std::string& s : sets) argv.insert(argv.end(), {"--set", s});
   if (o.transport != "auto") argv.insert(argv.end(), {"--transport", o.transport});
   const auto t0 = Clock::now();
@@ -328,19 +339,30 @@ LaunchRun launchRun(const Options& o, int n, bool realtime, int domain, const fs
     for (const std::string& s : sets) batch.insert(batch.end(), {"--set", s});
     Child b(batch, dir.string() + "_batch.log");
     if (b.wait(600.0) == 0) {
-      r.equals_batch = readFile(dir / "timeseries.csv") == readFile(fs::path(dir.string() + "_batch") / "swa" / "seed_1.csv") &&
-                       !readFile(dir / "timeseries.csv").empty();
+      r.equals_batch =
+          readFile(dir / "timeseries.csv") == readFile(fs::path(dir.string() + "_batch") / "swa" / "seed_1.csv") &&
+          !readFile(dir / "timeseries.csv").empty();
     }
   }
   return r;
 }
 
-// SIGTERM to a lockstep launch of o.stop_size UAVs 3 s after discovery: seconds until swa_launch has exited and no process of
-// the run is left, and the run's verdict line.
+// SIGTERM to a lockstep launch of o.stop_size UAVs 3 s after discovery: seconds until swa_launch has exited and no
+// process of the run is left, and the run's verdict line.
 double stopTime(const Options& o, int domain, const fs::path& dir, std::string& verdict) {
-  std::vector<std::string> argv{SWA_LAUNCH_BINARY, "--scenario", kScenario, "--out", dir.string(), "--domain",
-                                std::to_string(domain), "--set", "uav_count=" + std::to_string(o.stop_size), "--set",
-                                "duration_s=3600", "--timeout-s", "600"};
+  std::vector<std::string> argv{SWA_LAUNCH_BINARY,
+                                "--scenario",
+                                kScenario,
+                                "--out",
+                                dir.string(),
+                                "--domain",
+                                std::to_string(domain),
+                                "--set",
+                                "uav_count=" + std::to_string(o.stop_size),
+                                "--set",
+                                "duration_s=3600",
+                                "--timeout-s",
+                                "600"};
   if (o.transport != "auto") argv.insert(argv.end(), {"--transport", o.transport});
   Child launch(argv, dir.string() + ".log");
   const auto t0 = Clock::now();
@@ -373,10 +395,11 @@ int benchMain(const Options& o) {
   int failures = 0;
   std::printf("## bench_scale: %ld cores, load %s at start; lockstep %.0f s simulated per run, raw floor %d rounds\n\n",
               ::sysconf(_SC_NPROCESSORS_ONLN), loadAverage().c_str(), o.duration_s, o.rounds);
-  std::printf("| N | transport | discovery: launch / raw | wall per step | raw fan-out round p50 (p99) | ratio | "
-              "agent CPU per received sample / raw echo's per ping (ratio) | sim CPU per UAV-step / raw pinger's per "
-              "ping (ratio) | PSS per agent median / max | verdict | = swa_batch |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| N | transport | discovery: launch / raw | wall per step | raw fan-out round p50 (p99) | ratio | "
+      "agent CPU per received sample / raw echo's per ping (ratio) | sim CPU per UAV-step / raw pinger's per "
+      "ping (ratio) | PSS per agent median / max | verdict | = swa_batch |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   for (const int n : o.sizes) {
     if (app::shutdownRequested()) break;
@@ -408,9 +431,10 @@ int benchMain(const Options& o) {
                                   : (" " + raw.error).c_str(),
                 fmt(ratio, 2).c_str(), against(run.agent_cpu_per_sample_us, raw.echo_cpu_per_ping_us).c_str(),
                 against(run.sim_cpu_per_uav_step_us, raw.ping_cpu_per_peer_round_us).c_str(),
-                fmt(run.pss_median_mb, 2).c_str(),
-                fmt(run.pss_max_mb, 2).c_str(), verdictOf(run.status).c_str(),
-                !run.equals_batch ? "—" : *run.equals_batch ? "yes" : "NO");
+                fmt(run.pss_median_mb, 2).c_str(), fmt(run.pss_max_mb, 2).c_str(), verdictOf(run.status).c_str(),
+                !run.equals_batch   ? "—"
+                : *run.equals_batch ? "yes"
+                                    : "NO");
     std::fflush(stdout);
   }
   if (o.stop_size > 0 && !app::shutdownRequested()) {
@@ -421,8 +445,9 @@ int benchMain(const Options& o) {
   }
   if (!o.realtime_sizes.empty()) {
     std::printf("\n### Realtime at 100 Hz, %.0f s per N (late + missing < 1 %% passes)\n\n", o.realtime_duration_s);
-    std::printf("| N | transport | late + missing | loop latency p50 / p99 | agent CPU per received sample | passes |\n"
-                "|---|---|---|---|---|---|\n");
+    std::printf(
+        "| N | transport | late + missing | loop latency p50 / p99 | agent CPU per received sample | passes |\n"
+        "|---|---|---|---|---|---|\n");
     for (const int n : o.realtime_sizes) {
       if (app::shutdownRequested()) break;
       const int domain = reserveDomainPair();
@@ -432,7 +457,8 @@ int benchMain(const Options& o) {
       const LaunchRun run = launchRun(o, n, true, domain, dir);
       std::printf("| %d | %s | %s %% | %s / %s us | %s us | %s |\n", n, transportFor(o, n).c_str(),
                   fmt(100.0 * run.late_missing, 2).c_str(), fmt(jsonNumber(run.summary, "latency_p50_us"), 0).c_str(),
-                  fmt(jsonNumber(run.summary, "latency_p99_us"), 0).c_str(), fmt(run.agent_cpu_per_sample_us, 0).c_str(),
+                  fmt(jsonNumber(run.summary, "latency_p99_us"), 0).c_str(),
+                  fmt(run.agent_cpu_per_sample_us, 0).c_str(),
                   run.status == 0 && run.late_missing < 0.01 ? "yes" : "no");
       std::fflush(stdout);
     }

@@ -26,9 +26,7 @@ namespace swa::bench {
 using testing::readFile;
 using Clock = std::chrono::steady_clock;
 
-inline double secondsSince(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+inline double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // A table cell: `decimals` after the point, "—" for NaN (no value).
 inline std::string fmt(double x, int decimals = 1) {

@@ -65,8 +65,9 @@ struct Options {
 };
 
 [[noreturn]] void usage(const char* why) {
-  std::fprintf(stderr, "study_formation: %s\nusage: study_formation [--seeds N] [--jobs J] [--sizes A-B,C,...] [--fov D1,D2]\n"
-                       "         [--duration S] [--rules r1,r2] [--scenario FILE] [--set key=value]...\nrules:",
+  std::fprintf(stderr,
+               "study_formation: %s\nusage: study_formation [--seeds N] [--jobs J] [--sizes A-B,C,...] [--fov D1,D2]\n"
+               "         [--duration S] [--rules r1,r2] [--scenario FILE] [--set key=value]...\nrules:",
                why);
   for (const auto& [name, sets] : kRules) std::fprintf(stderr, " %s", name.c_str());
   std::fprintf(stderr, "\n");
@@ -230,27 +231,32 @@ int main(int argc, char** argv) {
   std::printf("study_formation: %s, %d seeds, %.0f s, GNSS lost as in the scenario; extra:", o.scenario.c_str(),
               o.seeds, o.duration_s);
   for (const std::string& s : o.sets) std::printf(" %s", s.c_str());
-  std::printf("\n\n| N | FOV | rule | d_NB 120 s | d_NB end | edge end | runs split | collisions (runs) | "
-              "worst min sep | "
-              "drift, 60 s windows | centroid disp. | ANEES pos (in band) |\n");
+  std::printf(
+      "\n\n| N | FOV | rule | d_NB 120 s | d_NB end | edge end | runs split | collisions (runs) | "
+      "worst min sep | "
+      "drift, 60 s windows | centroid disp. | ANEES pos (in band) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   // A row is printed once its runs and every earlier row's are in.
   std::vector<Cell> cells(swa::study::pointCount(study.record.plan));
   std::size_t next_row = 0;
   const std::atomic<bool> never{false};
-  swa::batch::runEach(swa::batch::runScenarios(study), o.jobs, [&](std::size_t k, RunResult&& run) {
-    cells[study.runs[k].point].add(run);
-    for (; next_row < cells.size() && cells[next_row].runs == o.seeds; ++next_row) {
-      const Cell& c = cells[next_row];
-      const std::vector<std::string> v = swa::study::pointValues(study.record.plan, next_row);
-      std::printf("| %s | %.0f° | %s | %.3f ± %.2f | %.3f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | "
-                  "%.1f | %.2f (%.0f %%) |\n",
-                  v[1].c_str(), std::stod(v[0]), v[2].c_str(), c.d120.mean(), c.d120.stdev(), c.dend.mean(),
-                  c.dend.stdev(), c.edge.mean(), c.split, o.seeds, static_cast<unsigned long long>(c.collisions),
-                  c.collided, c.worst, c.drift.mean(), c.disp.mean(), c.anees.mean(), 100.0 * c.in_band.mean());
-      std::fflush(stdout);
-    }
-  }, never);
+  swa::batch::runEach(
+      swa::batch::runScenarios(study), o.jobs,
+      [&](std::size_t k, RunResult&& run) {
+        cells[study.runs[k].point].add(run);
+        for (; next_row < cells.size() && cells[next_row].runs == o.seeds; ++next_row) {
+          const Cell& c = cells[next_row];
+          const std::vector<std::string> v = swa::study::pointValues(study.record.plan, next_row);
+          std::printf(
+              "| %s | %.0f° | %s | %.3f ± %.2f | %.3f ± %.2f | %.2f | %d/%d | %llu (%d) | %.2f | %.3f | "
+              "%.1f | %.2f (%.0f %%) |\n",
+              v[1].c_str(), std::stod(v[0]), v[2].c_str(), c.d120.mean(), c.d120.stdev(), c.dend.mean(), c.dend.stdev(),
+              c.edge.mean(), c.split, o.seeds, static_cast<unsigned long long>(c.collisions), c.collided, c.worst,
+              c.drift.mean(), c.disp.mean(), c.anees.mean(), 100.0 * c.in_band.mean());
+          std::fflush(stdout);
+        }
+      },
+      never);
   return 0;
 }

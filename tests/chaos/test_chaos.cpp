@@ -18,8 +18,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <mutex>
 #include <random>
@@ -88,13 +88,12 @@ class StateWatch {
       : participant_(std::make_unique<dds::Participant>("swa_test_chaos_observer", domain, dds::resolveProfilesFile())),
         seen_(static_cast<std::size_t>(uavs)) {
     for (int i = 0; i < uavs; ++i) {
-      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), dds::qos::kStateReader,
-                                                      [this, i](msg::AgentState&& s) {
-                                                        const std::lock_guard<std::mutex> lock(mutex_);
-                                                        seen_[static_cast<std::size_t>(i)].push_back(
-                                                            {SteadyClock::now(), s.header().seq(),
-                                                             s.stage() == msg::STAGE_TRACKING});
-                                                      });
+      participant_->reader<msg::AgentStatePubSubType>(
+          dds::topics::state(i), dds::qos::kStateReader, [this, i](msg::AgentState&& s) {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            seen_[static_cast<std::size_t>(i)].push_back(
+                {SteadyClock::now(), s.header().seq(), s.stage() == msg::STAGE_TRACKING});
+          });
     }
   }
   ~StateWatch() { participant_.reset(); }
@@ -150,14 +149,16 @@ TEST(Chaos, SixUavsKilledOneByOneAndAStoppedSimulatorPassWithEveryRestartRecorde
   ShmJanitor launcher_files;
   Child launch({SWA_LAUNCH_BINARY, "--scenario", std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_8.yaml",
                 "--set", "uav_count=" + std::to_string(kUavs), "--set", "clock.mode=realtime", "--set",
-"duration_s=" + std::to_string(static_cast<int>(p.duration_s)), "--max-restarts", "20", "--timeout-s",
-                std::to_string(static_cast<int>(p.duration_s) + 240), "--out", (dir / "out").string(), "--domain", std::to_string(domain)},
+                "duration_s=" + std::to_string(static_cast<int>(p.duration_s)), "--max-restarts", "20", "--timeout-s",
+                std::to_string(static_cast<int>(p.duration_s) + 240), "--out", (dir / "out").string(), "--domain",
+                std::to_string(domain)},
                dir / "launch.log");
   ASSERT_TRUE(waitFor([&] { return watch->anyState() || launch.wait(0.0).has_value(); }, 60.0))
       << readFile(dir / "launch.log");
   const auto t0 = SteadyClock::now();
-  const auto at = [&](double s) { return t0 + std::chrono::duration_cast<SteadyClock::duration>(
-                                                   std::chrono::duration<double>(s)); };
+  const auto at = [&](double s) {
+    return t0 + std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(s));
+  };
 
   // WHEN, on schedule: an agent chosen at random is SIGKILLed every kill period, the monitor once, the simulator is
   // stopped for 2 s once
@@ -241,18 +242,19 @@ TEST(Chaos, SixUavsKilledOneByOneAndAStoppedSimulatorPassWithEveryRestartRecorde
   std::vector<double> rejoin;
   for (const Kill& k : kills) {
     const double s = watch->rejoinS(k.uav, k.at);
-    EXPECT_GT(s, 0.0) << "agent " << k.uav << " killed at "
-                      << std::chrono::duration<double>(k.at - t0).count() << " s never tracked again";
+    EXPECT_GT(s, 0.0) << "agent " << k.uav << " killed at " << std::chrono::duration<double>(k.at - t0).count()
+                      << " s never tracked again";
     if (s > 0.0) rejoin.push_back(s);
   }
   watch.reset();
   ASSERT_FALSE(rejoin.empty());
   std::sort(rejoin.begin(), rejoin.end());
   const double p50 = rejoin[rejoin.size() / 2], max = rejoin.back();
-  std::printf("chaos: %zu kills, rejoin (kill -> first tracking state of the new process) p50 %.2f s, max %.2f s; "
-              "d_NB %.3f m, min separation %.2f m, drift %.3f m/s\n",
-              kills.size(), p50, max, jsonNumber(summary, "mean_neighbor_distance_m"),
-              jsonNumber(summary, "min_separation_m"), jsonNumber(summary, "drift_velocity_mps"));
+  std::printf(
+      "chaos: %zu kills, rejoin (kill -> first tracking state of the new process) p50 %.2f s, max %.2f s; "
+      "d_NB %.3f m, min separation %.2f m, drift %.3f m/s\n",
+      kills.size(), p50, max, jsonNumber(summary, "mean_neighbor_distance_m"), jsonNumber(summary, "min_separation_m"),
+      jsonNumber(summary, "drift_velocity_mps"));
   RecordProperty("rejoin_p50_s", std::to_string(p50));
   RecordProperty("rejoin_max_s", std::to_string(max));
 

@@ -33,9 +33,8 @@ double meanAt(const Stats& s, double t_s) {
 }
 
 int runsSplit(const Stats& s) {
-  return static_cast<int>(std::count_if(s.runs.begin(), s.runs.end(), [](const RunResult& r) {
-    return r.summary.groups > 1;
-  }));
+  return static_cast<int>(
+      std::count_if(s.runs.begin(), s.runs.end(), [](const RunResult& r) { return r.summary.groups > 1; }));
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -75,8 +74,8 @@ TEST(FormationDrift, BiasRemovalCutsTheDisplacementOfAPoorImuBelowSixTenths) {
   // GIVEN 8 UAVs with a poor IMU (the tilt's bias std 0.15 m/s^2: DESIGN §5's reference; with the accelerometer,
   // the default since issue #44, imu.bias_std changes nothing), 600 s, once with and once without bias removal
   const Stats with = runSeeds(shipped("dropout_8", sized(8, 600.0, {"imu.source=tilt", "imu.bias_std=0.15"})));
-  const Stats without = runSeeds(shipped(
-      "dropout_8", sized(8, 600.0, {"imu.source=tilt", "imu.bias_std=0.15", "agent.focal.bias_window_s=0"})));
+  const Stats without = runSeeds(
+      shipped("dropout_8", sized(8, 600.0, {"imu.source=tilt", "imu.bias_std=0.15", "agent.focal.bias_window_s=0"})));
   // THEN the centroid moves at most 0.6x as far with it (DESIGN §5 reference: 6.5 m against 12.1 m)
   EXPECT_LE(with.mean("centroid_displacement_m"), 0.6 * without.mean("centroid_displacement_m"));
 }

@@ -80,10 +80,10 @@ TEST(BatchCli, ShortRunWritesSummaryAndSeries) {
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string json = ss.str();
-  for (const char* key : {"\"mean_neighbor_distance_m\"", "\"min_separation_m\"", "\"collisions\"",
-                          "\"drift_velocity_mps\"", "\"uav_displacement_m\"", "\"groups\"", "\"anees_position\"",
-                          "\"aggregate\"", "\"mode\": \"swa\"", "\"mode\": \"standalone\"", "\"seed\": 1",
-                          "\"seed\": 2"}) {
+  for (const char* key :
+       {"\"mean_neighbor_distance_m\"", "\"min_separation_m\"", "\"collisions\"", "\"drift_velocity_mps\"",
+        "\"uav_displacement_m\"", "\"groups\"", "\"anees_position\"", "\"aggregate\"", "\"mode\": \"swa\"",
+        "\"mode\": \"standalone\"", "\"seed\": 1", "\"seed\": 2"}) {
     EXPECT_NE(json.find(key), std::string::npos) << key;
   }
   for (const char* mode : {"swa", "standalone"}) {

@@ -67,8 +67,8 @@ std::vector<Case> cases() {
   all.push_back({"fov240_n8", "dropout_8", {duration, "mps.fov_deg=240"}, false});
   all.push_back({"fov240_n16", "dropout_8", {duration, "mps.fov_deg=240", "uav_count=16"}, false});
   all.push_back({"fov180_n8", "dropout_8", {duration, "mps.fov_deg=180"}, false});
-  all.push_back({"fov240_constant_heading", "dropout_8", {duration, "mps.fov_deg=240", "agent.sensor.fov_deg=360"},
-                 false});
+  all.push_back(
+      {"fov240_constant_heading", "dropout_8", {duration, "mps.fov_deg=240", "agent.sensor.fov_deg=360"}, false});
   return all;
 }
 

@@ -16,20 +16,20 @@
 #include <thread>
 #include <vector>
 
+#include <fastdds/rtps/participant/ParticipantDiscoveryInfo.h>
+#include <fastdds/rtps/reader/ReaderDiscoveryInfo.h>
+#include <fastdds/rtps/writer/WriterDiscoveryInfo.h>
 #include <fastdds/dds/core/status/StatusMask.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
-#include <fastdds/rtps/participant/ParticipantDiscoveryInfo.h>
-#include <fastdds/rtps/reader/ReaderDiscoveryInfo.h>
-#include <fastdds/rtps/writer/WriterDiscoveryInfo.h>
 
 #include "isolation_audit.h"
-#include "test_domain.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/qos_profiles.h"
+#include "test_domain.h"
 
 namespace swa::testing {
 
@@ -96,8 +96,8 @@ class DiscoveryLog : public fdds::DomainParticipantListener {
   }
 
   mutable std::mutex mutex_;
-  std::map<std::string, std::string> names_;         // participant GUID prefix -> announced name
-  std::map<std::string, Endpoint> endpoints_;         // endpoint GUID -> endpoint (participant name resolved later)
+  std::map<std::string, std::string> names_;   // participant GUID prefix -> announced name
+  std::map<std::string, Endpoint> endpoints_;  // endpoint GUID -> endpoint (participant name resolved later)
 };
 
 // A participant with no endpoints of its own that only listens to discovery, created from the same XML profile as
@@ -121,8 +121,8 @@ class DiscoveryObserver {
     fdds::StatusMask mask = fdds::StatusMask::all();
     mask >> fdds::StatusMask::data_on_readers() >> fdds::StatusMask::data_available();
     participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain), qos, &log_, mask);
-    if (participant_ == nullptr) throw dds::DdsError("cannot create the observer participant on domain " +
-                                                     std::to_string(domain));
+    if (participant_ == nullptr)
+      throw dds::DdsError("cannot create the observer participant on domain " + std::to_string(domain));
   }
   ~DiscoveryObserver() { fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_); }
   DiscoveryObserver(const DiscoveryObserver&) = delete;

@@ -2,8 +2,9 @@
 // The "no inter-agent communication" audit (DESIGN §1): given every reader and writer seen on a domain, which agent
 // endpoints break the rule that agent I reads only swa/uav<I>/{imu,detections,gnss,sensors} (and swa/clock, and the
 // ground's swa/swarm/mission, which no agent writes) and
-// writes only swa/uav<I>/{cmd_vel,state}. Pure, no DDS include: test_isolation feeds it what Fast DDS discovery reported,
-// test_isolation_audit feeds it synthetic lists (including planted violations, so the audit is known to fail).
+// writes only swa/uav<I>/{cmd_vel,state}. Pure, no DDS include: test_isolation feeds it what Fast DDS discovery
+// reported, test_isolation_audit feeds it synthetic lists (including planted violations, so the audit is known to
+// fail).
 //
 // An agent is a participant named swa_agent_<I> (agent/node/agent_node.cpp). Participants are told apart by GUID
 // prefix, not by name, so two processes claiming the same name are still audited against each other.
@@ -110,7 +111,8 @@ inline std::vector<std::string> auditIsolation(const std::vector<Endpoint>& endp
 // Completeness, so that the isolation audit cannot pass on too little: each agent 0..agent_count-1 is exactly one
 // participant, and it has exactly one reader on each of swa/uav<I>/{imu,detections,gnss} (one on swa/uav<I>/sensors
 // and one on swa/clock allowed; one on swa/swarm/mission required), exactly one writer on each of
-// swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped allowed), and nothing else. Agents with an index outside 0..agent_count-1 are reported too.
+// swa/uav<I>/{cmd_vel,state} (one on cmd_vel_stamped allowed), and nothing else. Agents with an index outside
+// 0..agent_count-1 are reported too.
 inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>& endpoints, int agent_count) {
   using Key = std::pair<EndpointKind, std::string>;
   std::map<int, std::map<std::string, std::map<Key, int>>> seen;  // agent -> participant guid -> endpoint -> count
@@ -120,8 +122,8 @@ inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>&
   std::vector<std::string> problems;
   for (const auto& [id, participants] : seen) {
     if (id >= agent_count) {
-      problems.push_back(kAgentNamePrefix + std::to_string(id) + " is not one of the " +
-                         std::to_string(agent_count) + " agents of this run");
+      problems.push_back(kAgentNamePrefix + std::to_string(id) + " is not one of the " + std::to_string(agent_count) +
+                         " agents of this run");
     }
   }
   const auto kindName = [](EndpointKind k) { return k == EndpointKind::kReader ? "reader" : "writer"; };
@@ -137,7 +139,8 @@ inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>&
       continue;
     }
     const std::map<Key, int>& have = it->second.begin()->second;
-    const std::map<Key, bool> expected = {  // endpoint -> required
+    const std::map<Key, bool> expected = {
+        // endpoint -> required
         {{EndpointKind::kReader, dds::topics::imu(id)}, true},
         {{EndpointKind::kReader, dds::topics::detections(id)}, true},
         {{EndpointKind::kReader, dds::topics::gnss(id)}, true},
@@ -167,8 +170,8 @@ inline std::vector<std::string> auditAgentEndpoints(const std::vector<Endpoint>&
 // What an autopilot's topics look like to the bridge audit: which of them bridge I may read and write, which it must
 // have, and which belong to any vehicle (no agent may touch those).
 struct VehicleTopics {
-  std::string name;                                            // "PX4", "ArduPilot"
-  std::function<std::string(int)> ns;                          // vehicle I's namespace
+  std::string name;                    // "PX4", "ArduPilot"
+  std::function<std::string(int)> ns;  // vehicle I's namespace
   std::function<bool(const std::string& ns, EndpointKind, const std::string& topic)> allowed;
   std::function<std::vector<std::pair<EndpointKind, std::string>>(const std::string& ns)> required;
   std::function<bool(const std::string& topic)> anyVehicle;
@@ -176,47 +179,45 @@ struct VehicleTopics {
 
 // PX4: bridge I reads rt/<ns_I>/fmu/out/..., writes rt/<ns_I>/fmu/in/...
 inline VehicleTopics px4Topics(std::function<std::string(int)> ns) {
-  return VehicleTopics{
-      "PX4", std::move(ns),
-      [](const std::string& n, EndpointKind kind, const std::string& topic) {
-        return detail::startsWith(topic, kind == EndpointKind::kReader ? dds::topics::px4Out(n, "")
-                                                                      : dds::topics::px4In(n, ""));
-      },
-      [](const std::string& n) {
-        return std::vector<std::pair<EndpointKind, std::string>>{
-            {EndpointKind::kReader, dds::topics::px4Out(n, "vehicle_attitude")},
-            {EndpointKind::kWriter, dds::topics::px4In(n, "trajectory_setpoint")},
-            {EndpointKind::kWriter, dds::topics::px4In(n, "offboard_control_mode")}};
-      },
-      [](const std::string& topic) {
-        return detail::startsWith(topic, "rt/") && topic.find("/fmu/") != std::string::npos;
-      }};
+  return VehicleTopics{"PX4", std::move(ns),
+                       [](const std::string& n, EndpointKind kind, const std::string& topic) {
+                         return detail::startsWith(topic, kind == EndpointKind::kReader ? dds::topics::px4Out(n, "")
+                                                                                        : dds::topics::px4In(n, ""));
+                       },
+                       [](const std::string& n) {
+                         return std::vector<std::pair<EndpointKind, std::string>>{
+                             {EndpointKind::kReader, dds::topics::px4Out(n, "vehicle_attitude")},
+                             {EndpointKind::kWriter, dds::topics::px4In(n, "trajectory_setpoint")},
+                             {EndpointKind::kWriter, dds::topics::px4In(n, "offboard_control_mode")}};
+                       },
+                       [](const std::string& topic) {
+                         return detail::startsWith(topic, "rt/") && topic.find("/fmu/") != std::string::npos;
+                       }};
 }
 
 // ArduPilot: bridge I reads rt/<ns_I>/... but cmd_vel and tf, and its services' replies rr/<ns_I>/..., writes
 // rt/<ns_I>/cmd_vel, rt/<ns_I>/tf (the external odometry) and the requests rq/<ns_I>/...
 inline VehicleTopics ardupilotTopics(std::function<std::string(int)> ns) {
-  return VehicleTopics{
-      "ArduPilot", std::move(ns),
-      [](const std::string& n, EndpointKind kind, const std::string& topic) {
-        const std::string cmd_vel = dds::topics::apTopic(n, "cmd_vel");
-        const std::string tf = dds::topics::apTopic(n, "tf");
-        if (kind == EndpointKind::kWriter) {
-          return topic == cmd_vel || topic == tf || detail::startsWith(topic, "rq/" + n + "/");
-        }
-        return (detail::startsWith(topic, "rt/" + n + "/") && topic != cmd_vel && topic != tf) ||
-               detail::startsWith(topic, "rr/" + n + "/");
-      },
-      [](const std::string& n) {
-        return std::vector<std::pair<EndpointKind, std::string>>{
-            {EndpointKind::kReader, dds::topics::apTopic(n, "imu/experimental/data")},
-            {EndpointKind::kReader, dds::topics::apTopic(n, "status")},
-            {EndpointKind::kWriter, dds::topics::apTopic(n, "cmd_vel")}};
-      },
-      [](const std::string& topic) {
-        return detail::startsWith(topic, "rt/ap/") || detail::startsWith(topic, "rq/ap/") ||
-               detail::startsWith(topic, "rr/ap/");
-      }};
+  return VehicleTopics{"ArduPilot", std::move(ns),
+                       [](const std::string& n, EndpointKind kind, const std::string& topic) {
+                         const std::string cmd_vel = dds::topics::apTopic(n, "cmd_vel");
+                         const std::string tf = dds::topics::apTopic(n, "tf");
+                         if (kind == EndpointKind::kWriter) {
+                           return topic == cmd_vel || topic == tf || detail::startsWith(topic, "rq/" + n + "/");
+                         }
+                         return (detail::startsWith(topic, "rt/" + n + "/") && topic != cmd_vel && topic != tf) ||
+                                detail::startsWith(topic, "rr/" + n + "/");
+                       },
+                       [](const std::string& n) {
+                         return std::vector<std::pair<EndpointKind, std::string>>{
+                             {EndpointKind::kReader, dds::topics::apTopic(n, "imu/experimental/data")},
+                             {EndpointKind::kReader, dds::topics::apTopic(n, "status")},
+                             {EndpointKind::kWriter, dds::topics::apTopic(n, "cmd_vel")}};
+                       },
+                       [](const std::string& topic) {
+                         return detail::startsWith(topic, "rt/ap/") || detail::startsWith(topic, "rq/ap/") ||
+                                detail::startsWith(topic, "rr/ap/");
+                       }};
 }
 
 // The autopilot bridges (swa_px4_bridge, participants swa_bridge_<I>) of a run through an autopilot: bridge I reads
@@ -278,8 +279,8 @@ inline std::string endpointTable(std::vector<Endpoint> endpoints) {
   });
   std::ostringstream out;
   for (const Endpoint& e : endpoints) {
-    out << "  " << detail::who(e) << "  " << (e.kind == EndpointKind::kReader ? "reads " : "writes") << "  "
-        << e.topic << "  (" << e.type << ")\n";
+    out << "  " << detail::who(e) << "  " << (e.kind == EndpointKind::kReader ? "reads " : "writes") << "  " << e.topic
+        << "  (" << e.type << ")\n";
   }
   return out.str();
 }

@@ -49,14 +49,13 @@ class StateStampWatch {
  public:
   StateStampWatch(int domain, int uav)
       : participant_(std::make_unique<dds::Participant>("swa_test_observer", domain, dds::resolveProfilesFile())) {
-    participant_->reader<msg::AgentStatePubSubType>(
-        dds::topics::state(uav), dds::qos::kStateReader,
-        [this](msg::AgentState&& s) {
-          newest_ns_.store(s.header().stamp_ns());
-          // A new agent process numbers its states from 1 again.
-          if (s.header().seq() <= last_seq_) ++new_processes_;
-          last_seq_ = s.header().seq();
-        });
+    participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(uav), dds::qos::kStateReader,
+                                                    [this](msg::AgentState&& s) {
+                                                      newest_ns_.store(s.header().stamp_ns());
+                                                      // A new agent process numbers its states from 1 again.
+                                                      if (s.header().seq() <= last_seq_) ++new_processes_;
+                                                      last_seq_ = s.header().seq();
+                                                    });
   }
 
   // How often the states started again from a new agent process.

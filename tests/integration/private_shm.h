@@ -6,8 +6,8 @@
 // closes them, and names them fastrtps_<random id>: nothing in the name says whose they are. A test running beside
 // a killer (ctest -j2, or another DDS user of the host) that checks it left no abandoned file behind would count the
 // killer's as its own: LaunchTest.UnwritableOutputStartsNothingAndExits2 did once in CI, with the chaos test (which
-// SIGKILLs agents) running beside it. With a tmpfs of its own on /dev/shm, nobody else's files are there to see, its own are nobody
-// else's, and the kernel frees them all when the test's last process ends.
+// SIGKILLs agents) running beside it. With a tmpfs of its own on /dev/shm, nobody else's files are there to see, its
+// own are nobody else's, and the kernel frees them all when the test's last process ends.
 
 #include <sched.h>
 #include <sys/mount.h>

@@ -16,9 +16,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -26,9 +26,9 @@
 #include <vector>
 
 #include "shm_janitor.h"
-#include "test_domain.h"
 #include "swa/dds/participant_id.h"
 #include "swa/dds/sample_queue.h"
+#include "test_domain.h"
 
 namespace swa::testing {
 

@@ -44,7 +44,7 @@ class ProcessRun : public ::testing::Test {
   // Ends the test's own participants.
   virtual void stopObservers() = 0;
 
-  OwnShm own_shm_;       // first member: this test's /dev/shm is its own (private_shm.h)
+  OwnShm own_shm_;      // first member: this test's /dev/shm is its own (private_shm.h)
   ShmJanitor janitor_;  // sees /dev/shm before anything of ours exists
   fs::path dir_;
   int domain_ = 0;

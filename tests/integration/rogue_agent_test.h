@@ -39,7 +39,8 @@ class RogueAgentTest : public ::testing::Test {
     agent_ = std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, uav, domain_, config), dir_ / "agent.log");
     rogue_ = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
     imu_ = rogue_->writer<msg::ImuPubSubType>(dds::topics::imu(uav), dds::qos::kSensorWriter);
-    rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(uav), dds::qos::kCommandReader, cmds_.listener());
+    rogue_->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(uav), dds::qos::kCommandReader,
+                                                    cmds_.listener());
   }
 
   void TearDown() override {

@@ -16,12 +16,12 @@
 #include "lockstep_tracker.h"
 #include "sample_order.h"
 #include "silence_watch.h"
-#include "world_pause.h"
 #include "sim_options.h"
 #include "swa/app/stall_watch.h"
 #include "swa/dds/options.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/dds/topics.h"
+#include "world_pause.h"
 
 namespace swa {
 namespace {

@@ -22,8 +22,8 @@
 #include <swa/msg/AgentStatePubSubTypes.h>
 #include <swa/msg/DetectionsPubSubTypes.h>
 #include <swa/msg/ImuPubSubTypes.h>
-#include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/ScenarioEventPubSubTypes.h>
+#include <swa/msg/SensorFramePubSubTypes.h>
 #include <swa/msg/SwarmMissionPubSubTypes.h>
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
@@ -146,10 +146,12 @@ class Monitor {
   Monitor(int domain, int uav_count)
       : participant_(std::make_unique<dds::Participant>("swa_test_monitor", domain, dds::resolveProfilesFile())) {
     for (int i = 0; i < uav_count; ++i) {
-      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), dds::qos::kStateReader, states_.listener());
+      participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), dds::qos::kStateReader,
+                                                      states_.listener());
     }
     participant_->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, dds::qos::kTruthReader, truth_.listener());
-    participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventReader, events_.listener());
+    participant_->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventReader,
+                                                       events_.listener());
   }
   ~Monitor() { participant_.reset(); }
 
@@ -366,9 +368,10 @@ TEST_F(SwarmRun, LockstepDropout4AsShippedHoldsTenMetresAndEqualsTheInProcessLoo
 TEST_F(SwarmRun, LockstepDropout4K3EqualsTheInProcessLoop) {
   // k nearest with k = 3 and the unweighted fit (the default before issue #10), set on the command line, so the
   // agents' agent.yaml carries a non-default rule: with 4 UAVs each one fits a radius-r circle through all three
-  // others, which a planar formation cannot satisfy. For a square of side a the fixed-radius fit balances 2 (a - r)^2 + (a sqrt2 - r)^2, so
-  // a = r (2 + sqrt2) / 4 = 8.54 m, -14.6 % from r: the +-15 % band of 10 m would sit on its edge. The run is
-  // checked against that equilibrium instead (measured: 8.45 m at 20 s, seed 1, identical in process and over DDS).
+  // others, which a planar formation cannot satisfy. For a square of side a the fixed-radius fit balances 2 (a - r)^2 +
+  // (a sqrt2 - r)^2, so a = r (2 + sqrt2) / 4 = 8.54 m, -14.6 % from r: the +-15 % band of 10 m would sit on its edge.
+  // The run is checked against that equilibrium instead (measured: 8.45 m at 20 s, seed 1, identical in process and
+  // over DDS).
   lockstepDropout4({"duration_s=20", "agent.formation.neighbourhood=k_nearest", "agent.k=3",
                     "agent.formation.far_neighbour_weight=1"},
                    10.0 * (2.0 + std::sqrt(2.0)) / 4.0);
@@ -424,9 +427,9 @@ TEST_F(SwarmRun, RealtimeGroundMissionIsFollowedByEveryAgentAndASecondWritersMis
   ASSERT_FALSE(HasFatalFailure());
   ASSERT_TRUE(monitor_->waitForSimTime(5.0, 60.0)) << logs();
   // WHEN the ground sends "north at 2 m/s for 8 s" (and stays, the ground's writer)
-  Child ground({SWA_MISSION_BINARY, "--leg", "vel:0,2,8", "--expect", "4", "--stay", "--domain",
-                std::to_string(domain_)},
-               dir_ / "ground.log");
+  Child ground(
+      {SWA_MISSION_BINARY, "--leg", "vel:0,2,8", "--expect", "4", "--stay", "--domain", std::to_string(domain_)},
+      dir_ / "ground.log");
   const auto sent_by = SteadyClock::now() + std::chrono::seconds(20);
   while (readFile(dir_ / "ground.log").find("acknowledged by every one") == std::string::npos &&
          SteadyClock::now() < sent_by) {
@@ -452,8 +455,9 @@ TEST_F(SwarmRun, RealtimeGroundMissionIsFollowedByEveryAgentAndASecondWritersMis
 
   // THEN every agent flew the ground's mission from the IMU sample after the one it arrived behind (one IMU period,
   // 10 ms), and only that one
-  const std::regex flown("mission 1 from the ground flown from IMU stamp (\\d+) ns \\(it arrived after the sample of "
-                         "(\\d+) ns\\)");
+  const std::regex flown(
+      "mission 1 from the ground flown from IMU stamp (\\d+) ns \\(it arrived after the sample of "
+      "(\\d+) ns\\)");
   double flown_at_s = 0.0;
   for (int i = 0; i < 4; ++i) {
     const std::string log = readFile(dir_ / ("agent" + std::to_string(i) + ".log"));
@@ -642,8 +646,10 @@ TEST_F(SwarmRun, AgentWithoutASimulatorSaysWhatItIsWaitingFor) {
   EXPECT_TRUE(waitFor([&] { return readFile(log).find(expected) != std::string::npos; }, 15.0)) << readFile(log);
   // AND what it waits for, on which domain and in which swarm (issue #30: a hand-started agent beside a launched run
   // never connects unless its SWA_SWARM matches)
-  const std::string waits = "swa_agent 1: it waits for a simulator (swa_sim) or an autopilot bridge writing UAV 1's "
-                            "samples on DDS domain " + std::to_string(domain_) + ", in ";
+  const std::string waits =
+      "swa_agent 1: it waits for a simulator (swa_sim) or an autopilot bridge writing UAV 1's "
+      "samples on DDS domain " +
+      std::to_string(domain_) + ", in ";
   EXPECT_NE(readFile(log).find(waits), std::string::npos) << readFile(log);
   EXPECT_NE(readFile(log).find("start this agent with that SWA_SWARM"), std::string::npos) << readFile(log);
   // AND it keeps waiting, and stops cleanly
@@ -654,11 +660,11 @@ TEST_F(SwarmRun, AgentWithoutASimulatorSaysWhatItIsWaitingFor) {
 // Issue #11: stopping the simulator for 2 s declared every healthy agent dead (realtime). Stopped for 5 s here (beyond
 // the DDS lease): that can also break a shared-memory channel between the simulator and an agent for good while
 // discovery stays matched (seen in CI: one agent never got a sample again); the agent then re-creates its participant
-// after 6 s without a sample (agent/node/silence_watch.h), but the simulator has declared it dead by then, and this test
-// fails. In lockstep the agents' answers reach the stopped simulator's queue and complete the step when it continues,
-// so a stall there usually costs nothing and is not always seen; only realtime must report it.
-// On the default transport, as users run it (issue #46): a stop longer than Fast DDS 2.9's 1 s port health check gets
-// the simulator's own shared-memory port re-created by a sender, and now and then the simulator keeps listening on the
+// after 6 s without a sample (agent/node/silence_watch.h), but the simulator has declared it dead by then, and this
+// test fails. In lockstep the agents' answers reach the stopped simulator's queue and complete the step when it
+// continues, so a stall there usually costs nothing and is not always seen; only realtime must report it. On the
+// default transport, as users run it (issue #46): a stop longer than Fast DDS 2.9's 1 s port health check gets the
+// simulator's own shared-memory port re-created by a sender, and now and then the simulator keeps listening on the
 // deleted one; it then re-creates its participant (sim_ports.h, healDeafness), and the wait for its endpoints to match
 // again counts as its own stall, not as the agents' silence.
 void SwarmRun::stopSimulator(const char* clock_mode, bool stall_reported) {
@@ -893,8 +899,8 @@ TEST_F(SwarmRun, RealtimeFourAgentsTwentySecondsCohesiveAndEveryCommandAnswered)
   const std::string summary = realtimeFourAgents();
   if (HasFailure()) return;
   std::cout << "late fraction " << jsonNumber(summary, "late_fraction") << ", simulator step lag p99 "
-            << jsonNumber(summary, "step_lag_p99_us") << " us, loop latency p50 " << jsonNumber(summary, "latency_p50_us")
-            << " us (not judged here)\n";
+            << jsonNumber(summary, "step_lag_p99_us") << " us, loop latency p50 "
+            << jsonNumber(summary, "latency_p50_us") << " us (not judged here)\n";
 }
 
 // ---- Bad input: clear error, exit 2, nothing started -------------------------------------------------------------
@@ -959,11 +965,10 @@ TEST_F(BadInput, BadDeploymentEnvironmentIsAClearErrorNotACrash) {
 }
 
 TEST_F(BadInput, BadIdMakesTheAgentExitWithAClearError) {
-  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
-           {SWA_AGENT_BINARY, "--id", "-1"},
-           {SWA_AGENT_BINARY, "--id", "uav3"},
-           {SWA_AGENT_BINARY, "--id", "99999"},
-           {SWA_AGENT_BINARY}}) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{{SWA_AGENT_BINARY, "--id", "-1"},
+                                                                                    {SWA_AGENT_BINARY, "--id", "uav3"},
+                                                                                    {SWA_AGENT_BINARY, "--id", "99999"},
+                                                                                    {SWA_AGENT_BINARY}}) {
     const auto [status, out] = run(args);
     EXPECT_EQ(status, 2) << out;
     EXPECT_NE(out.find("--id"), std::string::npos) << out;

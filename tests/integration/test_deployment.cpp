@@ -9,12 +9,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "launch_options.h"
-#include "swa/dds/deployment.h"
-#include "swa/dds/qos_profiles.h"
 #include "error_text.h"
 #include "fake_env.h"
+#include "launch_options.h"
 #include "scratch.h"
+#include "swa/dds/deployment.h"
+#include "swa/dds/qos_profiles.h"
 
 namespace swa {
 namespace {
@@ -114,7 +114,8 @@ TEST(Deployment, UnreadableCredentialsAreListed) {
   const swa::testing::ScratchDir scratch("swa_test_creds");
   const fs::path& dir = scratch.path();
   fs::create_directories(dir / "swa_sim");
-  for (const char* f : {"ca.pem", "governance.p7s", "swa_sim/cert.pem", "swa_sim/key.pem"}) std::ofstream(dir / f) << "x";
+  for (const char* f : {"ca.pem", "governance.p7s", "swa_sim/cert.pem", "swa_sim/key.pem"})
+    std::ofstream(dir / f) << "x";
   // WHEN the unreadable files of swa_sim are listed THEN only its permissions are
   const auto missing = dds::unreadableFiles(dds::securityFiles(dir.string(), "swa_sim"));
   ASSERT_EQ(missing.size(), 1u);
@@ -130,14 +131,14 @@ TEST(LaunchDeploymentOptions, PastThirtyTwoUavProcessesDiscoveryGoesThroughAServ
   EXPECT_EQ(launch::automaticTransport(plain, nullptr, 33), "discovery-server");
   EXPECT_EQ(launch::automaticTransport(plain, "", 128), "discovery-server");  // SWA_TRANSPORT= (empty) asks nothing
   // GIVEN a transport asked for, on the command line or in the environment THEN it stays, however many
-  EXPECT_EQ(launch::automaticTransport(launch::parseLaunchOptions({"--scenario", "s", "--transport", "local"}),
-                                       nullptr, 128),
-            std::nullopt);
+  EXPECT_EQ(
+      launch::automaticTransport(launch::parseLaunchOptions({"--scenario", "s", "--transport", "local"}), nullptr, 128),
+      std::nullopt);
   EXPECT_EQ(launch::automaticTransport(plain, "network", 128), std::nullopt);
   // GIVEN DDS Security (a server would need credentials of its own) or named servers THEN nothing is chosen
-  EXPECT_EQ(launch::automaticTransport(launch::parseLaunchOptions({"--scenario", "s", "--secure", "creds"}), nullptr,
-                                       128),
-            std::nullopt);
+  EXPECT_EQ(
+      launch::automaticTransport(launch::parseLaunchOptions({"--scenario", "s", "--secure", "creds"}), nullptr, 128),
+      std::nullopt);
   launch::LaunchOptions servers = plain;
   servers.discovery_server = "127.0.0.1:11900";
   EXPECT_EQ(launch::automaticTransport(servers, nullptr, 128), std::nullopt);
@@ -145,9 +146,9 @@ TEST(LaunchDeploymentOptions, PastThirtyTwoUavProcessesDiscoveryGoesThroughAServ
 
 TEST(LaunchDeploymentOptions, ParsedAndChecked) {
   // WHEN the launcher is given a discovery-server transport with a server, and credentials
-  const launch::LaunchOptions o = launch::parseLaunchOptions({"--scenario", "s.yaml", "--transport",
-                                                              "discovery-server", "--discovery-server",
-                                                              "127.0.0.1:11900", "--secure", "creds"});
+  const launch::LaunchOptions o =
+      launch::parseLaunchOptions({"--scenario", "s.yaml", "--transport", "discovery-server", "--discovery-server",
+                                  "127.0.0.1:11900", "--secure", "creds"});
   // THEN it keeps them
   EXPECT_EQ(o.transport, "discovery-server");
   EXPECT_EQ(o.discovery_server, "127.0.0.1:11900");

@@ -43,8 +43,8 @@ class DetectionInputs : public ::testing::Test {
     const double d_native =
         batch::runClosedLoop(sim::loadScenario(kScenarioDir + scenario, sets)).summary.mean_neighbor_distance_m;
     const fs::path out = dir_ / (scenario + "_" + input);
-    Child child({SWA_LAUNCH_BINARY, "--scenario", kScenarioDir + scenario, "--domain", std::to_string(domain_),
-                 "--out", out.string(), "--set", "duration_s=60", "--set", "agent.sensor.input=" + input},
+    Child child({SWA_LAUNCH_BINARY, "--scenario", kScenarioDir + scenario, "--domain", std::to_string(domain_), "--out",
+                 out.string(), "--set", "duration_s=60", "--set", "agent.sensor.input=" + input},
                 dir_ / (scenario + "_" + input + ".log"));
     const std::optional<int> status = child.wait(kRunBoundS);
     ASSERT_TRUE(status) << "still running after " << kRunBoundS << " s";

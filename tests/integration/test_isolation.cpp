@@ -92,8 +92,8 @@ TEST_F(IsolationRun, NoAgentReadsWhatAnotherAgentWritesOrAnythingOutsideItsNames
   // the agents, not for ours)
   const auto started = SteadyClock::now();
   std::vector<std::string> args = simArgs();
-  args.insert(args.end(), {"--domain", std::to_string(domain_), "--startup-timeout-s", "20", "--agent-timeout-s",
-                           "10", "--summary-out", (dir_ / "summary.json").string()});
+  args.insert(args.end(), {"--domain", std::to_string(domain_), "--startup-timeout-s", "20", "--agent-timeout-s", "10",
+                           "--summary-out", (dir_ / "summary.json").string()});
   sim_ = std::make_unique<Child>(args, dir_ / "sim.log");
   const bool sim_seen = waitFor([&] { return simEndpointsSeen(observer_->log().endpoints()); }, kLateDiscoveryS);
   for (int i = 0; i < kAgents; ++i) {
@@ -111,8 +111,8 @@ TEST_F(IsolationRun, NoAgentReadsWhatAnotherAgentWritesOrAnythingOutsideItsNames
   const std::vector<Endpoint> endpoints = observer_->log().endpoints();
 
   const std::string table = endpointTable(endpoints);
-  std::cout << "domain " << domain_ << ", " << wall_s << " s wall (processes started to sim exit), "
-            << endpoints.size() << " endpoints discovered:\n"
+  std::cout << "domain " << domain_ << ", " << wall_s << " s wall (processes started to sim exit), " << endpoints.size()
+            << " endpoints discovered:\n"
             << table;
   RecordProperty("wall_s", std::to_string(wall_s));
 
@@ -132,9 +132,7 @@ TEST_F(IsolationRun, NoAgentReadsWhatAnotherAgentWritesOrAnythingOutsideItsNames
 
   // THEN no agent reads a topic another agent writes, nor anything outside swa/uav<I>/ but the clock, nor truth
   const std::vector<std::string> violations = auditIsolation(endpoints);
-  EXPECT_TRUE(violations.empty()) << "isolation violated:\n"
-                                  << bulleted(violations) << "collected:\n"
-                                  << table;
+  EXPECT_TRUE(violations.empty()) << "isolation violated:\n" << bulleted(violations) << "collected:\n" << table;
 
   // THEN, once the observer is gone too, no process left shared memory behind
   observer_.reset();

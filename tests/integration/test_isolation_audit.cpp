@@ -65,8 +65,8 @@ std::string joined(const std::vector<std::string>& lines) {
 TEST(IsolationAudit, AgentIndexAcceptsOnlyCanonicalAgentNames) {
   EXPECT_EQ(agentIndex("swa_agent_0"), 0);
   EXPECT_EQ(agentIndex("swa_agent_17"), 17);
-  for (const char* name : {"swa_agent_", "swa_agent_01", "swa_agent_-1", "swa_agent_1x", "swa_sim", "agent_1",
-                           "swa_agent_1234567", ""}) {
+  for (const char* name :
+       {"swa_agent_", "swa_agent_01", "swa_agent_-1", "swa_agent_1x", "swa_sim", "agent_1", "swa_agent_1234567", ""}) {
     EXPECT_FALSE(agentIndex(name)) << name;
   }
 }
@@ -174,9 +174,10 @@ TEST(IsolationAudit, IncompleteOrExtraAgentsAreReported) {
   // GIVEN 3 agents expected, agent 1 without its state writer, agent 2 missing, an agent 5 present, agent 0 with
   // two IMU readers
   std::vector<Endpoint> e = cleanSwarm(2);
-  e.erase(std::remove_if(e.begin(), e.end(),
-                         [](const Endpoint& x) { return x.participant == "swa_agent_1" && x.topic == topics::state(1); }),
-          e.end());
+  e.erase(
+      std::remove_if(e.begin(), e.end(),
+                     [](const Endpoint& x) { return x.participant == "swa_agent_1" && x.topic == topics::state(1); }),
+      e.end());
   e.push_back(ep(kR, "swa_agent_5", topics::imu(5)));
   e.push_back(ep(kR, "swa_agent_0", topics::imu(0)));
   const std::vector<std::string> c = auditAgentEndpoints(e, 3);

@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "launch_options.h"
 #include "error_text.h"
+#include "launch_options.h"
 
 namespace swa::launch {
 namespace {
@@ -29,7 +29,8 @@ TEST(LaunchRecordOptions, BareRecordIsCompleteAndEqualsNamesTheSet) {
   EXPECT_TRUE(monitor.record_set == recording::RecordSet::kMonitor);
   EXPECT_TRUE(parseLaunchOptions({"--scenario", "s", "--record=all"}).record_set == recording::RecordSet::kAll);
   // WHEN the set is unknown THEN exit-2 error naming the valid sets
-  EXPECT_EQ(recordOptionsError({"--scenario", "s", "--record=sensors"}), "--record must be all or monitor, got 'sensors'");
+  EXPECT_EQ(recordOptionsError({"--scenario", "s", "--record=sensors"}),
+            "--record must be all or monitor, got 'sensors'");
   // WHEN the set is a separate argument THEN it is not taken as the set (it would be the scenario's neighbour)
   EXPECT_EQ(recordOptionsError({"--scenario", "s", "--record", "monitor"}), "unknown argument 'monitor' (see --help)");
   // AND --help shows the syntax and both sets

@@ -94,8 +94,8 @@ TEST(DeafPorts, AnOwnPortMappedOnlyDeletedWhileItsFileExistsIsDeaf) {
   // GIVEN a process listening on 7411 and 7412 and writing to a peer's 7413
   const std::string maps = "55d0c0a00000-55d0c0a21000 r-xp 00000000 08:01 1234 /usr/bin/swa_sim\n" +
                            mapping("/dev/shm/fastrtps_port7411 (deleted)") + mapping("/dev/shm/fastrtps_port7412") +
-                           mapping("/dev/shm/fastrtps_port7413 (deleted)") +
-                           mapping("/dev/shm/fastrtps_port7411_el") + mapping("/dev/shm/sem.fastrtps_port7411_mutex");
+                           mapping("/dev/shm/fastrtps_port7413 (deleted)") + mapping("/dev/shm/fastrtps_port7411_el") +
+                           mapping("/dev/shm/sem.fastrtps_port7411_mutex");
   const auto every = [](int) { return true; };
   // THEN its port 7411, mapped only as deleted while a new file exists, is deaf; 7412 is live; the peer's 7413 is
   // not its own, and the port's other files do not count
@@ -106,8 +106,7 @@ TEST(DeafPorts, AnOwnPortMappedOnlyDeletedWhileItsFileExistsIsDeaf) {
 
 TEST(DeafPorts, AnOwnerThatMovedToTheNewSegmentHearsIt) {
   // GIVEN the old segment still mapped (deleted) beside the new one of the same name
-  const std::string maps =
-      mapping("/dev/shm/fastrtps_port7411 (deleted)") + mapping("/dev/shm/fastrtps_port7411");
+  const std::string maps = mapping("/dev/shm/fastrtps_port7411 (deleted)") + mapping("/dev/shm/fastrtps_port7411");
   // THEN it hears: the owner follows a re-created port as Fast DDS intends
   EXPECT_TRUE(deafPorts(maps, {7411}, [](int) { return true; }).empty());
   // AND a port it never mapped, or a process without shared memory, says nothing
@@ -120,8 +119,8 @@ TEST(OwnPorts, APortIsOwnWhenThisProcessHoldsTheLockOfItsExclusiveReadLockFile) 
   // GIVEN paths a process has open: only a port's exclusive-read lock file names a port
   EXPECT_EQ(lockFilePort("/dev/shm/fastrtps_port51920_el"), 51920);
   for (const char* other : {"/dev/shm/fastrtps_port51650_sl", "/dev/shm/fastrtps_31d336c7463b45ca_el",
-                            "/dev/shm/fastrtps_port_el", "/dev/shm/fastrtps_port12a_el", "/tmp/dev/shm/fastrtps_port1_el",
-                            "socket:[123456]", "/dev/shm/fastrtps_port51920"}) {
+                            "/dev/shm/fastrtps_port_el", "/dev/shm/fastrtps_port12a_el",
+                            "/tmp/dev/shm/fastrtps_port1_el", "socket:[123456]", "/dev/shm/fastrtps_port51920"}) {
     EXPECT_FALSE(lockFilePort(other)) << other;
   }
   // AND /proc/locks: this process (22855) holds two locks, another process one, and 22855 waits for a third

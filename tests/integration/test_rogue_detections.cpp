@@ -49,14 +49,29 @@ agent::DetectionSet detections(agent::StampNs t, int kind, std::mt19937_64& rng)
   }
   std::uniform_real_distribution<double> big(-1e6, 1e6);
   switch (kind) {
-    case 1: s.detections[0].position_body_m.x() = kNan; break;
-    case 2: s.detections[1].position_body_m.y() = INFINITY; break;
-    case 3: (*s.detections[0].covariance_m2)(0, 1) = 5.0; break;  // asymmetric after the writer's copy below
-    case 4: *s.detections[2].covariance_m2 *= -1.0; break;
-    case 5: (*s.detections[1].covariance_m2)(1, 1) = kNan; break;
-    case 6: s.detections.resize(300, s.detections[0]); break;  // beyond limits.max_detections
-    case 7: s.detections[0].position_body_m = agent::Vec2(big(rng), big(rng)); break;
-    default: break;
+    case 1:
+      s.detections[0].position_body_m.x() = kNan;
+      break;
+    case 2:
+      s.detections[1].position_body_m.y() = INFINITY;
+      break;
+    case 3:
+      (*s.detections[0].covariance_m2)(0, 1) = 5.0;
+      break;  // asymmetric after the writer's copy below
+    case 4:
+      *s.detections[2].covariance_m2 *= -1.0;
+      break;
+    case 5:
+      (*s.detections[1].covariance_m2)(1, 1) = kNan;
+      break;
+    case 6:
+      s.detections.resize(300, s.detections[0]);
+      break;  // beyond limits.max_detections
+    case 7:
+      s.detections[0].position_body_m = agent::Vec2(big(rng), big(rng));
+      break;
+    default:
+      break;
   }
   return s;
 }
@@ -68,10 +83,10 @@ class RogueDetections : public RogueAgentTest, public ::testing::WithParamInterf
                        "sensor:\n  input: " + GetParam() + "\n");
     if (GetParam() == "vision_msgs") {
       vision_ = rogue_->writer<vision_msgs::msg::Detection3DArrayPubSubType>(dds::topics::visionDetections(kUav),
-                                                                            dds::qos::kRos2DefaultWriter);
+                                                                             dds::qos::kRos2DefaultWriter);
     } else {
       uvdar_ = rogue_->writer<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(dds::topics::uvdarPoses(kUav),
-                                                                                        dds::qos::kRos2DefaultWriter);
+                                                                                       dds::qos::kRos2DefaultWriter);
     }
   }
 
@@ -122,7 +137,8 @@ TEST_P(RogueDetections, BadDetectorOutputGivesNoBadCommand) {
     std::this_thread::sleep_until(start + std::chrono::milliseconds(10 * (i + 1)));
   }
   ASSERT_TRUE(waitFor([this] { return cmds_.take(), cmds_.seen.size() >= 300; }, 10.0))
-      << cmds_.seen.size() << " commands\n" << readFile(dir_ / "agent.log");
+      << cmds_.seen.size() << " commands\n"
+      << readFile(dir_ / "agent.log");
   // THEN the agent answered, every command finite and within the limit
   int bad = 0;
   for (const msg::VelocitySetpoint& c : cmds_.seen) {

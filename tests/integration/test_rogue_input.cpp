@@ -130,9 +130,9 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   const long rss_before = rssKb(agent_->pid());
   ASSERT_GT(rss_before, 0);
 
-  // WHEN the rogue sends three times 2000 detection sets of 1000 entries stamped an hour and INT64_MAX ahead (before issue
-  // #11: held forever by the stamp orderer, +43 MB/s). Each set is acknowledged by the agent's reader before the next
-  // is written: every one of them reaches the agent, however busy the host (written as fast as the writer could,
+  // WHEN the rogue sends three times 2000 detection sets of 1000 entries stamped an hour and INT64_MAX ahead (before
+  // issue #11: held forever by the stamp orderer, +43 MB/s). Each set is acknowledged by the agent's reader before the
+  // next is written: every one of them reaches the agent, however busy the host (written as fast as the writer could,
   // a busy host's agent received 2952 of 6000 before its reader history overflowed), so each must be counted.
   // A genuine IMU sample (and no detections, which would move the detection stream's clock past the sets below)
   // every 100 sets: an agent whose IMU falls silent for 6 s while its writer stays matched re-creates its participant
@@ -223,9 +223,10 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   poll();
   const long rss_after = rssKb(agent_->pid());
   ASSERT_FALSE(agent_->wait(0.0).has_value()) << "agent died\n" << readFile(dir_ / "agent.log");
-  std::printf("flood of 20000 stale samples written in %.2f s; agent RSS %ld kB before the rogue, %ld kB after the "
-              "first 2000 oversize sets, %ld kB after the second, %ld kB after the third, %ld kB at the end\n",
-              flood_s, rss_before, rss_first, rss_second, rss_third, rss_after);
+  std::printf(
+      "flood of 20000 stale samples written in %.2f s; agent RSS %ld kB before the rogue, %ld kB after the "
+      "first 2000 oversize sets, %ld kB after the second, %ld kB after the third, %ld kB at the end\n",
+      flood_s, rss_before, rss_first, rss_second, rss_third, rss_after);
   EXPECT_GE(commandsAnswering(resume, t), 195);
   EXPECT_EQ(commandsAnswering(-10 * kSec, 0), 0) << "commands answered stale samples";
   EXPECT_GE(commandsAnswering(5 * kSec, genuine_end), answered_genuine);

@@ -24,12 +24,12 @@
 #include "../integration/private_shm.h"
 #include "../integration/process_test.h"
 #include "closed_loop.h"
-#include "swa/dds/qos_profiles.h"
-#include "swa/sim/scenario_io.h"
+#include "swa/app/version.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
+#include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
-#include "swa/app/version.h"
+#include "swa/sim/scenario_io.h"
 
 namespace swa::testing {
 namespace {
@@ -49,8 +49,9 @@ class LaunchTest : public ::testing::Test {
   }
 
   std::vector<std::string> launchArgs(const std::vector<std::string>& extra) const {
-    std::vector<std::string> a{kLaunch, "--scenario", kScenario, "--out", (dir_ / "out").string(), "--domain",
-                               std::to_string(domain_), "--timeout-s", "150"};
+    std::vector<std::string> a{
+        kLaunch,       "--scenario", kScenario, "--out", (dir_ / "out").string(), "--domain", std::to_string(domain_),
+        "--timeout-s", "150"};
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
   }

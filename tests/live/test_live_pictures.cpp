@@ -21,7 +21,8 @@ constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 // Every opening tag <name ... class="cls" ...>.
 std::vector<std::string> tags(const std::string& svg, const std::string& name, const std::string& cls) {
   std::vector<std::string> out;
-  for (std::size_t pos = svg.find("<" + name + " "); pos != std::string::npos; pos = svg.find("<" + name + " ", pos + 1)) {
+  for (std::size_t pos = svg.find("<" + name + " "); pos != std::string::npos;
+       pos = svg.find("<" + name + " ", pos + 1)) {
     const std::string tag = svg.substr(pos, svg.find('>', pos) - pos);
     if (tag.find("class=\"" + cls + "\"") != std::string::npos) out.push_back(tag);
   }

@@ -18,9 +18,9 @@ namespace swa::netem {
 using Clock = std::chrono::steady_clock;
 
 struct ImpairmentConfig {
-  double loss = 0.0;                            // [0, 1)
-  std::chrono::microseconds delay{0};           // mean added one-way delay
-  std::chrono::microseconds jitter{0};          // half-width of the uniform spread, <= delay
+  double loss = 0.0;                    // [0, 1)
+  std::chrono::microseconds delay{0};   // mean added one-way delay
+  std::chrono::microseconds jitter{0};  // half-width of the uniform spread, <= delay
   std::uint64_t seed = 1;
 };
 

@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "swa/monitor/chi2.h"
-#include "swa/run_record/run_dir.h"
 #include "swa/monitor/accumulator.h"
+#include "swa/monitor/chi2.h"
 #include "swa/monitor/summary_format.h"
+#include "swa/run_record/run_dir.h"
 
 namespace swa::monitor {
 namespace {

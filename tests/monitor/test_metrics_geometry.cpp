@@ -133,8 +133,8 @@ TEST(MetricsGeometry, GroupLinkIsStrictlyCloserThanOneAndAHalfR) {
 
 TEST(MetricsGeometry, CountGroupsFindsEveryComponent) {
   // GIVEN isolated points, a pair and a chain of three
-  const std::vector<Vec2> p{Vec2(0, 0), Vec2(100, 0), Vec2(101, 0), Vec2(0, 100), Vec2(0, 104), Vec2(0, 108),
-                            Vec2(-50, -50)};
+  const std::vector<Vec2> p{Vec2(0, 0),   Vec2(100, 0), Vec2(101, 0),  Vec2(0, 100),
+                            Vec2(0, 104), Vec2(0, 108), Vec2(-50, -50)};
   // THEN with a 5 m link: {0}, {1,2}, {3,4,5}, {6}
   EXPECT_EQ(countGroups(p, 5.0), 4);
   EXPECT_EQ(countGroups(p, 0.5), 7);

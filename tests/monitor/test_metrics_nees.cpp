@@ -83,7 +83,9 @@ TEST(MetricsTruthFrame, TheWeightedFitWeighsTheTwoNeighboursTheAgentRanksNearest
   ASSERT_TRUE(ta.ok() && tb.ok());
   auto fitIn = [&f](const std::vector<int>& ids) {
     agent::NeighbourPositions p;
-    for (int id : ids) p.position[static_cast<std::size_t>(p.count++)] = f.uavs[static_cast<std::size_t>(id)].position_m - f.uavs[0].position_m;
+    for (int id : ids)
+      p.position[static_cast<std::size_t>(p.count++)] =
+          f.uavs[static_cast<std::size_t>(id)].position_m - f.uavs[0].position_m;
     return agent::fitFloatingFrame(p, kR, agent::CircleFit::kFixedRadius, 0.2);
   };
   EXPECT_EQ(ta.position_m, -fitIn({1, 2, 3}).centre);

@@ -105,8 +105,7 @@ TEST(MetricsReport, AggregateGivesMeanSampleStdMinMax) {
 
 TEST(MetricsReport, AggregateOfNamedValuesMatchesKeysByName) {
   // GIVEN runs listing keys in different orders, one run missing a key
-  const std::vector<std::vector<NamedValue>> runs{
-      {{"a", 1.0}, {"b", 10.0}}, {{"b", 20.0}, {"a", 3.0}}, {{"a", 5.0}}};
+  const std::vector<std::vector<NamedValue>> runs{{{"a", 1.0}, {"b", 10.0}}, {{"b", 20.0}, {"a", 3.0}}, {{"a", 5.0}}};
   const Aggregate agg = aggregate(runs);
   // THEN keys keep the order they first appeared in and are matched by name
   ASSERT_EQ(agg.metrics.size(), 2u);

@@ -59,8 +59,8 @@ std::unique_ptr<LiveRun> monitorLoop(const sim::Scenario& s, int dead_agent = -1
       std::vector<StateSample> states;
       for (int i = n - 1; i >= 0; --i) {  // reverse UAV order on purpose
         if (dead_now && i == dead_agent) continue;
-        msg::AgentState m = wire::toMsg(agents[static_cast<std::size_t>(i)].diagnostics(),
-                                        static_cast<std::uint32_t>(i), ++seq);
+        msg::AgentState m =
+            wire::toMsg(agents[static_cast<std::size_t>(i)].diagnostics(), static_cast<std::uint32_t>(i), ++seq);
         m.header().stamp_ns(world.time_ns());
         states.push_back(fromStateMsg(m, config.metrics.formation));
       }

@@ -10,9 +10,9 @@
 #include <string>
 
 #include "combine.h"
-#include "swa/run_record/run_report.h"
-#include "swa/run_record/run_dir.h"
 #include "scratch.h"
+#include "swa/run_record/run_dir.h"
+#include "swa/run_record/run_report.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -25,7 +25,6 @@ namespace fs = std::filesystem;
 
 class CombineTest : public ::testing::Test {
  protected:
-
   std::string writeRun(const std::string& name, Outcome outcome, double d_nb) {
     RunRecord r;
     r.label = name;

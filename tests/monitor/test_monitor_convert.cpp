@@ -9,8 +9,8 @@
 #include <limits>
 
 #include "msg_convert.h"
-#include "swa/wire/agent_state.h"
 #include "swa/agent/diagnostics.h"
+#include "swa/wire/agent_state.h"
 
 namespace swa::monitor_node {
 namespace {
@@ -80,9 +80,7 @@ TEST(MonitorConvert, StateGivesTheRecordOfTheAgentsOwnDiagnostics) {
 TEST(MonitorConvert, OnlyATrackedFloatingFrameIsValid) {
   // GIVEN a formation and a conversion that says whether the estimate is valid
   const agent::FormationConfig f = formation(10.0, agent::CircleFit::kFixedRadius);
-  const auto valid = [&f](const agent::Diagnostics& d) {
-    return fromStateMsg(wire::toMsg(d, 0, 1), f).estimate.valid;
-  };
+  const auto valid = [&f](const agent::Diagnostics& d) { return fromStateMsg(wire::toMsg(d, 0, 1), f).estimate.valid; };
   // THEN a tracking agent's estimate is valid
   EXPECT_TRUE(valid(tracking()));
   // WHEN the agent is initialising or lost THEN it is not
@@ -197,12 +195,15 @@ TEST(MonitorConvert, TruthKeepsEveryUavInTheAirAndTheAgentFlagApart) {
 
 TEST(MonitorConvert, EveryEventKindHasAName) {
   // GIVEN every event kind the simulator sends, with its name
-  const std::pair<msg::EventKind, const char*> kinds[] = {
-      {msg::EVENT_GNSS_LOST, "gnss_lost"},      {msg::EVENT_GNSS_RESTORED, "gnss_restored"},
-      {msg::EVENT_AGENT_DEAD, "agent_dead"},    {msg::EVENT_AGENT_REJOINED, "agent_rejoined"},
-      {msg::EVENT_COLLISION, "collision"},      {msg::EVENT_FAILSAFE, "failsafe"},
-      {msg::EVENT_SCENARIO_END, "scenario_end"}, {msg::EVENT_CONTROL_LOST, "control_lost"},
-      {msg::EVENT_CONTROL_REGAINED, "control_regained"}};
+  const std::pair<msg::EventKind, const char*> kinds[] = {{msg::EVENT_GNSS_LOST, "gnss_lost"},
+                                                          {msg::EVENT_GNSS_RESTORED, "gnss_restored"},
+                                                          {msg::EVENT_AGENT_DEAD, "agent_dead"},
+                                                          {msg::EVENT_AGENT_REJOINED, "agent_rejoined"},
+                                                          {msg::EVENT_COLLISION, "collision"},
+                                                          {msg::EVENT_FAILSAFE, "failsafe"},
+                                                          {msg::EVENT_SCENARIO_END, "scenario_end"},
+                                                          {msg::EVENT_CONTROL_LOST, "control_lost"},
+                                                          {msg::EVENT_CONTROL_REGAINED, "control_regained"}};
   for (const auto& [kind, name] : kinds) {
     // WHEN an event of that kind with every field set is converted
     msg::ScenarioEvent m;

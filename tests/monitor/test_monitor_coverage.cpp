@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "truth_coverage.h"
 #include "swa/run_record/verdict.h"
+#include "truth_coverage.h"
 #include "verdict_input.h"
 
 namespace swa::monitor_node {
@@ -46,9 +46,9 @@ TEST(TruthCoverage, GapsUpToASecondAndRepeatsAreNotMissed) {
   // after the newest
   TruthCoverage c;
   c.add(0);
-  c.add(1000 * kMs);      // exactly the allowed gap
-  c.add(1000 * kMs);      // repeated: ignored
-  c.add(500 * kMs);       // older: ignored
+  c.add(1000 * kMs);  // exactly the allowed gap
+  c.add(1000 * kMs);  // repeated: ignored
+  c.add(500 * kMs);   // older: ignored
   c.add(1900 * kMs);
   // THEN nothing was missed
   EXPECT_TRUE(c.missed().empty());

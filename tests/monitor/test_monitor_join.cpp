@@ -213,7 +213,7 @@ TEST(StepJoiner, HeldStatesAreBounded) {
     j.addState(state(0, static_cast<agent::StampNs>(k + 1) * kStep));
   }
   // THEN the 10 oldest are dropped as unmatched
-  EXPECT_EQ(j.counters().state_unmatched, extra);     // the oldest gave way
+  EXPECT_EQ(j.counters().state_unmatched, extra);  // the oldest gave way
   // AND the oldest state still held matches its truth when that comes
   j.addTruth(truth(static_cast<int>(extra) + 1, 1));  // the oldest held stamp still there matches
   EXPECT_EQ(j.takeReady().size(), 1u);

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "monitor_options.h"
 #include "error_text.h"
+#include "monitor_options.h"
 
 namespace swa::monitor_node {
 namespace {

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "swa/run_record/restarts.h"
 #include "scratch.h"
+#include "swa/run_record/restarts.h"
 
 namespace swa::record {
 namespace {

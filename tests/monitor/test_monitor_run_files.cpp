@@ -12,9 +12,9 @@
 #include <sstream>
 #include <string>
 
+#include "scratch.h"
 #include "swa/run_record/csv.h"
 #include "swa/run_record/run_dir.h"
-#include "scratch.h"
 
 namespace swa::record {
 namespace {

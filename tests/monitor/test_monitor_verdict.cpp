@@ -1,5 +1,6 @@
 // The run verdict and its exit status: PASS only when the scenario completed with d_NB within the band, no
-// collision, one group and no UAV on failsafe at the end; FAIL lists every failed criterion; INCOMPLETE wins whenever the run did not complete.
+// collision, one group and no UAV on failsafe at the end; FAIL lists every failed criterion; INCOMPLETE wins whenever
+// the run did not complete.
 
 #include <gtest/gtest.h>
 

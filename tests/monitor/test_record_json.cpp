@@ -28,8 +28,7 @@ TEST(RecordJson, SummaryHasEveryKeyOnceAndNullForMissingValues) {
   for (const char* key :
        {"mean_neighbor_distance_m", "min_separation_m", "collisions", "drift_velocity_mps", "uav_displacement_m",
         "groups", "spread_m", "formation_error_m", "anees_position", "anees_velocity", "anees_band_low",
-        "anees_band_high", "anees_agents", "nees_skipped_unknown_id", "edge_length_m",
-        "drift_velocity_windows_mps"}) {
+        "anees_band_high", "anees_agents", "nees_skipped_unknown_id", "edge_length_m", "drift_velocity_windows_mps"}) {
     EXPECT_EQ(occurrences(json, std::string("\"") + key + "\":"), 1) << key;
   }
   // AND so is every field of the flat view, with its value, null where it is not finite
@@ -71,8 +70,8 @@ TEST(RecordJson, AggregateListsEveryKeyWithItsStatistics) {
   EXPECT_EQ(gone["runs"].get<int>(), 0);
   for (const char* stat : {"mean", "std", "min", "max"}) EXPECT_TRUE(gone[stat].is_null()) << stat;
   // AND a key needing escapes cannot break the document, and no run is an empty aggregate
-  const std::string odd = jsonText(aggregateJson(monitor::aggregate(std::vector<std::vector<monitor::NamedValue>>{
-      {{"a\"b\\c\n", 1.0}}})));
+  const std::string odd =
+      jsonText(aggregateJson(monitor::aggregate(std::vector<std::vector<monitor::NamedValue>>{{{"a\"b\\c\n", 1.0}}})));
   EXPECT_TRUE(Json::parse(odd)["metrics"].contains("a\"b\\c\n"));
   const Json none = Json::parse(jsonText(aggregateJson(monitor::aggregate(std::vector<monitor::Summary>{}))));
   EXPECT_EQ(none["runs"].get<int>(), 0);

@@ -329,8 +329,8 @@ TEST(ReportHtml, ALargeSwarmsTracksAreLabelledAtTheirEndsInsteadOfALegendTallerT
   // THEN the 100-UAV plot keeps its size (no legend row per UAV) and its tracks have no legend entry
   const PlotLayout l = layoutPlot(p->spec);
   EXPECT_DOUBLE_EQ(l.height_px, static_cast<double>(p->spec.height_px));
-  EXPECT_TRUE(std::all_of(p->spec.series.begin(), p->spec.series.end(),
-                          [](const PlotSeries& s) { return s.label.empty(); }));
+  EXPECT_TRUE(
+      std::all_of(p->spec.series.begin(), p->spec.series.end(), [](const PlotSeries& s) { return s.label.empty(); }));
   // AND each track's end carries its UAV's id, at that end
   const PlotSeries& ends = p->spec.series.back();
   ASSERT_EQ(ends.point_labels.size(), 100U);

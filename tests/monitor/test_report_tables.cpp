@@ -7,8 +7,8 @@
 #include <limits>
 #include <string>
 
-#include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
+#include "swa/monitor/summary_format.h"
 
 namespace swa::monitor {
 namespace {

@@ -59,11 +59,11 @@ TEST(RunReportTables, SeveralRunsGetARunColumnAndTheTableStopsAtItsLimit) {
 
 TEST(RunReportTables, RestartsNameTheMonitorAndCountMalformedRows) {
   // GIVEN a run with an agent's restart, the monitor's, a bridge's, and two malformed rows in the restart log
-  const std::vector<RunRecord> runs{runWith("swa", {},
-                                            {AgentRestart{15.25, 1, "137", 1, 0.5},
-                                             AgentRestart{52.8, AgentRestart::kMonitor, "137", 1, 0.5},
-                                             AgentRestart{60.0, 3, "137", 1, 0.5, /*bridge=*/true}},
-                                            2)};
+  const std::vector<RunRecord> runs{
+      runWith("swa", {},
+              {AgentRestart{15.25, 1, "137", 1, 0.5}, AgentRestart{52.8, AgentRestart::kMonitor, "137", 1, 0.5},
+               AgentRestart{60.0, 3, "137", 1, 0.5, /*bridge=*/true}},
+              2)};
   // WHEN the restarts table is made
   const monitor::ReportTable t = restartsTable(runs);
   // THEN one row each, the monitor by name, and the malformed rows in the note

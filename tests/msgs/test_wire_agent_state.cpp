@@ -137,7 +137,8 @@ TEST(WireAgentState, MoreNeighboursThanTheArrayAreCutNeverReadPastIt) {
   agent::Diagnostics d = everyFieldSet();
   d.neighbour_count = 1000;
   // WHEN published THEN the ids are cut to what the array and the IDL bound hold
-  EXPECT_EQ(toMsg(d, 3, 9).neighbour_ids().size(), std::min<std::size_t>(d.neighbour_ids.size(), kMaxStateNeighbourIds));
+  EXPECT_EQ(toMsg(d, 3, 9).neighbour_ids().size(),
+            std::min<std::size_t>(d.neighbour_ids.size(), kMaxStateNeighbourIds));
 }
 
 TEST(WireAgentState, ValuesOffTheWireAreNotTrusted) {

@@ -64,8 +64,7 @@ TEST(WireMessages, SensorAndCommandMessagesSurviveSerialisation) {
   EXPECT_EQ(through_the_wire<msg::DetectionsPubSubType>(det, "swa::msg::Detections").items()[1].target_id(), -1);
   EXPECT_STREQ(msg::DetectionPubSubType().getName(), "swa::msg::Detection");
   EXPECT_TRUE(through_the_wire<msg::GnssFixPubSubType>(fix, "swa::msg::GnssFix").valid());
-  const msg::VelocitySetpoint sp2 =
-      through_the_wire<msg::VelocitySetpointPubSubType>(sp, "swa::msg::VelocitySetpoint");
+  const msg::VelocitySetpoint sp2 = through_the_wire<msg::VelocitySetpointPubSubType>(sp, "swa::msg::VelocitySetpoint");
   EXPECT_EQ(sp2.answered_seq(), 100u);
   EXPECT_EQ(sp2.yaw_rate_radps(), -0.4375);
 }

@@ -33,9 +33,8 @@ sim::UavTruth uav(int id, double base, bool gnss_valid) {
 
 TEST(WireMessages, WorldMessagesSurviveSerialisation) {
   // GIVEN one message of each world type, 64-bit fields beyond 32 bits, a negative (every-UAV) id
-  const msg::SwarmTruth truth = toMsg(SwarmTruth{1'000'000'000, {uav(0, 10.0, true), uav(1, -20.0, false)},
-                                                 {true, false}},
-                                      100);
+  const msg::SwarmTruth truth =
+      toMsg(SwarmTruth{1'000'000'000, {uav(0, 10.0, true), uav(1, -20.0, false)}, {true, false}}, 100);
   msg::ScenarioEvent event;
   event.header(make_header(33'000'000'000, 4));
   event.kind(msg::EVENT_SCENARIO_END);
@@ -69,10 +68,10 @@ TEST(WireMessages, WorldMessagesSurviveSerialisation) {
 
 TEST(WireWorld, TruthSurvivesTheBridgeAndTheWire) {
   // GIVEN the truth of three UAVs, the middle one's agent not answering
-  const SwarmTruth in{12'345'678'901, {uav(0, 1.0, true), uav(4, -7.0, false), uav(2, 1e-9, true)}, {true, false, true}};
+  const SwarmTruth in{
+      12'345'678'901, {uav(0, 1.0, true), uav(4, -7.0, false), uav(2, 1e-9, true)}, {true, false, true}};
   // WHEN it goes truth -> message -> wire -> message -> truth
-  const SwarmTruth out =
-      fromMsg(through_the_wire<msg::SwarmTruthPubSubType>(toMsg(in, 31), "swa::msg::SwarmTruth"));
+  const SwarmTruth out = fromMsg(through_the_wire<msg::SwarmTruthPubSubType>(toMsg(in, 31), "swa::msg::SwarmTruth"));
   // THEN every carried field comes back bit for bit, in order
   EXPECT_EQ(out.stamp_ns, in.stamp_ns);
   EXPECT_EQ(out.agent_alive, in.agent_alive);
@@ -95,16 +94,16 @@ TEST(WireWorld, EveryEventKindSurvivesTheBridgeAndTheWire) {
   // GIVEN one event of each kind, at stamps up to a day of sim time (10 ms steps)
   namespace kind = record::event_kind;
   int k = 0;
-  for (const char* name : {kind::kGnssLost, kind::kGnssRestored, kind::kAgentDead, kind::kAgentRejoined,
-                           kind::kCollision, kind::kFailsafe, kind::kScenarioEnd,
-                           kind::kControlLost, kind::kControlRegained}) {
-    for (const std::int64_t stamp_ns : {std::int64_t{0}, std::int64_t{10'000'000}, std::int64_t{12'340'000'000},
-                                        std::int64_t{86'399'990'000'000}}) {
-      const record::EventRecord in{static_cast<double>(stamp_ns) * 1e-9, name, k, k + 1, 0.1 * k, "event " + std::to_string(k)};
+  for (const char* name :
+       {kind::kGnssLost, kind::kGnssRestored, kind::kAgentDead, kind::kAgentRejoined, kind::kCollision, kind::kFailsafe,
+        kind::kScenarioEnd, kind::kControlLost, kind::kControlRegained}) {
+    for (const std::int64_t stamp_ns :
+         {std::int64_t{0}, std::int64_t{10'000'000}, std::int64_t{12'340'000'000}, std::int64_t{86'399'990'000'000}}) {
+      const record::EventRecord in{static_cast<double>(stamp_ns) * 1e-9, name, k, k + 1, 0.1 * k,
+                                   "event " + std::to_string(k)};
       // WHEN it goes record -> message -> wire -> message -> record
-      const msg::ScenarioEvent m =
-          through_the_wire<msg::ScenarioEventPubSubType>(toMsg(in, static_cast<std::uint32_t>(k)),
-                                                         "swa::msg::ScenarioEvent");
+      const msg::ScenarioEvent m = through_the_wire<msg::ScenarioEventPubSubType>(
+          toMsg(in, static_cast<std::uint32_t>(k)), "swa::msg::ScenarioEvent");
       const std::optional<record::EventRecord> out = fromMsg(m);
       // THEN the stamp is the event's time in nanoseconds, exactly, and every field comes back
       EXPECT_EQ(m.header().stamp_ns(), stamp_ns) << name;

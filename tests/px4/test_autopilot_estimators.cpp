@@ -42,8 +42,8 @@ TEST(Px4Estimator, WithoutGnssOrVisionTheLocalPositionTurnsInvalidAfterNoaidTout
   EXPECT_FALSE(ekf.deadReckoning());
   // WHEN GNSS is gone THEN it dead-reckons after 1 s and the position turns invalid EKF2_NOAID_TOUT (5 s) after the
   // last fix
-  const auto invalid = firstInvalid(10'010 * kMs, 20'000 * kMs, [&](agent::StampNs t) { ekf.update(t); },
-                                    [&] { return ekf.xyValid(); });
+  const auto invalid = firstInvalid(
+      10'010 * kMs, 20'000 * kMs, [&](agent::StampNs t) { ekf.update(t); }, [&] { return ekf.xyValid(); });
   ASSERT_TRUE(invalid);
   EXPECT_EQ(*invalid, 15'010 * kMs);
   EXPECT_TRUE(ekf.deadReckoning());
@@ -67,8 +67,8 @@ TEST(Px4Estimator, ExternalVisionKeepsItValidAndItsEndStartsTheTimeout) {
     }
   }
   // WHEN the vision stops THEN EKF2 stops using it after 0.4 s, and the position is invalid 4.4 s after the last sample
-  const auto invalid = firstInvalid(30'010 * kMs, 40'000 * kMs, [&](agent::StampNs t) { ekf.update(t); },
-                                    [&] { return ekf.xyValid(); });
+  const auto invalid = firstInvalid(
+      30'010 * kMs, 40'000 * kMs, [&](agent::StampNs t) { ekf.update(t); }, [&] { return ekf.xyValid(); });
   ASSERT_TRUE(invalid);
   EXPECT_EQ(*invalid, 34'410 * kMs);
 }
@@ -98,15 +98,18 @@ TEST(ArdupilotEstimator, WithoutGpsOrExternalNavThePositionIsLostAfter7sAndTheFa
     ekf.update(t);
   }
   ASSERT_TRUE(ekf.positionOk());
-  const auto lost = firstInvalid(10'010 * kMs, 30'000 * kMs, [&](agent::StampNs t) {
-    ekf.gps(t, false);
-    ekf.update(t);
-  }, [&] { return ekf.positionOk(); });
+  const auto lost = firstInvalid(
+      10'010 * kMs, 30'000 * kMs,
+      [&](agent::StampNs t) {
+        ekf.gps(t, false);
+        ekf.update(t);
+      },
+      [&] { return ekf.positionOk(); });
   ASSERT_TRUE(lost);
   EXPECT_EQ(*lost, 17'010 * kMs);
   EXPECT_FALSE(ekf.ekfFailsafe());
-  const auto failsafe = firstInvalid(*lost, 30'000 * kMs, [&](agent::StampNs t) { ekf.update(t); },
-                                     [&] { return !ekf.ekfFailsafe(); });
+  const auto failsafe = firstInvalid(
+      *lost, 30'000 * kMs, [&](agent::StampNs t) { ekf.update(t); }, [&] { return !ekf.ekfFailsafe(); });
   ASSERT_TRUE(failsafe);
   EXPECT_EQ(*failsafe, 18'010 * kMs);
 }
@@ -149,10 +152,12 @@ TEST(Px4StandinWithEkf, OffboardIsRefusedWithoutAValidVelocityAndLostWhenItTurns
   };
   // GIVEN no GNSS from the start: DO_SET_MODE to offboard is temporarily rejected
   stream(500 * kMs, false);
-  EXPECT_EQ(px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled, px4::kCustomMainModeOffboard), 1);
+  EXPECT_EQ(px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled, px4::kCustomMainModeOffboard),
+            1);
   // WHEN GNSS comes THEN offboard is accepted and the vehicle follows
   stream(1'000 * kMs, true);
-  ASSERT_EQ(px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled, px4::kCustomMainModeOffboard), 0);
+  ASSERT_EQ(px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled, px4::kCustomMainModeOffboard),
+            0);
   EXPECT_TRUE(stream(2'000 * kMs, true).following);
   px4.takeEvents();
   // WHEN GNSS is lost THEN it follows for EKF2_NOAID_TOUT, then falls back to Altitude mode, out of SWA's control
@@ -176,8 +181,8 @@ TEST(Px4StandinWithEkf, ExternalVisionKeepsTheVehicleInOffboardWithoutGnss) {
     px4.offboardControlMode(t, true);
     px4.trajectorySetpoint(px4::NedVelocity{1.0, 0.0, 0.0}, true);
     if (t == 1'000 * kMs) {
-      ASSERT_EQ(px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled,
-                                   px4::kCustomMainModeOffboard), 0);
+      ASSERT_EQ(
+          px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled, px4::kCustomMainModeOffboard), 0);
     }
     const Px4Standin::Decision d = px4.step(t);
     if (t > 1'000 * kMs) {
@@ -204,7 +209,8 @@ TEST(Px4StandinWithEkf, WhenTheVisionStopsTheOffboardLossHoldDescendsOnceThePosi
   };
   // GIVEN a vehicle in offboard on external vision after GNSS was lost at 2 s
   fly(1'000 * kMs, true, false, true);
-  ASSERT_EQ(px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled, px4::kCustomMainModeOffboard), 0);
+  ASSERT_EQ(px4.vehicleCommand(t, px4::kCmdDoSetMode, px4::kModeFlagCustomModeEnabled, px4::kCustomMainModeOffboard),
+            0);
   fly(2'000 * kMs, true, false, true);
   fly(10'000 * kMs, false, true, true);
   px4.takeEvents();

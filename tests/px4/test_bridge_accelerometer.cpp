@@ -39,8 +39,8 @@ TEST(BridgeAccelerometer, Px4sTwoTopicsGiveTheAgentTheAccelerationTheSimulatorMe
       const agent::ImuSample s = simulated(a, thrust, psi);
       // WHEN the stand-in sends it as PX4 would (the accelerometer's attitude as vehicle_attitude, the force FRD)
       const auto att = wire::vehicleAttitude(
-          20'000, px4::quaternionOf(px4::px4Euler({s.accelerometer->roll_rad, s.accelerometer->pitch_rad,
-                                                   s.heading_rad})));
+          20'000,
+          px4::quaternionOf(px4::px4Euler({s.accelerometer->roll_rad, s.accelerometer->pitch_rad, s.heading_rad})));
       const auto sc = wire::sensorCombined(20'000, px4::flippedBody(s.accelerometer->specific_force_body_mps2));
       px4::AccelerometerPairing pairing;
       const float f[3] = {sc.accelerometer_m_s2()[0], sc.accelerometer_m_s2()[1], sc.accelerometer_m_s2()[2]};
@@ -48,8 +48,8 @@ TEST(BridgeAccelerometer, Px4sTwoTopicsGiveTheAgentTheAccelerationTheSimulatorMe
       const auto r = pairing.pairWith(att.timestamp_sample());
       ASSERT_TRUE(r.has_value());
       autopilot::BridgeCore core{autopilot::BridgeConfig{}};
-      const auto imu = core.onAttitude(att.timestamp(), wire::quaternionOf(att), 0.0,
-                                       ardupilot::SpecificForce{r->x, r->y, r->z});
+      const auto imu =
+          core.onAttitude(att.timestamp(), wire::quaternionOf(att), 0.0, ardupilot::SpecificForce{r->x, r->y, r->z});
       // THEN the agent's sample carries the accelerometer, and turned level it is the simulator's acceleration
       // (float32 on PX4's side: a few 1e-6 m/s^2)
       ASSERT_TRUE(imu && imu->accelerometer);
@@ -71,8 +71,8 @@ TEST(BridgeAccelerometer, ArduPilotsImuMessageGivesTheAgentTheAccelerationTheSim
   const sensor_msgs::msg::Imu m = wire::imuMessage(20'000, q, ardupilot::QuaternionLayout::kRos,
                                                    ardupilot::SpecificForce{frd.x(), frd.y(), frd.z()});
   autopilot::BridgeCore core{autopilot::BridgeConfig{}};
-  const auto imu = core.onAttitude(20'000, wire::attitudeOf(m, ardupilot::QuaternionLayout::kRos), 0.0,
-                                   wire::specificForceOf(m));
+  const auto imu =
+      core.onAttitude(20'000, wire::attitudeOf(m, ardupilot::QuaternionLayout::kRos), 0.0, wire::specificForceOf(m));
   // THEN the agent reads no acceleration, where the tilt alone says 0.75 m/s^2 upwind
   ASSERT_TRUE(imu && imu->accelerometer);
   EXPECT_NEAR(worldAcceleration(*imu).norm(), 0.0, 1e-12);

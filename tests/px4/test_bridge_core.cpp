@@ -1,5 +1,5 @@
-// The autopilot bridge's rules (swa/autopilot/bridge_core.h) on a synthetic vehicle: PX4 attitude samples every 10 ms of
-// vehicle time, agent commands, and a local clock the test advances (no sleeps).
+// The autopilot bridge's rules (swa/autopilot/bridge_core.h) on a synthetic vehicle: PX4 attitude samples every 10 ms
+// of vehicle time, agent commands, and a local clock the test advances (no sleeps).
 
 #include <gtest/gtest.h>
 

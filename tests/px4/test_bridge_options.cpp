@@ -17,11 +17,31 @@ std::string problemsOf(const std::vector<std::string>& args) {
 }
 
 TEST(BridgeOptions, ParsesEveryOption) {
-  const BridgeOptions o = parseBridgeOptions(
-      {"--id", "3", "--px4-namespace", "/lab/vehicle_3", "--target-system", "4", "--stale-after-s", "0.2",
-       "--agent-lost-after-s", "2", "--attitude-lost-after-s", "0.4", "--heartbeat-period-s", "0.02",
-       "--max-speed-mps", "3", "--max-yaw-rate-radps", "0.75", "--engage", "--domain", "7", "--summary-out",
-       "/tmp/b.json", "--px4-release", "1.16.1"});
+  const BridgeOptions o = parseBridgeOptions({"--id",
+                                              "3",
+                                              "--px4-namespace",
+                                              "/lab/vehicle_3",
+                                              "--target-system",
+                                              "4",
+                                              "--stale-after-s",
+                                              "0.2",
+                                              "--agent-lost-after-s",
+                                              "2",
+                                              "--attitude-lost-after-s",
+                                              "0.4",
+                                              "--heartbeat-period-s",
+                                              "0.02",
+                                              "--max-speed-mps",
+                                              "3",
+                                              "--max-yaw-rate-radps",
+                                              "0.75",
+                                              "--engage",
+                                              "--domain",
+                                              "7",
+                                              "--summary-out",
+                                              "/tmp/b.json",
+                                              "--px4-release",
+                                              "1.16.1"});
   EXPECT_EQ(o.id, 3);
   EXPECT_EQ(o.px4_release, px4::Release::kV1_16);
   EXPECT_EQ(px4Namespace(o), "lab/vehicle_3");
@@ -50,8 +70,8 @@ TEST(BridgeOptions, DefaultsAreSafeAndTheNamespaceIsTheSimulators) {
 }
 
 TEST(BridgeOptions, EveryProblemIsReportedTogether) {
-  const std::string p = problemsOf({"--px4-namespace", "px4-1", "--heartbeat-period-s", "0.5", "--stale-after-s",
-                                    "2", "--agent-lost-after-s", "1", "--bogus", "--px4-release", "1.14"});
+  const std::string p = problemsOf({"--px4-namespace", "px4-1", "--heartbeat-period-s", "0.5", "--stale-after-s", "2",
+                                    "--agent-lost-after-s", "1", "--bogus", "--px4-release", "1.14"});
   EXPECT_NE(p.find("--id"), std::string::npos) << p;
   EXPECT_NE(p.find("--px4-namespace 'px4-1'"), std::string::npos) << p;
   EXPECT_NE(p.find("--heartbeat-period-s"), std::string::npos) << p;
@@ -69,9 +89,8 @@ TEST(BridgeOptions, ArdupilotHasItsOwnNamespaceAndQuaternionLayoutAndNoneOfPx4s)
   EXPECT_FALSE(o.ap_quaternion.has_value());  // auto: decided from gravity
   EXPECT_STREQ(o.core.autopilot.name, "ArduPilot");
   EXPECT_EQ(o.core.autopilot.control_mode, ardupilot::kModeGuided);
-  const BridgeOptions single =
-      parseBridgeOptions({"--id", "0", "--autopilot", "ardupilot", "--no-gnss", "--ap-namespace", "/ap",
-                          "--ap-quaternion", "wxyz"});
+  const BridgeOptions single = parseBridgeOptions(
+      {"--id", "0", "--autopilot", "ardupilot", "--no-gnss", "--ap-namespace", "/ap", "--ap-quaternion", "wxyz"});
   EXPECT_EQ(apNamespace(single), "ap");
   EXPECT_EQ(single.ap_quaternion, ardupilot::QuaternionLayout::kWxyzInXyzw);
   EXPECT_EQ(parseBridgeOptions({"--id", "0", "--autopilot", "ardupilot", "--ap-quaternion", "ros"}).ap_quaternion,

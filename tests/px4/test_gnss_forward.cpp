@@ -102,9 +102,9 @@ TEST(GnssForward, NoGpsReportOrAStaleOneIsNoFix) {
 }
 
 TEST(GnssForward, BadNumbersAreNeverAValidSample) {
-  for (const LocalPositionReport& bad : {position(0, true, kNaN), position(0, true, 1.0, INFINITY),
-                                         position(0, true, 1.0, 2.0, 0.0), position(0, true, 1.0, 2.0, -1.0),
-                                         position(0, true, 1.0, 2.0, kNaN)}) {
+  for (const LocalPositionReport& bad :
+       {position(0, true, kNaN), position(0, true, 1.0, INFINITY), position(0, true, 1.0, 2.0, 0.0),
+        position(0, true, 1.0, 2.0, -1.0), position(0, true, 1.0, 2.0, kNaN)}) {
     GnssForward f;
     f.onGps({0, kGpsFix3d});
     LocalPositionReport p = bad;
@@ -162,10 +162,17 @@ TEST(GnssForward, RandomReportsNeverGiveAValidSampleWithoutAFixAValidPositionAnd
     }
     LocalPositionReport p{t, coin(rng) == 1, false, value(rng), value(rng), std::abs(value(rng)) * 1e-2};
     switch (kind(rng)) {
-      case 0: p.x_m = kNaN; break;
-      case 1: p.eph_m = 0.0; break;
-      case 2: p.y_m = -INFINITY; break;
-      default: break;
+      case 0:
+        p.x_m = kNaN;
+        break;
+      case 1:
+        p.eph_m = 0.0;
+        break;
+      case 2:
+        p.y_m = -INFINITY;
+        break;
+      default:
+        break;
     }
     if (const auto g = f.onLocalPosition(p); g && g->valid) {
       EXPECT_TRUE(p.xy_valid);
@@ -186,8 +193,8 @@ const GeoPoint kFirstOrigin{47.397742, 8.545594};
 NedPoint px4Project(const GeoPoint& ref, const GeoPoint& p) {
   const double k_rad = M_PI / 180.0;
   const double lat0 = ref.lat_deg * k_rad, lat = p.lat_deg * k_rad, d_lon = (p.lon_deg - ref.lon_deg) * k_rad;
-  const double arg = std::clamp(std::sin(lat0) * std::sin(lat) + std::cos(lat0) * std::cos(lat) * std::cos(d_lon),
-                                -1.0, 1.0);
+  const double arg =
+      std::clamp(std::sin(lat0) * std::sin(lat) + std::cos(lat0) * std::cos(lat) * std::cos(d_lon), -1.0, 1.0);
   const double c = std::acos(arg);
   const double k = c > 0.0 ? c / std::sin(c) : 1.0;
   return {k * (std::cos(lat0) * std::sin(lat) - std::sin(lat0) * std::cos(lat) * std::cos(d_lon)) * 6371000.0,

@@ -51,8 +51,8 @@ std::optional<agent::GnssSample> throughVehicle(Release r, const agent::GnssSamp
         roundTrip<px4_msgs::msg::SensorGpsPubSubType>(wire::sensorGps<px4_msgs::msg::SensorGps>(t, g))));
   }
   if (hasV116VehicleLocalPosition(r)) {
-    return forward.onLocalPosition(wire::localPositionOf(
-        roundTrip<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
+    return forward.onLocalPosition(
+        wire::localPositionOf(roundTrip<px4_v1_16::px4_msgs::msg::VehicleLocalPositionPubSubType>(
             wire::vehicleLocalPosition<px4_v1_16::px4_msgs::msg::VehicleLocalPosition>(t, g))));
   }
   return forward.onLocalPosition(wire::localPositionOf(roundTrip<px4_msgs::msg::VehicleLocalPositionPubSubType>(
@@ -96,9 +96,9 @@ TEST(GnssFromVehicle, AnAnchoredAgentFollowsTheVehiclesGnssStateAtEveryReportInE
   for (const Release r : kReleases) {
     SCOPED_TRACE(releaseName(r));
     // GIVEN 4 UAVs that lose GNSS at 3 s and regain it at 6 s, GNSS at 10 Hz, hovering, one anchored agent on UAV 1
-    const sim::Scenario s = sim::loadScenario(std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml",
-                                              {"duration_s=9", "gnss.dropout_start_s=3", "gnss.dropout_end_s=6",
-                                               "agent.mode=anchored"});
+    const sim::Scenario s =
+        sim::loadScenario(std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml",
+                          {"duration_s=9", "gnss.dropout_start_s=3", "gnss.dropout_end_s=6", "agent.mode=anchored"});
     sim::World world(s);
     agent::Agent agent(s.agent);
     GnssForward forward;
@@ -135,9 +135,9 @@ TEST(GnssFromVehicle, AnAnchoredAgentOnArdupilotSwitchesWithinTheSilenceOfTheLas
     SCOPED_TRACE(silence_s);
     // GIVEN 4 UAVs that lose GNSS at 3 s and regain it at 6 s, GNSS at 10 Hz, IMU at 100 Hz, an anchored agent on
     // UAV 1 and the bridge's NavSatForward with --gnss-silence-s = silence_s
-    const sim::Scenario s = sim::loadScenario(std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml",
-                                              {"duration_s=9", "gnss.dropout_start_s=3", "gnss.dropout_end_s=6",
-                                               "agent.mode=anchored"});
+    const sim::Scenario s =
+        sim::loadScenario(std::string(SWA_SOURCE_DIR) + "/deploy/scenarios/dropout_4.yaml",
+                          {"duration_s=9", "gnss.dropout_start_s=3", "gnss.dropout_end_s=6", "agent.mode=anchored"});
     sim::World world(s);
     agent::Agent agent(s.agent);
     ardupilot::NavSatForward navsat(ardupilot::NavSatForwardConfig{silence_s, 2.5});

@@ -142,9 +142,9 @@ TEST(OdometryWire, ArdupilotGetsOdomToBaseLinkNorthWestUpStamped0AndTheVehiclesA
   EXPECT_EQ(t.header().stamp().sec(), 0);
   EXPECT_EQ(t.header().stamp().nanosec(), 0u);
   // ArduPilot turns (x, y, z) into NED as (x, -y, -z), (w, x, y, z) as (w, x, -y, -z): what it gets is SWA's
-  EXPECT_DOUBLE_EQ(t.transform().translation().x(), -4.0);         // north
-  EXPECT_DOUBLE_EQ(-t.transform().translation().y(), 3.0);         // east
-  EXPECT_DOUBLE_EQ(-t.transform().translation().z(), 0.0);         // down
+  EXPECT_DOUBLE_EQ(t.transform().translation().x(), -4.0);  // north
+  EXPECT_DOUBLE_EQ(-t.transform().translation().y(), 3.0);  // east
+  EXPECT_DOUBLE_EQ(-t.transform().translation().z(), 0.0);  // down
   EXPECT_DOUBLE_EQ(t.transform().rotation().w(), attitude.w);
   EXPECT_DOUBLE_EQ(t.transform().rotation().x(), attitude.x);
   EXPECT_DOUBLE_EQ(-t.transform().rotation().y(), attitude.y);

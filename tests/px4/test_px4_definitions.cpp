@@ -1,9 +1,10 @@
 // SWA's PX4 messages against PX4's own definitions of every supported release (tests/upstream/px4_msgs/<tag>/, PX4's
-// .msg files byte for byte, their sources in tests/upstream/README.md): for each release and each message the bridge or the stand-in uses, the IDL the
-// bridge picks for that release (swa/px4/release.h) has PX4's fields with PX4's types, array sizes and order; the
-// generated type's bytes on the wire are as long as XCDR1 makes PX4's field list, and the fields SWA reads sit at the
-// offsets that list gives them; the constants SWA mirrors and the topics' message versions are the release's.
-// A new release is a new directory of .msg files and a row in kReleaseDirs: every check then covers it.
+// .msg files byte for byte, their sources in tests/upstream/README.md): for each release and each message the bridge or
+// the stand-in uses, the IDL the bridge picks for that release (swa/px4/release.h) has PX4's fields with PX4's types,
+// array sizes and order; the generated type's bytes on the wire are as long as XCDR1 makes PX4's field list, and the
+// fields SWA reads sit at the offsets that list gives them; the constants SWA mirrors and the topics' message versions
+// are the release's. A new release is a new directory of .msg files and a row in kReleaseDirs: every check then covers
+// it.
 
 #include <gtest/gtest.h>
 
@@ -16,10 +17,10 @@
 #include <vector>
 
 #include <swa/px4/OffboardControlMode_v1_15PubSubTypes.h>
+#include <swa/px4/SensorCombined_v1_15PubSubTypes.h>
 #include <swa/px4/SensorGps_v1_15PubSubTypes.h>
 #include <swa/px4/SensorGps_v1_17PubSubTypes.h>
 #include <swa/px4/TrajectorySetpoint_v1_15PubSubTypes.h>
-#include <swa/px4/SensorCombined_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleAttitude_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommandAck_v1_15PubSubTypes.h>
 #include <swa/px4/VehicleCommand_v1_15PubSubTypes.h>
@@ -43,13 +44,13 @@ struct ReleaseDir {
   Release release;
   const char* tag;
 };
-constexpr ReleaseDir kReleaseDirs[] = {{Release::kV1_15, "v1.15.4"}, {Release::kV1_16, "v1.16.0"},
-                                       {Release::kV1_17, "v1.17.0"}};
+constexpr ReleaseDir kReleaseDirs[] = {
+    {Release::kV1_15, "v1.15.4"}, {Release::kV1_16, "v1.16.0"}, {Release::kV1_17, "v1.17.0"}};
 
 struct Field {
   std::string type;  // PX4's spelling: uint8, float32, bool, ...
   std::string name;
-  int array = 0;     // 0: a scalar
+  int array = 0;  // 0: a scalar
   bool operator==(const Field& o) const { return type == o.type && name == o.name && array == o.array; }
 };
 
@@ -103,9 +104,9 @@ MsgDef parseMsg(const std::string& path) {
 // The members of the one struct in an idl/px4 file, in PX4's type names.
 std::vector<Field> parseIdlStruct(const std::string& path) {
   static const std::map<std::string, std::string> kPx4Type = {
-      {"boolean", "bool"},     {"int8", "int8"},     {"uint8", "uint8"},   {"int16", "int16"},   {"uint16", "uint16"},
-      {"int32", "int32"},      {"uint32", "uint32"}, {"int64", "int64"},   {"uint64", "uint64"}, {"float", "float32"},
-      {"double", "float64"}};
+      {"boolean", "bool"},  {"int8", "int8"},     {"uint8", "uint8"},   {"int16", "int16"},
+      {"uint16", "uint16"}, {"int32", "int32"},   {"uint32", "uint32"}, {"int64", "int64"},
+      {"uint64", "uint64"}, {"float", "float32"}, {"double", "float64"}};
   std::vector<Field> fields;
   std::istringstream in(readText(path));
   bool inside = false;
@@ -251,16 +252,19 @@ TEST(Px4Definitions, TheFieldsSwaReadsOfVehicleStatusSitWherePx4PutsThemInEveryR
 }
 
 TEST(Px4Definitions, MirroredConstantsAndTopicVersionsAreEveryReleases) {
-  const std::vector<std::string> messages = {"VehicleAttitude",   "VehicleStatus",   "OffboardControlMode",
-                                             "TrajectorySetpoint", "VehicleCommand", "VehicleCommandAck",
-                                             "SensorGps",          "VehicleLocalPosition", "VehicleOdometry",
-                                             "SensorCombined"};
-  const std::map<std::string, std::string> topic = {
-      {"VehicleAttitude", "vehicle_attitude"},     {"VehicleStatus", "vehicle_status"},
-      {"OffboardControlMode", "offboard_control_mode"}, {"TrajectorySetpoint", "trajectory_setpoint"},
-      {"VehicleCommand", "vehicle_command"},       {"VehicleCommandAck", "vehicle_command_ack"},
-      {"SensorGps", "vehicle_gps_position"},       {"VehicleLocalPosition", "vehicle_local_position"},
-      {"VehicleOdometry", "vehicle_visual_odometry"}, {"SensorCombined", "sensor_combined"}};
+  const std::vector<std::string> messages = {
+      "VehicleAttitude",   "VehicleStatus", "OffboardControlMode",  "TrajectorySetpoint", "VehicleCommand",
+      "VehicleCommandAck", "SensorGps",     "VehicleLocalPosition", "VehicleOdometry",    "SensorCombined"};
+  const std::map<std::string, std::string> topic = {{"VehicleAttitude", "vehicle_attitude"},
+                                                    {"VehicleStatus", "vehicle_status"},
+                                                    {"OffboardControlMode", "offboard_control_mode"},
+                                                    {"TrajectorySetpoint", "trajectory_setpoint"},
+                                                    {"VehicleCommand", "vehicle_command"},
+                                                    {"VehicleCommandAck", "vehicle_command_ack"},
+                                                    {"SensorGps", "vehicle_gps_position"},
+                                                    {"VehicleLocalPosition", "vehicle_local_position"},
+                                                    {"VehicleOdometry", "vehicle_visual_odometry"},
+                                                    {"SensorCombined", "sensor_combined"}};
   for (const ReleaseDir& rd : kReleaseDirs) {
     SCOPED_TRACE(rd.tag);
     // GIVEN the release's definitions

@@ -1,7 +1,7 @@
 // PX4 v1.15's messages on the wire, byte for byte: each field at the offset the v1.15 .msg layout gives it in XCDR1
 // (classic CDR, little endian, alignment = min(size, 8) counted after the 4-byte encapsulation header), as PX4's
-// uXRCE-DDS client writes them. A field added, dropped, reordered or resized in idl/px4/ moves an offset and fails here.
-// Also: the constants SWA's pure PX4 library mirrors (swa/px4/vehicle.h) are those of the IDL.
+// uXRCE-DDS client writes them. A field added, dropped, reordered or resized in idl/px4/ moves an offset and fails
+// here. Also: the constants SWA's pure PX4 library mirrors (swa/px4/vehicle.h) are those of the IDL.
 
 #include <gtest/gtest.h>
 

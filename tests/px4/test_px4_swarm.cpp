@@ -78,8 +78,9 @@ class Px4SwarmTest : public ::testing::Test {
 
   std::vector<std::string> launchArgs(const std::string& scenario, const std::string& vehicle, const fs::path& out,
                                       const std::vector<std::string>& sets = {}, bool record = false) const {
-    std::vector<std::string> argv{SWA_LAUNCH_BINARY, "--scenario", kScenarioDir + scenario, "--vehicle", vehicle,
-                                  "--domain",        std::to_string(domain_), "--out", out.string()};
+    std::vector<std::string> argv{SWA_LAUNCH_BINARY, "--scenario", kScenarioDir + scenario, "--vehicle",
+                                  vehicle,           "--domain",   std::to_string(domain_), "--out",
+                                  out.string()};
     for (const std::string& s : sets) argv.insert(argv.end(), {"--set", s});
     if (record) argv.emplace_back("--record");
     return argv;
@@ -110,9 +111,8 @@ class Px4SwarmTest : public ::testing::Test {
     auto watch = std::make_unique<StateStampWatch>(domain_, victim);
     const ShmJanitor since_watch;
     Child launch(args, dir_ / log);
-    ASSERT_GT(watch->killWhenReached(kill_at_ns, launch,
-                                     [&] { return uavProcessPid(domain_, "swa_px4_bridge", victim); }),
-              0)
+    ASSERT_GT(
+        watch->killWhenReached(kill_at_ns, launch, [&] { return uavProcessPid(domain_, "swa_px4_bridge", victim); }), 0)
         << readFile(dir_ / log);
     status = launch.wait(kRunBoundS);
     watch.reset();
@@ -143,7 +143,8 @@ std::string logs(const fs::path& run) {
 // A run through the autopilots passed as cohesively as the direct loop (d_NB within the tolerance, no collision, one
 // group), with every agent answering throughout (no dead agent, no bridge restart), and every vehicle engaged once on
 // its bridge's request (`engaged`: the event's text, "OFFBOARD on request" or "GUIDED on request").
-void expectAsCohesiveAsDirectAndEveryVehicleEngaged(const LaunchedRun& run, double d_direct, const std::string& engaged) {
+void expectAsCohesiveAsDirectAndEveryVehicleEngaged(const LaunchedRun& run, double d_direct,
+                                                    const std::string& engaged) {
   EXPECT_EQ(run.status, 0) << run.summary << logs(run.dir);
   EXPECT_NEAR(jsonNumber(run.summary, "mean_neighbor_distance_m"), d_direct, kDnbToleranceM);
   EXPECT_EQ(jsonNumber(run.summary, "collisions"), 0.0);
@@ -183,8 +184,7 @@ void Px4SwarmTest::expectAsCohesiveAsDirect(const std::string& scenario, const s
 }
 
 // The same through the ArduPilot stand-ins: cmd_vel in ENU, GUIDED through the mode_switch service.
-void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& scenario,
-                                                            DiscoveryObserver* observer) {
+void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& scenario, DiscoveryObserver* observer) {
   SCOPED_TRACE(scenario + " through ArduPilot");
   const double d_direct = inProcessDnb(scenario, {"duration_s=60"});
   // With the observer (the 4-UAV run) it is recorded too.
@@ -216,8 +216,8 @@ void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& s
     // gap, not a difference.
     const replay::RecordedRun recorded = replay::readRecordedRun((ap.dir / "run.mcap").string(), std::nullopt, false);
     ASSERT_TRUE(recorded.scenario_yaml);
-    const std::vector<replay::UavCheck> checks = replay::checkRun(
-        recorded, sim::parseRecordedScenario(*recorded.scenario_yaml, "run.mcap", {}).agent);
+    const std::vector<replay::UavCheck> checks =
+        replay::checkRun(recorded, sim::parseRecordedScenario(*recorded.scenario_yaml, "run.mcap", {}).agent);
     ASSERT_EQ(checks.size(), static_cast<std::size_t>(n)) << replay::formatChecks(checks);
     for (const replay::UavCheck& c : checks) {
       EXPECT_GT(c.recorded, 0u) << replay::formatChecks(checks);
@@ -354,8 +354,8 @@ void Px4SwarmTest::expectGnssLostAndRegainedThroughTheBridges(const std::string&
   ASSERT_EQ(recorded.uavs.size(), 4u);
   for (const auto& [uav, r] : recorded.uavs) {
     const double before = largestCommandRate(r, 2.0, 19.5), regain = largestCommandRate(r, 19.5, 21.0);
-    std::cout << "UAV " << uav << ": largest command change before the regain " << before
-              << " m/s^2, around it " << regain << " m/s^2\n";
+    std::cout << "UAV " << uav << ": largest command change before the regain " << before << " m/s^2, around it "
+              << regain << " m/s^2\n";
     EXPECT_GT(before, 0.0) << "UAV " << uav;
     EXPECT_LE(regain, before) << "UAV " << uav;
   }
@@ -410,8 +410,9 @@ TEST_F(Px4SwarmTest, APx4OriginMovedInFlightReachesNoAgentAsAJump) {
   // brought the positions back and counted it in its summary
   const std::string sim_log = readFile(run.dir / "logs" / "sim.log");
   const std::string change = "PX4 moved its local origin (ref_timestamp ";
-  const std::string where = " -> 8000000, 500.00 m east, 0.00 m north of the first): positions brought into the first "
-                            "origin's frame";
+  const std::string where =
+      " -> 8000000, 500.00 m east, 0.00 m north of the first): positions brought into the first "
+      "origin's frame";
   for (int i = 0; i < 4; ++i) {
     SCOPED_TRACE("UAV " + std::to_string(i));
     EXPECT_NE(sim_log.find("t = 8.00 s: UAV " + std::to_string(i) + ": PX4 stand-in px4_" + std::to_string(i) +
@@ -486,8 +487,7 @@ void expectTheVictimsFailsafeAndItsBridgeRestarted(const fs::path& out, int vict
   const std::string summary = readFile(out / "summary.json");
   EXPECT_EQ(jsonNumber(summary, "bridge_restarts"), 1.0) << summary;
   EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0) << summary;
-  EXPECT_NE(readFile(out / "logs" / "restarts.csv").find(",bridge_" + std::to_string(victim) + ","),
-            std::string::npos);
+  EXPECT_NE(readFile(out / "logs" / "restarts.csv").find(",bridge_" + std::to_string(victim) + ","), std::string::npos);
 }
 
 // The mean speed of `uav` over [from_s, to_s] from trajectories.csv (positions every 0.5 s).
@@ -558,10 +558,9 @@ TEST_F(Px4SwarmTest, AKilledArdupilotBridgeLetsItsVehicleStopAfterGuidTimeoutThe
   // GIVEN a 4-UAV run through ArduPilot in realtime (30 s), GUID_TIMEOUT 1 s, the launcher restarting a bridge after
   // 6 s (so that the vehicle times out and holds for a while), no gusts (a held vehicle in the simulator's wind
   // drifts at ~0.25 m/s: its hold is a zero-velocity setpoint, not a position hold)
-  std::vector<std::string> args =
-      launchArgs("dropout_4.yaml", "ardupilot", out,
-                 {"duration_s=30", "clock.mode=realtime", "wind.gust_std=0",
-                  "vehicle.guid_timeout_s=" + std::to_string(kGuidTimeoutS)});
+  std::vector<std::string> args = launchArgs("dropout_4.yaml", "ardupilot", out,
+                                             {"duration_s=30", "clock.mode=realtime", "wind.gust_std=0",
+                                              "vehicle.guid_timeout_s=" + std::to_string(kGuidTimeoutS)});
   args.insert(args.end(), {"--restart-backoff-s", "6"});
   // WHEN its bridge is SIGKILLed once the agent has published its state for t = 12 s
   std::optional<int> status;

@@ -39,8 +39,7 @@ TEST(QuaternionOrder, AtRestEveryHeadingIsDecidedRightOrLeftOpenInItsBlindSpot) 
       QuaternionOrderFinder finder;
       const px4::Quaternion q = px4::quaternionOf(px4::Euler{0.0, 0.0, heading_deg * kDeg});
       // GIVEN a level vehicle at rest WHEN the votes needed have come
-      const std::optional<QuaternionLayout> d =
-          decideAtRest(q, written, QuaternionOrderFinder::kVotesNeeded, finder);
+      const std::optional<QuaternionLayout> d = decideAtRest(q, written, QuaternionOrderFinder::kVotesNeeded, finder);
       const double gap = headingGapDeg(heading_deg, blind_deg);
       // THEN the order is the one written, or (only near the blind heading) not decided yet; never the other
       if (d) {
@@ -88,9 +87,9 @@ TEST(QuaternionOrder, AnArmedVehicleIsNoEvidence) {
   const px4::Quaternion q = px4::quaternionOf(px4::Euler{20.0 * kDeg, 0.0, 0.0});
   const OrientationFields fields = orientationFieldsOf(q, QuaternionLayout::kRos);
   const SpecificForce thrust{0.0, 0.0, -QuaternionOrderFinder::kGravityMps2};
-  EXPECT_LT(gravityMismatchDeg(attitudeOf(fields.x, fields.y, fields.z, fields.w, QuaternionLayout::kWxyzInXyzw),
-                               thrust),
-            QuaternionOrderFinder::kAgreeDeg);
+  EXPECT_LT(
+      gravityMismatchDeg(attitudeOf(fields.x, fields.y, fields.z, fields.w, QuaternionLayout::kWxyzInXyzw), thrust),
+      QuaternionOrderFinder::kAgreeDeg);
   EXPECT_GT(gravityMismatchDeg(q, thrust), QuaternionOrderFinder::kDisagreeDeg);
   // WHEN it flies so while armed THEN nothing is decided
   QuaternionOrderFinder finder;

@@ -16,12 +16,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scratch.h"
 #include "step_metrics_json.h"
 #include "swa/msg_defs/ros_definition.h"
 #include "swa/recording/mcap_reader.h"
 #include "swa/recording/mcap_writer.h"
 #include "swa/recording/recording.h"
-#include "scratch.h"
 
 namespace swa::recording {
 namespace {
@@ -180,8 +180,8 @@ TEST_F(McapWriterTest, ReaderGetsBackEveryMessageMetadataAndDeclarationAndStopsC
   // Cut in the middle: the whole chunks before the cut, then the end, flagged.
   const Bytes whole = readFile(path);
   const fs::path cut = dir_ / "cut.mcap";
-  std::ofstream(cut, std::ios::binary).write(reinterpret_cast<const char*>(whole.data()),
-                                             static_cast<std::streamsize>(whole.size() / 2));
+  std::ofstream(cut, std::ios::binary)
+      .write(reinterpret_cast<const char*>(whole.data()), static_cast<std::streamsize>(whole.size() / 2));
   McapReader r(cut.string());
   int n = 0;
   while (auto m = r.next()) {

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "error_text.h"
 #include "recorded_run.h"
 #include "replay_options.h"
-#include "error_text.h"
 
 namespace swa::replay {
 namespace {

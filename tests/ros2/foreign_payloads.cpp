@@ -6,7 +6,8 @@
 // the agent reads them), PX4's VehicleStatus, SensorGps and VehicleLocalPosition in every release's layout (as the
 // stand-in writes them and the bridge reads them), and ArduPilot's sensor_msgs/Imu and NavSatFix,
 // ardupilot_msgs/Status, cmd_vel (geometry_msgs/TwistStamped) and the arm_motors / mode_switch requests and responses
-// (both ways: the stand-in and the bridge each write some and read the others). Exit 0 when everything matched, 1 otherwise, 2 on bad usage.
+// (both ways: the stand-in and the bridge each write some and read the others). Exit 0 when everything matched, 1
+// otherwise, 2 on bad usage.
 
 #include <cmath>
 #include <cstdio>
@@ -54,7 +55,8 @@ std::string hexOf(const std::vector<std::uint8_t>& bytes) {
 
 std::vector<std::uint8_t> bytesOf(const std::string& hex) {
   std::vector<std::uint8_t> b;
-  for (std::size_t k = 0; k + 1 < hex.size(); k += 2) b.push_back(static_cast<std::uint8_t>(std::stoi(hex.substr(k, 2), nullptr, 16)));
+  for (std::size_t k = 0; k + 1 < hex.size(); k += 2)
+    b.push_back(static_cast<std::uint8_t>(std::stoi(hex.substr(k, 2), nullptr, 16)));
   return b;
 }
 
@@ -187,14 +189,23 @@ json imuExpected() {
 }
 
 json statusExpected() {
-  return {{"header", {{"stamp", time()}, {"frame_id", ""}}}, {"vehicle_type", 2}, {"armed", true}, {"mode", 4},
-          {"flying", true}, {"external_control", true}, {"failsafe", json::array({24})}};
+  return {{"header", {{"stamp", time()}, {"frame_id", ""}}},
+          {"vehicle_type", 2},
+          {"armed", true},
+          {"mode", 4},
+          {"flying", true},
+          {"external_control", true},
+          {"failsafe", json::array({24})}};
 }
 
 json navSatExpected() {
   json cov = json::array({0.5625, 0.0, 0.0, 0.0, 0.5625, 0.0, 0.0, 0.0, 2.25});
-  return {{"header", {{"stamp", time()}, {"frame_id", "0"}}}, {"status", {{"status", 0}, {"service", 1}}},
-          {"latitude", 47.397742}, {"longitude", 8.545594}, {"altitude", 0.0}, {"position_covariance", cov},
+  return {{"header", {{"stamp", time()}, {"frame_id", "0"}}},
+          {"status", {{"status", 0}, {"service", 1}}},
+          {"latitude", 47.397742},
+          {"longitude", 8.545594},
+          {"altitude", 0.0},
+          {"position_covariance", cov},
           {"position_covariance_type", 2}};
 }
 
@@ -227,22 +238,29 @@ px4_msgs::msg::VehicleOdometry px4Odometry() {
 }
 
 json px4OdometryExpected() {
-  return {{"timestamp", "42000001"}, {"timestamp_sample", "12345678"}, {"pose_frame", 1},
-          {"position", {-4.0, 3.0, 0.0}}, {"q", {0.5, 0.5, -0.5, 0.5}}, {"velocity_frame", 1},
-          {"velocity", {0.25, 0.5, 0.0}}, {"angular_velocity", {0.125, -0.25, 0.375}},
-          {"position_variance", {0.125, 0.25, 10000.0}}, {"orientation_variance", {0.01171875, 0.0234375, 0.046875}},
-          {"velocity_variance", {0.03125, 0.0625, 10000.0}}, {"reset_counter", 3}, {"quality", -7}};
+  return {{"timestamp", "42000001"},
+          {"timestamp_sample", "12345678"},
+          {"pose_frame", 1},
+          {"position", {-4.0, 3.0, 0.0}},
+          {"q", {0.5, 0.5, -0.5, 0.5}},
+          {"velocity_frame", 1},
+          {"velocity", {0.25, 0.5, 0.0}},
+          {"angular_velocity", {0.125, -0.25, 0.375}},
+          {"position_variance", {0.125, 0.25, 10000.0}},
+          {"orientation_variance", {0.01171875, 0.0234375, 0.046875}},
+          {"velocity_variance", {0.03125, 0.0625, 10000.0}},
+          {"reset_counter", 3},
+          {"quality", -7}};
 }
 
 const swa::px4::Quaternion kOdomAttitude{0.5, 0.5, 0.5, 0.5};
 
 json tfExpected() {
-  return {{"transforms",
-           json::array({{{"header", {{"stamp", {{"sec", 0}, {"nanosec", 0}}}, {"frame_id", "odom"}}},
-                         {"child_frame_id", "base_link"},
-                         {"transform",
-                          {{"translation", ap::vector3(-4.0, -3.0, 0.0)},
-                           {"rotation", {{"x", 0.5}, {"y", -0.5}, {"z", -0.5}, {"w", 0.5}}}}}}})}};
+  return {{"transforms", json::array({{{"header", {{"stamp", {{"sec", 0}, {"nanosec", 0}}}, {"frame_id", "odom"}}},
+                                       {"child_frame_id", "base_link"},
+                                       {"transform",
+                                        {{"translation", ap::vector3(-4.0, -3.0, 0.0)},
+                                         {"rotation", {{"x", 0.5}, {"y", -0.5}, {"z", -0.5}, {"w", 0.5}}}}}}})}};
 }
 
 }  // namespace ap
@@ -254,41 +272,64 @@ int write(const std::string& path) {
   const swa::agent::DetectionSet s = detectionSet();
   const swa::agent::GnssSample g = gnss();
   json out = json::array();
-  out.push_back({{"ros_type", "vision_msgs/msg/Detection3DArray"},
-                 {"cdr_hex", serialise<vision_msgs::msg::Detection3DArrayPubSubType>(swa::wire::detection3DArray(s, 3))},
-                 {"expected", visionExpected()}});
-  out.push_back({{"ros_type", "mrs_msgs/msg/PoseWithCovarianceArrayStamped"},
-                 {"cdr_hex", serialise<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(swa::wire::poseArray(s, 3))},
-                 {"expected", uvdarExpected()}});
+  out.push_back(
+      {{"ros_type", "vision_msgs/msg/Detection3DArray"},
+       {"cdr_hex", serialise<vision_msgs::msg::Detection3DArrayPubSubType>(swa::wire::detection3DArray(s, 3))},
+       {"expected", visionExpected()}});
+  out.push_back(
+      {{"ros_type", "mrs_msgs/msg/PoseWithCovarianceArrayStamped"},
+       {"cdr_hex", serialise<mrs_msgs::msg::PoseWithCovarianceArrayStampedPubSubType>(swa::wire::poseArray(s, 3))},
+       {"expected", uvdarExpected()}});
   // PX4: the fields the stand-in sets; every other field must decode as zero (`zero_elsewhere`).
-  const json status = {{"timestamp", "42000000"}, {"arming_state", 2}, {"nav_state", 14}, {"nav_state_user_intention", 14},
-                       {"nav_state_timestamp", "42000000"}, {"failsafe", true}, {"vehicle_type", 1}, {"system_id", 4},
-                       {"component_id", 1}, {"pre_flight_checks_pass", true}};
+  const json status = {{"timestamp", "42000000"},
+                       {"arming_state", 2},
+                       {"nav_state", 14},
+                       {"nav_state_user_intention", 14},
+                       {"nav_state_timestamp", "42000000"},
+                       {"failsafe", true},
+                       {"vehicle_type", 1},
+                       {"system_id", 4},
+                       {"component_id", 1},
+                       {"pre_flight_checks_pass", true}};
   const auto addPx4 = [&](const std::string& tag, const std::string& name, const std::string& hex, json expected) {
-    out.push_back({{"ros_type", "px4_msgs/msg/" + name}, {"px4_release", tag}, {"cdr_hex", hex},
-                   {"expected", std::move(expected)}, {"zero_elsewhere", true}});
+    out.push_back({{"ros_type", "px4_msgs/msg/" + name},
+                   {"px4_release", tag},
+                   {"cdr_hex", hex},
+                   {"expected", std::move(expected)},
+                   {"zero_elsewhere", true}});
   };
   const std::uint64_t t = 42'000'000;
   addPx4("v1.15.4", "VehicleStatus",
-         serialise<px4::VehicleStatusPubSubType>(swa::wire::vehicleStatus<px4::VehicleStatus>(t, 2, 14, true, 4)), status);
+         serialise<px4::VehicleStatusPubSubType>(swa::wire::vehicleStatus<px4::VehicleStatus>(t, 2, 14, true, 4)),
+         status);
   for (const char* tag : {"v1.16.0", "v1.17.0"}) {
-    addPx4(tag, "VehicleStatus",
-           serialise<px4_16::VehicleStatusPubSubType>(swa::wire::vehicleStatus<px4_16::VehicleStatus>(t, 2, 14, true, 4)),
-           status);
+    addPx4(
+        tag, "VehicleStatus",
+        serialise<px4_16::VehicleStatusPubSubType>(swa::wire::vehicleStatus<px4_16::VehicleStatus>(t, 2, 14, true, 4)),
+        status);
   }
-  const json gps = {{"timestamp", "42000000"}, {"timestamp_sample", "42000000"}, {"fix_type", 3},
-                    {"satellites_used", 10}, {"eph", 0.75}, {"epv", 1.5}};
+  const json gps = {{"timestamp", "42000000"},
+                    {"timestamp_sample", "42000000"},
+                    {"fix_type", 3},
+                    {"satellites_used", 10},
+                    {"eph", 0.75},
+                    {"epv", 1.5}};
   for (const char* tag : {"v1.15.4", "v1.16.0"}) {
     addPx4(tag, "SensorGps", serialise<px4::SensorGpsPubSubType>(swa::wire::sensorGps<px4::SensorGps>(t, g)), gps);
   }
   addPx4("v1.17.0", "SensorGps", serialise<px4_17::SensorGpsPubSubType>(swa::wire::sensorGps<px4_17::SensorGps>(t, g)),
          gps);
-  const json position = {{"timestamp", "42000000"}, {"timestamp_sample", "42000000"}, {"xy_valid", true},
+  const json position = {{"timestamp", "42000000"},
+                         {"timestamp_sample", "42000000"},
+                         {"xy_valid", true},
                          {"v_xy_valid", true},
-                         {"x", -7.25}, {"y", 12.5}, {"eph", 0.75}};
-  addPx4("v1.15.4", "VehicleLocalPosition",
-         serialise<px4::VehicleLocalPositionPubSubType>(swa::wire::vehicleLocalPosition<px4::VehicleLocalPosition>(t, g)),
-         position);
+                         {"x", -7.25},
+                         {"y", 12.5},
+                         {"eph", 0.75}};
+  addPx4(
+      "v1.15.4", "VehicleLocalPosition",
+      serialise<px4::VehicleLocalPositionPubSubType>(swa::wire::vehicleLocalPosition<px4::VehicleLocalPosition>(t, g)),
+      position);
   for (const char* tag : {"v1.16.0", "v1.17.0"}) {
     addPx4(tag, "VehicleLocalPosition",
            serialise<px4_16::VehicleLocalPositionPubSubType>(
@@ -296,9 +337,11 @@ int write(const std::string& path) {
            position);
   }
   for (const char* tag : {"v1.15.4", "v1.16.0", "v1.17.0"}) {  // one layout in all three
-    out.push_back({{"ros_type", "px4_msgs/msg/VehicleOdometry"}, {"px4_release", tag},
+    out.push_back({{"ros_type", "px4_msgs/msg/VehicleOdometry"},
+                   {"px4_release", tag},
                    {"cdr_hex", serialise<px4::VehicleOdometryPubSubType>(ap::px4Odometry())},
-                   {"expected", ap::px4OdometryExpected()}, {"zero_elsewhere", true}});
+                   {"expected", ap::px4OdometryExpected()},
+                   {"zero_elsewhere", true}});
   }
   // ArduPilot's, complete: the decoder must give exactly these.
   namespace srv = ardupilot_msgs::srv;
@@ -306,10 +349,10 @@ int write(const std::string& path) {
                  {"cdr_hex", serialise<tf2_msgs::msg::TFMessagePubSubType>(
                                  swa::wire::externalOdometry(ap::odometry(), ap::kOdomAttitude))},
                  {"expected", ap::tfExpected()}});
-  out.push_back({{"ros_type", "sensor_msgs/msg/Imu"},
-                 {"cdr_hex",
-                  serialise<sensor_msgs::msg::ImuPubSubType>(swa::wire::imuMessage(ap::kStampUs, ap::kAttitude))},
-                 {"expected", ap::imuExpected()}});
+  out.push_back(
+      {{"ros_type", "sensor_msgs/msg/Imu"},
+       {"cdr_hex", serialise<sensor_msgs::msg::ImuPubSubType>(swa::wire::imuMessage(ap::kStampUs, ap::kAttitude))},
+       {"expected", ap::imuExpected()}});
   out.push_back({{"ros_type", "ardupilot_msgs/msg/Status"},
                  {"cdr_hex", serialise<ardupilot_msgs::msg::StatusPubSubType>(
                                  swa::wire::statusMessage(ap::kStampUs, true, 4, true))},
@@ -324,15 +367,18 @@ int write(const std::string& path) {
   srv::ArmMotors_Request arm;
   arm.arm(true);
   out.push_back({{"ros_type", "ardupilot_msgs/srv/ArmMotors_Request"},
-                 {"cdr_hex", serialise<srv::ArmMotors_RequestPubSubType>(arm)}, {"expected", {{"arm", true}}}});
+                 {"cdr_hex", serialise<srv::ArmMotors_RequestPubSubType>(arm)},
+                 {"expected", {{"arm", true}}}});
   srv::ArmMotors_Response armed;
   armed.result(true);
   out.push_back({{"ros_type", "ardupilot_msgs/srv/ArmMotors_Response"},
-                 {"cdr_hex", serialise<srv::ArmMotors_ResponsePubSubType>(armed)}, {"expected", {{"result", true}}}});
+                 {"cdr_hex", serialise<srv::ArmMotors_ResponsePubSubType>(armed)},
+                 {"expected", {{"result", true}}}});
   srv::ModeSwitch_Request mode;
   mode.mode(4);
   out.push_back({{"ros_type", "ardupilot_msgs/srv/ModeSwitch_Request"},
-                 {"cdr_hex", serialise<srv::ModeSwitch_RequestPubSubType>(mode)}, {"expected", {{"mode", 4}}}});
+                 {"cdr_hex", serialise<srv::ModeSwitch_RequestPubSubType>(mode)},
+                 {"expected", {{"mode", 4}}}});
   srv::ModeSwitch_Response switched;
   switched.status(true);
   switched.curr_mode(4);

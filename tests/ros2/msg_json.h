@@ -57,8 +57,12 @@ inline json toJson(const msg::Detections& m) {
 }
 
 inline json toJson(const msg::GnssFix& m) {
-  return {{"header", toJson(m.header())}, {"uav_id", m.uav_id()}, {"valid", m.valid()},
-          {"x_m", m.x_m()},               {"y_m", m.y_m()},       {"std_m", m.std_m()}};
+  return {{"header", toJson(m.header())},
+          {"uav_id", m.uav_id()},
+          {"valid", m.valid()},
+          {"x_m", m.x_m()},
+          {"y_m", m.y_m()},
+          {"std_m", m.std_m()}};
 }
 
 inline json toJson(const msg::VelocitySetpoint& m) {
@@ -131,12 +135,9 @@ inline json toJson(const msg::SwarmTruth& m) {
 }
 
 inline json toJson(const msg::ScenarioEvent& m) {
-  return {{"header", toJson(m.header())},
-          {"kind", static_cast<std::uint32_t>(m.kind())},
-          {"uav_id", m.uav_id()},
-          {"other_uav_id", m.other_uav_id()},
-          {"value", m.value()},
-          {"text", m.text()}};
+  return {{"header", toJson(m.header())}, {"kind", static_cast<std::uint32_t>(m.kind())},
+          {"uav_id", m.uav_id()},         {"other_uav_id", m.other_uav_id()},
+          {"value", m.value()},           {"text", m.text()}};
 }
 
 inline json toJson(const msg::SwarmMetrics& m) {

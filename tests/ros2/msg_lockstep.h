@@ -78,7 +78,8 @@ inline std::vector<std::string> tokens(const std::string& text, std::vector<std:
       std::size_t e = k + 1;
       // a qualified name (a::b::C) and a fixed array's declarator (name[36]) are one token each
       const auto word = [&](std::size_t i) {
-        return std::isalnum(static_cast<unsigned char>(text[i])) || std::string("_.[]").find(text[i]) != std::string::npos;
+        return std::isalnum(static_cast<unsigned char>(text[i])) ||
+               std::string("_.[]").find(text[i]) != std::string::npos;
       };
       while (e < text.size() && (word(e) || text.compare(e, 2, "::") == 0)) e += text.compare(e, 2, "::") == 0 ? 2 : 1;
       out.push_back(text.substr(k, e - k));
@@ -96,9 +97,9 @@ inline std::vector<std::string> tokens(const std::string& text, std::vector<std:
 
 inline std::string rosPrimitive(const std::string& idl) {
   static const std::map<std::string, std::string> kMap = {
-      {"int32", "int32"},     {"uint32", "uint32"}, {"int64", "int64"},   {"uint64", "uint64"},
-      {"double", "float64"},  {"float", "float32"}, {"boolean", "bool"},  {"string", "string"},
-      {"int8", "int8"},       {"uint8", "uint8"},   {"int16", "int16"},   {"uint16", "uint16"}};
+      {"int32", "int32"},    {"uint32", "uint32"}, {"int64", "int64"},  {"uint64", "uint64"},
+      {"double", "float64"}, {"float", "float32"}, {"boolean", "bool"}, {"string", "string"},
+      {"int8", "int8"},      {"uint8", "uint8"},   {"int16", "int16"},  {"uint16", "uint16"}};
   const auto it = kMap.find(idl);
   return it == kMap.end() ? "" : it->second;
 }
@@ -149,7 +150,7 @@ inline std::vector<std::string> parseIdl(const std::string& file_stem, const std
         if (t[k] != ",") file_constants.insert({"uint32", t[k], std::to_string(value++)});
         ++k;
       }
-      ++k;  // its "}"
+      ++k;                       // its "}"
     } else if (w == "struct") {  // struct NAME { fields } ;
       const std::string name = at(k + 1);
       structs.push_back(name);

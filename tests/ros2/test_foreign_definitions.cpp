@@ -24,9 +24,9 @@ const fs::path kIdlDir = fs::path(SWA_SOURCE_DIR) / "idl" / "ros";
 const fs::path kUpstreamDir = fs::path(SWA_SOURCE_DIR) / "tests" / "upstream";
 
 bool isPrimitive(const std::string& element) {
-  static const std::set<std::string> kPrimitives = {"bool",  "byte",   "char",  "float32", "float64", "int8",
-                                                    "uint8", "int16",  "uint16", "int32",  "uint32",  "int64",
-                                                    "uint64", "string", "wstring"};
+  static const std::set<std::string> kPrimitives = {"bool",   "byte",  "char",   "float32", "float64",
+                                                    "int8",   "uint8", "int16",  "uint16",  "int32",
+                                                    "uint32", "int64", "uint64", "string",  "wstring"};
   return kPrimitives.count(element) != 0;
 }
 
@@ -106,10 +106,10 @@ TEST(ForeignDefinitions, EveryForeignTypeOfOursHasUpstreamsFieldsTypesAndOrder) 
   ASSERT_TRUE(idl.problems.empty()) << lines(idl.problems);
   ASSERT_TRUE(up.problems.empty()) << lines(up.problems);
   // AND every package SWA speaks is there (a reader that read nothing would pass the comparison)
-  for (const char* name : {"std_msgs/Header", "builtin_interfaces/Time", "geometry_msgs/PoseWithCovariance",
-                           "sensor_msgs/Imu", "sensor_msgs/NavSatFix", "vision_msgs/Detection3DArray",
-                           "mrs_msgs/PoseWithCovarianceIdentified", "ardupilot_msgs/Status",
-                           "ardupilot_msgs/ModeSwitch_Response", "tf2_msgs/TFMessage"}) {
+  for (const char* name :
+       {"std_msgs/Header", "builtin_interfaces/Time", "geometry_msgs/PoseWithCovariance", "sensor_msgs/Imu",
+        "sensor_msgs/NavSatFix", "vision_msgs/Detection3DArray", "mrs_msgs/PoseWithCovarianceIdentified",
+        "ardupilot_msgs/Status", "ardupilot_msgs/ModeSwitch_Response", "tf2_msgs/TFMessage"}) {
     ASSERT_EQ(idl.messages.count(name), 1u) << name;
     ASSERT_EQ(up.messages.count(name), 1u) << name;
     EXPECT_FALSE(up.messages.at(name).fields.empty()) << name;
@@ -148,8 +148,9 @@ TEST(ForeignDefinitions, TheComparisonFindsAWrongWidthAMovedFieldAndAMissingType
 TEST(ForeignDefinitions, TheMsgReaderTakesUpstreamsDefaultValuesAndServices) {
   // GIVEN ROS 2 .msg text with a constant, a default value and a bare type of the same package
   Definitions d;
-  d.add("sensor_msgs", "NavSatStatus", "int8 STATUS_UNKNOWN = -2  # not yet set\nint8 status -2 # STATUS_UNKNOWN\n"
-                                       "uint16 service\n");
+  d.add("sensor_msgs", "NavSatStatus",
+        "int8 STATUS_UNKNOWN = -2  # not yet set\nint8 status -2 # STATUS_UNKNOWN\n"
+        "uint16 service\n");
   d.add("geometry_msgs", "Pose", "Point position\nQuaternion orientation\n");
   // THEN the default is not a field's name, the constant no field, and the bare types are qualified
   ASSERT_TRUE(d.problems.empty()) << lines(d.problems);
@@ -160,7 +161,8 @@ TEST(ForeignDefinitions, TheMsgReaderTakesUpstreamsDefaultValuesAndServices) {
   // AND an IDL fixed array and another package's type read as ROS spells them
   Messages idl;
   const auto problems = parseIdl("X", R"(module geometry_msgs { module msg {
-    @final struct PoseWithCovariance { geometry_msgs::msg::Pose pose; double covariance[36]; }; }; };)", idl);
+    @final struct PoseWithCovariance { geometry_msgs::msg::Pose pose; double covariance[36]; }; }; };)",
+                                 idl);
   ASSERT_TRUE(problems.empty()) << lines(problems);
   EXPECT_EQ(idl.at("PoseWithCovariance").package, "geometry_msgs");
   EXPECT_EQ(idl.at("PoseWithCovariance").fields.at(0), (Field{"geometry_msgs/Pose", "pose"}));

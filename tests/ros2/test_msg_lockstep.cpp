@@ -97,7 +97,7 @@ TEST(MsgLockstep, TheParsersReadSequencesEnumsAndConstants) {
     @final
     struct Thing { MessageHeader header; Colour colour; sequence<int32, 8> ids; sequence<Part> parts; double x_m; };
     }; };)",
-                                      idl);
+                                     idl);
   Message msg;
   const auto msg_problems = parseMsg("Thing", R"(int32 NONE=-1
 uint32 RED=0  # trailing comment

@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "error_text.h"
+#include "fake_env.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/naming.h"
 #include "swa/dds/topics.h"
-#include "error_text.h"
-#include "fake_env.h"
 
 namespace swa {
 namespace {
@@ -80,8 +80,8 @@ TEST(Naming, RosNameRulesAreChecked) {
   // THEN valid ROS topics pass and everything the ROS name rules refuse does not
   EXPECT_TRUE(dds::isValidRosTopic("/swa/uav1/cmd_vel"));
   EXPECT_TRUE(dds::isValidRosTopic("/px4_1/fmu/in/trajectory_setpoint"));
-  for (const char* bad : {"swa/uav1/imu", "/", "/swa//imu", "/swa/", "/swa/1uav", "/swa/a__b", "/swa/uav-1",
-                          "/swa/uäv"}) {
+  for (const char* bad :
+       {"swa/uav1/imu", "/", "/swa//imu", "/swa/", "/swa/1uav", "/swa/a__b", "/swa/uav-1", "/swa/uäv"}) {
     EXPECT_FALSE(dds::isValidRosTopic(bad)) << bad;
   }
   EXPECT_EQ(dds::rosTopicOf("rt/swa/uav1/imu"), std::optional<std::string>("/swa/uav1/imu"));

@@ -19,9 +19,9 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/security_check.h"
-#include "scratch.h"
 
 namespace swa::dds {
 namespace {
@@ -192,8 +192,8 @@ TEST_F(SecurityCheckTest, CertificateOfAnotherCaIsACertificateProblem) {
   f.private_key = foreign.private_key;
   // WHEN they are checked THEN the problem found is that the certificate does not verify against the CA
   const auto problem = credentialProblem(f);
-  EXPECT_TRUE(contains(problem, f.certificate + " does not verify against " + f.ca +
-                                    ": unable to get local issuer certificate"))
+  EXPECT_TRUE(contains(problem,
+                       f.certificate + " does not verify against " + f.ca + ": unable to get local issuer certificate"))
       << show(problem);
 }
 
@@ -215,8 +215,8 @@ TEST_F(SecurityCheckTest, EncryptedKeyIsReportedWithoutPrompting) {
   // GIVEN UAV 1's credentials with its private key encrypted under a passphrase
   SecurityFiles f = files("swa_agent_1");
   const std::string encrypted = (dir_ / "scratch" / "encrypted_key.pem").string();
-  const std::string command = "openssl pkey -in '" + f.private_key + "' -aes256 -passout pass:secret -out '" +
-                              encrypted + "' </dev/null";
+  const std::string command =
+      "openssl pkey -in '" + f.private_key + "' -aes256 -passout pass:secret -out '" + encrypted + "' </dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   f.private_key = encrypted;
   // WHEN they are checked THEN the problem found is that the key is no readable unencrypted key, without a prompt
@@ -251,8 +251,9 @@ TEST_F(SecurityCheckTest, GarbageInAnyFileIsNamed) {
        ""},
       {"PEM armour around garbage",
        [&](const std::string&, const std::string& slot) {
-         return scratch(slot + ".armour", "-----BEGIN CERTIFICATE-----\nAAAA////\n-----END CERTIFICATE-----\n"
-                                          "-----BEGIN PRIVATE KEY-----\nAAAA////\n-----END PRIVATE KEY-----\n");
+         return scratch(slot + ".armour",
+                        "-----BEGIN CERTIFICATE-----\nAAAA////\n-----END CERTIFICATE-----\n"
+                        "-----BEGIN PRIVATE KEY-----\nAAAA////\n-----END PRIVATE KEY-----\n");
        },
        ""},
       {"missing file", [&](const std::string&, const std::string& slot) { return (dir_ / "missing" / slot).string(); },

@@ -34,9 +34,7 @@ TEST(LogHistogram, EmptyHistogramHasNoStatistics) {
   EXPECT_TRUE(std::isnan(h.meanNs()));
 }
 
-TEST(LogHistogram, ResolutionIsAboutOnePercent) {
-  EXPECT_NEAR(LogHistogram::relativeResolution(), 0.01158, 1e-4);
-}
+TEST(LogHistogram, ResolutionIsAboutOnePercent) { EXPECT_NEAR(LogHistogram::relativeResolution(), 0.01158, 1e-4); }
 
 TEST(LogHistogram, QuantilesAreWithinTheStatedResolutionOfTheExactOrderStatistics) {
   // GIVEN 20000 latencies spread log-uniformly over 20 us .. 50 ms (seeded)

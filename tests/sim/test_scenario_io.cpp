@@ -13,10 +13,10 @@
 #include <utility>
 #include <vector>
 
+#include "scratch.h"
 #include "swa/agent/config_io.h"
 #include "swa/sim/scenario.h"
 #include "swa/sim/scenario_io.h"
-#include "scratch.h"
 
 namespace swa::sim {
 namespace {
@@ -50,8 +50,7 @@ std::string problemAbout(const ConfigError& error, const std::string& part) {
 }
 
 std::string scenarioDir() {
-  return (std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "deploy" / "scenarios")
-      .string();
+  return (std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "deploy" / "scenarios").string();
 }
 
 using testing::ScratchFile;
@@ -244,7 +243,9 @@ TEST(ScenarioOverride, GivenASetOfEachRequiredKey_WhenApplied_ThenExactlyThatFie
       {"gnss.dropout_start_s=0", [](Scenario& s) { s.gnss.dropout_start_s = 0.0; }},
       {"wind.gust_std=0.5", [](Scenario& s) { s.wind.gust_std = 0.5; }},
       {"gnss.windows=[{uav: 3, start_s: 20, end_s: 40}, {uav: 5, start_s: 0}]",
-       [](Scenario& s) { s.gnss.windows = {{3, 20.0, 40.0}, {5, 0.0, std::numeric_limits<double>::infinity()}}; }},
+       [](Scenario& s) {
+         s.gnss.windows = {{3, 20.0, 40.0}, {5, 0.0, std::numeric_limits<double>::infinity()}};
+       }},
   };
   for (const Case& c : cases) {
     // GIVEN the default scenario file and one --set
@@ -294,8 +295,7 @@ TEST(ScenarioParse, GivenAFileWithManyDistinctProblems_WhenLoaded_ThenOneErrorLi
       "  focal:\n"
       "    q_scal: 2\n");
   // WHEN it is loaded, with two bad overrides as well
-  const ConfigError error =
-      expectConfigError([&] { loadScenario(file.path(), {"clock.mode=fast", "seed"}); });
+  const ConfigError error = expectConfigError([&] { loadScenario(file.path(), {"clock.mode=fast", "seed"}); });
   // THEN one error lists every problem, each naming its key (and, for the file, where it is)
   EXPECT_EQ(error.source(), file.path());
   EXPECT_EQ(error.problems().size(), 11u) << error.what();
@@ -348,8 +348,8 @@ TEST(ScenarioParse, GivenDropoutEnd_ThenOnlyItAcceptsInfinityAndItMustFollowTheS
   EXPECT_TRUE(std::isinf(parseScenario("gnss: {dropout_start_s: 5}\n", "<t>").gnss.dropout_end_s));
   EXPECT_EQ(parseScenario("gnss: {dropout_end_s: 30}\n", "<t>").gnss.dropout_end_s, 30.0);
   // no other key takes infinity, and -inf is not "never"
-  const ConfigError error = expectConfigError(
-      [] { parseScenario("duration_s: .inf\ngnss: {dropout_end_s: -.inf}\n", "<t>"); });
+  const ConfigError error =
+      expectConfigError([] { parseScenario("duration_s: .inf\ngnss: {dropout_end_s: -.inf}\n", "<t>"); });
   EXPECT_EQ(error.problems().size(), 2u) << error.what();
   EXPECT_TRUE(contains(problemAbout(error, "duration_s"), "is not a finite number"));
   EXPECT_TRUE(contains(problemAbout(error, "dropout_end_s"), "or .inf"));
@@ -383,9 +383,9 @@ TEST(ScenarioParse, GivenAShortcutAndItsLongForm_ThenItIsAConflict) {
   const std::string knn = "agent: {formation: {neighbourhood: k_nearest}}\n";  // the rule k applies to
   EXPECT_EQ(parseScenario("agent: {k: 2, formation: {neighbourhood: k_nearest}}\n", "<t>").agent.formation.k, 2);
   EXPECT_EQ(parseScenario("agent: {formation: {k: 2, neighbourhood: k_nearest}}\n", "<t>").agent.formation.k, 2);
-  EXPECT_EQ(parseScenario("agent: {formation: {k: 2, neighbourhood: k_nearest}}\n", "<t>", {"agent.k=4"})
-                .agent.formation.k,
-            4);
+  EXPECT_EQ(
+      parseScenario("agent: {formation: {k: 2, neighbourhood: k_nearest}}\n", "<t>", {"agent.k=4"}).agent.formation.k,
+      4);
   EXPECT_EQ(parseScenario(knn, "<t>", {"agent.k=2", "agent.formation.k=5"}).agent.formation.k, 5);
   EXPECT_EQ(parseScenario("agent: {circle_fit: algebraic}\n", "<t>").agent.formation.circle_fit,
             agent::CircleFit::kAlgebraic);
@@ -394,10 +394,11 @@ TEST(ScenarioParse, GivenAShortcutAndItsLongForm_ThenItIsAConflict) {
 TEST(ScenarioParse, GivenWindOrAccelerometerKeysThatChangeNothing_ThenEachIsAnErrorThatSaysWhy) {
   // GIVEN a wind direction and turn rate without a mean wind, and the accelerometer's errors for tilt-reading agents
   const ConfigError error = expectConfigError([] {
-    parseScenario("wind: {direction_deg: 90, turn_rate_dps: 0.1}\n"
-                  "imu: {source: tilt, attitude_error_std_rad: 0.01, accel_bias_std_mps2: 0.2, "
-                  "accel_noise_std_mps2: 0.5}\n",
-                  "<t>");
+    parseScenario(
+        "wind: {direction_deg: 90, turn_rate_dps: 0.1}\n"
+        "imu: {source: tilt, attitude_error_std_rad: 0.01, accel_bias_std_mps2: 0.2, "
+        "accel_noise_std_mps2: 0.5}\n",
+        "<t>");
   });
   // THEN one error names all five, each with what turns it off
   ASSERT_EQ(error.problems().size(), 5u) << error.what();
@@ -420,13 +421,15 @@ TEST(ScenarioParse, GivenWindOrAccelerometerKeysThatChangeNothing_ThenEachIsAnEr
   EXPECT_EQ(ok.agent.focal.imu_source, agent::ImuSource::kAccelerometer);
   EXPECT_EQ(parseScenario("imu: {source: tilt}\n", "<t>").agent.focal.imu_source, agent::ImuSource::kTilt);
   // AND the agents' own key wins over the simulator's when given
-  EXPECT_EQ(parseScenario("imu: {source: tilt}\nagent: {focal: {imu_source: accelerometer}}\n", "<t>")
-                .agent.focal.imu_source,
-            agent::ImuSource::kAccelerometer);
+  EXPECT_EQ(
+      parseScenario("imu: {source: tilt}\nagent: {focal: {imu_source: accelerometer}}\n", "<t>").agent.focal.imu_source,
+      agent::ImuSource::kAccelerometer);
   // AND values out of their bounds are refused: a wind of 40 m/s, a negative drag, an unknown source
   EXPECT_EQ(expectConfigError([] {
               parseScenario("wind: {mean_mps: 40}\ndynamics: {drag_per_s: -0.1}\nimu: {source: gyro}\n", "<t>");
-            }).problems().size(),
+            })
+                .problems()
+                .size(),
             3u);
 }
 
@@ -434,9 +437,10 @@ TEST(ScenarioParse, GivenKeysTheChosenModesIgnore_ThenEachIsAnErrorThatSaysWhich
   // GIVEN the realtime speed in lockstep, range/bearing noise with the isotropic model, the PX4 loss timeout with
   // the direct interface, and the agents' k with the gabriel rule
   const ConfigError error = expectConfigError([] {
-    parseScenario("clock: {mode: lockstep, speed: 2}\nmps: {range_std_m: 0.3, bearing_std_rad: 0.02}\n"
-                  "vehicle: {com_of_loss_t_s: 2}\n",
-                  "<t>", {"agent.k=2"});
+    parseScenario(
+        "clock: {mode: lockstep, speed: 2}\nmps: {range_std_m: 0.3, bearing_std_rad: 0.02}\n"
+        "vehicle: {com_of_loss_t_s: 2}\n",
+        "<t>", {"agent.k=2"});
   });
   // THEN one error names all five, each with the choice that turns it off
   ASSERT_EQ(error.problems().size(), 5u) << error.what();
@@ -470,19 +474,19 @@ TEST(ScenarioParse, GivenSensorRates_ThenEachMustDivideTheDynamicsRate) {
   EXPECT_EQ(ok.imu.rate_hz, 50.0);
   EXPECT_EQ(ok.gnss.rate_hz, 0.5);
   // GIVEN three that do not (not a whole number of steps, or faster than the simulation)
-  const ConfigError error = expectConfigError(
-      [] { parseScenario("imu: {rate_hz: 30}\nmps: {rate_hz: 7}\ngnss: {rate_hz: 200}\n", "<t>"); });
+  const ConfigError error =
+      expectConfigError([] { parseScenario("imu: {rate_hz: 30}\nmps: {rate_hz: 7}\ngnss: {rate_hz: 200}\n", "<t>"); });
   // THEN each is reported with the arithmetic
   ASSERT_EQ(error.problems().size(), 3u) << error.what();
   EXPECT_TRUE(contains(problemAbout(error, "imu.rate_hz"), "100 / 30 = 3.333 is not a whole number"));
   EXPECT_TRUE(contains(problemAbout(error, "mps.rate_hz"), "must divide dynamics.rate_hz = 100 Hz exactly"));
   EXPECT_TRUE(contains(problemAbout(error, "gnss.rate_hz"), "100 / 200 = 0.5"));
   // AND changing the simulation rate re-judges them
-  EXPECT_NO_THROW(parseScenario("dynamics: {rate_hz: 120}\nimu: {rate_hz: 30}\nmps: {rate_hz: 10}\n"
-                                "gnss: {rate_hz: 10}\n",
-                                "<t>"));
-  const ConfigError changed =
-      expectConfigError([] { parseScenario("", "<t>", {"dynamics.rate_hz=150"}); });
+  EXPECT_NO_THROW(
+      parseScenario("dynamics: {rate_hz: 120}\nimu: {rate_hz: 30}\nmps: {rate_hz: 10}\n"
+                    "gnss: {rate_hz: 10}\n",
+                    "<t>"));
+  const ConfigError changed = expectConfigError([] { parseScenario("", "<t>", {"dynamics.rate_hz=150"}); });
   ASSERT_EQ(changed.problems().size(), 1u) << changed.what();  // imu 100 Hz; mps and gnss 10 Hz divide 150 Hz
   EXPECT_TRUE(contains(changed.problems()[0], "imu.rate_hz = 100 Hz must divide dynamics.rate_hz = 150 Hz"));
 }
@@ -505,9 +509,9 @@ TEST(ScenarioParse, GivenNoExplicitRadius_ThenTheAgentRadiusFollowsTheSpacing) {
   const Scenario given = parseScenario("formation: {spacing_m: 15}\nagent: {formation: {radius_m: 12}}\n", "<t>");
   EXPECT_EQ(given.formation.spacing_m, 15.0);
   EXPECT_EQ(given.agent.formation.radius_m, 12.0);
-  EXPECT_EQ(parseScenario("formation: {spacing_m: 15}\n", "<t>", {"agent.formation.radius_m=9"})
-                .agent.formation.radius_m,
-            9.0);
+  EXPECT_EQ(
+      parseScenario("formation: {spacing_m: 15}\n", "<t>", {"agent.formation.radius_m=9"}).agent.formation.radius_m,
+      9.0);
   // AND a derived radius that breaks the agent's own rule says where it came from
   const ConfigError error = expectConfigError(
       [] { parseScenario("formation: {spacing_m: 30}\nagent: {formation: {sensing_range_m: 25}}\n", "<t>"); });
@@ -519,8 +523,7 @@ TEST(ScenarioParse, GivenNoExplicitRadius_ThenTheAgentRadiusFollowsTheSpacing) {
 }
 
 TEST(ScenarioParse, GivenKeepUavs_ThenIndicesMustBeInsideTheSwarmAndDistinct) {
-  EXPECT_EQ(parseScenario("uav_count: 3\ngnss: {keep_uavs: [2, 0]}\n", "<t>").gnss.keep_uavs,
-            (std::vector<int>{2, 0}));
+  EXPECT_EQ(parseScenario("uav_count: 3\ngnss: {keep_uavs: [2, 0]}\n", "<t>").gnss.keep_uavs, (std::vector<int>{2, 0}));
   const ConfigError error =
       expectConfigError([] { parseScenario("uav_count: 3\ngnss: {keep_uavs: [1, 1, 3, x]}\n", "<t>"); });
   EXPECT_EQ(error.problems().size(), 1u) << error.what();  // the element that is not a number blocks the list
@@ -594,16 +597,18 @@ TEST(ScenarioGnssWindows, GivenManyBrokenWindows_WhenLoaded_ThenOneErrorListsEve
   EXPECT_EQ(problemAbout(error, "windows[1]"),
             "gnss.windows[1].end_s = 30 s must be > gnss.windows[1].start_s = 30 s: the outage would be empty "
             "(leave end_s out for one that never ends) (line 5, column 36)");
-  EXPECT_TRUE(contains(problemAbout(error, "'start'"),
-                       "unknown key 'start' in gnss.windows[2] (did you mean 'start_s'?)"));
+  EXPECT_TRUE(
+      contains(problemAbout(error, "'start'"), "unknown key 'start' in gnss.windows[2] (did you mean 'start_s'?)"));
   EXPECT_TRUE(contains(problemAbout(error, "gnss.windows[2] has no start_s"), "(line 6, column 7)"));
   EXPECT_TRUE(contains(problemAbout(error, "windows[3].uav"), "gnss.windows[3].uav = \"2\" is a string"));
   EXPECT_TRUE(contains(problemAbout(error, "windows[3].start_s"), "= .inf is not a finite number"));
-  EXPECT_TRUE(contains(problemAbout(error, "windows[4]"), "gnss.windows[4] must be a map such as {uav: 3, "
-                                                          "start_s: 20, end_s: 40}, got a scalar (line 8, column 7)"));
+  EXPECT_TRUE(contains(problemAbout(error, "windows[4]"),
+                       "gnss.windows[4] must be a map such as {uav: 3, "
+                       "start_s: 20, end_s: 40}, got a scalar (line 8, column 7)"));
   EXPECT_TRUE(contains(problemAbout(error, "gnss.windows[5] has no uav"), "expected a map such as"));
-  EXPECT_TRUE(contains(problemAbout(error, "windows[5].end_s"), "must be a number in s within (0, 1e+06] or "
-                                                                ".inf, got a sequence"));
+  EXPECT_TRUE(contains(problemAbout(error, "windows[5].end_s"),
+                       "must be a number in s within (0, 1e+06] or "
+                       ".inf, got a sequence"));
   EXPECT_TRUE(contains(problemAbout(error, "duplicate"), "duplicate key 'gnss.windows[6].uav'"));
   EXPECT_TRUE(contains(problemAbout(error, "windows[7].uav"), "gnss.windows[7].uav = 1.5 is not an integer"));
   EXPECT_TRUE(contains(problemAbout(error, "windows[7].end_s"), "end_s = 1 s must be > gnss.windows[7].start_s = 2 s"));
@@ -669,8 +674,8 @@ TEST(ScenarioFiles, GivenTheCommentedWindowsExampleOfDropout8_WhenUncommented_Th
 
 TEST(ScenarioParse, GivenMisplacedKeys_ThenTheHintNamesTheRightPlace) {
   const ConfigError error = expectConfigError([] {
-    parseScenario("mode: anchored\nimu: {gust_std: 1}\nagent: {formation: {raduis_m: 5}}\nwind.gust_std: 1\n",
-                  "<t>", {"agent.formation=3", "agent.kk=2"});
+    parseScenario("mode: anchored\nimu: {gust_std: 1}\nagent: {formation: {raduis_m: 5}}\nwind.gust_std: 1\n", "<t>",
+                  {"agent.formation=3", "agent.kk=2"});
   });
   EXPECT_EQ(error.problems().size(), 6u) << error.what();
   EXPECT_TRUE(contains(problemAbout(error, "'mode'"), "did you mean 'agent.mode'?"));

@@ -31,8 +31,8 @@ Scenario busyScenario(std::uint64_t seed) {
 
 bool same(const UavTruth& a, const UavTruth& b) {
   return a.id == b.id && a.position_m == b.position_m && a.velocity_mps == b.velocity_mps &&
-         a.acceleration_mps2 == b.acceleration_mps2 && a.heading_rad == b.heading_rad &&
-         a.gnss_valid == b.gnss_valid && a.failsafe == b.failsafe && a.gust_mps2 == b.gust_mps2;
+         a.acceleration_mps2 == b.acceleration_mps2 && a.heading_rad == b.heading_rad && a.gnss_valid == b.gnss_valid &&
+         a.failsafe == b.failsafe && a.gust_mps2 == b.gust_mps2;
 }
 
 bool same(const agent::Detection& a, const agent::Detection& b) {

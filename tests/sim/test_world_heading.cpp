@@ -108,7 +108,8 @@ TEST(WorldHeading, TheFieldOfViewIsCentredOnItsMounting) {
   s.mps.mount_deg = 0.0;
   World turned(s);
   for (int k = 0; k < 10 && !turned.sensors()[0].detections; ++k) turned.step();
-  const std::size_t seen = turned.sensors()[0].detections->detections.size() + turned.sensors()[1].detections->detections.size();
+  const std::size_t seen =
+      turned.sensors()[0].detections->detections.size() + turned.sensors()[1].detections->detections.size();
   EXPECT_EQ(seen, 1u);
 }
 

@@ -54,8 +54,7 @@ TEST(WorldImu, TiltRoundTripThroughTheAgentConventionRecoversAccelerationPlusBia
   }
   // AND pitch is body-x, roll body-y: heading east, accelerating north is a positive roll only
   setup.bias_std = 0.0;
-  const agent::ImuSample north =
-      ImuModel(setup, 6.35, streams()).sample(0, Vec2(0, 0.635), Vec2(0, 0.635), 0.0);
+  const agent::ImuSample north = ImuModel(setup, 6.35, streams()).sample(0, Vec2(0, 0.635), Vec2(0, 0.635), 0.0);
   EXPECT_NEAR(north.roll_rad, 0.1, 1e-15);
   EXPECT_NEAR(north.pitch_rad, 0.0, 1e-15);
 }

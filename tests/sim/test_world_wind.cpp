@@ -96,8 +96,8 @@ TEST(WorldWind, AUavHoldingStillInTheWindLeansIntoItAndOnlyTheTiltSaysItAccelera
   EXPECT_NEAR(t.thrust_mps2.y(), 0.0, 1e-12);
   EXPECT_NEAR((tiltAcceleration(imu, 6.35) - t.thrust_mps2).norm(), 0.0, 1e-12);
   // AND the attitude leans west by atan(0.75 / g), while the accelerometer, turned by it, reads no acceleration
-  const agent::Vec3 up = agent::tiltRotation(imu.accelerometer->roll_rad, imu.accelerometer->pitch_rad) *
-                         agent::Vec3::UnitZ();
+  const agent::Vec3 up =
+      agent::tiltRotation(imu.accelerometer->roll_rad, imu.accelerometer->pitch_rad) * agent::Vec3::UnitZ();
   const Vec2 lean = agent::rotation(t.heading_rad) * Vec2(up.x(), up.y());
   EXPECT_NEAR(std::atan2(-lean.x(), up.z()), std::atan(0.75 / agent::kStandardGravity_mps2), 1e-12);
   EXPECT_NEAR(lean.y(), 0.0, 1e-12);
@@ -122,8 +122,8 @@ TEST(WorldWind, AGustPushesTheUavWithoutTiltingIt) {
     const UavTruth& t = w.truth()[0];
     const agent::ImuSample& imu = *w.sensors()[0].imu;
     // THEN the tilt shows the thrust, the achieved acceleration less the gust
-    gust_seen_by_tilt = std::max(gust_seen_by_tilt,
-                                 (tiltAcceleration(imu, 6.35) - (t.acceleration_mps2 - t.gust_mps2)).norm());
+    gust_seen_by_tilt =
+        std::max(gust_seen_by_tilt, (tiltAcceleration(imu, 6.35) - (t.acceleration_mps2 - t.gust_mps2)).norm());
     // AND the accelerometer shows the achieved acceleration, gust included
     acceleration_missed_by_accelerometer =
         std::max(acceleration_missed_by_accelerometer, (accelerometerAcceleration(imu) - t.acceleration_mps2).norm());

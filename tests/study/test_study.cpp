@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "scratch.h"
 #include "study_plan.h"
 #include "study_record.h"
-#include "scratch.h"
 
 namespace swa::study {
 namespace {
@@ -84,9 +84,9 @@ TEST(StudyPlan, VariantsAreTheLastAxisAndEachPointGetsItsVariantsOverrides) {
   // AND a grid point's overrides are its swept values, then every override of its variant, spaces trimmed
   EXPECT_EQ(pointValues(plan, 1), (std::vector<std::string>{"4", "k3"}));
   EXPECT_EQ(pointOverrides(plan, 1), (std::vector<std::string>{"uav_count=4", "agent.formation.neighbourhood=k_nearest",
-                                                                "agent.formation.k=3"}));
+                                                               "agent.formation.k=3"}));
   EXPECT_EQ(pointOverrides(plan, 2), (std::vector<std::string>{"uav_count=8", "agent.formation.neighbourhood=gabriel",
-                                                                "agent.focal.bias_window_s=30"}));
+                                                               "agent.focal.bias_window_s=30"}));
   // AND a malformed variant says what is wrong
   for (const char* bad : {"k3", ":agent.formation.k=3", "k3:", "k3:agent.formation.k", "k3:=3",
                           "k3:agent.formation.k=3,agent.formation.k=2"}) {
@@ -115,7 +115,8 @@ StudyRecord record(const StudyPlan& plan, Shard shard) {
     s.runs.push_back({r.index,
                       r.point,
                       s.first_seed + static_cast<std::uint64_t>(r.seed_offset),
-                      {{"uav_count", 4.0}, {"mean_neighbor_distance_m", 0.1 * static_cast<double>(r.index) + 1e-13},
+                      {{"uav_count", 4.0},
+                       {"mean_neighbor_distance_m", 0.1 * static_cast<double>(r.index) + 1e-13},
                        {"anees_position", r.index % 2 ? std::nan("") : 1.0 / 3.0}}});
   }
   return s;

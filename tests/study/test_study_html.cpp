@@ -83,15 +83,13 @@ TEST(StudyHtml, TitleSaysWhatIsSweptAndOnWhichScenarioAndKeepsTheIdInTheTable) {
   v.plan.axes.pop_back();
   setVariants(v.plan, {parseVariant("gabriel:agent.formation.neighbourhood=gabriel"),
                        parseVariant("k3:agent.formation.neighbourhood=k_nearest,agent.formation.k=3")});
-  EXPECT_NE(studyTitle(v).find("against uav_count and variants gabriel and k3"), std::string::npos)
-      << studyTitle(v);
+  EXPECT_NE(studyTitle(v).find("against uav_count and variants gabriel and k3"), std::string::npos) << studyTitle(v);
 }
 
 TEST(StudyHtml, ACategoricalAxisHasItsNamesAsTicksAndMarkersNotALine) {
   const std::string html = studyHtml(driftStudy());
   const std::string section = html.substr(html.find("<h2>Against agent.formation.neighbourhood</h2>"));
-  const std::string d_nb =
-      figureTitled(section, "d_NB (final) against agent.formation.neighbourhood, by uav_count");
+  const std::string d_nb = figureTitled(section, "d_NB (final) against agent.formation.neighbourhood, by uav_count");
   ASSERT_FALSE(d_nb.empty());
   EXPECT_EQ(monitor::testing::texts(d_nb, "tick-x"), (std::vector<std::string>{"gabriel", "k_nearest"}));
   EXPECT_EQ(html.find("0 = gabriel"), std::string::npos) << "no footnote decoding numbers into names";

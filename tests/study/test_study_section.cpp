@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "scratch.h"
 #include "study_section.h"
 #include "swa/params/error.h"
 #include "swa/sim/scenario_io.h"
-#include "scratch.h"
 
 namespace swa::study {
 namespace {
@@ -126,8 +126,8 @@ TEST(StudySectionPlan, CommandLineVariantsReplaceTheFilesByNameOrAddAndKeysAreCa
   file.present = true;
   file.axes = {parseSweep("uav_count=4,8")};
   file.variants = {parseVariant("k3:agent.formation.k=3"), parseVariant("k2:agent.formation.k=2")};
-  const StudyPlan plan = combinePlan(file, {}, {"k3:agent.k=4", "gabriel:agent.formation.neighbourhood=gabriel"}, 0, 1,
-                                     aliases);
+  const StudyPlan plan =
+      combinePlan(file, {}, {"k3:agent.k=4", "gabriel:agent.formation.neighbourhood=gabriel"}, 0, 1, aliases);
   ASSERT_EQ(plan.variants.size(), 3u);
   EXPECT_EQ(plan.variants[0].overrides, (std::vector<std::string>{"agent.formation.k=4"})) << "replaced, canonical";
   EXPECT_EQ(plan.variants[2].name, "gabriel");
@@ -154,7 +154,8 @@ TEST(StudySectionPlan, CommandLineReplacesAnAxisInPlaceAddsNewOnesAndOverridesSe
   EXPECT_EQ(plan.axes[1].key, "agent.formation.neighbourhood");
   EXPECT_EQ(plan.axes[2].key, "imu.bias_std");
 
-  EXPECT_EQ(combinePlan(StudySection{}, {"uav_count=4"}, {}, 0, 7, same).seeds, 7) << "--seeds' default without a section";
+  EXPECT_EQ(combinePlan(StudySection{}, {"uav_count=4"}, {}, 0, 7, same).seeds, 7)
+      << "--seeds' default without a section";
   for (const std::vector<std::string>& bad :
        std::vector<std::vector<std::string>>{{"seed=1,2"}, {"uav_count=4", "uav_count=8"}, {"uav_count"}}) {
     EXPECT_THROW(combinePlan(file, bad, {}, 0, 1, same), std::invalid_argument) << bad.back();

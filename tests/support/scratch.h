@@ -26,9 +26,8 @@ inline std::string testNameForFiles() {
 // "<prefix>_<pid>_<test name>_<n>": no two alive at once in one process, none shared between processes.
 inline std::filesystem::path scratchPath(const std::string& prefix, const std::string& suffix = "") {
   static int counter = 0;
-  return std::filesystem::temp_directory_path() /
-         (prefix + "_" + std::to_string(::getpid()) + "_" + testNameForFiles() + "_" + std::to_string(counter++) +
-          suffix);
+  return std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()) + "_" +
+                                                   testNameForFiles() + "_" + std::to_string(counter++) + suffix);
 }
 
 class ScratchDir {

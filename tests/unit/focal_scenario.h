@@ -16,11 +16,11 @@ namespace swa::agent::testing {
 struct FocalWorld {
   struct Options {
     double lag_s = 1.0;
-    double gust_std = 0.2;        // m/s^2
+    double gust_std = 0.2;  // m/s^2
     double gust_corr_s = 5.0;
-    double acc_bias_std = 0.05;   // m/s^2, constant per run
-    double acc_noise_std = 1.5;   // m/s^2 white (sqrt(R_a))
-    double det_noise_var = 0.1;   // m^2 (R_o)
+    double acc_bias_std = 0.05;  // m/s^2, constant per run
+    double acc_noise_std = 1.5;  // m/s^2 white (sqrt(R_a))
+    double det_noise_var = 0.1;  // m^2 (R_o)
     double heading_rad = 0.7;
     double q_c = 6.35;
   };

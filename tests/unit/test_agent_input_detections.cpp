@@ -92,8 +92,7 @@ TEST(AgentInputDetections, NonFinitePositionDropsOnlyThatDetection) {
   const DetectionSet set = tw.takeNext(Event::Kind::kDetections).detections;
   // WHEN one gets the next set with extra detections of new IDs 20..23 with NaN x, inf y, -inf x, NaN both, and
   // the other the set without them
-  const std::vector<Detection> bad = {det(20, kNan, 1.0), det(21, 1.0, kInf), det(22, -kInf, 0.0),
-                                      det(23, kNan, kNan)};
+  const std::vector<Detection> bad = {det(20, kNan, 1.0), det(21, 1.0, kInf), det(22, -kInf, 0.0), det(23, kNan, kNan)};
   tw.feedDetections(set, bad);
   // THEN nonfinite == 4, nothing else; the bad IDs are not tracked and the good detections of the same set were used
   expectCounters(tw.dut.diagnostics().rejected, only(&RejectCounters::nonfinite, 4));
@@ -134,7 +133,7 @@ TEST(AgentInputDetections, NonSpdCovarianceIsImplausible) {
   // WHEN one gets the next set with extra detections whose covariance is finite but not a covariance: negative
   // variance (first, second, both), asymmetric, symmetric indefinite, zero, and positive semi-definite (singular)
   const std::vector<Detection> bad = {
-      det(20, 3.0, 1.0, mat(-0.1, 0.0, 0.0, 0.1)), det(21, 3.0, 1.0, mat(0.1, 0.0, 0.0, -0.1)),
+      det(20, 3.0, 1.0, mat(-0.1, 0.0, 0.0, 0.1)),  det(21, 3.0, 1.0, mat(0.1, 0.0, 0.0, -0.1)),
       det(22, 3.0, 1.0, mat(-0.1, 0.0, 0.0, -0.1)), det(23, 3.0, 1.0, mat(0.1, 0.05, -0.05, 0.1)),
       det(24, 3.0, 1.0, mat(0.1, 0.5, 0.5, 0.1)),   det(25, 3.0, 1.0, Mat2::Zero()),
       det(26, 3.0, 1.0, mat(0.1, 0.1, 0.1, 0.1))};
@@ -154,8 +153,11 @@ TEST(AgentInputDetections, PositionBeyondLimitIsImplausible) {
   // WHEN one gets extra detections farther than the limit (just beyond on an axis, diagonally, 1e300, and DBL_MAX
   // whose norm overflows)
   const double big = std::numeric_limits<double>::max();
-  const std::vector<Detection> bad = {det(20, std::nextafter(max_pos, 2e6), 0.0), det(21, 0.0, -2e6),
-                                      det(22, 0.75e6, -0.75e6), det(23, 1e300, 1e300), det(24, big, -big),
+  const std::vector<Detection> bad = {det(20, std::nextafter(max_pos, 2e6), 0.0),
+                                      det(21, 0.0, -2e6),
+                                      det(22, 0.75e6, -0.75e6),
+                                      det(23, 1e300, 1e300),
+                                      det(24, big, -big),
                                       det(kAnonymousId, 1e300, 0.0)};
   tw.feedDetections(set, bad);
   // THEN implausible == 6, nothing else, and no effect
@@ -182,9 +184,9 @@ TEST(AgentInputDetections, IdOutsideRangeIsBadId) {
   const DetectionSet set = tw.takeNext(Event::Kind::kDetections).detections;
   // WHEN one gets extra, otherwise valid detections with IDs -2, -1000, INT_MIN, max+1, INT_MAX and the first
   // anonymous track id
-  const std::vector<Detection> bad = {det(-2, 3.0, 1.0),          det(-1000, 3.0, 1.0),
-                                      det(INT_MIN, 3.0, 1.0),     det(max_id + 1, 3.0, 1.0),
-                                      det(INT_MAX, 3.0, 1.0),     det(kFirstAnonymousTrackId, 3.0, 1.0)};
+  const std::vector<Detection> bad = {det(-2, 3.0, 1.0),      det(-1000, 3.0, 1.0),
+                                      det(INT_MIN, 3.0, 1.0), det(max_id + 1, 3.0, 1.0),
+                                      det(INT_MAX, 3.0, 1.0), det(kFirstAnonymousTrackId, 3.0, 1.0)};
   tw.feedDetections(set, bad);
   // THEN bad_id == 6, nothing else, and no effect
   tw.expectOnlyRejected(&RejectCounters::bad_id, 6, /*extra_commands=*/0);
@@ -195,8 +197,8 @@ TEST(AgentInputDetections, IdsAtTheEdgesOfTheRangeAreAccepted) {
   Agent agent(configFor(Mode::kSwa));
   giveHeading(agent);
   // WHEN detections with IDs 0, max_target_id and anonymous (-1) arrive
-  agent.onDetections(detectionSet(kT0 + kMs, {det(0, 5.0, 0.0), det(agent.config().limits.max_target_id, 0.0, 5.0),
-                                               det(kAnonymousId, -5.0, 0.0)}));
+  agent.onDetections(detectionSet(
+      kT0 + kMs, {det(0, 5.0, 0.0), det(agent.config().limits.max_target_id, 0.0, 5.0), det(kAnonymousId, -5.0, 0.0)}));
   // THEN nothing is rejected and three tracks exist
   expectCounters(agent.diagnostics().rejected, RejectCounters{});
   EXPECT_NE(agent.bank().find(0), nullptr);

@@ -54,8 +54,16 @@ class Fuzzer {
   // A double that is usually in [lo, hi] and otherwise garbage.
   double value(double lo, double hi, double p_garbage) {
     if (!chance(p_garbage)) return uniform(lo, hi);
-    static const double garbage[] = {kNan, -kNan, kInf, -kInf, 1e300, -1e300, std::numeric_limits<double>::max(),
-                                     std::numeric_limits<double>::denorm_min(), -0.0, 1e-300};
+    static const double garbage[] = {kNan,
+                                     -kNan,
+                                     kInf,
+                                     -kInf,
+                                     1e300,
+                                     -1e300,
+                                     std::numeric_limits<double>::max(),
+                                     std::numeric_limits<double>::denorm_min(),
+                                     -0.0,
+                                     1e-300};
     return pick(garbage);
   }
 
@@ -136,13 +144,13 @@ bool countStamp(FuzzOracle::Stamp v, Result& res) {
 // Everything a fuzz run observed; filled without gtest macros so the run can also execute in a forked child.
 struct FuzzResult {
   std::uint64_t inputs = 0;
-  std::uint64_t clean_inputs = 0;  // inputs with nothing to reject
+  std::uint64_t clean_inputs = 0;     // inputs with nothing to reject
   std::uint64_t moving_commands = 0;  // commands with |v| > 0.1 m/s: the agent was really steering
-  std::uint64_t bad = 0;    // inputs the spec certainly rejects
-  std::uint64_t maybe = 0;  // inputs the spec leaves open (absurd but SPD detection covariance)
-  RejectCounters generated;  // certainly-bad inputs by the category the generator gave them
-  RejectCounters rejected;   // the agent's counters at the end
-  int bad_commands = 0;      // non-finite or above v_max + 1e-12
+  std::uint64_t bad = 0;              // inputs the spec certainly rejects
+  std::uint64_t maybe = 0;            // inputs the spec leaves open (absurd but SPD detection covariance)
+  RejectCounters generated;           // certainly-bad inputs by the category the generator gave them
+  RejectCounters rejected;            // the agent's counters at the end
+  int bad_commands = 0;               // non-finite or above v_max + 1e-12
   int nonfinite_diagnostics = 0;
   int nonfinite_tracks = 0;
   int wrong_bookkeeping = 0;  // seq / answered stamp / commands counter
@@ -238,8 +246,12 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
         bool bad_value = false, maybe_value = false;
         d.position_body_m = Vec2(fz.uniform(-45.0, 45.0), fz.uniform(-45.0, 45.0));
         if (fz.chance(0.06)) {
-          static const Vec2 garbage[] = {Vec2(kNan, 0.0),   Vec2(0.0, kInf),        Vec2(-kInf, kNan),
-                                         Vec2(1e300, 0.0),  Vec2(0.0, -1e300),      Vec2(1e6 + 1.0, 0.0),
+          static const Vec2 garbage[] = {Vec2(kNan, 0.0),
+                                         Vec2(0.0, kInf),
+                                         Vec2(-kInf, kNan),
+                                         Vec2(1e300, 0.0),
+                                         Vec2(0.0, -1e300),
+                                         Vec2(1e6 + 1.0, 0.0),
                                          Vec2(std::numeric_limits<double>::max(), 1.0)};
           d.position_body_m = fz.pick(garbage);
           bad_value = true;
@@ -252,11 +264,10 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
           L << fz.uniform(0.01, 1.0), 0.0, fz.uniform(-0.5, 0.5), fz.uniform(0.01, 1.0);
           d.covariance_m2 = Mat2(L * L.transpose());
         } else {
-          static const Mat2 bad_cov[] = {mat(kNan, 0.0, 0.0, 0.1),  mat(0.1, kInf, kInf, 0.1),
-                                         mat(-0.1, 0.0, 0.0, 0.1),  mat(0.1, 0.05, -0.05, 0.1),
-                                         mat(0.1, 0.5, 0.5, 0.1),   Mat2::Zero()};
-          static const Mat2 odd_cov[] = {Mat2::Identity() * 1e300, Mat2::Identity() * 1e-100,
-                                         mat(1e-6, 0.0, 0.0, 1e6)};
+          static const Mat2 bad_cov[] = {mat(kNan, 0.0, 0.0, 0.1), mat(0.1, kInf, kInf, 0.1),
+                                         mat(-0.1, 0.0, 0.0, 0.1), mat(0.1, 0.05, -0.05, 0.1),
+                                         mat(0.1, 0.5, 0.5, 0.1),  Mat2::Zero()};
+          static const Mat2 odd_cov[] = {Mat2::Identity() * 1e300, Mat2::Identity() * 1e-100, mat(1e-6, 0.0, 0.0, 1e6)};
           if (fz.chance(0.6)) {
             d.covariance_m2 = fz.pick(bad_cov);
             bad_value = true;
@@ -317,19 +328,19 @@ FuzzResult runFuzz(Mode mode, std::uint64_t seed, int samples) {
     // Each input moves the counters by exactly the number of rejections the spec demands of it.
     const std::uint64_t delta = d.rejected.total() - rejected_before;
     if (delta < res.bad - bad_before || delta > res.bad - bad_before + res.maybe - maybe_before) {
-      report(res.miscounted, "input " + std::to_string(n) + " (" + what + "): counters moved by " +
-                                 std::to_string(delta) + ", expected " + std::to_string(res.bad - bad_before) +
-                                 (res.maybe > maybe_before ? " (+ up to " + std::to_string(res.maybe - maybe_before) + ")" : ""));
+      report(res.miscounted,
+             "input " + std::to_string(n) + " (" + what + "): counters moved by " + std::to_string(delta) +
+                 ", expected " + std::to_string(res.bad - bad_before) +
+                 (res.maybe > maybe_before ? " (+ up to " + std::to_string(res.maybe - maybe_before) + ")" : ""));
     }
     if (res.bad == bad_before && res.maybe == maybe_before) ++res.clean_inputs;
     rejected_before = d.rejected.total();
     bad_before = res.bad;
     maybe_before = res.maybe;
     if (!finiteDiagnostics(d)) {
-      report(res.nonfinite_diagnostics,
-             "input " + std::to_string(n) + ": non-finite diagnostics estimate, position (" +
-                 std::to_string(d.position_m.x()) + ", " + std::to_string(d.position_m.y()) + ") P00 " +
-                 std::to_string(d.position_cov_m2(0, 0)));
+      report(res.nonfinite_diagnostics, "input " + std::to_string(n) + ": non-finite diagnostics estimate, position (" +
+                                            std::to_string(d.position_m.x()) + ", " + std::to_string(d.position_m.y()) +
+                                            ") P00 " + std::to_string(d.position_cov_m2(0, 0)));
     }
     if (!finiteTracks(agent.bank())) report(res.nonfinite_tracks, "input " + std::to_string(n) + ": non-finite track");
     if (d.commands != imu_count) report(res.wrong_bookkeeping, "commands counter != IMU samples");
@@ -362,7 +373,8 @@ TEST(AgentInputFuzz, CommandsFiniteAndSaturatedAndCountersMatchInEveryMode) {
       if (!hang.empty()) continue;
       const FuzzResult r = runFuzz(mode, seed, kSamples);
 
-      // THEN every command (velocity and yaw rate) is finite and within saturation, the estimate and the tracks stay finite
+      // THEN every command (velocity and yaw rate) is finite and within saturation, the estimate and the tracks stay
+      // finite
       EXPECT_EQ(r.bad_commands, 0) << "commands not finite or above v_max";
       EXPECT_EQ(r.nonfinite_diagnostics, 0) << "inputs after which the diagnostics estimate was not finite";
       EXPECT_EQ(r.nonfinite_tracks, 0) << "inputs after which a track estimate was not finite";

@@ -30,7 +30,8 @@ constexpr StampNs kStepNs = 10'000'000;  // 100 Hz
 
 std::vector<Vec2> ring() {
   std::vector<Vec2> out;
-  for (double deg : {90.0, 210.0, 330.0}) out.push_back(10.0 * Vec2(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)));
+  for (double deg : {90.0, 210.0, 330.0})
+    out.push_back(10.0 * Vec2(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)));
   return out;
 }
 
@@ -183,7 +184,8 @@ TEST(AgentLimits, IdsAboveTheSwarmsLargestAreCorrupt) {
   agent.onImu(s);
   DetectionSet set;
   set.stamp_ns = 2;
-  set.detections = {{255, Vec2(5, 0), std::nullopt}, {256, Vec2(0, 5), std::nullopt}, {1'000'000, Vec2(5, 5), std::nullopt}};
+  set.detections = {
+      {255, Vec2(5, 0), std::nullopt}, {256, Vec2(0, 5), std::nullopt}, {1'000'000, Vec2(5, 5), std::nullopt}};
   agent.onDetections(set);
   // THEN only 255 starts a track: before issue #11 ids up to 1,000,000 made phantom neighbours
   EXPECT_EQ(agent.diagnostics().rejected.bad_id, 2u);

@@ -120,11 +120,11 @@ TEST(Cli, EveryProblemOfOneLineIsReportedOnePerLine) {
   const std::string p = problemsOf({"stray", "--rate", "nan", "--count", "3x", "--out=", "--name", "", "--colour",
                                     "blue", "--frobnicate", "--count"});
   // THEN each is named, in a line of its own
-  for (const char* line : {"--rate 'nan' is not a rate in hertz in [0.5, 10]\n",
-                           "--count '3x' is not a count in [1, 100]\n", "--out needs a file name\n",
-                           "--name needs a name\n", "--colour must be red or green, got 'blue'\n",
-                           "unknown option '--frobnicate' (see --help)\n", "unknown argument 'stray' (see --help)\n",
-                           "--count needs a value\n", "--scenario FILE is required\n"}) {
+  for (const char* line :
+       {"--rate 'nan' is not a rate in hertz in [0.5, 10]\n", "--count '3x' is not a count in [1, 100]\n",
+        "--out needs a file name\n", "--name needs a name\n", "--colour must be red or green, got 'blue'\n",
+        "unknown option '--frobnicate' (see --help)\n", "unknown argument 'stray' (see --help)\n",
+        "--count needs a value\n", "--scenario FILE is required\n"}) {
     EXPECT_TRUE(mentions(p, line)) << line << " missing from:\n" << p;
   }
   EXPECT_EQ(std::count(p.begin(), p.end(), '\n'), 9) << p;
@@ -176,8 +176,8 @@ TEST(Cli, TheLastValueOfARepeatedOptionWinsAndEachIsChecked) {
 TEST(Cli, ListsKeepOrderAndSeveralValuesRunToTheNextOption) {
   // GIVEN one --pair with two values, a repeated --pair, and a word after another option
   Options o;
-  const std::string p = problemsOf({"--pair", "a=1", "b=2", "--scenario", "s", "--pair=c=3", "d=4", "--out", "o", "e=5"},
-                                   &o);
+  const std::string p =
+      problemsOf({"--pair", "a=1", "b=2", "--scenario", "s", "--pair=c=3", "d=4", "--out", "o", "e=5"}, &o);
   // THEN the pairs in order, and the word after --out's value is no pair
   EXPECT_EQ(o.pairs, (std::vector<std::string>{"a=1", "b=2", "c=3", "d=4"}));
   EXPECT_EQ(p, "unknown argument 'e=5' (see --help)\n");
@@ -260,10 +260,10 @@ TEST(Cli, HelpListsEveryOptionWithValueNameDefaultRangeAndMeaning) {
   EXPECT_LT(details, footer);
   EXPECT_NE(footer, std::string::npos);
   // AND each option with its value name, default, range or choices
-  for (const char* must : {"-h,--help", "--scenario FILE REQUIRED", "--out DIR=out/x", "--rate R=2.5",
-                           "how often; in [0.5, 10]", "--count N=3", "how many; in [1, 100]", "--set key=value",
-                           "repeatable, applied in order", "--pair A=B ...", "one of red or green",
-                           "--domain D", "0..232 (default: $SWA_DOMAIN, else 0)", "--verbose", "--keys"}) {
+  for (const char* must :
+       {"-h,--help", "--scenario FILE REQUIRED", "--out DIR=out/x", "--rate R=2.5", "how often; in [0.5, 10]",
+        "--count N=3", "how many; in [1, 100]", "--set key=value", "repeatable, applied in order", "--pair A=B ...",
+        "one of red or green", "--domain D", "0..232 (default: $SWA_DOMAIN, else 0)", "--verbose", "--keys"}) {
     EXPECT_TRUE(mentions(h, must)) << must << " missing from:\n" << h;
   }
   // AND an empty text shows no default
@@ -306,9 +306,9 @@ TEST(Cli, HelpReflowsDetailsWrittenForWiderTerminalsKeepingTheirStructure) {
   Cli cli("tool", "reflows.");
   cli.usage("tool");
   cli.details("Paragraph:\nThe first line of a paragraph" + wide + " itself,\ngoes on here.\n" +
-              "  1. a numbered item" + wide + " at the\n     end of its line.\n" +
-              "  TERM     the meaning of a term" + wide + ", so\n           it goes on under the meaning.\n" +
-              "  OTHER    short.\n" + "Example:\n  tool --a\n  tool --b    # aligned on purpose");
+              "  1. a numbered item" + wide + " at the\n     end of its line.\n" + "  TERM     the meaning of a term" +
+              wide + ", so\n           it goes on under the meaning.\n" + "  OTHER    short.\n" +
+              "Example:\n  tool --a\n  tool --b    # aligned on purpose");
   const std::string h = cli.help();
   // THEN every line fits 80 columns
   std::istringstream all(h);
@@ -346,7 +346,8 @@ FlagChoiceRead readFlagChoice(const std::vector<std::string>& args) {
   FlagChoiceRead r;
   bool verbose = false;
   Cli cli("tool", "a program under test.");
-  cli.flagChoice("--record", {"all", "monitor"}, [&r](std::size_t k) { r.value = k; }, "record the run");
+  cli.flagChoice(
+      "--record", {"all", "monitor"}, [&r](std::size_t k) { r.value = k; }, "record the run");
   cli.flag("--verbose", verbose, "say more");
   for (const std::string& p : cli.parse(args)) r.problems += p + "\n";
   r.help = cli.help();

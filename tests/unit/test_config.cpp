@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "scratch.h"
 #include "swa/agent/config.h"
 #include "swa/agent/config_io.h"
-#include "scratch.h"
 
 namespace swa::agent {
 namespace {
@@ -331,14 +331,14 @@ TEST(AgentConfigParse, GivenValuesOfTheWrongShape_WhenParsed_ThenEachIsATypeErro
   const ConfigError error = expectConfigError([] {
     parseAgentConfig(
         "formation:\n"
-        "  radius_m: {value: 10}\n"   // a map where a number is expected
-        "  k: 2.5\n"                  // an integer key given a non-integer
-        "  sensing_range_m: \"40\"\n" // a quoted string is not a number
-        "  circle_fit: [algebraic]\n" // a sequence where a choice is expected
-        "control: 3\n"                // a scalar where a section map is expected
+        "  radius_m: {value: 10}\n"    // a map where a number is expected
+        "  k: 2.5\n"                   // an integer key given a non-integer
+        "  sensing_range_m: \"40\"\n"  // a quoted string is not a number
+        "  circle_fit: [algebraic]\n"  // a sequence where a choice is expected
+        "control: 3\n"                 // a scalar where a section map is expected
         "focal:\n"
-        "  tau_s: -.inf\n"            // infinity
-        "  q_scale:\n");              // no value at all
+        "  tau_s: -.inf\n"  // infinity
+        "  q_scale:\n");    // no value at all
   });
   ASSERT_EQ(error.problems().size(), 7u) << error.what();
   EXPECT_TRUE(contains(problemAbout(error, "formation.radius_m"), "got a map"));
@@ -482,16 +482,16 @@ TEST(AgentConfigOverride, GivenSetArguments_WhenApplied_ThenTheyOverrideTheFileV
 
 TEST(AgentConfigOverride, GivenOverridesThatOnlyTogetherSatisfyARelation_ThenTheyAreAccepted) {
   // raising the tentative timeout above the default track timeout is fine once the latter is raised too
-  const AgentConfig c = applyOverrides(AgentConfig{},
-                                       {"surroundings.tentative_timeout_s=2", "surroundings.track_timeout_s=3"});
+  const AgentConfig c =
+      applyOverrides(AgentConfig{}, {"surroundings.tentative_timeout_s=2", "surroundings.track_timeout_s=3"});
   EXPECT_EQ(c.surroundings.tentative_timeout_s, 2.0);
   EXPECT_EQ(c.surroundings.track_timeout_s, 3.0);
 }
 
 TEST(AgentConfigOverride, GivenBadSetArguments_ThenAllAreReportedTogether) {
   // GIVEN one malformed entry, one unknown key, one out-of-range value, one wrong type, one bad enum
-  const std::vector<std::string> args = {"formationk2", "formation.kk=2", "control.k_p=-1", "formation.k=two",
-                                         "mode=swarm", "focal.tau_s=3.0"};
+  const std::vector<std::string> args = {"formationk2",     "formation.kk=2", "control.k_p=-1",
+                                         "formation.k=two", "mode=swarm",     "focal.tau_s=3.0"};
   // WHEN they are applied
   const ConfigError error = expectConfigError([&] { applyOverrides(AgentConfig{}, args); });
   // THEN one error lists the five problems, prefixed by --set
@@ -543,17 +543,18 @@ TEST(AgentConfigYaml, GivenAConfigWithEveryFieldChanged_WhenDumpedAndParsed_Then
 TEST(AgentConfigParse, GivenADetectorFrameOrClassListThatIsNoName_ThenItIsRefused) {
   // GIVEN text keys with characters no frame id or class id has, or far too long
   const ConfigError error = expectConfigError([&] {
-    parseAgentConfig("sensor:\n  input: vision_msgs\n  detector_frame: \"uav1/lidar; rm -rf\"\n"
-                     "  detector_classes: [uav, drone]\n");
+    parseAgentConfig(
+        "sensor:\n  input: vision_msgs\n  detector_frame: \"uav1/lidar; rm -rf\"\n"
+        "  detector_classes: [uav, drone]\n");
   });
   // THEN each is a problem that says what is expected
   ASSERT_EQ(error.problems().size(), 2u) << error.what();
   EXPECT_TRUE(contains(problemAbout(error, "detector_frame"), "expected a frame id of letters, digits and _ . / -"));
   EXPECT_TRUE(contains(problemAbout(error, "detector_classes"), "must be class ids separated by commas"))
       << error.what();
-  const ConfigError long_one =
-      expectConfigError([&] { applyOverrides(AgentConfig{}, {"sensor.input=uvdar",
-                                                             "sensor.detector_frame=" + std::string(300, 'a')}); });
+  const ConfigError long_one = expectConfigError([&] {
+    applyOverrides(AgentConfig{}, {"sensor.input=uvdar", "sensor.detector_frame=" + std::string(300, 'a')});
+  });
   EXPECT_EQ(long_one.problems().size(), 1u) << long_one.what();
   // AND a good one, and the empty text, are read as written
   const AgentConfig c =
@@ -564,9 +565,8 @@ TEST(AgentConfigParse, GivenADetectorFrameOrClassListThatIsNoName_ThenItIsRefuse
 
 TEST(AgentConfigApplies, GivenDetectorKeysThatChangeNothing_ThenEachIsAnErrorThatSaysWhy) {
   // GIVEN a mount without a detector frame, a class list for UVDAR, and a detector frame with SWA's own detections
-  const ConfigError error = expectConfigError([&] {
-    parseAgentConfig("sensor:\n  input: uvdar\n  detector_yaw_deg: 90\n  detector_classes: uav\n");
-  });
+  const ConfigError error = expectConfigError(
+      [&] { parseAgentConfig("sensor:\n  input: uvdar\n  detector_yaw_deg: 90\n  detector_classes: uav\n"); });
   const ConfigError swa = expectConfigError([&] { parseAgentConfig("sensor: {detector_frame: lidar}\n"); });
   // THEN each is refused, naming the case it applies to
   ASSERT_EQ(error.problems().size(), 2u) << error.what();
@@ -611,8 +611,10 @@ TEST(AgentConfigApplies, GivenKWithTheGabrielRule_ThenItIsAnErrorThatSaysWhy) {
   const ConfigError set = expectConfigError([] { applyOverrides(AgentConfig{}, {"formation.k=2"}); });
   // THEN each says that k applies to the k_nearest rule only, where it was given, and what to change
   ASSERT_EQ(file.problems().size(), 1u) << file.what();
-  EXPECT_TRUE(contains(file.problems()[0], "formation.k applies to the k_nearest rule only "
-                                           "(formation.neighbourhood is gabriel)")) << file.what();
+  EXPECT_TRUE(contains(file.problems()[0],
+                       "formation.k applies to the k_nearest rule only "
+                       "(formation.neighbourhood is gabriel)"))
+      << file.what();
   EXPECT_TRUE(contains(file.problems()[0], "(line 2, column 6)")) << file.what();
   ASSERT_EQ(set.problems().size(), 1u) << set.what();
   EXPECT_TRUE(contains(set.problems()[0], "formation.k applies to the k_nearest rule only")) << set.what();
@@ -626,8 +628,9 @@ TEST(AgentConfigApplies, GivenEveryKeyAModeIgnores_ThenEachIsReported) {
   // GIVEN in swa mode with Gabriel: k (k_nearest), anchor.* (anchored; standalone too for the GNSS floor); with the
   // algebraic fit: far_neighbour_weight; with k_nearest: max_edge_factor
   const ConfigError error = expectConfigError([] {
-    parseAgentConfig("formation: {k: 4, circle_fit: algebraic, far_neighbour_weight: 0.5}\n"
-                     "anchor: {gain: 0.3, gnss_min_std_m: 0.1}\n");
+    parseAgentConfig(
+        "formation: {k: 4, circle_fit: algebraic, far_neighbour_weight: 0.5}\n"
+        "anchor: {gain: 0.3, gnss_min_std_m: 0.1}\n");
   });
   ASSERT_EQ(error.problems().size(), 4u) << error.what();
   EXPECT_TRUE(contains(problemAbout(error, "formation.k "), "the k_nearest rule only")) << error.what();
@@ -635,21 +638,24 @@ TEST(AgentConfigApplies, GivenEveryKeyAModeIgnores_ThenEachIsReported) {
                        "applies to the fixed_radius fit only (formation.circle_fit is algebraic)"));
   EXPECT_TRUE(contains(problemAbout(error, "anchor.gain"), "applies to anchored mode only (mode is swa)"));
   EXPECT_TRUE(contains(problemAbout(error, "anchor.gnss_min_std_m"), "the modes that use GNSS"));
-  const ConfigError edge = expectConfigError(
-      [] { parseAgentConfig("formation: {neighbourhood: k_nearest, max_edge_factor: 2}\n"); });
+  const ConfigError edge =
+      expectConfigError([] { parseAgentConfig("formation: {neighbourhood: k_nearest, max_edge_factor: 2}\n"); });
   ASSERT_EQ(edge.problems().size(), 1u) << edge.what();
   EXPECT_TRUE(contains(edge.problems()[0], "formation.max_edge_factor applies to the gabriel rule only"));
   // AND with IMU-bias removal off (window 0) its freeze settings change nothing
   const ConfigError bias =
       expectConfigError([] { parseAgentConfig("focal: {bias_window_s: 0, bias_freeze_hold_s: 3}\n"); });
   ASSERT_EQ(bias.problems().size(), 1u) << bias.what();
-  EXPECT_TRUE(contains(bias.problems()[0], "focal.bias_freeze_hold_s applies to IMU-bias removal only "
-                                           "(focal.bias_window_s is 0)")) << bias.what();
+  EXPECT_TRUE(contains(bias.problems()[0],
+                       "focal.bias_freeze_hold_s applies to IMU-bias removal only "
+                       "(focal.bias_window_s is 0)"))
+      << bias.what();
   // AND the standalone baseline, which fits no floating frame, refuses the formation keys (k for its mode first),
   // but takes the radius (the monitor scores every run against it) and the GNSS floor
   const ConfigError standalone = expectConfigError([] {
-    parseAgentConfig("mode: standalone\nformation: {radius_m: 12, neighbourhood: gabriel, k: 2}\n"
-                     "anchor: {gnss_min_std_m: 0.1}\n");
+    parseAgentConfig(
+        "mode: standalone\nformation: {radius_m: 12, neighbourhood: gabriel, k: 2}\n"
+        "anchor: {gnss_min_std_m: 0.1}\n");
   });
   ASSERT_EQ(standalone.problems().size(), 2u) << standalone.what();
   EXPECT_TRUE(contains(problemAbout(standalone, "formation.neighbourhood"),
@@ -721,8 +727,10 @@ TEST(AgentConfigHelp, GivenTheParameterTable_ThenTheHelpListsEveryKeyWithUnitDef
   EXPECT_TRUE(contains(help, "fixed_radius|algebraic"));
   // AND it says which keys a mode ignores
   EXPECT_TRUE(contains(help, "  - formation.k: the k_nearest rule (formation.neighbourhood: k_nearest).")) << help;
-  EXPECT_TRUE(contains(help, "focal.bias_freeze_speed_mps, focal.bias_freeze_hold_s: IMU-bias removal "
-                             "(focal.bias_window_s not 0).")) << help;
+  EXPECT_TRUE(contains(help,
+                       "focal.bias_freeze_speed_mps, focal.bias_freeze_hold_s: IMU-bias removal "
+                       "(focal.bias_window_s not 0)."))
+      << help;
 }
 
 // ---------------------------------------------------------------------------------------------------------------

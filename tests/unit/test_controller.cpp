@@ -74,7 +74,8 @@ TEST(Controller, SingleAgentWithFixedNeighboursConvergesToItsFrameOriginWithinSa
   // GIVEN three hovering neighbours on a circle of r = 10 m around (50, 20), and the focal UAV starting 25 m away
   const Vec2 origin(50.0, 20.0);
   std::vector<Vec2> group;
-  for (double deg : {100.0, 220.0, 340.0}) group.push_back(origin + 10.0 * Vec2(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)));
+  for (double deg : {100.0, 220.0, 340.0})
+    group.push_back(origin + 10.0 * Vec2(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)));
   FocalWorld::Options opt;
   FocalWorld world(11, group, origin + Vec2(20.0, -15.0), opt);
   // All three define the frame (k nearest, unweighted): the controller is under test, not the neighbourhood rule.

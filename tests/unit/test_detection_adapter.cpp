@@ -104,14 +104,15 @@ TEST(DetectionAdapter, BadOrUnknownCovariancesAreReplacedByTheConfiguredNoiseAnd
   ASSERT_EQ(out->detections.size(), 8u);  // every detection kept: only its noise is replaced
   for (const Detection& x : out->detections) EXPECT_FALSE(x.covariance_m2);
   EXPECT_EQ(a.counters().covariance_repaired, 6u);  // the last: a fine diagonal, 1e-7 m^2 across its main axis
-  EXPECT_EQ(a.counters().covariance_missing, 2u);  // absent, or all zero: unknown, the ROS convention
+  EXPECT_EQ(a.counters().covariance_missing, 2u);   // absent, or all zero: unknown, the ROS convention
 }
 
 TEST(DetectionAdapter, NonFinitePositionsAreDroppedAndOversizeSetsRefused) {
   DetectionAdapterConfig c = config();
   c.max_detections = 3;
   DetectionAdapter a(c);
-  const auto out = a.convert(set({{kNaN, 0, 0, std::nullopt, 1, {}}, {1, INFINITY, 0, std::nullopt, 2, {}},
+  const auto out = a.convert(set({{kNaN, 0, 0, std::nullopt, 1, {}},
+                                  {1, INFINITY, 0, std::nullopt, 2, {}},
                                   {7.0, 1.0, kNaN, std::nullopt, 3, {}}}));
   ASSERT_TRUE(out);
   ASSERT_EQ(out->detections.size(), 1u);  // z is not used: a NaN height does not matter

@@ -58,8 +58,9 @@ Spread spreadOf(const Vec2& centre, const std::vector<double>& angles, const std
 
 // Relative agreement in the matrix norm: first order is exact only as the noise goes to zero.
 void expectClose(const Spread& s, double tolerance) {
-  EXPECT_LE((s.predicted - s.sampled).norm(), tolerance * s.sampled.norm())
-      << "predicted\n" << s.predicted << "\nsampled\n" << s.sampled;
+  EXPECT_LE((s.predicted - s.sampled).norm(), tolerance * s.sampled.norm()) << "predicted\n"
+                                                                            << s.predicted << "\nsampled\n"
+                                                                            << s.sampled;
 }
 
 TEST(FitCovariance, OneNeighbourMatchesTheFitsSpread) {

@@ -5,12 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "focal_scenario.h"
-#include "swa/monitor/chi2.h"
 #include "swa/agent/focal_estimator.h"
 #include "swa/agent/frame_fit.h"
 #include "swa/agent/imu_bias.h"
 #include "swa/agent/neighbourhood.h"
 #include "swa/agent/track_bank.h"
+#include "swa/monitor/chi2.h"
 
 namespace swa::agent {
 namespace {
@@ -37,7 +37,8 @@ AneesSeries runMonteCarlo(AgentConfig cfg, int runs, double duration_s, double w
   out.position.assign(steps - first, 0.0);
   out.velocity.assign(steps - first, 0.0);
   std::vector<Vec2> group;
-  for (double deg : {90.0, 210.0, 330.0}) group.push_back(10.0 * Vec2(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)));
+  for (double deg : {90.0, 210.0, 330.0})
+    group.push_back(10.0 * Vec2(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)));
   const Mat2 R_pos = Mat2::Identity() * cfg.focal.r_pos_m2;
   const Mat2 R_acc = Mat2::Identity() * cfg.focal.r_acc_m2ps4;
 
@@ -92,8 +93,8 @@ AneesSeries runMonteCarlo(AgentConfig cfg, int runs, double duration_s, double w
       for (const Vec2& g : group) truth.position[truth.count++] = g - world.p;
       std::sort(truth.position.begin(), truth.position.begin() + truth.count,
                 [](const Vec2& a, const Vec2& b) { return a.squaredNorm() < b.squaredNorm(); });
-      const FrameFit true_fit = fitFloatingFrame(truth, cfg.formation.radius_m, cfg.formation.circle_fit,
-                                                 cfg.formation.far_neighbour_weight);
+      const FrameFit true_fit =
+          fitFloatingFrame(truth, cfg.formation.radius_m, cfg.formation.circle_fit, cfg.formation.far_neighbour_weight);
       const Vec2 e_p = focal.position() - (-true_fit.centre);
       const Vec2 e_v = focal.velocity() - world.v;  // the group hovers: frame velocity is zero
       out.position[k - first] += e_p.dot(focal.positionCov().ldlt().solve(e_p)) / runs;
@@ -123,8 +124,8 @@ TEST(FocalConsistency, AneesOfPositionAndVelocityIsInsideTheChi2BandWithDefaults
   const AneesSeries s = runMonteCarlo(cfg, kRuns, 60.0, 5.0);
   const double p_mean = mean(s.position), v_mean = mean(s.velocity);
   const double p_in = fractionInside(s.position, band), v_in = fractionInside(s.velocity, band);
-  std::cout << "band [" << band.low << ", " << band.high << "]  ANEES position mean " << p_mean << " inside "
-            << p_in << "  velocity mean " << v_mean << " inside " << v_in << "\n";
+  std::cout << "band [" << band.low << ", " << band.high << "]  ANEES position mean " << p_mean << " inside " << p_in
+            << "  velocity mean " << v_mean << " inside " << v_in << "\n";
   // THEN both time-averaged ANEES lie in the 95 % band, and the per-step ANEES is inside it at least 85 % of the
   // time. A filter whose errors were exactly Gaussian with covariance P would score 95 %; ours carries unmodelled
   // effects (constant IMU bias per run, the 1 s velocity lag of the vehicle versus the paper's damped model,

@@ -195,8 +195,8 @@ TEST(WeightedFit, NeighboursOnTheCircleGiveItsCentreForEveryWeight) {
 
 TEST(WeightedFit, WeightOneIsTheUnweightedFitAndTinyWeightTheTwoNearestPoint) {
   // GIVEN a second-shell neighbour at sqrt(3) r besides two first-shell neighbours of a triangular lattice
-  const NeighbourPositions nb = make({Vec2(kR, 0), Vec2(0.5 * kR, std::sqrt(0.75) * kR),
-                                     Vec2(1.5 * kR, std::sqrt(0.75) * kR)});
+  const NeighbourPositions nb =
+      make({Vec2(kR, 0), Vec2(0.5 * kR, std::sqrt(0.75) * kR), Vec2(1.5 * kR, std::sqrt(0.75) * kR)});
   // THEN far_weight = 1 is bit for bit the unweighted fit ...
   const FrameFit unweighted = fitFixedRadius(nb, kR);
   EXPECT_EQ(fitFixedRadius(nb, kR, 1.0).centre, unweighted.centre);
@@ -211,8 +211,8 @@ TEST(WeightedFit, WeightOneIsTheUnweightedFitAndTinyWeightTheTwoNearestPoint) {
 TEST(WeightedFit, FarNeighbourPullsFiveTimesLessAtWeightPointTwo) {
   // GIVEN the same lattice corner: self at a node (the true frame centre is self, 0), two neighbours at r and the
   // second-shell node at sqrt(3) r that k = 3 would fit
-  const NeighbourPositions nb = make({Vec2(kR, 0), Vec2(0.5 * kR, std::sqrt(0.75) * kR),
-                                     Vec2(1.5 * kR, std::sqrt(0.75) * kR)});
+  const NeighbourPositions nb =
+      make({Vec2(kR, 0), Vec2(0.5 * kR, std::sqrt(0.75) * kR), Vec2(1.5 * kR, std::sqrt(0.75) * kR)});
   // WHEN fitted unweighted and with the reference weight 0.2
   const FrameFit unweighted = fitFixedRadius(nb, kR, 1.0);
   const FrameFit weighted = fitFixedRadius(nb, kR, 0.2);
@@ -232,8 +232,8 @@ TEST(WeightedFit, FarNeighbourPullsFiveTimesLessAtWeightPointTwo) {
 }
 
 TEST(WeightedFit, FloatingFramePassesTheWeightToTheFixedRadiusFitOnly) {
-  const NeighbourPositions nb = make({Vec2(kR, 0), Vec2(0.5 * kR, std::sqrt(0.75) * kR),
-                                     Vec2(1.5 * kR, std::sqrt(0.75) * kR)});
+  const NeighbourPositions nb =
+      make({Vec2(kR, 0), Vec2(0.5 * kR, std::sqrt(0.75) * kR), Vec2(1.5 * kR, std::sqrt(0.75) * kR)});
   EXPECT_EQ(fitFloatingFrame(nb, kR, CircleFit::kFixedRadius, 0.2).centre, fitFixedRadius(nb, kR, 0.2).centre);
   // The algebraic fit has no weights: the paper's literal method stays literal
   EXPECT_EQ(fitFloatingFrame(nb, kR, CircleFit::kAlgebraic, 0.2).centre, fitAlgebraic(nb, kR).centre);

@@ -75,8 +75,7 @@ TEST(Geometry, AccelerometerSourceTurnsTheSpecificForceLevelAndIgnoresTheTiltWhi
   // rad forward whose specific force, turned level, is 0.5 m/s^2 forward (body x) and g up
   AccelerometerSample acc;
   acc.pitch_rad = 0.1;
-  acc.specific_force_body_mps2 =
-      tiltRotation(0.0, 0.1).transpose() * Vec3(0.5, 0.0, kStandardGravity_mps2);
+  acc.specific_force_body_mps2 = tiltRotation(0.0, 0.1).transpose() * Vec3(0.5, 0.0, kStandardGravity_mps2);
   for (int k = 1; k <= 300; ++k) {
     const VelocityCommand c = agent.onImu({k * 10'000'000LL, 0.0, -0.2, M_PI / 2, acc});
     ASSERT_TRUE(c.fresh);

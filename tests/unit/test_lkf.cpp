@@ -1,7 +1,7 @@
 #include <random>
 
-#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
+#include <Eigen/Eigenvalues>
 
 #include "swa/agent/lkf.h"
 #include "swa/agent/pva_model.h"

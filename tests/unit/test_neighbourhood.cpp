@@ -98,8 +98,7 @@ TEST(Gabriel, OneAndTwoTracks) {
   // GIVEN one track far away THEN it is the neighbour (the nearest always passes, whatever the cap)
   EXPECT_EQ(ids(selectGabriel({track(7, Vec2(0, 30))}, kRange, 15.0)), (std::set<int>{7}));
   // GIVEN two tracks on opposite sides THEN both
-  EXPECT_EQ(ids(selectGabriel({track(7, Vec2(0, 10)), track(8, Vec2(0, -12))}, kRange, 15.0)),
-            (std::set<int>{7, 8}));
+  EXPECT_EQ(ids(selectGabriel({track(7, Vec2(0, 10)), track(8, Vec2(0, -12))}, kRange, 15.0)), (std::set<int>{7, 8}));
   // GIVEN two tracks where the nearer sits inside the other's disc THEN only the nearer
   EXPECT_EQ(ids(selectGabriel({track(7, Vec2(10, 0)), track(8, Vec2(15, 2))}, kRange, kNoCap)), (std::set<int>{7}));
   // GIVEN no confirmed track THEN none

@@ -67,8 +67,8 @@ MatrixXd observabilityMatrix(const MatrixXd& h, const MatrixXd& f) {
 
 struct RankReport {
   Index rank = 0;
-  VectorXd sigma;     // singular values, descending
-  MatrixXd v;         // right singular vectors, columns in the same order
+  VectorXd sigma;  // singular values, descending
+  MatrixXd v;      // right singular vectors, columns in the same order
   double tolerance = 0.0;
 };
 
@@ -82,8 +82,7 @@ RankReport numericalRank(const MatrixXd& o) {
   RankReport r;
   r.sigma = svd.singularValues();
   r.v = svd.matrixV();
-  r.tolerance = r.sigma(0) * static_cast<double>(std::max(o.rows(), o.cols())) *
-                std::numeric_limits<double>::epsilon();
+  r.tolerance = r.sigma(0) * static_cast<double>(std::max(o.rows(), o.cols())) * std::numeric_limits<double>::epsilon();
   while (r.rank < r.sigma.size() && r.sigma(r.rank) > r.tolerance) ++r.rank;
   return r;
 }
@@ -175,8 +174,6 @@ TEST_P(SwarmObservability, FixOnAnyMemberIsEquivalent) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SwarmSizes, SwarmObservability, ::testing::Range(2, 7),
-                         [](const ::testing::TestParamInfo<int>& swarm) {
-                           return "n" + std::to_string(swarm.param);
-                         });
+                         [](const ::testing::TestParamInfo<int>& swarm) { return "n" + std::to_string(swarm.param); });
 
 }  // namespace

@@ -1,17 +1,17 @@
 // Issue #11: parameter files are bounded before they are parsed (devices, size, binary garbage, thousands of keys)
 // and a list of problems stays one screen long.
 
+#include <unistd.h>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
+#include "scratch.h"
 #include "swa/agent/config_io.h"
 #include "swa/params/file.h"
-#include "scratch.h"
 
 namespace swa::agent {
 namespace {

@@ -147,11 +147,9 @@ TEST(TrackBank, AnonymousAssociationWithClutterIsRightFor99PercentAndNeverConfir
 TEST(Neighbourhood, SelectsKNearestConfirmedWithinRangeTiesById) {
   // GIVEN confirmed tracks at 5, 12, 12 (ids 9 and 4), 30 and 45 m and a tentative one at 1 m
   TrackBank bank{SurroundingsConfig{}};
-  const std::vector<StableDetection> scan = {det(1, 5, 0),  det(9, 0, 12), det(4, -12, 0),
-                                             det(2, 30, 0), det(3, 45, 0)};
+  const std::vector<StableDetection> scan = {det(1, 5, 0), det(9, 0, 12), det(4, -12, 0), det(2, 30, 0), det(3, 45, 0)};
   for (int k = 0; k < 3; ++k) bank.update(k * kScanNs, scan);
-  bank.update(3 * kScanNs, {det(1, 5, 0), det(9, 0, 12), det(4, -12, 0), det(2, 30, 0), det(3, 45, 0),
-                            det(7, 1, 0)});
+  bank.update(3 * kScanNs, {det(1, 5, 0), det(9, 0, 12), det(4, -12, 0), det(2, 30, 0), det(3, 45, 0), det(7, 1, 0)});
   // WHEN the 3 nearest within 40 m are chosen
   const Neighbourhood nb = selectKNearest(bank.tracks(), 3, 40.0);
   // THEN they are 1 (5 m), then 4 and 9 (12 m, tie broken by id); the tentative 7 and the 45 m one are not

@@ -6,20 +6,34 @@ namespace swa::ardupilot {
 
 const char* copterModeName(std::uint8_t mode) {
   switch (mode) {
-    case kModeStabilize: return "STABILIZE";
-    case 1: return "ACRO";
-    case kModeAltHold: return "ALT_HOLD";
-    case 3: return "AUTO";
-    case kModeGuided: return "GUIDED";
-    case kModeLoiter: return "LOITER";
-    case kModeRtl: return "RTL";
-    case 7: return "CIRCLE";
-    case kModeLand: return "LAND";
-    case 16: return "POSHOLD";
-    case kModeBrake: return "BRAKE";
-    case 20: return "GUIDED_NOGPS";
-    case 21: return "SMART_RTL";
-    default: return "other";
+    case kModeStabilize:
+      return "STABILIZE";
+    case 1:
+      return "ACRO";
+    case kModeAltHold:
+      return "ALT_HOLD";
+    case 3:
+      return "AUTO";
+    case kModeGuided:
+      return "GUIDED";
+    case kModeLoiter:
+      return "LOITER";
+    case kModeRtl:
+      return "RTL";
+    case 7:
+      return "CIRCLE";
+    case kModeLand:
+      return "LAND";
+    case 16:
+      return "POSHOLD";
+    case kModeBrake:
+      return "BRAKE";
+    case 20:
+      return "GUIDED_NOGPS";
+    case 21:
+      return "SMART_RTL";
+    default:
+      return "other";
   }
 }
 
@@ -29,9 +43,7 @@ std::optional<QuaternionLayout> parseQuaternionLayout(const std::string& text) {
   return std::nullopt;
 }
 
-const char* quaternionLayoutName(QuaternionLayout layout) {
-  return layout == QuaternionLayout::kRos ? "ros" : "wxyz";
-}
+const char* quaternionLayoutName(QuaternionLayout layout) { return layout == QuaternionLayout::kRos ? "ros" : "wxyz"; }
 
 px4::Quaternion attitudeOf(double x, double y, double z, double w, QuaternionLayout layout) {
   if (layout == QuaternionLayout::kWxyzInXyzw) return px4::Quaternion{x, y, z, w};

@@ -39,12 +39,18 @@ Autopilot ardupilotAutopilot() {
 
 const char* linkName(Link link) {
   switch (link) {
-    case Link::kNoAttitude: return "no attitude from the vehicle yet";
-    case Link::kNoAgent: return "waiting for the agent's first command";
-    case Link::kFresh: return "streaming the agent's commands";
-    case Link::kStale: return "command stale: streaming zero velocity";
-    case Link::kAgentLost: return "agent lost: stream stopped (the autopilot's own failsafe takes over)";
-    case Link::kAttitudeLost: return "vehicle silent: stream stopped";
+    case Link::kNoAttitude:
+      return "no attitude from the vehicle yet";
+    case Link::kNoAgent:
+      return "waiting for the agent's first command";
+    case Link::kFresh:
+      return "streaming the agent's commands";
+    case Link::kStale:
+      return "command stale: streaming zero velocity";
+    case Link::kAgentLost:
+      return "agent lost: stream stopped (the autopilot's own failsafe takes over)";
+    case Link::kAttitudeLost:
+      return "vehicle silent: stream stopped";
   }
   return "?";
 }
@@ -192,9 +198,9 @@ Outbox BridgeCore::tick(double now_s) {
   }
   last_request_us_ = *newest_us_;
   ++counters_.requests_out;
-  note(out.request == VehicleRequest::kArm ? std::string("engage: requesting arm")
-                                           : std::string("engage: requesting ") + config_.autopilot.control_mode_name +
-                                                 " mode");
+  note(out.request == VehicleRequest::kArm
+           ? std::string("engage: requesting arm")
+           : std::string("engage: requesting ") + config_.autopilot.control_mode_name + " mode");
   return out;
 }
 

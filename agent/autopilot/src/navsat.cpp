@@ -47,7 +47,7 @@ std::optional<agent::GnssSample> NavSatForward::onNavSat(const NavSatReport& r) 
     g.position_m = origin_->enuOf(r.latitude_deg, r.longitude_deg);
     const double variance = 0.5 * (r.variance_east_m2 + r.variance_north_m2);
     g.std_m = r.covariance_type > 0 && std::isfinite(variance) && variance > 0.0 ? std::sqrt(variance)
-                                                                                : config_.unknown_std_m;
+                                                                                 : config_.unknown_std_m;
     g.valid = true;
   }
   valid_ = g.valid;

@@ -32,7 +32,8 @@ std::optional<Odometry> OdometryFeed::onState(const agent::Diagnostics& s, agent
     ++counters_.skipped_gnss;
     return std::nullopt;
   }
-  if (!(std::fabs(ageNs(vehicle_now_ns, s.stamp_ns)) <= staleNs())) {  // NaN-safe; a state from the future is no fresher
+  if (!(std::fabs(ageNs(vehicle_now_ns, s.stamp_ns)) <=
+        staleNs())) {  // NaN-safe; a state from the future is no fresher
     ++counters_.skipped_stale;
     return std::nullopt;
   }

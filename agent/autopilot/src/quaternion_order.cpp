@@ -19,8 +19,8 @@ double norm(const SpecificForce& f) { return std::sqrt(f.x * f.x + f.y * f.y + f
 }  // namespace
 
 double gravityMismatchDeg(const px4::Quaternion& attitude, const SpecificForce& force) {
-  const double n2 = attitude.w * attitude.w + attitude.x * attitude.x + attitude.y * attitude.y +
-                    attitude.z * attitude.z;
+  const double n2 =
+      attitude.w * attitude.w + attitude.x * attitude.x + attitude.y * attitude.y + attitude.z * attitude.z;
   const double f = norm(force);
   if (!std::isfinite(n2) || n2 <= 0.0 || !std::isfinite(f) || f <= 0.0) {
     return std::numeric_limits<double>::quiet_NaN();
@@ -42,10 +42,10 @@ std::optional<QuaternionLayout> QuaternionOrderFinder::onSample(const Orientatio
   if (decided_) return decided_;
   if (!disarmed) return std::nullopt;
   if (!(std::abs(norm(force) - kGravityMps2) <= kStillToleranceMps2)) return std::nullopt;  // NaN too
-  const double ros = gravityMismatchDeg(attitudeOf(fields.x, fields.y, fields.z, fields.w, QuaternionLayout::kRos),
-                                        force);
-  const double wxyz = gravityMismatchDeg(
-      attitudeOf(fields.x, fields.y, fields.z, fields.w, QuaternionLayout::kWxyzInXyzw), force);
+  const double ros =
+      gravityMismatchDeg(attitudeOf(fields.x, fields.y, fields.z, fields.w, QuaternionLayout::kRos), force);
+  const double wxyz =
+      gravityMismatchDeg(attitudeOf(fields.x, fields.y, fields.z, fields.w, QuaternionLayout::kWxyzInXyzw), force);
   std::optional<QuaternionLayout> vote;
   if (ros < kAgreeDeg && wxyz > kDisagreeDeg) vote = QuaternionLayout::kRos;
   if (wxyz < kAgreeDeg && ros > kDisagreeDeg) vote = QuaternionLayout::kWxyzInXyzw;

@@ -68,7 +68,8 @@ std::string formatRecord(const Spec& s, const Record& record) {
       continue;
     }
     std::vector<std::string> parts;
-    for (std::size_t j = 0; j < f.components && slot + j < record.size(); ++j) parts.push_back(number(record[slot + j]));
+    for (std::size_t j = 0; j < f.components && slot + j < record.size(); ++j)
+      parts.push_back(number(record[slot + j]));
     items.push_back(f.key + ": [" + join(parts, ", ") + "]");
   }
   return "{" + join(items, ", ") + "}";
@@ -190,7 +191,8 @@ std::string dump(const Schema& schema, const Values& values) {
     if (s.kind == Kind::kRecordList && !std::get<std::vector<Record>>(v).empty()) {
       // One element per line, so a long list does not push every comment to the right.
       group.push_back({indent + leaf + ":", dumpComment(s)});
-      for (const Record& r : std::get<std::vector<Record>>(v)) group.push_back({indent + "  - " + formatRecord(s, r), ""});
+      for (const Record& r : std::get<std::vector<Record>>(v))
+        group.push_back({indent + "  - " + formatRecord(s, r), ""});
       continue;
     }
     if (const Applies* a = schema.unused(s.key, values)) {
@@ -206,8 +208,8 @@ std::string dump(const Schema& schema, const Values& values) {
 std::string describe(const Schema& schema, const Values& defaults) {
   std::vector<std::vector<std::string>> rows = {{"key", "type", "unit", "default", "range", "meaning"}};
   for (const Spec& s : schema.specs) {
-    rows.push_back({s.key, typeName(s), s.unit.empty() ? "-" : s.unit, plainValue(s, defaults.at(s.key)),
-                    rangeText(s), s.meaning});
+    rows.push_back({s.key, typeName(s), s.unit.empty() ? "-" : s.unit, plainValue(s, defaults.at(s.key)), rangeText(s),
+                    s.meaning});
   }
   for (const Alias& a : schema.aliases) rows.push_back({a.alias, "alias", "-", "-", "-", "the same as " + a.key});
   // Keys used only in some modes, grouped by the case they apply to.

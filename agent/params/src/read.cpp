@@ -11,10 +11,10 @@
 
 #include "read_value.h"
 #include "spec_text.h"
-#include "yaml_node.h"
 #include "swa/params/engine.h"
 #include "swa/params/file.h"
 #include "yaml_error.h"
+#include "yaml_node.h"
 
 namespace swa::params {
 
@@ -49,7 +49,7 @@ struct Entry {
   std::string key;      // canonical (aliases resolved)
   std::string written;  // as the user wrote it; messages use this name
   YAML::Node value;
-  std::string where;    // " (line L, column C)", " (from --set k=v)" or ""
+  std::string where;  // " (line L, column C)", " (from --set k=v)" or ""
   bool from_file = false;
 
   Entry(std::string k, std::string w, const YAML::Node& v, std::string at, bool file)

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "spec_text.h"
-#include "yaml_node.h"
 #include "swa/params/engine.h"
 #include "swa/params/file.h"
+#include "yaml_node.h"
 
 namespace swa::params::detail {
 
@@ -76,8 +76,10 @@ std::optional<Value> readIntList(const Spec& s, const YAML::Node& list_node, con
       fail(std::move(message), &item);
     };
     const std::string item_name = name + "[" + std::to_string(list.size()) + "]";
-    if (const auto v = readNumber(element, item, item_name, item_fail)) list.push_back(static_cast<long long>(*v));
-    else list.push_back(0);  // keeps the next element's index
+    if (const auto v = readNumber(element, item, item_name, item_fail))
+      list.push_back(static_cast<long long>(*v));
+    else
+      list.push_back(0);  // keeps the next element's index
   }
   return ok ? std::optional<Value>(list) : std::nullopt;
 }
@@ -237,8 +239,7 @@ std::optional<std::string> numberProblem(const Spec& s, double v, const std::str
   return params::numberProblem(name, v, shown, s.kind != Kind::kReal, s.range, rangeText(s) + unitSuffix(s));
 }
 
-std::optional<Value> readValue(const Spec& s, const YAML::Node& value, const std::string& name,
-                               const ValueFail& fail) {
+std::optional<Value> readValue(const Spec& s, const YAML::Node& value, const std::string& name, const ValueFail& fail) {
   const auto failed = [&](std::string message) {
     fail(std::move(message), nullptr);
     return std::nullopt;

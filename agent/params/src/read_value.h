@@ -21,8 +21,7 @@ std::optional<Value> readValue(const Spec& spec, const YAML::Node& node, const s
                                const ValueFail& fail);
 
 // Why `v` (shown as `shown`) is not a valid number for `spec`, if it is not.
-std::optional<std::string> numberProblem(const Spec& spec, double v, const std::string& name,
-                                         const std::string& shown);
+std::optional<std::string> numberProblem(const Spec& spec, double v, const std::string& name, const std::string& shown);
 
 // Whether `text` is a valid value of a Kind::kText parameter.
 bool isText(const std::string& text);

@@ -21,7 +21,8 @@ ConfigError::ConfigError(std::string source, std::vector<std::string> problems)
     : ConfigError(Summarised{}, std::move(source), summariseProblems(problems)) {}
 
 ConfigError::ConfigError(Summarised, std::string source, std::vector<std::string> problems)
-    : std::runtime_error(joinWithSource(source, problems)), source_(std::move(source)),
+    : std::runtime_error(joinWithSource(source, problems)),
+      source_(std::move(source)),
       problems_(std::move(problems)) {}
 
 const Spec* Schema::find(const std::string& key) const {

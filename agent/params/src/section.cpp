@@ -6,8 +6,8 @@
 
 #include "swa/params/error.h"
 #include "swa/params/file.h"
-#include "yaml_node.h"
 #include "yaml_error.h"
+#include "yaml_node.h"
 
 namespace swa::params {
 namespace {

@@ -17,9 +17,7 @@ bool inRange(const Range& r, double v) {
 }
 
 std::string formatRange(const Range& r, bool integral) {
-  const auto bound = [&](double v) {
-    return integral ? std::to_string(static_cast<long long>(v)) : formatNumber(v);
-  };
+  const auto bound = [&](double v) { return integral ? std::to_string(static_cast<long long>(v)) : formatNumber(v); };
   return std::string(r.min_open ? "(" : "[") + bound(r.min) + ", " + bound(r.max) + (r.max_open ? ")" : "]");
 }
 

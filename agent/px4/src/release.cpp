@@ -4,9 +4,12 @@ namespace swa::px4 {
 
 const char* releaseName(Release r) {
   switch (r) {
-    case Release::kV1_15: return "v1.15";
-    case Release::kV1_16: return "v1.16";
-    case Release::kV1_17: return "v1.17";
+    case Release::kV1_15:
+      return "v1.15";
+    case Release::kV1_16:
+      return "v1.16";
+    case Release::kV1_17:
+      return "v1.17";
   }
   return "?";
 }

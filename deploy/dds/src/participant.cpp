@@ -9,14 +9,16 @@
 #include <fstream>
 #include <map>
 #include <mutex>
-#include <set>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <vector>
 
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/common/WriteParams.h>
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 #include <fastdds/dds/core/status/SubscriptionMatchedStatus.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -25,8 +27,6 @@
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
-#include <fastdds/rtps/attributes/ServerAttributes.h>
-#include <fastdds/rtps/common/WriteParams.h>
 
 #include "participant_qos.h"
 #include "swa/dds/deployment.h"
@@ -124,8 +124,8 @@ class Participant::PeerListener : public fdds::DomainParticipantListener {
   PeerListener(std::string self, PeerCard card, bool trace)
       : self_(self), book_(std::move(self), std::move(card)), trace_(trace) {}
 
-  void on_participant_discovery(fdds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info)
-      override {
+  void on_participant_discovery(fdds::DomainParticipant*,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
     using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
     const PeerKey key = keyOf(info.info.m_guid.guidPrefix);
     {

@@ -8,8 +8,8 @@
 
 #include <unistd.h>
 
-#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 #include "swa/app/udp_port.h"
 #include "swa/dds/participant.h"
@@ -47,9 +47,8 @@ PeerCard selfCard(const std::string& swarm) {
   PeerCard card;
   card.swarm = swarm;
   // The process's start, not the participant's: a participant re-created later must not look younger than a twin.
-  static const std::int64_t process_started_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                                     std::chrono::system_clock::now().time_since_epoch())
-                                                     .count();
+  static const std::int64_t process_started_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
   card.started_ns = process_started_ns;
   card.pid = static_cast<long>(::getpid());
   char host[256] = {};
@@ -91,9 +90,9 @@ void chooseParticipantId(fdds::DomainParticipantQos& qos, int domain_id, bool sh
   fdds::WireProtocolConfigQos& wire = qos.wire_protocol();
   if (wire.participant_id >= 0) return;
   const auto& p = wire.port;
-  const PortMapping ports{static_cast<int>(p.portBase),   static_cast<int>(p.domainIDGain),
+  const PortMapping ports{static_cast<int>(p.portBase),          static_cast<int>(p.domainIDGain),
                           static_cast<int>(p.participantIDGain), static_cast<int>(p.offsetd0),
-                          static_cast<int>(p.offsetd2),   static_cast<int>(p.offsetd1),
+                          static_cast<int>(p.offsetd2),          static_cast<int>(p.offsetd1),
                           static_cast<int>(p.offsetd3)};
   static std::mutex used_mutex;
   static std::set<int> used;  // unicast ports of the participants this process created

@@ -174,7 +174,7 @@ bool sameSubject(const std::string& a, const std::string& b) {
   const auto split = [](const std::string& s) {
     std::vector<std::string> parts;
     std::size_t begin = 0;
-    for (std::size_t comma = s.find(','); ; comma = s.find(',', begin)) {
+    for (std::size_t comma = s.find(',');; comma = s.find(',', begin)) {
       parts.push_back(trim(s.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin), " "));
       if (comma == std::string::npos) break;
       begin = comma + 1;

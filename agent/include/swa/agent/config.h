@@ -32,31 +32,31 @@ inline constexpr std::pair<DetectionInput, const char*> kDetectionInputNames[] =
 // sees the thrust only), or the accelerometer's specific force turned by the attitude (every force, drag included).
 enum class ImuSource { kTilt, kAccelerometer };
 inline constexpr std::pair<ImuSource, const char*> kImuSourceNames[] = {{ImuSource::kTilt, "tilt"},
-                                                                      {ImuSource::kAccelerometer, "accelerometer"}};
+                                                                        {ImuSource::kAccelerometer, "accelerometer"}};
 
 struct SurroundingsConfig {
   // Q_o diagonal blocks, per `q_ref_dt_s` of prediction (scaled linearly with the actual step).
   double q_pos_m2 = 1e-3;
   double q_vel_m2ps2 = 1e-2;
   double q_acc_m2ps4 = 1e-1;
-  double q_ref_dt_s = 0.01;          // Table I values are per 100 Hz step
-  double r_det_m2 = 0.1;             // R_o, used when a detection carries no covariance of its own
-  double init_vel_var_m2ps2 = 1.0;   // a new track's velocity prior: neighbours hover or move slowly
+  double q_ref_dt_s = 0.01;         // Table I values are per 100 Hz step
+  double r_det_m2 = 0.1;            // R_o, used when a detection carries no covariance of its own
+  double init_vel_var_m2ps2 = 1.0;  // a new track's velocity prior: neighbours hover or move slowly
   double init_acc_var_m2ps4 = 0.5;
-  int confirm_hits = 3;              // M hits before a track may be used as a neighbour
-  double track_timeout_s = 1.0;      // confirmed track removed after this long without a detection
-  double tentative_timeout_s = 0.25; // tentative track removed after this long (2.5 MPS periods at 10 Hz)
-  double gate_probability = 0.99;    // chi-square gate (2 dof) for anonymous association
+  int confirm_hits = 3;               // M hits before a track may be used as a neighbour
+  double track_timeout_s = 1.0;       // confirmed track removed after this long without a detection
+  double tentative_timeout_s = 0.25;  // tentative track removed after this long (2.5 MPS periods at 10 Hz)
+  double gate_probability = 0.99;     // chi-square gate (2 dof) for anonymous association
 };
 
 struct FormationConfig {
-  double radius_m = 10.0;          // r
+  double radius_m = 10.0;  // r
   // Gabriel (DESIGN §3.2): in a triangular lattice it selects exactly the lattice edges, so every distance can be r
   // at once. k nearest with k = 3 squeezes the formation to ~0.93 r (a second-shell UAV at sqrt(3) r is pulled to r);
   // k = 2 keeps the spacing but lets the swarm split.
   NeighbourhoodRule neighbourhood = NeighbourhoodRule::kGabriel;
-  int k = 3;                       // k_nearest only: neighbours used for the floating frame
-  double sensing_range_m = 40.0;   // tracks farther than this are not neighbours
+  int k = 3;                      // k_nearest only: neighbours used for the floating frame
+  double sensing_range_m = 40.0;  // tracks farther than this are not neighbours
   // Gabriel only: a neighbour other than the nearest must be closer than this times r. A UAV hidden by the field of
   // view or a lost track stops blocking the edge to the second-shell UAV behind it (sqrt(3) r or 2 r away); without
   // the cap that UAV would be pulled to r. 1.3 rather than 1.5: on a swarm's ragged rim Gabriel also keeps edges of
@@ -94,10 +94,10 @@ struct FocalConfig {
   // fit_noise_gain = 0. The frame fit on bank-smoothed tracks is noisier and its error is correlated in time;
   // with 0.03 the closed-loop position ANEES was 4.6 (Gabriel) with 40 % of steps in the chi-square band.
   double r_pos_m2 = 0.1;
-  double r_acc_m2ps4 = 2.25;       // R_a
-  double q_c_mps2 = 6.35;          // tilt (rad) -> lateral acceleration
+  double r_acc_m2ps4 = 2.25;                         // R_a
+  double q_c_mps2 = 6.35;                            // tilt (rad) -> lateral acceleration
   ImuSource imu_source = ImuSource::kAccelerometer;  // issue #44: holds better in gusts and wind (BENCHMARKS.md)
-  double frame_timeout_s = 2.0;    // without a frame for this long the agent stops trusting dead reckoning
+  double frame_timeout_s = 2.0;  // without a frame for this long the agent stops trusting dead reckoning
   // IMU-bias removal (DESIGN §3.4): the tilt-derived acceleration minus its running mean over this window. Assumes
   // a hovering UAV's true acceleration averages to zero over the window (its velocity stays bounded), so the mean is
   // the bias. 0 turns it off (the paper's filter).
@@ -113,16 +113,16 @@ struct ControlConfig {
   // leaves the loop under-damped and each formation breathes by +-0.3 m; 0.7 damps it (zeta ~ 1): 38 of 40 seeds
   // of the default scenario within +-3 % of r at 120 s, against 31 of 40 (BENCHMARKS.md). --set control.k_p=0.5
   // restores the paper's gain.
-  double k_p = 0.7;         // 1/s
-  double k_v = 0.63;        // -
-  double v_max_mps = 2.0;   // saturation of |v_d|
+  double k_p = 0.7;        // 1/s
+  double k_v = 0.63;       // -
+  double v_max_mps = 2.0;  // saturation of |v_d|
   // Heading control (issue #26), only with a sensor that does not see all round (sensor.fov_deg < 360): the agent
   // turns its sensor's axis to the world direction facing_deg (counter-clockwise from east) and holds it there,
   // yaw rate = k_yaw x heading error, saturated at max_yaw_rate_radps (the vehicle's limit). Every UAV facing the
   // same way means no pair is blind to each other: j lies in i's blind sector only if i lies in the opposite
   // sector of j, which a blind sector narrower than 180 deg never covers. No communication: the heading is the
   // agent's own (the stable frame is world-aligned, DESIGN §2).
-  double k_yaw = 1.0;                 // 1/s
+  double k_yaw = 1.0;  // 1/s
   double max_yaw_rate_radps = 0.5;
   double facing_deg = 0.0;
 };
@@ -130,8 +130,8 @@ struct ControlConfig {
 // The relative sensor as the agent knows it. In a scenario both default to the simulator's mps.fov_deg and
 // mps.mount_deg, as formation.radius_m defaults to the spacing.
 struct SensorConfig {
-  double fov_deg = 360.0;   // horizontal field of view; 360: all round, and the heading is never commanded
-  double mount_deg = 0.0;   // the centre of the field of view, counter-clockwise from body x
+  double fov_deg = 360.0;  // horizontal field of view; 360: all round, and the heading is never commanded
+  double mount_deg = 0.0;  // the centre of the field of view, counter-clockwise from body x
   DetectionInput input = DetectionInput::kSwa;  // the message type (and topic) the detections come in; the simulator
                                                 // publishes that one
   // A real detector (vision_msgs, uvdar) may publish in its own sensor frame: its frame id, and where that frame sits
@@ -146,7 +146,7 @@ struct SensorConfig {
 struct AnchorConfig {
   // Weight of the absolute (GNSS) hold added to the relative command in `anchored` mode.
   double gain = 0.2;
-  double gnss_min_std_m = 0.05;   // floor for the std a fix reports: a receiver claiming 1 mm is not believed
+  double gnss_min_std_m = 0.05;  // floor for the std a fix reports: a receiver claiming 1 mm is not believed
   // After GNSS returns, the hold is blended in linearly over this time: during the outage the swarm drifted off the
   // hold point, and switching the hold's pull back on at once is a step in the command (issue #43: 0.4-0.5 m/s in one
   // IMU period with 10 s of outage). 0: at once. The first fix of a flight is not a return (the hold starts there).
@@ -154,14 +154,14 @@ struct AnchorConfig {
 };
 
 struct LimitsConfig {
-  std::size_t max_detections = 64;   // a larger detection set is rejected whole
+  std::size_t max_detections = 64;  // a larger detection set is rejected whole
   // IDs above this are treated as corrupt: the largest UAV id of the swarm (the simulator numbers 0..255 at most).
   // Every accepted id can become a track, so a generous bound lets a faulty sensor create phantom neighbours.
   int max_target_id = 255;
   // |roll|, |pitch| beyond 80 deg is not lateral flight. Not tighter: the tilt noise of R_a = 2.25 (0.24 rad std)
   // would otherwise reject ~0.1 % of genuine samples.
   double max_tilt_rad = 1.4;
-  double max_abs_position_m = 1e6;   // detections / fixes farther than this are corrupt
+  double max_abs_position_m = 1e6;                  // detections / fixes farther than this are corrupt
   double max_abs_heading_rad = 12.566370614359172;  // 4 pi: a heading is an angle, wrapped or not by much
   // Stamps (stream_clock.h): a sample more than this after the previous one of its stream (or, for detections and
   // GNSS, this far from the IMU's clock) is not trusted; this many consecutive samples of a consistent new timeline

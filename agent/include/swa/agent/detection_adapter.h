@@ -31,7 +31,7 @@
 namespace swa::agent {
 
 struct ForeignDetection {
-  double x_m = 0.0, y_m = 0.0, z_m = 0.0;   // in the set's frame
+  double x_m = 0.0, y_m = 0.0, z_m = 0.0;            // in the set's frame
   std::optional<std::array<double, 36>> covariance;  // row-major 6x6 (x, y, z, three rotations); zeros: unknown
   std::optional<long long> id;
   std::optional<std::string> class_id;  // vision_msgs: the best hypothesis's ("" without one); UVDAR: none
@@ -51,13 +51,13 @@ struct DetectionAdapterConfig {
   Vec2 sensor_offset_m = Vec2::Zero();  // its origin in the body
   std::vector<std::string> classes;     // class ids taken for UAVs; empty: every detection
   std::size_t max_detections = 64;
-  double min_variance_m2 = 1e-6;        // below this a covariance is not a measurement's (a placeholder)
+  double min_variance_m2 = 1e-6;  // below this a covariance is not a measurement's (a placeholder)
   double max_variance_m2 = 1e4;
 };
 
 struct DetectionAdapterCounters {
   std::uint64_t sets_in = 0, sets_out = 0;
-  std::uint64_t unknown_frame = 0, bad_stamp = 0, oversize = 0;  // whole sets dropped
+  std::uint64_t unknown_frame = 0, bad_stamp = 0, oversize = 0;   // whole sets dropped
   std::uint64_t nonfinite_position = 0, other_class = 0;          // detections dropped
   std::uint64_t covariance_repaired = 0, covariance_missing = 0;  // the configured noise used instead
   std::uint64_t anonymous = 0;

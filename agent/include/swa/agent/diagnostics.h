@@ -50,7 +50,8 @@ struct Diagnostics {
   std::uint64_t commands = 0;
   std::uint64_t frame_shifts = 0;  // neighbour set changed; estimate shifted to the new frame
   std::uint64_t frame_resets = 0;  // neighbour set changed and the old frame was gone; position re-initialised
-  std::uint64_t stamp_resyncs = 0; // an input stream's clock restarted (stream_clock.h); for the IMU the agent restarted
+  std::uint64_t stamp_resyncs =
+      0;  // an input stream's clock restarted (stream_clock.h); for the IMU the agent restarted
   // IMU samples without the accelerometer the agent fuses (focal.imu_source), read from the tilt instead: a vehicle
   // whose accelerometer stream started later than its attitude, or skipped one instant (the node reports them).
   std::uint64_t tilt_fallbacks = 0;

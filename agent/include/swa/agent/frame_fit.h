@@ -21,21 +21,21 @@ struct NeighbourPositions {
 using NeighbourCovariances = std::array<Mat2, kMaxNeighbours>;  // same order as NeighbourPositions
 
 enum class FitCase : std::uint8_t {
-  kNone,             // no neighbours: no frame
-  kOne,              // n = 1
-  kTwo,              // n = 2, the intersection closer to self
-  kTwoFarApart,      // n = 2 farther than 2r apart: midpoint
-  kCoincident,       // neighbours on top of each other or of self: a fixed, documented direction is used
-  kAlgebraic,        // n >= 3, linear least squares (Kasa)
-  kFixedRadius,      // n >= 3, (weighted) least squares on |p_j - c| = r, by Newton
-  kCollinearFallback // n >= 3 collinear / ill-conditioned algebraic system: the n = 2 solution of the two nearest
+  kNone,              // no neighbours: no frame
+  kOne,               // n = 1
+  kTwo,               // n = 2, the intersection closer to self
+  kTwoFarApart,       // n = 2 farther than 2r apart: midpoint
+  kCoincident,        // neighbours on top of each other or of self: a fixed, documented direction is used
+  kAlgebraic,         // n >= 3, linear least squares (Kasa)
+  kFixedRadius,       // n >= 3, (weighted) least squares on |p_j - c| = r, by Newton
+  kCollinearFallback  // n >= 3 collinear / ill-conditioned algebraic system: the n = 2 solution of the two nearest
 };
 
 struct FrameFit {
   bool valid = false;
   Vec2 centre = Vec2::Zero();  // r_c: floating-frame origin relative to self
   FitCase fit_case = FitCase::kNone;
-  int iterations = 0;          // Newton iterations used
+  int iterations = 0;  // Newton iterations used
 };
 
 // `far_weight` weighs the fixed-radius residuals of every neighbour beyond the two nearest (the two nearest weigh 1);

@@ -66,8 +66,7 @@ struct Lkf {
 
   template <int NZ>
   static Innovation<NZ> innovation(const StateCov<NX>& s, const Eigen::Matrix<double, NZ, NX>& H,
-                                   const Eigen::Matrix<double, NZ, 1>& z,
-                                   const Eigen::Matrix<double, NZ, NZ>& R) {
+                                   const Eigen::Matrix<double, NZ, 1>& z, const Eigen::Matrix<double, NZ, NZ>& R) {
     Innovation<NZ> in;
     in.y = z - H * s.x;
     in.S.noalias() = H * s.P * H.transpose();
@@ -100,9 +99,8 @@ struct Lkf {
 
   // Returns false (and leaves the state untouched) when the innovation covariance is not positive definite.
   template <int NZ>
-  static bool correct(StateCov<NX>& s, const Eigen::Matrix<double, NZ, NX>& H,
-                      const Eigen::Matrix<double, NZ, 1>& z, const Eigen::Matrix<double, NZ, NZ>& R,
-                      Innovation<NZ>* out = nullptr) {
+  static bool correct(StateCov<NX>& s, const Eigen::Matrix<double, NZ, NX>& H, const Eigen::Matrix<double, NZ, 1>& z,
+                      const Eigen::Matrix<double, NZ, NZ>& R, Innovation<NZ>* out = nullptr) {
     const Innovation<NZ> in = innovation<NZ>(s, H, z, R);
     if (out != nullptr) *out = in;
     return correct<NZ>(s, H, R, in);

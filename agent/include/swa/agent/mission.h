@@ -26,7 +26,7 @@ struct MissionLeg {
 
 enum class MissionStart { kGnssLoss, kTime };
 inline constexpr std::pair<MissionStart, const char*> kMissionStartNames[] = {{MissionStart::kGnssLoss, "gnss_loss"},
-                                                                            {MissionStart::kTime, "time"}};
+                                                                              {MissionStart::kTime, "time"}};
 
 struct MissionConfig {
   std::vector<MissionLeg> legs;  // empty: no mission, the swarm holds where it is

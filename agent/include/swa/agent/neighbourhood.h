@@ -23,9 +23,9 @@
 namespace swa::agent {
 
 struct Neighbourhood {
-  NeighbourPositions positions;            // nearest first
-  std::array<int, kMaxNeighbours> ids{};   // same order
-  NeighbourCovariances covariances{};      // same order: the tracks' position covariances
+  NeighbourPositions positions;           // nearest first
+  std::array<int, kMaxNeighbours> ids{};  // same order
+  NeighbourCovariances covariances{};     // same order: the tracks' position covariances
   int count() const { return positions.count; }
   // Whether both define the same floating frame: the same ids, and with a `ranked` fit (weights by rank, see
   // frame_fit.h) the same two nearest.

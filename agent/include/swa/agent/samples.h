@@ -27,7 +27,7 @@ inline double secondsBetween(StampNs from, StampNs to) {
 // the UAV (thrust, drag, gusts), where the tilt alone gives only the thrust's share.
 struct AccelerometerSample {
   Vec3 specific_force_body_mps2 = Vec3::Zero();  // body frame: x forward, y left, z up
-  double roll_rad = 0.0;   // attitude estimate, in the tilt convention of tiltRotation()
+  double roll_rad = 0.0;                         // attitude estimate, in the tilt convention of tiltRotation()
   double pitch_rad = 0.0;
 };
 
@@ -52,12 +52,12 @@ struct ImuSample {
   StampNs stamp_ns = 0;
   double roll_rad = 0.0;
   double pitch_rad = 0.0;
-  double heading_rad = 0.0;  // body x relative to stable/world x, counter-clockwise
+  double heading_rad = 0.0;                          // body x relative to stable/world x, counter-clockwise
   std::optional<AccelerometerSample> accelerometer;  // absent: a tilt-only source (the paper's)
 };
 
 struct Detection {
-  int target_id = kAnonymousId;      // UVDAR-like sensors identify the neighbour; LiDAR-like ones do not
+  int target_id = kAnonymousId;  // UVDAR-like sensors identify the neighbour; LiDAR-like ones do not
   Vec2 position_body_m = Vec2::Zero();
   std::optional<Mat2> covariance_m2;  // body frame; the configured R_o is used when absent
 };

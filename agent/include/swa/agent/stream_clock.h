@@ -37,14 +37,14 @@ class StreamClock {
   std::uint64_t resyncs() const { return resyncs_; }
 
  private:
-  bool follows(StampNs previous, StampNs next) const;  // next in (previous, previous + max_jump]
+  bool follows(StampNs previous, StampNs next) const;   // next in (previous, previous + max_jump]
   bool atPeriod(StampNs previous, StampNs next) const;  // next - previous within a factor 2 of the period
 
   StampNs max_jump_ns_;
   int resync_samples_;
   bool started_ = false;
   StampNs last_ns_ = 0;
-  double period_ns_ = 0.0;  // running mean of accepted steps; 0 = not known yet
+  double period_ns_ = 0.0;   // running mean of accepted steps; 0 = not known yet
   int candidate_count_ = 0;  // consecutive rejected samples of one consistent timeline
   StampNs candidate_last_ns_ = 0;
   std::uint64_t resyncs_ = 0;

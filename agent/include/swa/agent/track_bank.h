@@ -71,8 +71,8 @@ class TrackBank {
 
   SurroundingsConfig config_;
   PvaNoise noise_;
-  double gate_;          // chi-square(2) quantile of gate_probability
-  double reinit_gate_;   // far outside any plausible innovation: the sensor's ID was right, our track was wrong
+  double gate_;         // chi-square(2) quantile of gate_probability
+  double reinit_gate_;  // far outside any plausible innovation: the sensor's ID was right, our track was wrong
   std::vector<Track> tracks_;
   double cached_dt_ = -1.0;
   PvaMat F_, Q_;

@@ -32,15 +32,15 @@ struct StepMetrics {
 // doubles only in the flat key/value view (report.h); here they keep their type.
 struct Summary {
   int steps = 0;
-  double duration_s = kNaN;               // last step time - first step time
-  double window_start_s = kNaN;           // time of the first step in the window (NaN: the run never reached it)
+  double duration_s = kNaN;      // last step time - first step time
+  double window_start_s = kNaN;  // time of the first step in the window (NaN: the run never reached it)
   double window_duration_s = kNaN;
-  int uav_count = 0;                      // present at the last step
-  double mean_neighbor_distance_m = kNaN; // mean of the per-step d_NB over the last final_window_s
-  double formation_error_m = kNaN;        // mean of the per-step formation error over the last final_window_s
-  double edge_length_m = kNaN;            // mean of the per-step Gabriel edge length over the last final_window_s
-  double min_separation_m = kNaN;         // minimum over the whole run
-  std::uint64_t collisions = 0;           // onsets over the whole run
+  int uav_count = 0;                       // present at the last step
+  double mean_neighbor_distance_m = kNaN;  // mean of the per-step d_NB over the last final_window_s
+  double formation_error_m = kNaN;         // mean of the per-step formation error over the last final_window_s
+  double edge_length_m = kNaN;             // mean of the per-step Gabriel edge length over the last final_window_s
+  double min_separation_m = kNaN;          // minimum over the whole run
+  std::uint64_t collisions = 0;            // onsets over the whole run
   // Over the UAVs present at both ends of the window: |mean_i (p_i(end) - p_i(start))| / window duration, i.e. the
   // net displacement of the centroid of a fixed set of UAVs (a UAV dropping out does not move it).
   double drift_velocity_mps = kNaN;
@@ -65,8 +65,8 @@ struct Summary {
   // Fraction of contributing steps whose mean NEES lies in the band for that step's own K.
   double anees_position_in_band = kNaN;
   double anees_velocity_in_band = kNaN;
-  int nees_steps = 0;                     // contributing steps
-  std::uint64_t nees_samples = 0;         // agent-estimates evaluated in the window
+  int nees_steps = 0;                         // contributing steps
+  std::uint64_t nees_samples = 0;             // agent-estimates evaluated in the window
   std::uint64_t nees_skipped_unknown_id = 0;  // in the window
   std::uint64_t nees_skipped_invalid = 0;     // in the window
   // A mission's figures (mission_score.h); NaN without a mission or before it started.

@@ -13,11 +13,11 @@
 namespace swa::monitor {
 
 struct MissionFigures {
-  double end_error_m = kNaN;        // |centroid at the last step - (centroid at the start + the plan's end point)|
-  double path_error_m = kNaN;       // mean over the plan's steps of |centroid - planned path|
-  double d_nb_moving_m = kNaN;      // mean d_NB over the steps while the plan moves
-  double uav_end_error_m = kNaN;    // mean over UAVs of |p_i(end) - (p_i(start) + the plan's end point)|
-  double uav_end_spread_m = kNaN;   // the spread of the UAVs' end points: the std of their distance to their mean
+  double end_error_m = kNaN;       // |centroid at the last step - (centroid at the start + the plan's end point)|
+  double path_error_m = kNaN;      // mean over the plan's steps of |centroid - planned path|
+  double d_nb_moving_m = kNaN;     // mean d_NB over the steps while the plan moves
+  double uav_end_error_m = kNaN;   // mean over UAVs of |p_i(end) - (p_i(start) + the plan's end point)|
+  double uav_end_spread_m = kNaN;  // the spread of the UAVs' end points: the std of their distance to their mean
 };
 
 // A plan changed live at `at_s` (the steps' clock) by a command from the ground, as every agent changes its own

@@ -66,7 +66,7 @@ struct Statistic {
 
 struct Aggregate {
   int runs = 0;
-  std::vector<Statistic> metrics;  // in order of first appearance of the key
+  std::vector<Statistic> metrics;                     // in order of first appearance of the key
   const Statistic* find(std::string_view key) const;  // nullptr when absent
 };
 

@@ -92,7 +92,7 @@ struct PlotSeries {
   // A marker shape: every finite point is a marker of this radius, and no line joins them unless `joined`.
   MarkerShape marker = MarkerShape::kNone;
   double marker_px = 5.0;
-  bool joined = false;  // with a marker: the points are also joined by a line, as a line series' are
+  bool joined = false;                    // with a marker: the points are also joined by a line, as a line series' are
   std::vector<std::string> point_labels;  // with a marker: text beside point i; empty, or one per point
   // A vertical error bar y[i] ± y_err[i] at point i (NaN or <= 0: none); empty, or one per point. The bars' ends
   // count in the automatic y range, so no bar is cut off; on a log axis a lower end counts down to a decade below its
@@ -154,7 +154,7 @@ struct PlotSpec {
   // categories of a study's axis at 0, 1, 2 ...; labels: one per tick, or none (the numbers).
   std::vector<double> x_ticks;
   std::vector<std::string> x_tick_labels;
-  int width_px = 720;           // the SVG grows beyond height_px when the legend needs it
+  int width_px = 720;  // the SVG grows beyond height_px when the legend needs it
   int height_px = 360;
   int target_ticks = 6;
   // Minimum legend width (swatch, gap and text); plots stacked in a report give it the same value so that their

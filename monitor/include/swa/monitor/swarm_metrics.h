@@ -40,14 +40,14 @@ inline bool isPresent(const UavTruth& u) {
 // What one agent reports about its focal estimate (a subset of agent::Diagnostics plus the frame parameters needed
 // to rebuild its floating frame from truth).
 struct EstimateRecord {
-  bool valid = false;                                 // false: the agent has no floating-frame estimate this step
-  agent::Vec2 position_m = agent::Vec2::Zero();       // p̂: own position in the floating frame F
+  bool valid = false;                            // false: the agent has no floating-frame estimate this step
+  agent::Vec2 position_m = agent::Vec2::Zero();  // p̂: own position in the floating frame F
   agent::Mat2 position_cov_m2 = agent::Mat2::Zero();
-  agent::Vec2 velocity_mps = agent::Vec2::Zero();     // v̂: own velocity relative to F
+  agent::Vec2 velocity_mps = agent::Vec2::Zero();  // v̂: own velocity relative to F
   agent::Mat2 velocity_cov_m2ps2 = agent::Mat2::Zero();
-  int neighbour_count = 0;                            // neighbours the frame was fitted on
+  int neighbour_count = 0;  // neighbours the frame was fitted on
   std::array<int, agent::kMaxNeighbours> neighbour_ids{};
-  agent::FormationConfig formation;                   // that agent's: its radius and circle fit rebuild its frame
+  agent::FormationConfig formation;  // that agent's: its radius and circle fit rebuild its frame
 };
 
 // The record of an agent's diagnostics. valid only when the estimate is a floating-frame one that is being tracked:
@@ -83,16 +83,16 @@ struct MetricsConfig {
   // target and the verdict's. The one copy of r from the scenario to the record, the verdict and the report.
   agent::FormationConfig formation;
   double radius_tolerance = kDefaultRadiusTolerance;  // PASS band of the final d_NB: r × (1 ± this)
-  double collision_distance_m = 1.5;   // a pair closer than this is in collision
-  double collision_release_m = 0.5;    // hysteresis: the contact ends once the pair is farther than distance + this,
-                                       // so a pair jittering around the threshold is one collision, not ten
-  double group_link_factor = 1.5;      // UAVs closer than factor * r are linked into one group
-  int distance_neighbours = 2;         // d_NB and formation error use each UAV's this many nearest others
-  double window_start_s = 0.0;         // drift, displacement and ANEES window start (the GNSS-loss time)
-  double final_window_s = 5.0;         // d_NB and formation error "at the end": mean over this last stretch
-  double drift_window_s = 1.0;         // time-series drift: centroid speed over this last stretch
-  double drift_segment_s = 60.0;       // summary drift_velocity_windows_mps: mean over consecutive windows this long
-  double anees_alpha = 0.05;           // two-sided ANEES acceptance band (1 - alpha)
+  double collision_distance_m = 1.5;                  // a pair closer than this is in collision
+  double collision_release_m = 0.5;  // hysteresis: the contact ends once the pair is farther than distance + this,
+                                     // so a pair jittering around the threshold is one collision, not ten
+  double group_link_factor = 1.5;    // UAVs closer than factor * r are linked into one group
+  int distance_neighbours = 2;       // d_NB and formation error use each UAV's this many nearest others
+  double window_start_s = 0.0;       // drift, displacement and ANEES window start (the GNSS-loss time)
+  double final_window_s = 5.0;       // d_NB and formation error "at the end": mean over this last stretch
+  double drift_window_s = 1.0;       // time-series drift: centroid speed over this last stretch
+  double drift_segment_s = 60.0;     // summary drift_velocity_windows_mps: mean over consecutive windows this long
+  double anees_alpha = 0.05;         // two-sided ANEES acceptance band (1 - alpha)
   FrameVelocity frame_velocity = FrameVelocity::kNeighbourMean;
   // A mission (issue #45): the agents' plan and when its first leg begins on the steps' clock; no legs: none.
   std::vector<agent::MissionLeg> mission_legs;
@@ -104,14 +104,14 @@ void validate(const MetricsConfig& config);
 
 // Geometry of the UAVs present at one step.
 struct Geometry {
-  int uav_count = 0;                                  // present UAVs (alive, finite truth)
+  int uav_count = 0;  // present UAVs (alive, finite truth)
   // d_NB: for each UAV the mean distance to its `distance_neighbours` nearest others (all others when fewer),
   // averaged over UAVs. NaN with fewer than 2 UAVs.
   double mean_neighbor_distance_m = kNaN;
   agent::Vec2 centroid_m = agent::Vec2::Constant(kNaN);  // mean position; NaN with no UAV
-  double min_separation_m = kNaN;                     // smallest pairwise distance; NaN with fewer than 2 UAVs
-  double spread_m = kNaN;                             // largest distance from the centroid; 0 for one UAV
-  int groups = 0;                                     // connected components linking UAVs closer than factor * r
+  double min_separation_m = kNaN;                        // smallest pairwise distance; NaN with fewer than 2 UAVs
+  double spread_m = kNaN;                                // largest distance from the centroid; 0 for one UAV
+  int groups = 0;                                        // connected components linking UAVs closer than factor * r
   // Formation error: for each UAV the mean of |d_ij - r| over the same nearest others as d_NB, averaged over UAVs.
   // Not "nearest neighbour only": a pair exactly r apart but far from everyone else would score 0 there. Over the
   // d_NB set, formation_error >= |d_NB - r| (equality iff no distance lies on the other side of r), so it adds the
@@ -146,15 +146,15 @@ enum class TruthStatus : std::uint8_t {
 // radius and method.
 struct TruthInFrame {
   TruthStatus status = TruthStatus::kNoNeighbours;
-  agent::Vec2 position_m = agent::Vec2::Constant(kNaN);   // = -r_c
+  agent::Vec2 position_m = agent::Vec2::Constant(kNaN);  // = -r_c
   agent::Vec2 velocity_mps = agent::Vec2::Constant(kNaN);
   agent::FitCase fit_case = agent::FitCase::kNone;
   bool velocity_fallback = false;  // kFitDerivative asked for, kNeighbourMean used (fit case changed in the stencil)
   bool ok() const { return status == TruthStatus::kOk; }
 };
 
-TruthInFrame truthInFloatingFrame(const UavTruth& self, const std::vector<UavTruth>& uavs,
-                                  const EstimateRecord& record, FrameVelocity method);
+TruthInFrame truthInFloatingFrame(const UavTruth& self, const std::vector<UavTruth>& uavs, const EstimateRecord& record,
+                                  FrameVelocity method);
 
 // e' P^-1 e (solved, not inverted). NaN unless e is finite and P passes agent::isCovariance.
 double nees(const agent::Vec2& error, const agent::Mat2& covariance);

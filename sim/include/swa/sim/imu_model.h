@@ -42,8 +42,8 @@ class ImuModel {
 
   // In the stable/world frame: the kinematic acceleration and the thrust's share of it (per unit mass, without
   // gravity); heading the true heading.
-  agent::ImuSample sample(agent::StampNs stamp_ns, const agent::Vec2& acceleration_mps2,
-                          const agent::Vec2& thrust_mps2, double heading_rad);
+  agent::ImuSample sample(agent::StampNs stamp_ns, const agent::Vec2& acceleration_mps2, const agent::Vec2& thrust_mps2,
+                          double heading_rad);
 
   const agent::Vec2& bias_body_mps2() const { return bias_body_mps2_; }
   // The compass's bias at the last sample [rad].

@@ -1,7 +1,7 @@
 #pragma once
 // One PX4 autopilot (v1.15 to v1.17 alike) as its offboard interface behaves, for swa_sim with vehicle.interface = px4
-// (the node publishes its vehicle_attitude and vehicle_status, and feeds it what arrives on /fmu/in). Pure: no DDS, time is the
-// simulation time a message arrived at.
+// (the node publishes its vehicle_attitude and vehicle_status, and feeds it what arrives on /fmu/in). Pure: no DDS,
+// time is the simulation time a message arrived at.
 //
 // What is modelled (PX4's offboard rules, ROS2-PX4-NOTES.md):
 //   - it starts armed, hovering in Hold (nav_state AUTO_LOITER): the scenario starts airborne, before the swarm's

@@ -19,11 +19,11 @@ enum class Stream : std::uint32_t {
   kHeading = 2,    // initial heading and turn rate
   kGust = 3,       // per-UAV wind gust (or the common gust, owner kWorldOwner)
   kImuBias = 4,
-  kImuNoise = 5,   // tilt and heading white noise
+  kImuNoise = 5,  // tilt and heading white noise
   kMpsMiss = 6,
   kMpsNoise = 7,
   kMpsClutter = 8,
-  kMpsOrder = 9,   // order of detections within a scan
+  kMpsOrder = 9,  // order of detections within a scan
   kGnssNoise = 10,
   kHeadingWalk = 11,  // the compass bias's random walk
   kMpsLatency = 12,   // the detection sets' latency jitter
@@ -39,11 +39,11 @@ class Rng {
   // seed_seq{seed_lo, seed_hi, owner, stream}: the 64-bit seed is split because seed_seq keeps 32 bits per word.
   Rng(std::uint64_t seed, std::uint32_t owner, Stream stream);
 
-  double uniform();                   // [0, 1), 53 random bits
+  double uniform();  // [0, 1), 53 random bits
   double uniform(double lo, double hi);
-  double normal();                    // N(0, 1), Box-Muller (pairs cached)
-  int poisson(double mean);           // mean <= 0 gives 0
-  std::size_t index(std::size_t n);   // uniform in [0, n), n > 0
+  double normal();                   // N(0, 1), Box-Muller (pairs cached)
+  int poisson(double mean);          // mean <= 0 gives 0
+  std::size_t index(std::size_t n);  // uniform in [0, n), n > 0
 
  private:
   std::mt19937_64 engine_;

@@ -32,9 +32,9 @@ struct FormationSetup {
 
 struct DynamicsSetup {
   double rate_hz = 100.0;
-  double velocity_lag_s = 1.0;     // first-order response of velocity to the command
+  double velocity_lag_s = 1.0;  // first-order response of velocity to the command
   double speed_limit_mps = 5.0;
-  double failsafe_timeout_s = 0.5; // commands older than this: the UAV brakes to hover
+  double failsafe_timeout_s = 0.5;  // commands older than this: the UAV brakes to hover
   HeadingMode heading = HeadingMode::kRandom;
   double heading_rate_std_radps = 0.0;  // per-UAV constant turn rate (0 = constant heading)
   double yaw_lag_s = 0.3;               // first-order response of the yaw rate to the commanded one
@@ -47,21 +47,21 @@ struct DynamicsSetup {
 };
 
 struct WindSetup {
-  double gust_std = 0.2;           // m/s^2, per-UAV Ornstein-Uhlenbeck acceleration
+  double gust_std = 0.2;  // m/s^2, per-UAV Ornstein-Uhlenbeck acceleration
   double gust_corr_s = 5.0;
-  double common_std = 0.0;         // m/s^2, the same OU gust for every UAV (moves the swarm as a block)
+  double common_std = 0.0;  // m/s^2, the same OU gust for every UAV (moves the swarm as a block)
   double common_corr_s = 20.0;
   // The mean wind, the same for every UAV (issue #44): speed, and the direction it blows from, clockwise from north
   // (the meteorological convention: 270 = a westerly, blowing east), turning at turn_rate_dps.
   double mean_mps = 0.0;
   double direction_deg = 270.0;
-  double turn_rate_dps = 0.0;      // deg/s, clockwise positive like the direction
+  double turn_rate_dps = 0.0;  // deg/s, clockwise positive like the direction
 };
 
 struct ImuSetup {
   double rate_hz = 100.0;
-  double bias_std = 0.05;          // m/s^2 of derived acceleration, constant per UAV
-  double noise_std = 1.5;          // m/s^2 white (sqrt of R_a)
+  double bias_std = 0.05;  // m/s^2 of derived acceleration, constant per UAV
+  double noise_std = 1.5;  // m/s^2 white (sqrt of R_a)
   double heading_noise_std_rad = 0.005;
   // The compass's own error (issue #44): a constant per-UAV offset (a magnetometer calibrated on another airframe,
   // the motors' field) and a slow random walk on top (temperature, currents), both 0 by default: an ideal compass.
@@ -86,13 +86,13 @@ struct MpsSetup {
   double rate_hz = 10.0;
   double range_m = 40.0;
   double fov_deg = 360.0;
-  double mount_deg = 0.0;          // centre of the field of view, counter-clockwise from body x
+  double mount_deg = 0.0;  // centre of the field of view, counter-clockwise from body x
   MpsNoiseModel noise_model = MpsNoiseModel::kIsotropic;
-  double noise_var_m2 = 0.1;       // isotropic model (R_o)
-  double range_std_m = 0.2;        // range/bearing model
+  double noise_var_m2 = 0.1;  // isotropic model (R_o)
+  double range_std_m = 0.2;   // range/bearing model
   double bearing_std_rad = 0.01;
   double miss_probability = 0.05;
-  double clutter_rate = 0.0;       // mean false positives per scan, uniform in the sensing disc
+  double clutter_rate = 0.0;  // mean false positives per scan, uniform in the sensing disc
   bool ids = true;
   double latency_s = 0.0;
   // Each set's delay is latency_s plus a uniform draw in [-latency_jitter_s, +latency_jitter_s] (never below 0), so a
@@ -110,9 +110,9 @@ struct GnssWindow {
 struct GnssSetup {
   double rate_hz = 10.0;
   double std_m = 0.5;
-  double dropout_start_s = 10.0;   // every UAV loses GNSS at this time ...
+  double dropout_start_s = 10.0;                                   // every UAV loses GNSS at this time ...
   double dropout_end_s = std::numeric_limits<double>::infinity();  // ... until this time
-  std::vector<int> keep_uavs;      // UAVs that never lose GNSS in the common window (e.g. one anchored member)
+  std::vector<int> keep_uavs;  // UAVs that never lose GNSS in the common window (e.g. one anchored member)
   // Per-UAV outages on top of the common window: a UAV has no GNSS while it is inside the common window (unless
   // it is in keep_uavs) or inside any of its own windows. Windows may overlap; keep_uavs does not exempt them.
   std::vector<GnssWindow> windows;
@@ -120,8 +120,8 @@ struct GnssSetup {
 
 struct VehicleSetup {
   VehicleInterface interface = VehicleInterface::kDirect;
-  double com_of_loss_t_s = 1.0;    // PX4's COM_OF_LOSS_T (default 1 s in v1.15-v1.17): offboard lost -> Hold
-  double guid_timeout_s = 3.0;     // ArduPilot's GUID_TIMEOUT (Copter default 3 s): no cmd_vel this long -> stop
+  double com_of_loss_t_s = 1.0;  // PX4's COM_OF_LOSS_T (default 1 s in v1.15-v1.17): offboard lost -> Hold
+  double guid_timeout_s = 3.0;   // ArduPilot's GUID_TIMEOUT (Copter default 3 s): no cmd_vel this long -> stop
   px4::Release px4_release = px4::kNewestRelease;  // the layouts and topic names the PX4 stand-in speaks
   GnssSource gnss_source = GnssSource::kSwa;
   // Issue #43: whether the stand-ins model the autopilot's estimator (PX4's EKF2, ArduPilot's EKF3 and EKF failsafe),
@@ -133,15 +133,15 @@ struct VehicleSetup {
   bool ap_external_nav = true;     // ArduPilot: external navigation once GPS is lost (the pre-flight table's setup)
   // When swa_launch's bridges feed their agent's estimate as external odometry (swa_px4_bridge --odometry).
   autopilot::OdometryMode odometry = autopilot::OdometryMode::kWhileGnssLost;
-  // Issue #46, PX4 with GNSS from the autopilot: at px4_origin_shift_at_s every stand-in moves its local origin this far
-  // east and north of the old one and re-bases x, y on it, as EKF2 does when its global origin is re-set in flight.
+  // Issue #46, PX4 with GNSS from the autopilot: at px4_origin_shift_at_s every stand-in moves its local origin this
+  // far east and north of the old one and re-bases x, y on it, as EKF2 does when its global origin is re-set in flight.
   double px4_origin_shift_at_s = std::numeric_limits<double>::infinity();  // never
   double px4_origin_shift_east_m = 0.0, px4_origin_shift_north_m = 0.0;
 };
 
 struct ClockSetup {
   ClockMode mode = ClockMode::kLockstep;
-  double speed = 1.0;              // realtime factor
+  double speed = 1.0;  // realtime factor
 };
 
 struct Scenario {

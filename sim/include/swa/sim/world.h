@@ -22,8 +22,8 @@
 #include "swa/sim/gnss_model.h"
 #include "swa/sim/imu_model.h"
 #include "swa/sim/mps_model.h"
-#include "swa/sim/random.h"
 #include "swa/sim/ou_process.h"
+#include "swa/sim/random.h"
 #include "swa/sim/scenario.h"
 #include "swa/sim/uav_dynamics.h"
 
@@ -34,12 +34,12 @@ struct UavTruth {
   agent::Vec2 position_m = agent::Vec2::Zero();
   agent::Vec2 velocity_mps = agent::Vec2::Zero();
   agent::Vec2 acceleration_mps2 = agent::Vec2::Zero();  // achieved over the last step (what the accelerometer reads)
-  double heading_rad = 0.0;                              // (-pi, pi], body x from world x, counter-clockwise
-  bool gnss_valid = true;                                // the dropout schedule at this time (also when not sampled)
-  bool failsafe = false;                                 // braking to hover during the last step
-  agent::Vec2 gust_mps2 = agent::Vec2::Zero();           // wind acceleration applied in the last step (own + common)
-  agent::Vec2 thrust_mps2 = agent::Vec2::Zero();         // the thrust's lateral share (what the tilt encodes)
-  agent::Vec2 wind_mps = agent::Vec2::Zero();            // the mean wind now (the same for every UAV)
+  double heading_rad = 0.0;                             // (-pi, pi], body x from world x, counter-clockwise
+  bool gnss_valid = true;                               // the dropout schedule at this time (also when not sampled)
+  bool failsafe = false;                                // braking to hover during the last step
+  agent::Vec2 gust_mps2 = agent::Vec2::Zero();          // wind acceleration applied in the last step (own + common)
+  agent::Vec2 thrust_mps2 = agent::Vec2::Zero();        // the thrust's lateral share (what the tilt encodes)
+  agent::Vec2 wind_mps = agent::Vec2::Zero();           // the mean wind now (the same for every UAV)
 };
 
 enum class EventKind { kGnssLost, kGnssRestored, kCollision, kFailsafeOn, kFailsafeOff };
@@ -118,9 +118,9 @@ class World {
     };
     std::vector<InFlight> in_flight;  // measured, waiting for their latency to pass; in scan order
     agent::Vec2 setpoint_mps = agent::Vec2::Zero();
-    double yaw_rate_setpoint_radps = 0.0;  // clamped to dynamics.max_yaw_rate_radps
-    double yaw_rate_radps = 0.0;           // the lagged response
-    double commanded_turn_rad = 0.0;       // heading turned by yaw commands, on top of the scenario's own turn
+    double yaw_rate_setpoint_radps = 0.0;    // clamped to dynamics.max_yaw_rate_radps
+    double yaw_rate_radps = 0.0;             // the lagged response
+    double commanded_turn_rad = 0.0;         // heading turned by yaw commands, on top of the scenario's own turn
     agent::StampNs setpoint_arrival_ns = 0;  // t = 0 stands for "none yet": the timeout then runs from the start
     agent::Vec2 last_gust_mps2 = agent::Vec2::Zero();
     agent::Vec2 thrust_mps2 = agent::Vec2::Zero();  // lateral thrust per unit mass over the last step

@@ -8,9 +8,9 @@
 //         (and perhaps later: not confirmed) write its (w, x, y, z) into the message's (x, y, z, w) fields, a fork
 //         fixes it: QuaternionLayout::kWxyzInXyzw reads the former. Read in the wrong order, a level vehicle with
 //         true heading psi (from north) reads as tilted: by pi - psi (heading north) when ArduPilot writes w, x, y,
-//         z; by psi when it writes the ROS order. quaternion_order.h decides the order from gravity. linear_acceleration is the specific force in FRD body axes. Stamps:
-//         builtin_interfaces/Time of the vehicle (UTC when its clock is set, else time since boot), in whole
-//         microseconds.
+//         z; by psi when it writes the ROS order. quaternion_order.h decides the order from gravity.
+//         linear_acceleration is the specific force in FRD body axes. Stamps: builtin_interfaces/Time of the vehicle
+//         (UTC when its clock is set, else time since boot), in whole microseconds.
 //   cmd   rt/<ns>/cmd_vel, geometry_msgs/TwistStamped in frame "map": linear = ENU velocity (x east, y north, z up),
 //         angular.z = yaw rate counter-clockwise from above (ArduPilot negates it for NED). SWA's stable frame is
 //         x east, y north and its yaw rate counter-clockwise: the same numbers. Any other frame id is ignored by

@@ -41,14 +41,13 @@ using px4::Quaternion;
 // What differs between the autopilots in the rules: names for people, and the mode that takes external commands.
 struct Autopilot {
   const char* name = "PX4";
-  std::uint8_t control_mode = 14;                    // PX4: nav_state OFFBOARD; ArduPilot Copter: mode GUIDED (4)
+  std::uint8_t control_mode = 14;  // PX4: nav_state OFFBOARD; ArduPilot Copter: mode GUIDED (4)
   const char* control_mode_name = "offboard";
   const char* (*mode_name)(std::uint8_t mode) = nullptr;  // the mode's name in the logs
   bool heartbeat = true;  // PX4's offboard_control_mode; ArduPilot has none (the commands are its liveness)
 };
 Autopilot px4Autopilot();
 Autopilot ardupilotAutopilot();
-
 
 struct BridgeConfig {
   double stale_after_s = 0.3;

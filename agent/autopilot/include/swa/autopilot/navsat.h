@@ -22,14 +22,14 @@ namespace swa::ardupilot {
 
 struct NavSatReport {
   std::uint64_t timestamp_us = 0;
-  std::int8_t status = -1;       // sensor_msgs/NavSatStatus: -1 no fix, 0 fix, 1 SBAS, 2 GBAS
+  std::int8_t status = -1;  // sensor_msgs/NavSatStatus: -1 no fix, 0 fix, 1 SBAS, 2 GBAS
   double latitude_deg = 0.0, longitude_deg = 0.0;
-  std::uint8_t covariance_type = 0;  // 0 unknown
+  std::uint8_t covariance_type = 0;                        // 0 unknown
   double variance_east_m2 = 0.0, variance_north_m2 = 0.0;  // position_covariance[0], [4] (ENU)
 };
 
 struct NavSatForwardConfig {
-  double silence_s = 0.5;     // ArduPilot's GPS reports at 5-10 Hz: half a second without one is a lost receiver
+  double silence_s = 0.5;      // ArduPilot's GPS reports at 5-10 Hz: half a second without one is a lost receiver
   double unknown_std_m = 2.5;  // a fix without a known covariance
 };
 

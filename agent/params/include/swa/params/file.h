@@ -12,7 +12,7 @@
 
 namespace swa::params {
 
-constexpr std::size_t kMaxFileBytes = 1 << 20;   // 1 MiB: the full default scenario is 5 kB
+constexpr std::size_t kMaxFileBytes = 1 << 20;  // 1 MiB: the full default scenario is 5 kB
 constexpr std::size_t kMaxProblems = 20;
 constexpr std::size_t kMaxProblemChars = 300;
 

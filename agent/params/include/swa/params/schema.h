@@ -18,8 +18,7 @@ namespace swa::params {
 enum class Kind { kReal, kInteger, kSeed, kBool, kChoice, kText, kIntList, kRecordList };
 // kText: a name such as a ROS frame id, or a comma-separated list of them: up to kMaxTextChars of kTextChars, or empty.
 inline constexpr std::size_t kMaxTextChars = 256;
-inline constexpr const char* kTextChars =
-    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./,-";
+inline constexpr const char* kTextChars = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./,-";
 
 // One kRecordList element: the values of Spec::fields in their order, a field of `components` numbers taking that many
 // slots (recordSlot); a field left out of an element that gives another alternative holds NaN.
@@ -80,9 +79,9 @@ struct Check {
 };
 
 // `key` is used only while the choice parameter `when` holds one of `values` or, with no `values`, while the number
-// `when` is not 0 (0 = off) or the text `when` is not empty; `what` names that case in messages ("the k_nearest rule"). Giving `key` while it
-// changes nothing is an error, unless the file gave it and a --set of `when` turned it off (a study's sweep over
-// the rule); the dump writes such a key as a comment.
+// `when` is not 0 (0 = off) or the text `when` is not empty; `what` names that case in messages ("the k_nearest rule").
+// Giving `key` while it changes nothing is an error, unless the file gave it and a --set of `when` turned it off (a
+// study's sweep over the rule); the dump writes such a key as a comment.
 struct Applies {
   std::string key;
   std::string when;

@@ -18,7 +18,9 @@
 
 // Declares the parameter `path` (a member path of the table's struct, e.g. formation.radius_m) with Table::`kind`;
 // the remaining arguments are those of `kind` after the key and the accessor.
-#define SWA_PARAM(table, kind, path, ...) (table).kind(#path, [](auto& x) -> auto& { return x.path; }, __VA_ARGS__)
+#define SWA_PARAM(table, kind, path, ...) \
+  (table).kind(                           \
+      #path, [](auto& x) -> auto& { return x.path; }, __VA_ARGS__)
 
 namespace swa::params {
 
@@ -56,7 +58,8 @@ class Table {
     Spec s = makeSpec(std::move(key), std::is_integral_v<Field> ? Kind::kInteger : Kind::kReal, std::move(unit), range);
     s.allow_infinity = allow_infinity;
     s.meaning = std::move(meaning);
-    add(std::move(s), [access](const T& t) { return Value(static_cast<double>(access(t))); },
+    add(
+        std::move(s), [access](const T& t) { return Value(static_cast<double>(access(t))); },
         [access](T& t, const Value& v) { access(t) = static_cast<Field>(std::get<double>(v)); });
   }
 
@@ -65,7 +68,8 @@ class Table {
     Spec s = makeSpec(std::move(key), Kind::kChoice);
     for (const auto& n : names) s.choices.push_back(n.second);
     s.meaning = std::move(meaning);
-    add(std::move(s),
+    add(
+        std::move(s),
         [access, names](const T& t) {
           for (const auto& n : names) {
             if (n.first == access(t)) return Value(n.second);
@@ -85,7 +89,8 @@ class Table {
     Spec s = makeSpec(std::move(key), Kind::kText);
     s.meaning = std::move(meaning);
     s.expected = std::move(expected);
-    add(std::move(s), [access](const T& t) { return Value(std::string(access(t))); },
+    add(
+        std::move(s), [access](const T& t) { return Value(std::string(access(t))); },
         [access](T& t, const Value& v) { access(t) = std::get<std::string>(v); });
   }
 
@@ -94,7 +99,8 @@ class Table {
     Spec s = makeSpec(std::move(key), Kind::kBool);
     s.choices = {"true", "false"};
     s.meaning = std::move(meaning);
-    add(std::move(s), [access](const T& t) { return Value(static_cast<bool>(access(t))); },
+    add(
+        std::move(s), [access](const T& t) { return Value(static_cast<bool>(access(t))); },
         [access](T& t, const Value& v) { access(t) = std::get<bool>(v); });
   }
 
@@ -102,7 +108,8 @@ class Table {
   void seed(std::string key, Access access, std::string meaning) {
     Spec s = makeSpec(std::move(key), Kind::kSeed);
     s.meaning = std::move(meaning);
-    add(std::move(s), [access](const T& t) { return Value(static_cast<std::uint64_t>(access(t))); },
+    add(
+        std::move(s), [access](const T& t) { return Value(static_cast<std::uint64_t>(access(t))); },
         [access](T& t, const Value& v) { access(t) = std::get<std::uint64_t>(v); });
   }
 
@@ -114,7 +121,8 @@ class Table {
     s.meaning = std::move(meaning);
     s.expected = std::move(expected);
     s.comment = std::move(comment);
-    add(std::move(s),
+    add(
+        std::move(s),
         [access](const T& t) {
           const auto& list = access(t);
           return Value(std::vector<long long>(list.begin(), list.end()));

@@ -16,10 +16,10 @@ struct Range {
   bool min_open;
   bool max_open;
 };
-constexpr Range closed(double lo, double hi) { return {lo, hi, false, false}; }      // [lo, hi]
-constexpr Range openClosed(double lo, double hi) { return {lo, hi, true, false}; }   // (lo, hi]
-constexpr Range closedOpen(double lo, double hi) { return {lo, hi, false, true}; }   // [lo, hi)
-constexpr Range open(double lo, double hi) { return {lo, hi, true, true}; }          // (lo, hi)
+constexpr Range closed(double lo, double hi) { return {lo, hi, false, false}; }     // [lo, hi]
+constexpr Range openClosed(double lo, double hi) { return {lo, hi, true, false}; }  // (lo, hi]
+constexpr Range closedOpen(double lo, double hi) { return {lo, hi, false, true}; }  // [lo, hi)
+constexpr Range open(double lo, double hi) { return {lo, hi, true, true}; }         // (lo, hi)
 
 bool inRange(const Range& r, double v);
 // "[lo, hi]", "(lo, hi]", ...: the bounds as integers if `integral`, else as formatNumber.

@@ -10,7 +10,7 @@
 namespace swa::px4 {
 
 struct AccelerometerReading {
-  std::uint64_t sample_us = 0;  // sensor_combined.timestamp + accelerometer_timestamp_relative
+  std::uint64_t sample_us = 0;       // sensor_combined.timestamp + accelerometer_timestamp_relative
   double x = 0.0, y = 0.0, z = 0.0;  // FRD body, m/s^2
 };
 

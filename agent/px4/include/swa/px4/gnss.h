@@ -48,16 +48,16 @@ struct LocalPositionReport {
 };
 
 struct GnssForwardConfig {
-  double gps_max_age_s = 1.0;   // PX4 sends vehicle_gps_position at 5-10 Hz: older means the receiver went quiet
-  double min_period_s = 0.1;    // valid samples at most at 10 Hz (the agent's GNSS rate); a change of validity at once
+  double gps_max_age_s = 1.0;  // PX4 sends vehicle_gps_position at 5-10 Hz: older means the receiver went quiet
+  double min_period_s = 0.1;   // valid samples at most at 10 Hz (the agent's GNSS rate); a change of validity at once
 };
 
 struct GnssForwardCounters {
   std::uint64_t positions_in = 0, gps_in = 0, forwarded = 0, invalid_forwarded = 0;
   std::uint64_t no_fix = 0, not_xy_valid = 0, dead_reckoning = 0, bad_numbers = 0, stale_gps = 0;  // why not valid
-  std::uint64_t out_of_order = 0;    // position reports dropped: not newer than the last one
-  std::uint64_t clock_restarts = 0;  // PX4's clock went back by more than a second (a reboot): started afresh
-  std::uint64_t origin_changes = 0;  // PX4 moved its local origin: positions brought into the first origin's frame
+  std::uint64_t out_of_order = 0;        // position reports dropped: not newer than the last one
+  std::uint64_t clock_restarts = 0;      // PX4's clock went back by more than a second (a reboot): started afresh
+  std::uint64_t origin_changes = 0;      // PX4 moved its local origin: positions brought into the first origin's frame
   std::uint64_t unusable_reference = 0;  // no usable reference after a first one: not valid (why not valid, too)
 };
 
@@ -89,7 +89,7 @@ class GnssForward {
   GnssForwardConfig config_;
   GnssForwardCounters counters_;
   std::optional<Origin> first_, current_;  // the first usable reference, and the newest one
-  bool reference_lost_ = false;             // reported, until a usable reference returns
+  bool reference_lost_ = false;            // reported, until a usable reference returns
   std::vector<std::string> events_;
   std::optional<GpsReport> gps_;
   std::optional<std::uint64_t> last_position_us_;

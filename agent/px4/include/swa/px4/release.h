@@ -33,8 +33,8 @@ int messageVersion(Release r, std::string_view message);
 std::string topicName(Release r, std::string_view message);
 
 // Which layout a release has (idl/px4/<Message>_v<first release>.idl).
-constexpr bool hasV116VehicleStatus(Release r) { return r != Release::kV1_15; }          // else v1.15's
-constexpr bool hasV116VehicleLocalPosition(Release r) { return r != Release::kV1_15; }   // else v1.15's
-constexpr bool hasV117SensorGps(Release r) { return r == Release::kV1_17; }              // else v1.15's
+constexpr bool hasV116VehicleStatus(Release r) { return r != Release::kV1_15; }         // else v1.15's
+constexpr bool hasV116VehicleLocalPosition(Release r) { return r != Release::kV1_15; }  // else v1.15's
+constexpr bool hasV117SensorGps(Release r) { return r == Release::kV1_17; }             // else v1.15's
 
 }  // namespace swa::px4

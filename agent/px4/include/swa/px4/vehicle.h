@@ -17,10 +17,10 @@ constexpr std::uint8_t kNavStateAutoLoiter = 4;  // Hold
 constexpr std::uint8_t kNavStateDescend = 12;    // the fallback of a failsafe mode that cannot run without a position
 constexpr std::uint8_t kNavStateOffboard = 14;
 
-constexpr std::uint32_t kCmdDoSetMode = 176;        // param1 = base mode flags, param2 = custom main mode
+constexpr std::uint32_t kCmdDoSetMode = 176;           // param1 = base mode flags, param2 = custom main mode
 constexpr std::uint32_t kCmdComponentArmDisarm = 400;  // param1 = 1 arm, 0 disarm
-constexpr float kModeFlagCustomModeEnabled = 1.0f;  // MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
-constexpr float kCustomMainModeOffboard = 6.0f;     // PX4_CUSTOM_MAIN_MODE_OFFBOARD
+constexpr float kModeFlagCustomModeEnabled = 1.0f;     // MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
+constexpr float kCustomMainModeOffboard = 6.0f;        // PX4_CUSTOM_MAIN_MODE_OFFBOARD
 
 // A name for a nav_state in logs.
 const char* navStateName(std::uint8_t nav_state);

@@ -76,8 +76,8 @@ class Cli {
               std::optional<T>& out, const std::string& meaning);
 
   // Options several programs have, worded once.
-  void scenario(std::string& out, const std::string& meaning);                 // --scenario FILE
-  void overrides(std::vector<std::string>& out, const std::string& example);   // --set key=value, repeatable
+  void scenario(std::string& out, const std::string& meaning);                // --scenario FILE
+  void overrides(std::vector<std::string>& out, const std::string& example);  // --set key=value, repeatable
   // --domain D, kept as text: the program resolves it against SWA_DOMAIN (dds::resolveDomain), which checks it.
   void domain(std::optional<std::string>& out, int max_domain, const std::string& note = "");
 
@@ -127,7 +127,8 @@ void Cli::choice(const std::string& name, const std::string& value_name, std::in
                  std::optional<T>& out, const std::string& meaning) {
   std::vector<std::string> names;
   for (const T& v : values) names.push_back(toString(v));
-  choice(name, value_name, names, [&out, all = std::vector<T>(values)](std::size_t k) { out = all[k]; }, meaning);
+  choice(
+      name, value_name, names, [&out, all = std::vector<T>(values)](std::size_t k) { out = all[k]; }, meaning);
 }
 
 }  // namespace swa::app

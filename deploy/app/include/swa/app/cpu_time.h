@@ -18,7 +18,9 @@ struct CpuTime {
 inline CpuTime processCpuTime() {
   rusage usage{};
   if (getrusage(RUSAGE_SELF, &usage) != 0) return {};
-  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  const auto seconds = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+  };
   return {seconds(usage.ru_utime), seconds(usage.ru_stime)};
 }
 

@@ -19,8 +19,8 @@ class LogHistogram {
  public:
   static constexpr int kBinsPerDecade = 100;
   static constexpr int kDecades = 8;
-  static constexpr double kLowNs = 1e3;   // 1 us
-  static constexpr double kHighNs = 1e11; // 100 s
+  static constexpr double kLowNs = 1e3;    // 1 us
+  static constexpr double kHighNs = 1e11;  // 100 s
   // Half the width of a bin relative to its geometric centre: 10^(1 / (2 * kBinsPerDecade)) - 1, i.e. 1.16 %.
   static double relativeResolution();
 

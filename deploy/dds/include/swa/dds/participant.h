@@ -213,8 +213,8 @@ class Participant {
   Reader<typename PubSubType::type> reader(const std::string& topic_name, const std::string& profile,
                                            std::function<void(typename PubSubType::type&&)> on_sample) {
     using Msg = typename PubSubType::type;
-    return readerWithOrigin<PubSubType>(
-        topic_name, profile, [f = std::move(on_sample)](Msg&& m, const WriterGuid&) { f(std::move(m)); });
+    return readerWithOrigin<PubSubType>(topic_name, profile,
+                                        [f = std::move(on_sample)](Msg&& m, const WriterGuid&) { f(std::move(m)); });
   }
 
   // The same, with the GUID of the writer each sample came from.
@@ -252,7 +252,7 @@ class Participant {
   Reader<Payload> rawReader(const std::string& topic_name, const std::string& profile,
                             std::function<void(RawSample&&)> on_sample) {
     return Reader<Payload>(createReader(topic(topic_name, rawTypeOf<PubSubType>()), profile,
-                                       std::make_unique<detail::RawListener>(std::move(on_sample))));
+                                        std::make_unique<detail::RawListener>(std::move(on_sample))));
   }
 
   const std::string& name() const { return name_; }
@@ -301,8 +301,9 @@ class Participant {
   bool writerReadBy(const eprosima::fastdds::dds::DataWriter* w, const PeerKey& peer) const;
   eprosima::fastdds::dds::DataWriter* createWriter(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
   // A reader of `topic` whose samples go to `listener`, which is kept here for as long as the participant lives.
-  eprosima::fastdds::dds::DataReader* createReader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
-                                                   std::unique_ptr<eprosima::fastdds::dds::DataReaderListener> listener);
+  eprosima::fastdds::dds::DataReader* createReader(
+      eprosima::fastdds::dds::Topic* topic, const std::string& profile,
+      std::unique_ptr<eprosima::fastdds::dds::DataReaderListener> listener);
 
   // Declared first, destroyed last: the listeners outlive the readers that call them.
   std::vector<std::unique_ptr<eprosima::fastdds::dds::DataReaderListener>> listeners_;

@@ -1,8 +1,8 @@
 #pragma once
 // PX4's messages <-> the PX4 library's types (swa/px4/): the bridge's and the simulator's PX4 stand-in's one place for
 // message fields. Which release has which layout: swa/px4/release.h (VehicleStatus and VehicleLocalPosition changed in
-// v1.16, SensorGps in v1.17; the rest SWA uses has v1.15's layout throughout). Frames are converted in swa/px4/frames.h, not here: these only move values (float32 on
-// PX4's side).
+// v1.16, SensorGps in v1.17; the rest SWA uses has v1.15's layout throughout). Frames are converted in
+// swa/px4/frames.h, not here: these only move values (float32 on PX4's side).
 
 #include <cstdint>
 #include <optional>
@@ -121,8 +121,8 @@ px4::GpsReport gpsReportOf(const Gps& m) {
 // The same fields in v1.15's layout (px4_msgs::msg::VehicleLocalPosition) and v1.16's (px4_v1_16::...).
 template <class Position>
 px4::LocalPositionReport localPositionOf(const Position& m) {
-  return {m.timestamp(), m.xy_valid(), m.dead_reckoning(), m.x(), m.y(), m.eph(),
-          m.xy_global(), m.ref_timestamp(), m.ref_lat(), m.ref_lon()};
+  return {m.timestamp(), m.xy_valid(),  m.dead_reckoning(), m.x(),       m.y(),
+          m.eph(),       m.xy_global(), m.ref_timestamp(),  m.ref_lat(), m.ref_lon()};
 }
 
 // The agent's estimate as external vision (fmu/in/vehicle_visual_odometry, issue #43), stamped on the vehicle's

@@ -7,9 +7,9 @@
 #include <cstdint>
 
 #include <swa/msg/Detections.h>
-#include <swa/msg/MessageHeader.h>
 #include <swa/msg/GnssFix.h>
 #include <swa/msg/Imu.h>
+#include <swa/msg/MessageHeader.h>
 #include <swa/msg/VelocitySetpoint.h>
 
 #include "swa/agent/samples.h"

@@ -38,8 +38,8 @@ class McapError : public std::runtime_error {
 class McapWriter {
  public:
   struct Options {
-    std::string profile = "ros2";  // the Header's profile: what the channels' metadata and encodings follow
-    std::string library = "swa";   // the Header's writer library
+    std::string profile = "ros2";          // the Header's profile: what the channels' metadata and encodings follow
+    std::string library = "swa";           // the Header's writer library
     std::size_t chunk_bytes = 256 * 1024;  // a chunk is closed once its records reach this size
   };
 
@@ -57,8 +57,8 @@ class McapWriter {
                            const std::map<std::string, std::string>& metadata = {});
   // One message: `log_time_ns` orders it for viewers, `publish_time_ns` is when it was sent. Throws McapError on an
   // unknown channel or a failed write.
-  void write(std::uint16_t channel_id, std::uint32_t sequence, std::uint64_t log_time_ns,
-             std::uint64_t publish_time_ns, const std::uint8_t* data, std::size_t size);
+  void write(std::uint16_t channel_id, std::uint32_t sequence, std::uint64_t log_time_ns, std::uint64_t publish_time_ns,
+             const std::uint8_t* data, std::size_t size);
 
   // A Metadata record `name` with `entries` (e.g. the run's effective scenario), outside any chunk: the chunk being
   // filled is written first. Indexed in the summary.
@@ -98,8 +98,8 @@ class McapWriter {
   Options options_;
   std::string path_;
   std::FILE* file_ = nullptr;
-  std::uint64_t offset_ = 0;     // bytes written so far
-  std::uint32_t data_crc_ = 0;   // of the data section so far
+  std::uint64_t offset_ = 0;    // bytes written so far
+  std::uint32_t data_crc_ = 0;  // of the data section so far
   std::vector<SchemaRecord> schemas_;
   std::vector<ChannelRecord> channels_;
   std::vector<bool> schema_in_chunk_stream_;   // per schema: already in a chunk (a streaming reader knows it)

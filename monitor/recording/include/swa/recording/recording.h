@@ -81,9 +81,9 @@ class Recording {
   const Options options_;
   mutable std::mutex mutex_;
   McapWriter writer_;
-  std::map<std::string, std::uint16_t> schema_ids_;  // by schema name
+  std::map<std::string, std::uint16_t> schema_ids_;   // by schema name
   std::map<std::string, std::uint16_t> channel_ids_;  // by topic
-  std::vector<ChannelCount> channels_;               // by channel id
+  std::vector<ChannelCount> channels_;                // by channel id
   std::uint64_t unstamped_ = 0;
   std::optional<std::chrono::steady_clock::time_point> chunk_opened_;
   bool closed_ = false;

@@ -24,5 +24,4 @@ std::string_view chompCr(std::string_view line);
 // A whole field as a number ("nan" and "inf" included, as monitor::formatNumber writes them).
 std::optional<double> csvNumber(const std::string& text);
 
-
 }  // namespace swa::record

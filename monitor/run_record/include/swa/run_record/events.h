@@ -17,7 +17,7 @@ inline constexpr const char* kAgentRejoined = "agent_rejoined";
 inline constexpr const char* kCollision = "collision";
 inline constexpr const char* kFailsafe = "failsafe";
 inline constexpr const char* kScenarioEnd = "scenario_end";
-inline constexpr const char* kControlLost = "control_lost";        // a stand-in autopilot took the vehicle
+inline constexpr const char* kControlLost = "control_lost";          // a stand-in autopilot took the vehicle
 inline constexpr const char* kControlRegained = "control_regained";  // and gave it back
 }  // namespace event_kind
 

@@ -15,7 +15,7 @@ namespace swa::record {
 
 struct AgentRestart {
   static constexpr int kMonitor = -1;  // `uav` of a restart of swa_monitor itself
-  double wall_s = 0.0;  // launcher's wall clock, seconds since it started
+  double wall_s = 0.0;                 // launcher's wall clock, seconds since it started
   int uav = 0;
   std::string exit_status;         // as the launcher wrote it (an exit code, or a signal name / number)
   std::int64_t restart_count = 0;  // restarts of that agent so far, this one included

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "swa/monitor/accumulator.h"
-#include "swa/monitor/summary_format.h"
 #include "swa/monitor/report_html.h"
+#include "swa/monitor/summary_format.h"
 #include "swa/run_record/events.h"
 #include "swa/run_record/restarts.h"
 #include "swa/run_record/verdict.h"

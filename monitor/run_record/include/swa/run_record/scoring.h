@@ -9,7 +9,8 @@
 namespace swa::record {
 
 struct Scoring {
-  monitor::MetricsConfig metrics;  // the agents' formation, and drift measured from the common GNSS loss (sim::driftWindowStart)
+  monitor::MetricsConfig
+      metrics;  // the agents' formation, and drift measured from the common GNSS loss (sim::driftWindowStart)
   // Standalone agents estimate in their take-off frame: there is no floating frame to score their estimates against.
   bool score_estimates = true;
   // Why the run may fail for a reason of the world the metrics cannot see, said with a FAIL verdict (empty: none).
