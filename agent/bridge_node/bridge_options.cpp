@@ -13,53 +13,76 @@ namespace {
 
 constexpr int kMaxUavId = 9999;
 
-const char* const kDetails = R"(Runs on the drone beside swa_agent --id I (same domain, same SWA_SWARM / SWA_NAMING).
+const char* const kDetails = R"(Runs on the drone beside swa_agent --id I (same domain, same SWA_SWARM /
+SWA_NAMING).
 
-With --autopilot px4 (the default): PX4's uXRCE-DDS agent puts PX4's topics on the same DDS domain under the namespace NS (uxrce_dds_client start -n NS). --px4-release must be the vehicle's: v1.16 changed vehicle_status's layout and renamed its topic vehicle_status_v1, and a bridge of another release would never hear the vehicle's state.
+With --autopilot px4 (the default): PX4's uXRCE-DDS agent puts PX4's topics on the same DDS domain under the
+namespace NS (uxrce_dds_client start -n NS). --px4-release must be the vehicle's: v1.16 changed vehicle_status's
+layout and renamed its topic vehicle_status_v1, and a bridge of another release would never hear the vehicle's
+state.
 Reads
   rt/NS/fmu/out/vehicle_attitude
-      -> swa/uav<I>/imu (roll, pitch, heading in SWA's convention, stamped with PX4's timestamp: stamp the detections on the same clock)
+      -> swa/uav<I>/imu (roll, pitch, heading in SWA's convention, stamped with PX4's timestamp: stamp the
+      detections on the same clock)
   rt/NS/fmu/out/vehicle_status (vehicle_status_v1 from v1.16)
       armed, nav_state (logged, and for --engage)
   rt/NS/fmu/out/vehicle_command_ack
       the answers to --engage's requests (logged)
   rt/NS/fmu/out/vehicle_gps_position, vehicle_local_position
-      -> swa/uav<I>/gnss: valid while the fix is 3D or better and PX4 says xy_valid; the loss (and the regain) at once, valid fixes at 10 Hz; position = PX4's local x, y turned to east, north; std = eph. From v1.17 the second topic is vehicle_local_position_v1.
+      -> swa/uav<I>/gnss: valid while the fix is 3D or better and PX4 says xy_valid; the loss (and the regain) at
+      once, valid fixes at 10 Hz; position = PX4's local x, y turned to east, north; std = eph. From v1.17 the
+      second topic is vehicle_local_position_v1.
   swa/uav<I>/cmd_vel
       the agent's velocity setpoints (one writer at a time)
   swa/uav<I>/state
       the agent's own estimate, for --odometry
 Writes
   rt/NS/fmu/in/vehicle_visual_odometry
-      --odometry (by default while the agent has no GNSS): the agent's position and velocity as external vision, NED, at the agent's state rate (10 Hz), stamped on PX4's clock, reset_counter bumped when the agent's estimate restarts; EKF2 fuses it with EKF2_EV_CTRL = 5 (deploy/README.md, "External odometry")
+      --odometry (by default while the agent has no GNSS): the agent's position and velocity as external vision,
+      NED, at the agent's state rate (10 Hz), stamped on PX4's clock, reset_counter bumped when the agent's estimate
+      restarts; EKF2 fuses it with EKF2_EV_CTRL = 5 (deploy/README.md, "External odometry")
   rt/NS/fmu/in/trajectory_setpoint
-      velocity in NED, the yaw rate as yawspeed (clockwise: the opposite sign of SWA's); position, acceleration, yaw NaN; vertical speed 0
+      velocity in NED, the yaw rate as yawspeed (clockwise: the opposite sign of SWA's); position, acceleration, yaw
+      NaN; vertical speed 0
   rt/NS/fmu/in/offboard_control_mode
       velocity control, with every setpoint and at least every 50 ms
   rt/NS/fmu/in/vehicle_command
       only with --engage: arm, then offboard mode
   swa/uav<I>/bridge_state
       diagnostics: link state, PX4's arming and mode, counters, last event
-The offboard stream: every command the agent sends is sent on at once. A command older than --stale-after-s (on PX4's clock) is replaced by zero velocity and yawspeed (the heading held); after --agent-lost-after-s without one, or --attitude-lost-after-s without attitude from PX4, the stream stops and PX4's own offboard-loss failsafe (COM_OF_LOSS_T, COM_OBL_RC_ACT) takes over. Commands answering samples from before this bridge started are ignored. It never arms or changes the flight mode unless given --engage (bench tests, the simulator). Every state change is logged and published. With --no-gnss the bridge leaves swa/uav<I>/gnss alone (your own GNSS source publishes it, or none).
+The offboard stream: every command the agent sends is sent on at once. A command older than --stale-after-s (on
+PX4's clock) is replaced by zero velocity and yawspeed (the heading held); after --agent-lost-after-s without one,
+or --attitude-lost-after-s without attitude from PX4, the stream stops and PX4's own offboard-loss failsafe
+(COM_OF_LOSS_T, COM_OBL_RC_ACT) takes over. Commands answering samples from before this bridge started are
+ignored. It never arms or changes the flight mode unless given --engage (bench tests, the simulator). Every state
+change is logged and published. With --no-gnss the bridge leaves swa/uav<I>/gnss alone (your own GNSS source
+publishes it, or none).
 
 With --autopilot ardupilot (AP_DDS, Copter 4.5+; its Micro XRCE-DDS agent on the same domain):
 Reads
   rt/NS/imu/experimental/data
-      -> swa/uav<I>/imu (the orientation, FRD -> NED as PX4's, read in the field order of --ap-quaternion; stamped with the message's time)
+      -> swa/uav<I>/imu (the orientation, FRD -> NED as PX4's, read in the field order of --ap-quaternion; stamped
+      with the message's time)
   rt/NS/status
       armed, mode (logged, and for --engage; GUIDED = 4)
   rr/NS/arm_motorsReply, rr/NS/mode_switchReply
       the answers to --engage's requests (logged)
   rt/NS/navsat
-      -> swa/uav<I>/gnss (not with --no-gnss): valid while ArduPilot reports a fix (status >= 0); lost when it reports none or sends no fix for --gnss-silence-s of its IMU's time (it goes silent when its GPS is unhealthy or has no new fix); position = latitude and longitude in metres east and north of the first fix
+      -> swa/uav<I>/gnss (not with --no-gnss): valid while ArduPilot reports a fix (status >= 0); lost when it
+      reports none or sends no fix for --gnss-silence-s of its IMU's time (it goes silent when its GPS is unhealthy
+      or has no new fix); position = latitude and longitude in metres east and north of the first fix
 Writes
   rt/NS/cmd_vel
-      TwistStamped in frame "map": ENU velocity, angular.z the yaw rate (counter-clockwise, SWA's sense), stamped with the answered sample's time
+      TwistStamped in frame "map": ENU velocity, angular.z the yaw rate (counter-clockwise, SWA's sense), stamped
+      with the answered sample's time
   rt/NS/tf
-      --odometry: the agent's position as an "odom" -> "base_link" transform (north, west, up; the vehicle's attitude), stamped 0: ArduPilot fuses it as current less VISO_DELAY_MS (VISO_TYPE 1, EK3 source set 2 = external navigation: deploy/README.md, "External odometry")
+      --odometry: the agent's position as an "odom" -> "base_link" transform (north, west, up; the vehicle's
+      attitude), stamped 0: ArduPilot fuses it as current less VISO_DELAY_MS (VISO_TYPE 1, EK3 source set 2 =
+      external navigation: deploy/README.md, "External odometry")
   rq/NS/arm_motorsRequest, rq/NS/mode_switchRequest
       only with --engage: arm, then GUIDED
-The same rules as for PX4, but ArduPilot has no heartbeat: when the stream stops, its GUIDED velocity timeout (GUID_TIMEOUT) stops the vehicle. ArduPilot accepts velocity commands only when armed and in GUIDED.)";
+The same rules as for PX4, but ArduPilot has no heartbeat: when the stream stops, its GUIDED velocity timeout
+(GUID_TIMEOUT) stops the vehicle. ArduPilot accepts velocity commands only when armed and in GUIDED.)";
 
 app::Cli makeCli(BridgeOptions& o) {
   app::Cli cli("swa_px4_bridge", "the autopilot bridge of one UAV: PX4 " + px4::releaseList() +
@@ -174,7 +197,8 @@ app::Cli makeCli(BridgeOptions& o) {
            "at exit, the counters and the latency (attitude in -> setpoint out, the agent's part, the bridge's part; "
            "p50 / p99) as JSON");
   cli.footer(R"(Runs until SIGINT or SIGTERM, then deletes its DDS entities (the offboard stream stops) and exits 0.
-Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials refused); 2 bad arguments (nothing started); 3 refused: an older swa_px4_bridge with this --id runs in this swarm.
+Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials refused); 2 bad arguments (nothing
+started); 3 refused: an older swa_px4_bridge with this --id runs in this swarm.
 
 )" + dds::environmentHelp());
   return cli;

@@ -15,7 +15,8 @@ app::Cli makeCli(BatchOptions& o) {
                  [--jobs J] [--shard I/N] [--out DIR] [--dry-run]
        swa_batch merge DIR... --out DIR)");
   cli.details(
-      R"(Runs the simulator and one SWA agent core per UAV in one process, deterministically per seed, seeds in parallel.
+      R"(Runs the simulator and one SWA agent core per UAV in one process, deterministically per seed, seeds in
+parallel.
 Prints one line per finished seed and an aggregate table; writes DIR/summary.json (aggregate and per seed) and
 DIR/<mode>/seed_<S>.csv (time series, one row per 100 ms) and DIR/<mode>/seed_<S>_events.csv (GNSS loss,
 collisions, failsafe).
