@@ -51,6 +51,7 @@ cleanup() {
 trap cleanup EXIT
 mkdir -p "$work/build"
 ln -s "$root/deploy" "$work/deploy"
+ln -s "$root/agent" "$work/agent"
 ln -s "$bin" "$work/build/bin"
 
 # The commands of one markdown file: "FILE:LINE<TAB>COMMAND" per command; a script block is one record, its lines
@@ -107,6 +108,10 @@ plan_of() {
     *"swa_replay "*"--lockstep"*) echo "after swa_agent --id 0 --scenario out/launch/scenario.yaml" ;;
     ./build/bin/swa_* | swa_launch\ *) echo "run 0" ;;
     "bash deploy/security/make-credentials.sh "*) echo "run 0" ;;
+    # README "Use SWA in your own stack": install into a prefix, build the example against it, run it.
+    "cmake --install build "* | "cmake -S agent/examples/"* | "cmake --build /tmp/"* | "/tmp/embed_agent/"*) echo "run 0" ;;
+    # The Debian packages need a clean Debian 12 to install on: the package test's container.
+    "cpack -G DEB "* | "apt-get install ./build/swa_"*) echo "by-test tests/package/test_deb.sh" ;;
     "deploy/slurm/submit-study.sh "* | "bash deploy/containers.sh "*) echo dry ;;
     "fast-discovery-server "*) echo daemon ;;
     script:*) echo script ;;
@@ -121,11 +126,16 @@ plan_of() {
   esac
 }
 
-# The command as this test runs it: shorter runs, a free port, this test's domain.
+# The command as this test runs it: shorter runs, a free port, this test's domain; an install goes from the real build
+# tree into the scratch folder's tmp/.
 shortened() {
   local c=$1
   case $c in
     *swa_launch\ * | *swa_batch\ *) c+=" --set duration_s=3" ;;
+    "cmake "* | /tmp/*)
+      mkdir -p "$work/tmp"
+      c=$(sed -E "s# build # $build #; s#(^| |=)/tmp/#\1$work/tmp/#g" <<<"$c")
+      ;;
   esac
   c=$(sed -E "s/--live [0-9]+/--live 0/; s/--domain [0-9]+/--domain $TEST_DOMAIN/" <<<"$c")
   echo "$c"
@@ -194,7 +204,9 @@ while IFS=$'\t' read -r -u 3 where command; do
       log "ok (CI runs it through $arg): $command"
       ;;
     by-test)
-      grep -q "By hand with podman-compose" "$root/$arg" || fail "$where: '$command' is not run by $arg"
+      key="By hand with podman-compose"  # the containers test runs that README section
+      [[ $arg != tests/package/* ]] || key=${command%% *}" "  # the package test runs cpack and apt-get itself
+      grep -qF -- "$key" "$root/$arg" || fail "$where: '$command' is not run by $arg"
       log "ok (run as written by $arg): $command"
       ;;
     ctest)

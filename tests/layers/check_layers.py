@@ -20,7 +20,7 @@ LAYERS = [
     ("monitor core", ["monitor/include", "monitor/src", "monitor/run_record", "monitor/recording"]),
     ("wire", ["idl"]),
     ("runtime", ["deploy/app", "deploy/dds"]),
-    ("processes", ["agent/node", "agent/bridge_node", "sim/node", "monitor/node", "monitor/scoring", "monitor/live_view",
+    ("processes", ["agent/node", "agent/bridge_node", "agent/examples", "sim/node", "monitor/node", "monitor/scoring", "monitor/live_view",
                    "monitor/recording/taps",
                    "deploy/launch", "deploy/batch", "deploy/replay", "deploy/study", "deploy/mission"]),
 ]

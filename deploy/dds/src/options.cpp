@@ -1,12 +1,16 @@
 #include "swa/dds/options.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 
 #include "swa/app/number.h"
 
 #ifndef SWA_DEFAULT_PROFILES_FILE
 #error "SWA_DEFAULT_PROFILES_FILE must be defined by the build"
+#endif
+#ifndef SWA_INSTALLED_PROFILES_FROM_BIN
+#error "SWA_INSTALLED_PROFILES_FROM_BIN must be defined by the build"
 #endif
 
 namespace swa::dds {
@@ -32,6 +36,13 @@ int resolveDomain(const std::optional<std::string>& cli_value) {
 
 std::string resolveProfilesFile() {
   if (const char* env = std::getenv("SWA_DDS_PROFILES"); env != nullptr && *env != '\0') return env;
+  // Relative to the program, so that an installed tree works wherever it was unpacked (the package is relocatable).
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = self.parent_path() / SWA_INSTALLED_PROFILES_FROM_BIN;
+    if (std::filesystem::is_regular_file(installed, ec)) return installed.lexically_normal().string();
+  }
   return SWA_DEFAULT_PROFILES_FILE;
 }
 
