@@ -22,9 +22,9 @@
 #include "swa/app/run_directory.h"
 #include "swa/app/version.h"
 #include "swa/monitor/output_dir.h"
-#include "swa/run_record/events.h"
 #include "swa/run_record/run_dir.h"
 #include "swa/run_record/scoring.h"
+#include "swa/sim/events.h"
 #include "swa/sim/scenario_io.h"
 
 namespace fs = std::filesystem;
@@ -75,8 +75,8 @@ void writeSeries(const fs::path& dir, const std::vector<batch::RunResult>& runs)
   fs::create_directories(dir);
   for (const batch::RunResult& r : runs) {
     const std::string seed = "seed_" + std::to_string(r.seed);
-    std::vector<record::EventRecord> events;
-    for (const sim::Event& e : r.events) events.push_back(record::eventOf(e));
+    std::vector<sim::EventRecord> events;
+    for (const sim::Event& e : r.events) events.push_back(sim::eventOf(e));
     record::writeTextFile((dir / (seed + "_events.csv")).string(), record::eventsCsv(events));
     record::writeTextFile((dir / (seed + ".csv")).string(), record::timeSeriesCsv(r.series));
   }

@@ -14,7 +14,7 @@
 namespace swa::wire {
 namespace {
 
-namespace kind = record::event_kind;
+namespace kind = sim::event_kind;
 
 constexpr std::array<std::pair<msg::EventKind, const char*>, 9> kKinds{{
     {msg::EVENT_GNSS_LOST, kind::kGnssLost},
@@ -70,7 +70,7 @@ SwarmTruth fromMsg(const msg::SwarmTruth& m) {
   return t;
 }
 
-msg::ScenarioEvent toMsg(const record::EventRecord& event, std::uint32_t seq) {
+msg::ScenarioEvent toMsg(const sim::EventRecord& event, std::uint32_t seq) {
   const auto it = std::find_if(kKinds.begin(), kKinds.end(), [&](const auto& k) { return event.kind == k.second; });
   if (it == kKinds.end()) throw std::invalid_argument("no ScenarioEvent kind for event '" + event.kind + "'");
   msg::ScenarioEvent m;
@@ -83,10 +83,10 @@ msg::ScenarioEvent toMsg(const record::EventRecord& event, std::uint32_t seq) {
   return m;
 }
 
-std::optional<record::EventRecord> fromMsg(const msg::ScenarioEvent& m) {
+std::optional<sim::EventRecord> fromMsg(const msg::ScenarioEvent& m) {
   const auto it = std::find_if(kKinds.begin(), kKinds.end(), [&](const auto& k) { return m.kind() == k.first; });
   if (it == kKinds.end()) return std::nullopt;
-  record::EventRecord e;
+  sim::EventRecord e;
   e.t_s = static_cast<double>(m.header().stamp_ns()) * 1e-9;
   e.kind = it->second;
   e.uav = m.uav_id();

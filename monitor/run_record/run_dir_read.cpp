@@ -201,9 +201,9 @@ std::vector<monitor::UavTrajectory> parseTrajectoriesCsv(std::istream& in, const
   return out;
 }
 
-std::vector<EventRecord> parseEventsCsv(std::istream& in, const std::string& source) {
+std::vector<sim::EventRecord> parseEventsCsv(std::istream& in, const std::string& source) {
   CsvReader csv(in, source, eventsHeader());
-  std::vector<EventRecord> events;
+  std::vector<sim::EventRecord> events;
   std::vector<std::string> f;
   while (csv.next(f, 6)) {
     const auto t = csvNumber(f[0]);

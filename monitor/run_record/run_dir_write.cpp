@@ -19,7 +19,7 @@ Json restartJson(const AgentRestart& r) {
               {"backoff_s", r.backoff_s}};
 }
 
-Json eventJson(const EventRecord& e) {
+Json eventJson(const sim::EventRecord& e) {
   return Json{{"t_s", e.t_s},     {"kind", e.kind}, {"uav", e.uav}, {"other_uav", e.other_uav},
               {"value", e.value}, {"text", e.text}};
 }
@@ -56,7 +56,7 @@ Json summaryJson(const RunRecord& run) {
   for (const AgentRestart& r : run.restarts.restarts) j["restarts"].push_back(restartJson(r));
   for (const auto& [key, count] : run.counts) j[key] = count;
   j["events"] = Json::array();
-  for (const EventRecord& e : run.events) j["events"].push_back(eventJson(e));
+  for (const sim::EventRecord& e : run.events) j["events"].push_back(eventJson(e));
   return j;
 }
 
@@ -91,9 +91,9 @@ std::string trajectoriesCsv(const std::vector<monitor::UavTrajectory>& trajector
   return out;
 }
 
-std::string eventsCsv(const std::vector<EventRecord>& events) {
+std::string eventsCsv(const std::vector<sim::EventRecord>& events) {
   std::string out = std::string(eventsHeader()) + "\n";
-  for (const EventRecord& e : events) {
+  for (const sim::EventRecord& e : events) {
     out += monitor::formatNumber(e.t_s) + "," + csvField(e.kind) + "," + std::to_string(e.uav) + "," +
            std::to_string(e.other_uav) + "," + monitor::formatNumber(e.value) + "," + csvField(e.text) + "\n";
   }

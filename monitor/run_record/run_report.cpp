@@ -12,7 +12,7 @@
 namespace swa::record {
 namespace {
 
-std::string uavText(int uav) { return uav == kAllUavs ? "all" : std::to_string(uav); }
+std::string uavText(int uav) { return uav == sim::kAllUavs ? "all" : std::to_string(uav); }
 
 std::string droppedText(const RunRecord& run) {
   std::string out;
@@ -70,7 +70,7 @@ monitor::ReportTable eventsTable(const std::vector<RunRecord>& runs) {
   auto [t, total] = itemTable(
       "events", "Scenario events", runs, {"sim time [s]", "event", "UAV", "other UAV", "value", "detail"},
       [](const RunRecord& run) -> const auto& { return run.events; },
-      [](const EventRecord& e) -> std::vector<std::string> {
+      [](const sim::EventRecord& e) -> std::vector<std::string> {
         return {monitor::formatFixed(e.t_s, 2),
                 e.kind,
                 uavText(e.uav),

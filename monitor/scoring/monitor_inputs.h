@@ -9,7 +9,7 @@
 #include "swa/agent/config.h"
 #include "swa/agent/samples.h"
 #include "swa/monitor/swarm_metrics.h"
-#include "swa/run_record/events.h"
+#include "swa/sim/events.h"
 
 namespace swa::monitor_node {
 
@@ -33,9 +33,9 @@ struct StateSample {
   monitor::EstimateRecord estimate;  // monitor::estimateFromDiagnostics of the state
 };
 
-// Events are the run record's (swa/run_record/events.h).
-using record::EventRecord;
-using record::kAllUavs;
-namespace event_kind = record::event_kind;
+// Events are spelled as the run record holds them (swa/sim/events.h).
+using sim::EventRecord;
+using sim::kAllUavs;
+namespace event_kind = sim::event_kind;
 
 }  // namespace swa::monitor_node

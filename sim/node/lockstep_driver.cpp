@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "swa/run_record/events.h"
+#include "swa/sim/events.h"
 #include "swa/sim/timing.h"
 
 namespace swa::sim_node {
@@ -62,7 +62,7 @@ void LockstepDriver::run() {
       ++summary_.agent_dead_events;
       std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d did not answer within %.3f s: dead, UAV %d on failsafe\n",
                    sim::stampSeconds(world_.time_ns()), i, timeout_s, i);
-      ports_.publishEvent(record::event_kind::kAgentDead, i, timeout_s, "no answer within the agent timeout");
+      ports_.publishEvent(sim::event_kind::kAgentDead, i, timeout_s, "no answer within the agent timeout");
     }
     awaitSensorAcks(deadline);
     if (stop_) break;
@@ -125,7 +125,7 @@ void LockstepDriver::drain(Clock::duration wait) {
         ++summary_.agent_rejoined_events;
         std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n",
                      sim::stampSeconds(world_.time_ns()), a.uav);
-        ports_.publishEvent(record::event_kind::kAgentRejoined, a.uav, 0.0, "answering again");
+        ports_.publishEvent(sim::event_kind::kAgentRejoined, a.uav, 0.0, "answering again");
         break;
       case Verdict::kIgnore:
         ++summary_.ignored_commands;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "swa/run_record/events.h"
+#include "swa/sim/events.h"
 #include "swa/sim/timing.h"
 
 namespace swa::sim_node {
@@ -86,7 +86,7 @@ void RealtimeDriver::run() {
         ++summary_.agent_dead_events;
         std::fprintf(stderr, "swa_sim: t = %.2f s: no setpoint from agent %d for %.3f s: dead, UAV %d on failsafe\n",
                      sim::stampSeconds(world_.time_ns()), i, options_.agent_timeout_s, i);
-        ports_.publishEvent(record::event_kind::kAgentDead, i, options_.agent_timeout_s,
+        ports_.publishEvent(sim::event_kind::kAgentDead, i, options_.agent_timeout_s,
                             "no setpoint within the agent timeout");
       }
     }
@@ -120,7 +120,7 @@ void RealtimeDriver::drain(Clock::duration wait) {
       alive_[k] = true;
       ++summary_.agent_rejoined_events;
       std::fprintf(stderr, "swa_sim: t = %.2f s: agent %d answers again: rejoined\n", sim::stampSeconds(now_ns), a.uav);
-      ports_.publishEvent(record::event_kind::kAgentRejoined, a.uav, 0.0, "answering again");
+      ports_.publishEvent(sim::event_kind::kAgentRejoined, a.uav, 0.0, "answering again");
     }
   }
 }

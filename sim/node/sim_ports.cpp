@@ -279,7 +279,7 @@ void SimPorts::stepTaken(Clock::time_point t) {
 
 void SimPorts::publishStepOutputs(const AliveFn& alive) {
   if (world_.step_index() % 10 == 0) noteYoungerTwin();
-  for (const sim::Event& e : world_.events()) publishEvent(record::eventOf(e));
+  for (const sim::Event& e : world_.events()) publishEvent(sim::eventOf(e));
   if (world_.step_index() % options_.truth_every == 0 || world_.finished()) publishTruth(alive);
   publishClock();
 }
@@ -371,19 +371,19 @@ void SimPorts::publishEvent(const char* kind, int uav, double value, const std::
   publishEvent({static_cast<double>(world_.time_ns()) * 1e-9, kind, uav, -1, value, text});
 }
 
-void SimPorts::publishEvent(const record::EventRecord& event) {
+void SimPorts::publishEvent(const sim::EventRecord& event) {
   msg::ScenarioEvent m = wire::toMsg(event, ++event_seq_);
   if (!events_.write(m)) ++summary_.write_failures;
 }
 
 void SimPorts::publishEndBeforeStart(const std::string& why) {
-  publishEvent(record::event_kind::kScenarioEnd, record::kAllUavs, 0.0, why);
+  publishEvent(sim::event_kind::kScenarioEnd, sim::kAllUavs, 0.0, why);
   events_.waitForAcknowledgments(1.0);
 }
 
 void SimPorts::publishEnd(const AliveFn& alive, bool completed) {
   if (last_truth_step_ != world_.step_index()) publishTruth(alive);
-  publishEvent(record::event_kind::kScenarioEnd, record::kAllUavs, 0.0, completed ? "completed" : "interrupted");
+  publishEvent(sim::event_kind::kScenarioEnd, sim::kAllUavs, 0.0, completed ? "completed" : "interrupted");
   // Give late readers of the last samples a moment; events are TRANSIENT_LOCAL anyway.
   events_.waitForAcknowledgments(2.0);
   truth_.waitForAcknowledgments(2.0);
@@ -436,9 +436,9 @@ void SimPorts::vehiclesStep() {
   if (!autopilot_) return;
   autopilot_->step(world_, [this](int uav, double value, const sim::StandinEvent& e) {
     std::fprintf(stderr, "swa_sim: t = %.2f s: UAV %d: %s\n", sim::stampSeconds(world_.time_ns()), uav, e.text.c_str());
-    const char* kind = e.control == sim::StandinEvent::Control::kLost       ? record::event_kind::kControlLost
-                       : e.control == sim::StandinEvent::Control::kRegained ? record::event_kind::kControlRegained
-                                                                            : record::event_kind::kFailsafe;
+    const char* kind = e.control == sim::StandinEvent::Control::kLost       ? sim::event_kind::kControlLost
+                       : e.control == sim::StandinEvent::Control::kRegained ? sim::event_kind::kControlRegained
+                                                                            : sim::event_kind::kFailsafe;
     publishEvent(kind, uav, value, e.text);
   });
 }

@@ -35,7 +35,7 @@
 #include "swa/dds/command_gate.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
-#include "swa/run_record/events.h"
+#include "swa/sim/events.h"
 #include "swa/sim/world.h"
 
 namespace swa::sim_node {
@@ -118,7 +118,7 @@ class SimPorts {
   // theirs); beyond this the run goes on and the unanswered are declared dead as usual.
   static constexpr auto kRematchTimeout = std::chrono::seconds(20);
   void publishTruth(const AliveFn& alive);
-  void publishEvent(const record::EventRecord& event);
+  void publishEvent(const sim::EventRecord& event);
 
   const sim::Scenario& scenario_;
   const SimOptions& options_;

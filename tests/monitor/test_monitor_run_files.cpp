@@ -54,7 +54,7 @@ RunRecord sampleRun() {
   r.events = {{10.0, "gnss_lost", 0, -1, 0.0, "GNSS lost"},
               {12.34, "collision", 1, 2, 1.4999999999999998, "collision (value: distance, m)"},
               {13.0, "agent_dead", 3, -1, 2.0, "text with \"quotes\", commas\nand a line break"},
-              {30.0, "scenario_end", kAllUavs, -1, 0.0, "completed"}};
+              {30.0, "scenario_end", sim::kAllUavs, -1, 0.0, "completed"}};
   for (int k = 0; k < 4; ++k) {
     monitor::TimeSeriesRow row;
     row.t_s = 0.1 * k;

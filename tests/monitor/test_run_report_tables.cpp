@@ -12,8 +12,8 @@
 namespace swa::record {
 namespace {
 
-RunRecord runWith(const std::string& label, std::vector<EventRecord> events, std::vector<AgentRestart> restarts = {},
-                  int malformed = 0) {
+RunRecord runWith(const std::string& label, std::vector<sim::EventRecord> events,
+                  std::vector<AgentRestart> restarts = {}, int malformed = 0) {
   RunRecord r;
   r.label = label;
   r.events = std::move(events);
@@ -22,14 +22,15 @@ RunRecord runWith(const std::string& label, std::vector<EventRecord> events, std
   return r;
 }
 
-EventRecord collision(double t_s, int uav, int other, double separation_m) {
-  return EventRecord{t_s, event_kind::kCollision, uav, other, separation_m, "too close"};
+sim::EventRecord collision(double t_s, int uav, int other, double separation_m) {
+  return sim::EventRecord{t_s, sim::event_kind::kCollision, uav, other, separation_m, "too close"};
 }
 
 TEST(RunReportTables, OneRunListsEveryFieldOfAnEventInItsColumnAndNoRunColumn) {
   // GIVEN one run with a collision and a GNSS loss of every UAV
-  const std::vector<RunRecord> runs{
-      runWith("swa", {collision(12.345, 2, 5, 0.75), EventRecord{10.0, event_kind::kGnssLost, kAllUavs, -1, 0.0, ""}})};
+  const std::vector<RunRecord> runs{runWith(
+      "swa",
+      {collision(12.345, 2, 5, 0.75), sim::EventRecord{10.0, sim::event_kind::kGnssLost, sim::kAllUavs, -1, 0.0, ""}})};
   // WHEN its events table is made
   const monitor::ReportTable t = eventsTable(runs);
   // THEN it has the six columns and one row per event, blanks where there is no second UAV or value
@@ -43,7 +44,7 @@ TEST(RunReportTables, OneRunListsEveryFieldOfAnEventInItsColumnAndNoRunColumn) {
 
 TEST(RunReportTables, SeveralRunsGetARunColumnAndTheTableStopsAtItsLimit) {
   // GIVEN two runs, the second with more events than a table lists
-  std::vector<EventRecord> many;
+  std::vector<sim::EventRecord> many;
   for (std::size_t i = 0; i < kMaxTableRows + 10; ++i) many.push_back(collision(static_cast<double>(i), 0, 1, 0.5));
   const std::vector<RunRecord> runs{runWith("swa", {collision(1.0, 3, 4, 0.25)}), runWith("standalone", many)};
   // WHEN the events table is made

@@ -92,19 +92,19 @@ TEST(WireWorld, TruthSurvivesTheBridgeAndTheWire) {
 
 TEST(WireWorld, EveryEventKindSurvivesTheBridgeAndTheWire) {
   // GIVEN one event of each kind, at stamps up to a day of sim time (10 ms steps)
-  namespace kind = record::event_kind;
+  namespace kind = sim::event_kind;
   int k = 0;
   for (const char* name :
        {kind::kGnssLost, kind::kGnssRestored, kind::kAgentDead, kind::kAgentRejoined, kind::kCollision, kind::kFailsafe,
         kind::kScenarioEnd, kind::kControlLost, kind::kControlRegained}) {
     for (const std::int64_t stamp_ns :
          {std::int64_t{0}, std::int64_t{10'000'000}, std::int64_t{12'340'000'000}, std::int64_t{86'399'990'000'000}}) {
-      const record::EventRecord in{static_cast<double>(stamp_ns) * 1e-9, name, k, k + 1, 0.1 * k,
-                                   "event " + std::to_string(k)};
+      const sim::EventRecord in{static_cast<double>(stamp_ns) * 1e-9, name, k, k + 1, 0.1 * k,
+                                "event " + std::to_string(k)};
       // WHEN it goes record -> message -> wire -> message -> record
       const msg::ScenarioEvent m = through_the_wire<msg::ScenarioEventPubSubType>(
           toMsg(in, static_cast<std::uint32_t>(k)), "swa::msg::ScenarioEvent");
-      const std::optional<record::EventRecord> out = fromMsg(m);
+      const std::optional<sim::EventRecord> out = fromMsg(m);
       // THEN the stamp is the event's time in nanoseconds, exactly, and every field comes back
       EXPECT_EQ(m.header().stamp_ns(), stamp_ns) << name;
       ASSERT_TRUE(out.has_value()) << name;
@@ -121,7 +121,7 @@ TEST(WireWorld, EveryEventKindSurvivesTheBridgeAndTheWire) {
   msg::ScenarioEvent unknown;
   unknown.kind(static_cast<msg::EventKind>(42));
   EXPECT_FALSE(fromMsg(unknown).has_value());
-  EXPECT_THROW(toMsg(record::EventRecord{1.0, "volcano", 0, -1, 0.0, ""}, 1), std::invalid_argument);
+  EXPECT_THROW(toMsg(sim::EventRecord{1.0, "volcano", 0, -1, 0.0, ""}, 1), std::invalid_argument);
 }
 
 TEST(WireWorld, ClockTickSurvivesTheBridgeAndTheWire) {

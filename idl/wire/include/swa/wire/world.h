@@ -1,6 +1,6 @@
 #pragma once
 // The simulator's world topics <-> core types, both directions: swa/truth (SwarmTruth <-> sim::UavTruth per UAV
-// plus whether its agent answers), swa/events (ScenarioEvent <-> record::EventRecord) and swa/clock. The simulator
+// plus whether its agent answers), swa/events (ScenarioEvent <-> sim::EventRecord) and swa/clock. The simulator
 // node publishes toMsg(); the monitor and the tests read fromMsg().
 
 #include <cstdint>
@@ -11,7 +11,7 @@
 #include <swa/msg/ScenarioEvent.h>
 #include <swa/msg/SwarmTruth.h>
 
-#include "swa/run_record/events.h"
+#include "swa/sim/events.h"
 #include "swa/sim/world.h"
 
 namespace swa::wire {
@@ -29,10 +29,10 @@ msg::SwarmTruth toMsg(const SwarmTruth& truth, std::uint32_t seq);
 SwarmTruth fromMsg(const msg::SwarmTruth& m);
 
 // The event's time (t_s) becomes the header stamp in nanoseconds, exactly for any run shorter than about 100 days.
-// Throws std::invalid_argument for a kind that is not one of record::event_kind (a programming error).
-msg::ScenarioEvent toMsg(const record::EventRecord& event, std::uint32_t seq);
+// Throws std::invalid_argument for a kind that is not one of sim::event_kind (a programming error).
+msg::ScenarioEvent toMsg(const sim::EventRecord& event, std::uint32_t seq);
 // nullopt for a kind value this build does not know.
-std::optional<record::EventRecord> fromMsg(const msg::ScenarioEvent& m);
+std::optional<sim::EventRecord> fromMsg(const msg::ScenarioEvent& m);
 
 struct ClockTick {
   std::uint64_t step = 0;          // steps since the scenario started

@@ -43,7 +43,7 @@ Json metricsJson(const monitor::Summary& summary);
 Json aggregateJson(const monitor::Aggregate& aggregate);
 std::string timeSeriesCsv(const std::vector<monitor::TimeSeriesRow>& series);
 std::string trajectoriesCsv(const std::vector<monitor::UavTrajectory>& trajectories);
-std::string eventsCsv(const std::vector<EventRecord>& events);
+std::string eventsCsv(const std::vector<sim::EventRecord>& events);
 
 // Creates `dir` if needed and writes summary.json and the three CSV files. Throws RunFileError naming what failed.
 void writeRunFiles(const std::string& dir, const RunRecord& run);
@@ -56,7 +56,7 @@ std::string jsonText(const Json& json);
 RunRecord runFromSummaryJson(const Json& summary, const std::string& source);
 std::vector<monitor::TimeSeriesRow> parseTimeSeriesCsv(std::istream& in, const std::string& source);
 std::vector<monitor::UavTrajectory> parseTrajectoriesCsv(std::istream& in, const std::string& source);
-std::vector<EventRecord> parseEventsCsv(std::istream& in, const std::string& source);
+std::vector<sim::EventRecord> parseEventsCsv(std::istream& in, const std::string& source);
 // A JSON file; RunFileError "path: line L, column C: what" when it is not readable JSON.
 Json readJsonFile(const std::string& path);
 

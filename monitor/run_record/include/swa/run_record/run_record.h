@@ -12,9 +12,9 @@
 #include "swa/monitor/accumulator.h"
 #include "swa/monitor/report_html.h"
 #include "swa/monitor/summary_format.h"
-#include "swa/run_record/events.h"
 #include "swa/run_record/restarts.h"
 #include "swa/run_record/verdict.h"
+#include "swa/sim/events.h"
 
 namespace swa::record {
 
@@ -34,7 +34,7 @@ struct RunRecord {
   // "dropped_" are inputs thrown away.
   std::vector<std::pair<std::string, std::uint64_t>> counts;
   RestartLog restarts;
-  std::vector<EventRecord> events;
+  std::vector<sim::EventRecord> events;
   std::vector<monitor::TimeSeriesRow> series;
   std::vector<monitor::UavTrajectory> trajectories;
 };

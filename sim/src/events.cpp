@@ -1,32 +1,32 @@
-#include "swa/run_record/events.h"
+#include "swa/sim/events.h"
 
-namespace swa::record {
+namespace swa::sim {
 
-EventRecord eventOf(const sim::Event& e) {
+EventRecord eventOf(const Event& e) {
   EventRecord r;
   r.t_s = static_cast<double>(e.stamp_ns) * 1e-9;
   r.uav = e.uav;
   switch (e.kind) {
-    case sim::EventKind::kGnssLost:
+    case EventKind::kGnssLost:
       r.kind = event_kind::kGnssLost;
       r.text = "GNSS lost";
       break;
-    case sim::EventKind::kGnssRestored:
+    case EventKind::kGnssRestored:
       r.kind = event_kind::kGnssRestored;
       r.text = "GNSS restored";
       break;
-    case sim::EventKind::kCollision:
+    case EventKind::kCollision:
       r.kind = event_kind::kCollision;
       r.other_uav = e.other_uav;
       r.value = e.value;
       r.text = "collision (value: distance, m)";
       break;
-    case sim::EventKind::kFailsafeOn:
+    case EventKind::kFailsafeOn:
       r.kind = event_kind::kFailsafe;
       r.value = e.value;
       r.text = "failsafe on (value: setpoint age, s)";
       break;
-    case sim::EventKind::kFailsafeOff:
+    case EventKind::kFailsafeOff:
       r.kind = event_kind::kFailsafe;
       r.text = "failsafe off";
       break;
@@ -34,4 +34,4 @@ EventRecord eventOf(const sim::Event& e) {
   return r;
 }
 
-}  // namespace swa::record
+}  // namespace swa::sim

@@ -1,13 +1,15 @@
 #pragma once
 // The scenario events of a run as its record holds them (events.csv, summary.json): the world's events (GNSS lost
 // and restored, collisions, failsafe), the simulator node's (agent dead / rejoined, scenario end). One spelling of
-// each kind, whether the run was in-process (swa_batch) or over DDS (swa_monitor).
+// each kind, whether the run was in-process (swa_batch) or over DDS (swa_monitor). Here, in the simulator's core,
+// because the simulator raises them: the wire types (swa/wire/world.h) and the run record (swa/run_record) read this
+// one spelling from below, and neither the simulator nor the wire reaches up into the monitor for it.
 
 #include <string>
 
 #include "swa/sim/world.h"
 
-namespace swa::record {
+namespace swa::sim {
 
 namespace event_kind {
 inline constexpr const char* kGnssLost = "gnss_lost";
@@ -34,6 +36,6 @@ struct EventRecord {
 };
 
 // A world event as recorded (and as the simulator node publishes it).
-EventRecord eventOf(const sim::Event& e);
+EventRecord eventOf(const Event& e);
 
-}  // namespace swa::record
+}  // namespace swa::sim
