@@ -9,7 +9,7 @@ namespace {
 
 app::Cli makeCli(AgentOptions& o) {
   app::Cli cli("swa_agent", "the SWA agent of one UAV as a Fast DDS process.");
-  cli.usage("swa_agent --id I [--config FILE | --scenario FILE] [--set key=value]... [--domain D]");
+  cli.usage("swa_agent --id I [--config FILE] [--set key=value]... [--domain D]");
   cli.details(R"(Reads only   swa/uav<I>/sensors (a step's samples in one SensorFrame, from swa_sim) and
              swa/uav<I>/imu, swa/uav<I>/detections, swa/uav<I>/gnss (the same samples one by one)
              swa/swarm/mission  (the ground's mission, from swa_mission: one writer, flown from the next IMU sample)
@@ -19,8 +19,8 @@ Writes only  swa/uav<I>/cmd_vel (one VelocitySetpoint per IMU sample, echoing it
   cli.required("--id");
   cli.path("--config", "FILE", o.config_path,
            "agent parameters (YAML, layout of deploy/config/agent.yaml); default: built-in defaults. "
-           "`swa_sim --export-agent-config FILE` writes the one a scenario implies.");
-  cli.scenario(o.scenario_path, "the `agent:` section of a scenario file (swa_launch passes its run's scenario.yaml)");
+           "swa_launch writes its run's as DIR/agent.yaml; `swa_sim --scenario S --export-agent-config FILE` "
+           "writes the one a scenario implies.");
   cli.overrides(o.overrides, "override one parameter, e.g. --set formation.radius_m=12");
   cli.domain(o.domain, dds::kMaxDomainId);
   cli.answer("--parameters", o.list_parameters, "list every agent parameter (key, unit, bounds, default) and exit");
@@ -37,11 +37,18 @@ Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials re
 }  // namespace
 
 AgentOptions parseAgentOptions(const std::vector<std::string>& args) {
-  return app::parseOptions<AgentOptions>(args, makeCli, [](const AgentOptions& o, const app::Cli&, app::Problems& p) {
-    if (!o.config_path.empty() && !o.scenario_path.empty()) {
-      p.push_back("--config and --scenario both give the agent's parameters; use one");
-    }
-  });
+  return app::parseOptions<AgentOptions>(
+      args, makeCli, [&args](const AgentOptions&, const app::Cli&, app::Problems& p) {
+        // The agent reads its own configuration, not the scenario around it (issue #47): say where that file comes
+        // from.
+        for (const std::string& a : args) {
+          if (a == "--scenario" || a.rfind("--scenario=", 0) == 0) {
+            p.push_back(
+                "swa_agent takes --config FILE, not a scenario: swa_launch writes its run's DIR/agent.yaml, and "
+                "`swa_sim --scenario S --export-agent-config FILE` writes the one a scenario implies");
+          }
+        }
+      });
 }
 
 std::string agentUsage() { return app::helpText(makeCli); }

@@ -13,7 +13,6 @@ constexpr int kMaxUavId = 9999;
 struct AgentOptions {
   int id = -1;                         // --id I (required)
   std::string config_path;             // --config FILE (empty: defaults)
-  std::string scenario_path;           // --scenario FILE: the agent section of a scenario (instead of --config)
   std::vector<std::string> overrides;  // --set key=value, in order
   std::optional<std::string> domain;   // --domain D (else SWA_DOMAIN, else 0)
   bool help = false;

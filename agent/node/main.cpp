@@ -8,7 +8,6 @@
 #include "swa/agent/config_io.h"
 #include "swa/app/program.h"
 #include "swa/dds/options.h"
-#include "swa/sim/scenario_io.h"
 
 namespace swa::agent_node {
 namespace {
@@ -20,7 +19,6 @@ app::Plan prepare(const std::vector<std::string>& args) {
   }
   agent::AgentConfig config;
   if (!options.config_path.empty()) config = agent::loadAgentConfig(options.config_path);
-  if (!options.scenario_path.empty()) config = sim::loadScenario(options.scenario_path).agent;
   config = agent::applyOverrides(config, options.overrides);
   const int domain = dds::resolveDomain(options.domain);
   return app::startWith([options, config, domain]() -> std::unique_ptr<app::Role> {

@@ -11,10 +11,10 @@ namespace {
 
 const char* const kDetails = R"(What it does, per run:
   1. loads the scenario (with every --set) and stops here, exit 2, if anything is wrong with it;
-  2. writes the effective scenario to DIR/scenario.yaml, the one file every child reads (no --set is passed on),
-     and starts swa_monitor, the agents (swa_agent --id I --scenario DIR/scenario.yaml), with vehicle.interface =
-     px4 or ardupilot one swa_px4_bridge --id I --engage per agent, and swa_sim (which waits until all of them are
-     discovered);
+  2. writes the effective scenario to DIR/scenario.yaml, which the simulator and the monitor read, and the agents'
+     configuration it implies to DIR/agent.yaml (no --set is passed on), and starts swa_monitor, the agents
+     (swa_agent --id I --config DIR/agent.yaml), with vehicle.interface = px4 or ardupilot a bridge per agent
+     (swa_px4_bridge --id I --engage), and swa_sim (which waits until all of them are discovered);
   3. supervises: an agent (or bridge) that dies while the scenario runs is restarted after a back-off (0.5 s,
      doubling per restart of that process, at most 8 s; at most --max-restarts times), and every restart is
      appended to DIR/logs/restarts.csv, which the monitor puts into the report;

@@ -15,6 +15,7 @@
 
 #include "child_process.h"
 #include "restart_policy.h"
+#include "swa/agent/config_io.h"
 #include "swa/app/signals.h"
 #include "swa/run_record/run_dir.h"
 #include "swa/sim/scenario_io.h"
@@ -130,12 +131,19 @@ class Supervisor {
     std::ofstream config(scenarioFile());
     config << "# The effective scenario of this run, written by swa_launch from " << spec_.origin << "\n"
            << sim::scenarioToYaml(spec_.scenario);
+    // Each agent reads its own section, as the simulator implies it (agent.formation.radius_m from the spacing, ...):
+    // the agent needs no scenario parser.
+    std::ofstream agents(agentConfigFile());
+    agents << "# The agents' configuration of this run, written by swa_launch from " << spec_.origin << "\n"
+           << agent::toYaml(spec_.scenario.agent);
     std::ofstream restarts(logs_ / "restarts.csv");
     restarts << "wall_s,uav,exit_status,restart_count,backoff_s\n";
-    if (!config.flush() || !restarts.flush()) throw std::runtime_error("cannot write into " + spec_.dir.string());
+    if (!config.flush() || !agents.flush() || !restarts.flush())
+      throw std::runtime_error("cannot write into " + spec_.dir.string());
   }
 
   std::string scenarioFile() const { return (spec_.dir / "scenario.yaml").string(); }
+  std::string agentConfigFile() const { return (spec_.dir / "agent.yaml").string(); }
 
   std::vector<std::string> scenarioArgs() const { return {"--scenario", scenarioFile(), "--domain", domain_}; }
 
@@ -196,15 +204,16 @@ class Supervisor {
     const std::string uav = std::to_string(p.uav);
     const sim::VehicleSetup& vehicle = spec_.scenario.vehicle;
     std::vector<std::string> argv =
-        p.bridge ? std::vector<std::string>{bin_.bridge,
-                                            "--id",
-                                            uav,
-                                            "--domain",
-                                            domain_,
-                                            "--engage",
-                                            "--summary-out",
-                                            (logs_ / ("bridge_" + uav + "_summary.json")).string()}
-                 : std::vector<std::string>{bin_.agent, "--id", uav, "--domain", domain_, "--scenario", scenarioFile()};
+        p.bridge
+            ? std::vector<std::string>{bin_.bridge,
+                                       "--id",
+                                       uav,
+                                       "--domain",
+                                       domain_,
+                                       "--engage",
+                                       "--summary-out",
+                                       (logs_ / ("bridge_" + uav + "_summary.json")).string()}
+            : std::vector<std::string>{bin_.agent, "--id", uav, "--domain", domain_, "--config", agentConfigFile()};
     if (p.bridge && vehicle.interface == sim::VehicleInterface::kArdupilot) {
       // The stand-ins write the ROS order. Told, not found out: a stand-in facing north looks level in either order,
       // and in the simulator nobody turns it by hand (--ap-quaternion auto would wait).

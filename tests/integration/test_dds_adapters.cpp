@@ -345,6 +345,21 @@ TEST(AgentOptions, ParsesEveryOption) {
   EXPECT_TRUE(agent_node::parseAgentOptions({"--help"}).help);
 }
 
+// The agent reads its own section only (issue #47); a scenario given to it says where that section comes from.
+TEST(AgentOptions, AScenarioIsRefusedWithWhereTheAgentsConfigurationComesFrom) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"--id", "0", "--scenario", "s.yaml"},
+                                               std::vector<std::string>{"--id", "0", "--scenario=s.yaml"}}) {
+    try {
+      agent_node::parseAgentOptions(args);
+      FAIL() << "a scenario accepted: " << args[2];
+    } catch (const std::invalid_argument& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("DIR/agent.yaml"), std::string::npos) << m;
+      EXPECT_NE(m.find("--export-agent-config"), std::string::npos) << m;
+    }
+  }
+}
+
 TEST(AgentOptions, RejectsBadIdsAndReportsEveryProblem) {
   for (const char* bad : {"-1", "abc", "3.5", "", "10000", " 3", "3x"}) {
     EXPECT_THROW(agent_node::parseAgentOptions({"--id", bad}), std::invalid_argument) << bad;

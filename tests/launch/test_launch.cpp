@@ -24,6 +24,7 @@
 #include "../integration/private_shm.h"
 #include "../integration/process_test.h"
 #include "closed_loop.h"
+#include "swa/agent/config_io.h"
 #include "swa/app/version.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
@@ -141,7 +142,7 @@ TEST_F(LaunchTest, FourAgentsSixtySecondsStayCohesive) {
 
 // Issue #12: the user's files are read once, by the launcher; every child reads the run's effective scenario.yaml and
 // no --set, so an `agent.k` lives in one file and the run directory holds exactly the configuration that ran.
-TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveScenarioAndNoSet) {
+TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveConfigurationAndNoSet) {
   // GIVEN a realtime launch with overrides of the scenario and of the agents
   Child launch(launchArgs({"--set", "clock.mode=realtime", "--set", "duration_s=60", "--set", "agent.k=2", "--set",
                            "agent.formation.neighbourhood=k_nearest"}),
@@ -158,7 +159,10 @@ TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveScenarioAndNoSet) {
       kScenario, {"clock.mode=realtime", "duration_s=60", "agent.k=2", "agent.formation.neighbourhood=k_nearest"});
   EXPECT_EQ(sim::scenarioToYaml(sim::loadScenario(effective.string())), sim::scenarioToYaml(expected));
   EXPECT_EQ(sim::loadScenario(effective.string()).agent.formation.k, 2);
-  // AND every child on the domain (simulator, 4 agents, monitor) was given that file and no --set
+  // AND beside it the agents' configuration as that scenario implies it (issue #47: an agent reads no scenario)
+  const fs::path agents = out / "agent.yaml";
+  EXPECT_EQ(agent::toYaml(agent::loadAgentConfig(agents.string())), agent::toYaml(expected.agent));
+  // AND every child on the domain (simulator, 4 agents, monitor) was given its file and no --set
   int children = 0;
   for (int pid : processesOnDomain(domain_)) {
     std::string cmdline = readFile(fs::path("/proc") / std::to_string(pid) / "cmdline");
@@ -166,7 +170,9 @@ TEST_F(LaunchTest, EveryChildReadsTheRunsEffectiveScenarioAndNoSet) {
     const std::string program = cmdline.substr(0, cmdline.find(' '));
     if (program.size() >= 10 && program.compare(program.size() - 10, 10, "swa_launch") == 0) continue;
     ++children;
-    EXPECT_NE(cmdline.find("--scenario " + effective.string()), std::string::npos) << cmdline;
+    const bool agent = cmdline.find("swa_agent ") != std::string::npos;
+    const std::string given = agent ? "--config " + agents.string() : "--scenario " + effective.string();
+    EXPECT_NE(cmdline.find(given), std::string::npos) << cmdline;
     EXPECT_EQ(cmdline.find("--set"), std::string::npos) << cmdline;
   }
   EXPECT_EQ(children, 6);

@@ -44,7 +44,7 @@ grep -q "^uav 2: .* [1-9][0-9]* differ" "$work/check_r12.txt" || fail "--check w
 # 3. Fresh processes on the recorded data, in a partition of their own.
 export SWA_SWARM=replay$$
 for i in 0 1 2 3; do
-  "$bin/swa_agent" --id "$i" --scenario "$work/run/scenario.yaml" >"$work/agent_$i.log" 2>&1 &
+  "$bin/swa_agent" --id "$i" --config "$work/run/agent.yaml" >"$work/agent_$i.log" 2>&1 &
   pids+=($!)
 done
 "$bin/swa_monitor" --scenario "$work/run/scenario.yaml" --out "$work/replayed" --quiet --timeout-s 120 \
