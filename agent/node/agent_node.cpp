@@ -43,8 +43,8 @@ constexpr auto kHeartbeat = std::chrono::seconds(1);
 constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 // An IMU sample this recent counts as the samples arriving (100 Hz when the loop runs).
 constexpr auto kArrivingWindow = std::chrono::milliseconds(250);
-// Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (deploy/dds/profiles.xml): the most a
-// re-created participant's readers can be sent again (redelivery_filter.h).
+// Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (deploy/runtime/dds/profiles.xml): the most
+// a re-created participant's readers can be sent again (redelivery_filter.h).
 constexpr std::size_t kImuHistory = 1000;
 constexpr std::size_t kDetectionsGnssHistory = 100;
 // The ground's writer keeps the say until its participant leaves: no silence hands it over (CommandGate).

@@ -1,8 +1,8 @@
 #pragma once
 // Puts the samples of the agent's three input topics back into one deterministic order before they reach the agent
 // core. DDS orders samples within a topic, not across topics: IMU, detections and GNSS of one simulator step can
-// arrive in any interleaving. The in-process closed loop (deploy/batch/closed_loop.cpp) feeds them by stamp, and at
-// equal stamps IMU first, then detections, then GNSS; this class reproduces that order from any arrival order.
+// arrive in any interleaving. The in-process closed loop (deploy/programs/batch/closed_loop.cpp) feeds them by stamp,
+// and at equal stamps IMU first, then detections, then GNSS; this class reproduces that order from any arrival order.
 //
 // Rule: entries leave in (stamp, stream, arrival) order. An IMU sample leaves at once. A detection set or GNSS fix
 // with stamp s waits until an IMU sample with stamp >= s has arrived (so the IMU of the same step, which the command

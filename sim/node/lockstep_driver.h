@@ -2,7 +2,7 @@
 // Lockstep: every step's sensor samples are published, then the world waits for each live agent's answer to its IMU
 // sample (lockstep_tracker.h) up to the agent timeout, and for the acknowledgment of its detections and GNSS fix (and,
 // every tenth step, the monitors' of the clock), before it steps. Deterministic: the same scenario and seed give the
-// same run as the in-process loop (deploy/batch).
+// same run as the in-process loop (deploy/programs/batch).
 
 #include <functional>
 #include <vector>

@@ -9,8 +9,8 @@
 // which the agents also take as theirs: below 360 they turn to face one way, issue #26). For the agents'
 // constant-heading behaviour under a limited field of view, add --set agent.sensor.fov_deg=360.
 //
-// It is swa_batch's study (deploy/batch/study_runner.h) with its own table: the sweep mps.fov_deg x uav_count, the
-// rules as the study's variants (swa_batch --variant), the same runs and seeds; only the table (d_NB at 120 s, the
+// It is swa_batch's study (deploy/programs/batch/study_runner.h) with its own table: the sweep mps.fov_deg x uav_count,
+// the rules as the study's variants (swa_batch --variant), the same runs and seeds; only the table (d_NB at 120 s, the
 // split runs, the worst separation) is this program's. A --set of a key a rule sets is refused.
 //
 // Rules (each spelled out, so the table does not change meaning with the defaults): gabriel = Gabriel + weighted fit

@@ -214,7 +214,7 @@ inline std::optional<int> exportAgentConfig(std::vector<std::string> sim_args, c
   return exporter.wait(30.0);
 }
 
-// The launcher's janitor (deploy/launch/shm_janitor.h: removes only abandoned Fast DDS files created after
+// The launcher's janitor (deploy/programs/launch/shm_janitor.h: removes only abandoned Fast DDS files created after
 // construction), which in a test also cleans up when it goes out of scope, so a failing check leaves nothing behind.
 class ShmJanitor : public launch::ShmJanitor {
  public:

@@ -124,7 +124,7 @@ Geometry geometryOf(const std::vector<TruthRow>& rows) {
   return g;
 }
 
-// The oracle: the same scenario in one process, samples fed as deploy/batch/closed_loop.cpp does.
+// The oracle: the same scenario in one process, samples fed as deploy/programs/batch/closed_loop.cpp does.
 std::vector<sim::UavTruth> inProcessFinalTruth(const sim::Scenario& scenario) {
   sim::World world(scenario);
   std::vector<agent::Agent> agents(static_cast<std::size_t>(world.uav_count()), agent::Agent(scenario.agent));

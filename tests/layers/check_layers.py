@@ -12,17 +12,16 @@ import sys
 # Low to high. A layer may include its own and lower layers only. Paths are folders or single files, relative to the
 # source tree; the longest match decides.
 LAYERS = [
-    ("foundation", ["agent/params", "idl/msg_defs", "deploy/app/cli.cpp", "deploy/app/help_format.cpp",
-                    "deploy/app/help_format.h", "deploy/app/number.cpp", "deploy/app/include/swa/app/cli.h",
-                    "deploy/app/include/swa/app/number.h"]),
+    ("foundation", ["agent/params", "idl/msg_defs", "deploy/runtime/app/cli.cpp", "deploy/runtime/app/help_format.cpp",
+                    "deploy/runtime/app/help_format.h", "deploy/runtime/app/number.cpp",
+                    "deploy/runtime/app/include/swa/app/cli.h", "deploy/runtime/app/include/swa/app/number.h"]),
     ("agent core", ["agent/include", "agent/src", "agent/config", "agent/px4", "agent/autopilot"]),
     ("sim core", ["sim/include", "sim/src", "sim/scenario"]),
     ("monitor core", ["monitor/include", "monitor/src", "monitor/run_record", "monitor/recording"]),
     ("wire", ["idl"]),
-    ("runtime", ["deploy/app", "deploy/dds"]),
-    ("processes", ["agent/node", "agent/bridge_node", "agent/examples", "sim/node", "monitor/node", "monitor/scoring", "monitor/live_view",
-                   "monitor/recording/taps",
-                   "deploy/launch", "deploy/batch", "deploy/replay", "deploy/study", "deploy/mission"]),
+    ("runtime", ["deploy/runtime"]),
+    ("processes", ["agent/node", "agent/bridge_node", "agent/examples", "sim/node", "monitor/node", "monitor/scoring",
+                   "monitor/live_view", "monitor/recording/taps", "deploy/programs"]),
 ]
 TOPS = ["agent", "sim", "monitor", "idl", "deploy"]
 INCLUDE = re.compile(r'\s*#\s*include\s+"([^"]+)"')

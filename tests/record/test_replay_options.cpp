@@ -1,4 +1,4 @@
-// swa_replay's command line and how it names a recording's topics (deploy/replay).
+// swa_replay's command line and how it names a recording's topics (deploy/programs/replay).
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
-// Studies (deploy/study): the grid, its shards, study.json both ways, the merge and its refusals, the tidy table.
+// Studies (deploy/programs/study): the grid, its shards, study.json both ways, the merge and its refusals, the tidy
+// table.
 
 #include <gtest/gtest.h>
 #include <unistd.h>

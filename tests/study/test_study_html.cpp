@@ -1,6 +1,6 @@
-// study.html (deploy/study/study_html.cpp, study_plots.cpp): a title that says what the study varies, categories
-// drawn as categories, drift against N on log-log axes with an N^-1/2 guide, the run report's bands, series that
-// stay apart, and the numbers of every grid point. Studies built in memory: no simulation.
+// study.html (deploy/programs/study/study_html.cpp, study_plots.cpp): a title that says what the study varies,
+// categories drawn as categories, drift against N on log-log axes with an N^-1/2 guide, the run report's bands, series
+// that stay apart, and the numbers of every grid point. Studies built in memory: no simulation.
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// A study in a scenario file (deploy/study/study_section.h): the `study:` section read in both spellings, every
-// mistake in it reported, the command line on top of it, and the scenario loader skipping it (but nothing else).
+// A study in a scenario file (deploy/programs/study/study_section.h): the `study:` section read in both spellings,
+// every mistake in it reported, the command line on top of it, and the scenario loader skipping it (but nothing else).
 
 #include <gtest/gtest.h>
 #include <unistd.h>

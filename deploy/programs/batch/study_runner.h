@@ -1,6 +1,7 @@
 #pragma once
 // swa_batch's study mode (--sweep, --shard) and `swa_batch merge`: the grid's scenarios built and checked before
-// anything runs, every run of the shard on the thread pool with a progress line, the study's files (deploy/study).
+// anything runs, every run of the shard on the thread pool with a progress line, the study's files
+// (deploy/programs/study).
 
 #include <atomic>
 #include <vector>
