@@ -20,7 +20,7 @@ LAYERS = [
     ("monitor core", ["monitor/include", "monitor/src", "monitor/run_record", "monitor/recording"]),
     ("wire", ["idl"]),
     ("runtime", ["deploy/runtime"]),
-    ("processes", ["agent/node", "agent/bridge_node", "agent/examples", "sim/node", "monitor/node", "monitor/scoring",
+    ("processes", ["agent/node", "agent/bridge_node", "agent/examples", "sim/node", "monitor/node", "monitor/live_join",
                    "monitor/live_view", "monitor/recording/taps", "deploy/programs"]),
 ]
 TOPS = ["agent", "sim", "monitor", "idl", "deploy"]

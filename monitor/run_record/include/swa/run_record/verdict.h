@@ -15,7 +15,7 @@
 
 namespace swa::record {
 
-// A stretch of sim time the monitor did not see (monitor/scoring/truth_coverage.h).
+// A stretch of sim time the monitor did not see (monitor/live_join/truth_coverage.h).
 struct MissedSpan {
   double from_s;
   double to_s;
