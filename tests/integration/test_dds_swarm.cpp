@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <memory>
@@ -546,10 +547,16 @@ TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {
 // in a secure launch through PX4 the simulator waited 60 s at step 0 for one agent, the others re-created their
 // participants every 6 s, and one UAV ended on failsafe). Now the waiting simulator repeats its clock tick once a
 // second, and an agent that hears a tick twice knows the world waits (agent/node/world_pause.h).
+// The stopped agent itself may need the product's own recovery once it runs again, and the agent timeout gives it
+// that (a 15 s timeout failed once in 3 suite runs and once in 12 repeats: the agent answered more than 6 s after its
+// 9 s stop). Stopped past the 4 s lease, it is forgotten and found again (announcements every 1 s); stopped past Fast
+// DDS's 1 s port check, its shared-memory port may have been re-created under it (swa/dds/shm_ports.h), and it hears
+// nothing until its silence watch re-creates its participant (6 s, then about 1 s to match; the step's samples come
+// as the writers' history, TRANSIENT_LOCAL). So: 9 s stopped + 6 s + a few seconds to match, within 30 s.
 TEST_F(SwarmRun, AgentsWaitingWithTheLockstepSimulatorForAStoppedAgentKeepTheirParticipants) {
-  // GIVEN a lockstep run of 4 agents whose simulator waits up to 15 s for an answer
+  // GIVEN a lockstep run of 4 agents whose simulator waits up to 30 s for an answer
   const std::vector<std::string> overrides{"duration_s=20"};
-  start(overrides, {"--agent-timeout-s", "15"});
+  start(overrides, {"--agent-timeout-s", "30"});
   ASSERT_FALSE(HasFatalFailure());
   ASSERT_TRUE(monitor_->waitForSimTime(3.0, 60.0)) << logs();
   // WHEN agent 2 is stopped for 9 s: longer than the agents' silence limit (6 s), shorter than the agent timeout
@@ -559,11 +566,14 @@ TEST_F(SwarmRun, AgentsWaitingWithTheLockstepSimulatorForAStoppedAgentKeepTheirP
   // THEN the run completes with no agent dead
   ASSERT_EQ(finish(), 0) << logs();
   EXPECT_EQ(monitor_->count(msg::EVENT_AGENT_DEAD), 0) << logs();
-  // AND no agent re-created its participant: the three that waited knew the world waited
-  for (int i = 0; i < 4; ++i) {
+  // AND none of the three that waited re-created its participant: they knew the world waited
+  for (const int i : {0, 1, 3}) {
     const std::string log = readFile(dir_ / ("agent" + std::to_string(i) + ".log"));
     EXPECT_EQ(log.find("re-creating the participant"), std::string::npos) << "agent " << i << ":\n" << log;
   }
+  // (said, so that repeated runs show how often the stopped agent needed its own recovery)
+  const bool recreated = readFile(dir_ / "agent2.log").find("re-creating the participant") != std::string::npos;
+  std::printf("the stopped agent %s its participant\n", recreated ? "re-created" : "kept");
   // AND the run is still the in-process closed loop bit for bit: the wait changed nothing but the wall time
   expectFinalTruthOfTheInProcessLoop(overrides, true);
 }
