@@ -1,9 +1,27 @@
 #include "swa/dds/shm_ports.h"
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
+#include <system_error>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace swa::dds {
+
+namespace {
+
+std::string readWhole(const char* path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
 
 std::optional<int> lockFilePort(const std::string& path) {
   static const std::string kPrefix = "/dev/shm/fastrtps_port";
@@ -69,6 +87,31 @@ std::vector<int> deafPorts(const std::string& maps, const std::vector<int>& own,
     if (it != seen.end() && it->second.deleted && !it->second.live && exists(port)) deaf.push_back(port);
   }
   return deaf;
+}
+
+std::vector<int> ownSharedMemoryPorts() {
+  const std::set<unsigned long> locked = lockedInodes(readWhole("/proc/locks"), static_cast<long>(::getpid()));
+  std::vector<int> own;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it("/proc/self/fd", ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code link_ec;
+    const std::optional<int> port = lockFilePort(std::filesystem::read_symlink(it->path(), link_ec).string());
+    struct stat st {};
+    if (link_ec || !port || ::stat(it->path().c_str(), &st) != 0) continue;
+    if (locked.count(static_cast<unsigned long>(st.st_ino)) > 0) own.push_back(*port);
+  }
+  std::sort(own.begin(), own.end());
+  own.erase(std::unique(own.begin(), own.end()), own.end());
+  return own;
+}
+
+std::vector<int> deafSharedMemoryPorts() {
+  const std::vector<int> own = ownSharedMemoryPorts();
+  if (own.empty()) return {};
+  return deafPorts(readWhole("/proc/self/maps"), own, [](int port) {
+    std::error_code ec;
+    return std::filesystem::exists("/dev/shm/fastrtps_port" + std::to_string(port), ec);
+  });
 }
 
 }  // namespace swa::dds

@@ -10,7 +10,7 @@
 //     its endpoints to us (measured: an agent's cmd_vel writer never re-matched the simulator's reader in about 1 stop
 //     of 5 s in 3), so the node that sees it re-creates its own participant: a new one is discovered afresh by all.
 //
-// No DDS include: the participant's listener feeds it (participant.cpp), tests drive it directly. Not thread-safe:
+// No DDS include: the participant's listener feeds it (peer_listener.cpp), tests drive it directly. Not thread-safe:
 // the owner serialises calls.
 
 #include <array>

@@ -10,7 +10,8 @@
 // (/dev/shm/fastrtps_port<N>_el, a FLOCK in /proc/locks): the participant id and so the port number Fast DDS ends up
 // with can differ from the one asked for (two processes starting together), the ports a process writes to are mapped
 // in it too, and a child can inherit its parent's lock file descriptors (Fast DDS opens them without O_CLOEXEC).
-// Pure: the caller passes the texts of /proc files and says which ports exist.
+// The parsers are pure: the caller passes the texts of /proc files and says which ports exist. The last two apply
+// them to this process (Participant::ownSharedMemoryPorts / deafSharedMemoryPorts forward to them).
 
 #include <functional>
 #include <optional>
@@ -30,5 +31,10 @@ std::set<unsigned long> lockedInodes(const std::string& proc_locks, long pid);
 // which a file exists again (`exists`), in the order of `own`.
 std::vector<int> deafPorts(const std::string& maps, const std::vector<int>& own,
                            const std::function<bool(int)>& exists);
+
+// The shared-memory ports this process listens on as their only reader, sorted (its /proc/locks, /proc/self/fd).
+std::vector<int> ownSharedMemoryPorts();
+// Those of them that Fast DDS re-created under it (its /proc/self/maps, /dev/shm).
+std::vector<int> deafSharedMemoryPorts();
 
 }  // namespace swa::dds
