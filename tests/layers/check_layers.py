@@ -17,7 +17,7 @@ LAYERS = [
                     "deploy/runtime/app/include/swa/app/cli.h", "deploy/runtime/app/include/swa/app/number.h"]),
     ("agent core", ["agent/include", "agent/src", "agent/config", "agent/px4", "agent/autopilot"]),
     ("sim core", ["sim/include", "sim/src", "sim/scenario"]),
-    ("monitor core", ["monitor/include", "monitor/src", "monitor/run_record", "monitor/recording"]),
+    ("monitor core", ["monitor/include", "monitor/src", "monitor/svg", "monitor/run_record", "monitor/recording"]),
     ("wire", ["idl"]),
     ("runtime", ["deploy/runtime"]),
     ("processes", ["agent/node", "agent/bridge_node", "agent/examples", "sim/node", "monitor/node", "monitor/live_join",
