@@ -1,6 +1,6 @@
 #pragma once
-// Internal to the SVG plots (svg_plot.cpp): pixel numbers, and what the legend lists and how each entry's swatch is
-// drawn, so the swatch and the plotted element always look alike.
+// Internal to the SVG plots (svg_layout.cpp, svg_plot.cpp): pixel numbers, and what the legend lists and how each
+// entry's swatch is drawn, so the swatch and the plotted element always look alike.
 
 #include <cstddef>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Internal to the plots (svg_plot.cpp): the tick machinery behind niceTicks, for the axes of one plot.
+// Internal to the plots (svg_layout.cpp): the tick machinery behind niceTicks, for the axes of one plot.
 
 #include "swa/monitor/svg_plot.h"
 
