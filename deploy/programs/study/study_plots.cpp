@@ -1,9 +1,9 @@
 #include "study_plots.h"
 
+#include "study_plot_axis.h"
+
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <map>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -17,16 +17,10 @@ namespace {
 
 using monitor::kNaN;
 
-// The drift plot goes log-log when the key's values span at least this factor: over less, a log axis shows hardly
-// anything a linear one does not (the shipped drift study's 4..32 UAVs span 8).
-constexpr double kLogSpanFactor = 4.0;
 // DESIGN §5: the swarm's centroid averages N roughly independent drifts, so it drifts as N^-1/2.
 constexpr double kDriftExponent = -0.5;
 // Position NEES has 2 degrees of freedom (x, y): a consistent filter's ANEES is 2 on average, the run report's line.
 constexpr double kPositionNeesDof = 2.0;
-// The series at one value spread over this share of the smallest distance between two values (categories: 1), so
-// equal means stay visible side by side and a value's markers are never nearer another value than their own.
-constexpr double kSeriesSpread = 0.3;
 constexpr double kBandOpacity = 0.15;  // as the run report's bands
 constexpr const char* kBandColour = "#2ca02c";
 constexpr const char* kGuideColour = "#555555";
@@ -35,131 +29,6 @@ constexpr const char* kCollisionColour = "#d62728";
 constexpr int kPlotWidthPx = 760;
 constexpr int kPlotHeightPx = 320;
 constexpr double kMarkerPx = 4.5;  // smaller than the default 5: up to 4 series sit side by side at one value
-
-std::optional<double> numberOf(const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  return std::nullopt;
-}
-
-// How a swept key is drawn: where each of its values sits on the x axis.
-struct XAxis {
-  const Axis* axis = nullptr;
-  bool numeric = true;
-  bool log = false;
-  std::vector<double> at;  // value j's position: the number, or j for a category
-};
-
-XAxis xAxisOf(const Axis& a, bool log_if_wide) {
-  XAxis x;
-  x.axis = &a;
-  for (const std::string& v : a.values) {
-    const std::optional<double> number = numberOf(v);
-    x.numeric = x.numeric && number.has_value();
-    x.at.push_back(number.value_or(kNaN));
-  }
-  if (!x.numeric) {
-    for (std::size_t j = 0; j < x.at.size(); ++j) x.at[j] = static_cast<double>(j);
-    return x;
-  }
-  const auto [lo, hi] = std::minmax_element(x.at.begin(), x.at.end());
-  x.log = log_if_wide && *lo > 0.0 && *hi >= kLogSpanFactor * *lo;
-  return x;
-}
-
-// A position on the axis' own scale (log10 on a log axis), and back.
-double scaled(const XAxis& x, double v) { return x.log ? std::log10(v) : v; }
-double unscaled(const XAxis& x, double s) { return x.log ? std::pow(10.0, s) : s; }
-
-// The smallest distance between two of the axis' values, on its scale (1 with one value).
-double smallestGap(const XAxis& x) {
-  std::vector<double> s;
-  for (const double v : x.at) s.push_back(scaled(x, v));
-  std::sort(s.begin(), s.end());
-  double gap = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i < s.size(); ++i) {
-    if (s[i] > s[i - 1]) gap = std::min(gap, s[i] - s[i - 1]);
-  }
-  return std::isfinite(gap) ? gap : 1.0;
-}
-
-// The distance between two series' markers at one value, on the axis' scale.
-double seriesStep(const XAxis& x, std::size_t count) {
-  return kSeriesSpread * smallestGap(x) / static_cast<double>(std::max<std::size_t>(count, 1));
-}
-
-// Where series `si` of `count` draws value j: beside the other series, the group centred on the value.
-double shiftedX(const XAxis& x, std::size_t j, std::size_t si, std::size_t count) {
-  if (count < 2) return x.at[j];
-  const double offset = (static_cast<double>(si) - 0.5 * static_cast<double>(count - 1)) * seriesStep(x, count);
-  return unscaled(x, scaled(x, x.at[j]) + offset);
-}
-
-// Series `si`'s slot at value j: its marker's column, half a step either side.
-std::pair<double, double> slotOf(const XAxis& x, std::size_t j, std::size_t si, std::size_t count) {
-  const double centre = scaled(x, shiftedX(x, j, si, count));
-  const double half = 0.5 * seriesStep(x, count);
-  return {unscaled(x, centre - half), unscaled(x, centre + half)};
-}
-
-// Value j's share of the x axis: halfway (on the axis' scale) to its neighbours; NaN where it has none (the edge).
-std::pair<double, double> extentOf(const XAxis& x, std::size_t j) {
-  const double s = scaled(x, x.at[j]);
-  double below = -std::numeric_limits<double>::infinity();
-  double above = std::numeric_limits<double>::infinity();
-  for (const double v : x.at) {
-    const double t = scaled(x, v);
-    if (t < s) below = std::max(below, t);
-    if (t > s) above = std::min(above, t);
-  }
-  return {std::isfinite(below) ? unscaled(x, 0.5 * (below + s)) : kNaN,
-          std::isfinite(above) ? unscaled(x, 0.5 * (above + s)) : kNaN};
-}
-
-// Every grid point's index along each axis (the first axis varies slowest).
-std::vector<std::size_t> indexOf(const StudyPlan& plan, std::size_t point) {
-  std::vector<std::size_t> index(plan.axes.size());
-  for (std::size_t k = plan.axes.size(); k-- > 0;) {
-    index[k] = point % plan.axes[k].values.size();
-    point /= plan.axes[k].values.size();
-  }
-  return index;
-}
-
-// The grid points of one series: the other keys fixed, (value index along the axis, grid point) in value order.
-struct PointSeries {
-  std::string label;
-  std::vector<std::pair<std::size_t, std::size_t>> at;
-};
-
-// One series per combination of the other keys' values, in the order the values were given.
-std::vector<PointSeries> seriesAlong(const StudyPlan& plan, std::size_t axis) {
-  std::map<std::vector<std::size_t>, PointSeries> by_rest;
-  for (std::size_t point = 0; point < pointCount(plan); ++point) {
-    std::vector<std::size_t> index = indexOf(plan, point);
-    const std::size_t j = index[axis];
-    index[axis] = 0;
-    PointSeries& s = by_rest[index];
-    if (s.at.empty()) {
-      // One other key: the title names it ("..., by KEY") and the legend its values, which leaves the plot its width.
-      const bool one_other = plan.axes.size() == 2;
-      for (std::size_t k = 0; k < plan.axes.size(); ++k) {
-        if (k == axis) continue;
-        s.label +=
-            (s.label.empty() ? "" : ", ") + (one_other ? "" : plan.axes[k].key + " = ") + plan.axes[k].values[index[k]];
-      }
-      if (s.label.empty()) s.label = "mean ± sd over the seeds";
-    }
-    s.at.emplace_back(j, point);
-  }
-  std::vector<PointSeries> out;
-  for (auto& entry : by_rest) out.push_back(std::move(entry.second));
-  return out;
-}
 
 // A band at value j of the axis, of series si's grid point there.
 struct PointBand {
@@ -335,20 +204,6 @@ bool anyAbove(const monitor::PlotSpec& spec, double value) {
     }
   }
   return false;
-}
-
-// The x axis: the categories' names at 0, 1, ...; a log axis' ticks at the values themselves.
-void setXAxis(monitor::PlotSpec& spec, const XAxis& x) {
-  spec.x_label = x.axis->key;
-  spec.x_log = x.log;
-  if (x.numeric && !x.log) return;
-  spec.x_ticks = x.at;
-  spec.x_tick_labels = x.axis->values;
-  if (!x.numeric) {
-    // Half a category beyond the first and the last, so their markers are as far from the frame as from each other.
-    spec.x_min = -0.5;
-    spec.x_max = static_cast<double>(x.at.size()) - 0.5;
-  }
 }
 
 }  // namespace
