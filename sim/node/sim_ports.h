@@ -3,46 +3,39 @@
 // own topics (with vehicle.interface = px4 or ardupilot the attitude as the autopilot's, autopilot_vehicles.h) and the
 // world's truth, events and clock, and collects the agents' setpoints (one commander per UAV, swa/dds/command_gate.h;
 // their loop latency, latency_stats.h). Owns the participant and every endpoint. Message contents come from the wire
-// bridge (idl/wire); which step to publish and when is the driver's.
+// bridge (idl/wire); which step to publish and when is the driver's. The sensor writers are sensor_ports.h's, the
+// world's writers world_ports.h's; the commands are read in sim_commands.cpp, the deaf port healed in port_healing.cpp.
 
 #include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <fstream>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <swa/msg/Clock.h>
-#include <swa/msg/Detections.h>
-#include <swa/msg/GnssFix.h>
-#include <swa/msg/Imu.h>
-#include <swa/msg/ScenarioEvent.h>
-#include <swa/msg/SensorFrame.h>
-#include <swa/msg/SwarmTruth.h>
 #include <swa/msg/VelocitySetpoint.h>
-#include <swa/ros/Detection3DArray.h>
-#include <swa/ros/PoseWithCovarianceArrayStamped.h>
 
 #include "answer.h"
 #include "ardupilot_vehicles.h"
 #include "latency_stats.h"
+#include "port_clock.h"
 #include "px4_vehicles.h"
+#include "sensor_ports.h"
 #include "sim_options.h"
 #include "sim_summary.h"
 #include "swa/dds/command_gate.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
-#include "swa/sim/events.h"
 #include "swa/sim/world.h"
+#include "world_ports.h"
 
 namespace swa::sim_node {
 
 class SimPorts {
  public:
-  using Clock = std::chrono::steady_clock;
+  using Clock = PortClock;
   using AliveFn = std::function<bool(int uav)>;
 
   using Answer = sim_node::Answer;
@@ -58,17 +51,19 @@ class SimPorts {
 
   void publishStepOutputs(const AliveFn& alive);  // the world's events, truth when due, the clock
   // The clock tick of the current step; sent again while a lockstep run waits (agent/node/world_pause.h).
-  void publishClock();
+  void publishClock() { world_ports_.publishClock(); }
   // `due`: when the UAVs' next IMU samples are due (realtime), for the latency statistics; nullopt in lockstep.
   // With `due` every IMU sample is written before the step's detections and GNSS fixes, without it after them (the
   // reasons are at the definition). Returns the IMU stamp published to each UAV (nullopt: none this step).
   std::vector<std::optional<agent::StampNs>> publishSensors(std::optional<Clock::time_point> due);
   // An event of the node (agent dead / rejoined, scenario end) at the current sim time.
-  void publishEvent(const char* kind, int uav, double value, const std::string& text);
+  void publishEvent(const char* kind, int uav, double value, const std::string& text) {
+    world_ports_.publishEvent(kind, uav, value, text);
+  }
   // The end event of a run that never started (discovery timeout, interrupted), and a moment for it to arrive.
-  void publishEndBeforeStart(const std::string& why);
+  void publishEndBeforeStart(const std::string& why) { world_ports_.publishEndBeforeStart(why); }
   // The last truth (unless published at this step), the end event, then a moment for late readers.
-  void publishEnd(const AliveFn& alive, bool completed);
+  void publishEnd(const AliveFn& alive, bool completed) { world_ports_.publishEnd(alive, completed); }
 
   // Setpoints received within `wait` that come from their UAV's commander and name their UAV; the others are counted
   // (refused, ignored) and dropped. Their loop latency is recorded while timing is on.
@@ -91,10 +86,10 @@ class SimPorts {
   void shiftCommanders(Clock::duration lost, Clock::time_point now) { gate_.shift(lost, now); }
 
   // Lockstep: whether detections or a GNSS fix went to `uav` this step, and whether its reader acknowledged them.
-  bool sideWritten(int uav) const { return side_written_[static_cast<std::size_t>(uav)]; }
-  bool detectionsAcknowledged(int uav, double wait_s);
-  bool gnssAcknowledged(int uav, double wait_s);
-  bool clockAcknowledged(double wait_s) { return clock_.waitForAcknowledgments(wait_s); }
+  bool sideWritten(int uav) const { return sensors_.sideWritten(uav); }
+  bool detectionsAcknowledged(int uav, double wait_s) { return sensors_.detectionsAcknowledged(uav, wait_s); }
+  bool gnssAcknowledged(int uav, double wait_s) { return sensors_.gnssAcknowledged(uav, wait_s); }
+  bool clockAcknowledged(double wait_s) { return world_ports_.clockAcknowledged(wait_s); }
 
  private:
   // Whether `a` comes from the UAV's current commander (admitted at `at`); refusals counted and reported.
@@ -112,13 +107,10 @@ class SimPorts {
   // waits until every endpoint matched again (reconnect). With autopilot stand-ins it only says so.
   void healDeafness();
   void reconnect();
-  void resendStep(int uav);  // the current step's samples of `uav` again, same sequence numbers
   static constexpr auto kDeafnessCheckPeriod = std::chrono::milliseconds(250);
   // Agents find a new participant within about a second (a stopped simulator's agents may themselves be re-creating
   // theirs); beyond this the run goes on and the unanswered are declared dead as usual.
   static constexpr auto kRematchTimeout = std::chrono::seconds(20);
-  void publishTruth(const AliveFn& alive);
-  void publishEvent(const sim::EventRecord& event);
 
   const sim::Scenario& scenario_;
   const SimOptions& options_;
@@ -130,11 +122,8 @@ class SimPorts {
   CommandLatencyTracker latency_;
   bool time_latency_ = true;
   dds::PeerKey reported_twin_{};
-  std::vector<std::uint32_t> imu_seq_, det_seq_, gnss_seq_;
-  std::vector<bool> side_written_;
-  std::uint32_t truth_seq_ = 0, event_seq_ = 0, clock_seq_ = 0;
-  std::int64_t last_truth_step_ = -1;
-  std::ofstream truth_csv_;
+  WorldPorts world_ports_;  // opens --truth-out: a bad one stops the simulator before it joins the domain
+  SensorPorts sensors_;
   std::vector<Answer> batch_;
   std::vector<Answer> admitted_;
   std::vector<std::optional<Answer>> refused_;  // per UAV, the newest refused answer (CommandGate::releasable)
@@ -147,40 +136,9 @@ class SimPorts {
   Clock::time_point next_deafness_check_{};
   bool resend_after_reconnect_ = false;
   std::vector<int> deaf_ports_;  // with stand-ins: shared-memory ports found deaf (healDeafness), each said once
-  std::unique_ptr<AutopilotVehicles> autopilot_;  // vehicle.interface = px4 or ardupilot: instead of imu_ and cmd_
-  std::vector<dds::Writer<msg::Imu>> imu_;
-  // Direct vehicles, SWA's own detections and the SWA naming: each step's samples of a UAV in one message
-  // (idl/SensorFrame.idl) on swa/uav<i>/sensors, instead of imu_, det_ and gnss_.
-  bool frames_ = false;
-  std::vector<dds::Writer<msg::SensorFrame>> frame_;
-  std::vector<std::uint32_t> frame_seq_;
-  // The detections in the message the agents read (agent sensor.input): one of these three per UAV.
-  std::vector<dds::Writer<msg::Detections>> det_;
-  std::vector<dds::Writer<vision_msgs::msg::Detection3DArray>> vision_det_;
-  std::vector<dds::Writer<mrs_msgs::msg::PoseWithCovarianceArrayStamped>> uvdar_det_;
-  int detectionsMatched(std::size_t k) const;
-  // Without frames: UAV i's writers of its sample topics (detections in the agents' type, GNSS if the simulator
-  // reports it, IMU unless an autopilot stand-in does).
-  void makeSampleWriters(int i, bool autopilot, bool own_gnss);
-  // frames_: UAV k's samples of this step in one message; false if it has none or the write failed (counted).
-  bool writeFrame(std::size_t k, const sim::UavSensors& s, std::optional<WallNs> due_ns);
-  bool writeDetections(std::size_t k, const agent::DetectionSet& s, std::uint32_t seq);
-  std::vector<dds::Writer<msg::GnssFix>> gnss_;
+  // vehicle.interface = px4 or ardupilot: instead of the IMU writers (sensor_ports.h) and cmd_.
+  std::unique_ptr<AutopilotVehicles> autopilot_;
   std::vector<dds::Reader<msg::VelocitySetpoint>> cmd_;
-  dds::Writer<msg::SwarmTruth> truth_;
-  dds::Writer<msg::ScenarioEvent> events_;
-  dds::Writer<msg::Clock> clock_;
 };
-
-// Durations and wall stamps as the drivers and the ports use them.
-inline SimPorts::Clock::duration seconds(double s) {
-  return std::chrono::duration_cast<SimPorts::Clock::duration>(std::chrono::duration<double>(s));
-}
-inline double secondsSince(SimPorts::Clock::time_point t0) {
-  return std::chrono::duration<double>(SimPorts::Clock::now() - t0).count();
-}
-inline WallNs wallNs(SimPorts::Clock::time_point t) {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
-}
 
 }  // namespace swa::sim_node

@@ -34,7 +34,7 @@ struct Item {
   std::int64_t time_ns;
   int rank;  // at equal times: the world first (the simulator publishes truth and events of a step before the
              // next step's sensors), then detections and GNSS, then the IMU sample, as the simulator writes them in
-             // lockstep (sim_ports.cpp)
+             // lockstep (sensor_ports.cpp)
   std::uint64_t order;
   int uav;             // -1: a world topic
   InputSample* input;  // or
