@@ -15,10 +15,9 @@
 
 #include "child_process.h"
 #include "restart_policy.h"
-#include "swa/agent/config_io.h"
+#include "run_files.h"
 #include "swa/app/signals.h"
 #include "swa/run_record/run_dir.h"
-#include "swa/sim/scenario_io.h"
 
 namespace swa::launch {
 namespace {
@@ -80,7 +79,7 @@ class Supervisor {
   }
 
   RunOutcome run() {
-    prepareDirectory();
+    prepareRunDirectory(spec_, logs_);
     t0_ = Clock::now();
     const char* swarm = std::getenv("SWA_SWARM");
     const sim::VehicleInterface vehicle = spec_.scenario.vehicle.interface;
@@ -121,29 +120,8 @@ class Supervisor {
   }
 
  private:
-  void prepareDirectory() {
-    std::error_code ec;
-    fs::remove_all(logs_, ec);  // logs of an earlier run in the same directory would be appended to
-    for (const char* stale : {"summary.json", "sim_summary.json"}) fs::remove(spec_.dir / stale, ec);
-    fs::create_directories(logs_);
-    // The one configuration of the run: every child reads this file (no --set), so the directory holds exactly
-    // what ran.
-    std::ofstream config(scenarioFile());
-    config << "# The effective scenario of this run, written by swa_launch from " << spec_.origin << "\n"
-           << sim::scenarioToYaml(spec_.scenario);
-    // Each agent reads its own section, as the simulator implies it (agent.formation.radius_m from the spacing, ...):
-    // the agent needs no scenario parser.
-    std::ofstream agents(agentConfigFile());
-    agents << "# The agents' configuration of this run, written by swa_launch from " << spec_.origin << "\n"
-           << agent::toYaml(spec_.scenario.agent);
-    std::ofstream restarts(logs_ / "restarts.csv");
-    restarts << "wall_s,uav,exit_status,restart_count,backoff_s\n";
-    if (!config.flush() || !agents.flush() || !restarts.flush())
-      throw std::runtime_error("cannot write into " + spec_.dir.string());
-  }
-
-  std::string scenarioFile() const { return (spec_.dir / "scenario.yaml").string(); }
-  std::string agentConfigFile() const { return (spec_.dir / "agent.yaml").string(); }
+  std::string scenarioFile() const { return launch::scenarioFile(spec_); }
+  std::string agentConfigFile() const { return launch::agentConfigFile(spec_); }
 
   std::vector<std::string> scenarioArgs() const { return {"--scenario", scenarioFile(), "--domain", domain_}; }
 
