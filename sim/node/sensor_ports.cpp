@@ -132,7 +132,7 @@ std::vector<std::optional<agent::StampNs>> SensorPorts::publish(std::optional<Cl
     // Realtime: every UAV's IMU sample first, the detections and GNSS fixes after them. The command answers the IMU
     // sample alone, so neither the simulator's writing of the others nor the agent's receiving of them comes before
     // it; at 64 UAVs a step with detections wrote 128 other samples before the last IMU sample. An agent processes
-    // a step's samples in the closed loop's order whatever their arrival order (agent_node.cpp).
+    // a step's samples in the closed loop's order whatever their arrival order (agent_samples.cpp).
     for (std::size_t k = 0; k < n; ++k) writeImu(k);
     for (std::size_t k = 0; k < n; ++k) writeSides(k);
     return imu_stamps;

@@ -34,7 +34,7 @@ UavCheck checkUav(int uav, const UavRecording& recording, const agent::AgentConf
   std::map<std::int64_t, bool> answered;
 
   agent::Agent core(config);
-  wire::AgentFeed feed(core, self);  // as swa_agent feeds its agent (agent/node/agent_node.cpp)
+  wire::AgentFeed feed(core, self);  // as swa_agent feeds its agent (agent/node/agent_samples.cpp)
   for (const InputSample& in : recording.inputs) {
     ++c.inputs;
     if (in.input == Input::kImu) {
