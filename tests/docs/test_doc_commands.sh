@@ -134,7 +134,8 @@ shortened() {
     *swa_launch\ * | *swa_batch\ *) c+=" --set duration_s=3" ;;
     "cmake "* | /tmp/*)
       mkdir -p "$work/tmp"
-      c=$(sed -E "s# build # $build #; s#(^| |=)/tmp/#\1$work/tmp/#g" <<<"$c")
+      # /tmp/ first: the build tree may itself lie under /tmp (a CI clone).
+      c=$(sed -E "s#(^| |=)/tmp/#\1$work/tmp/#g; s# build # $build #" <<<"$c")
       ;;
   esac
   c=$(sed -E "s/--live [0-9]+/--live 0/; s/--domain [0-9]+/--domain $TEST_DOMAIN/" <<<"$c")
