@@ -38,7 +38,7 @@ constexpr auto kHeartbeat = std::chrono::seconds(1);
 constexpr agent::StampNs kHoldLimitNs = 1'000'000'000;
 // An IMU sample this recent counts as the samples arriving (100 Hz when the loop runs).
 constexpr auto kArrivingWindow = std::chrono::milliseconds(250);
-// Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (deploy/runtime/dds/profiles.xml): the most
+// Reader history depths of swa_sensor_reader and swa_detections_gnss_reader (idl/runtime/dds/profiles.xml): the most
 // a re-created participant's readers can be sent again (redelivery_filter.h).
 constexpr std::size_t kImuHistory = 1000;
 constexpr std::size_t kDetectionsGnssHistory = 100;

@@ -57,7 +57,7 @@ build_images() {
   # install -m: the modes in the image must not depend on how the checkout or the build set them.
   install -m 0755 "$bin_dir/swa_agent" "$bin_dir/swa_sim" "$bin_dir/swa_monitor" "$bin_dir/swa_px4_bridge" \
     "$bin_dir/swa_batch" "$here/swa-entrypoint" "$context/bin/"
-  install -m 0644 "$root/deploy/runtime/dds/profiles.xml" "$context/"
+  install -m 0644 "$root/idl/runtime/dds/profiles.xml" "$context/"
   install -m 0644 "$root"/deploy/scenarios/*.yaml "$context/scenarios/"
 
   local target start

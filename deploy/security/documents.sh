@@ -51,7 +51,7 @@ topics_xml() {
   echo "        </$kind>"
 }
 
-# The topics of each role, from deploy/runtime/dds/include/swa/dds/topics.h and the nodes (sim/node, agent/node,
+# The topics of each role, from idl/runtime/dds/include/swa/dds/topics.h and the nodes (sim/node, agent/node,
 # agent/bridge_node, monitor/node). fnmatch patterns: uav* stands for every UAV index, $PX4_PREFIX* for every vehicle.
 px4_out() {
   echo "rt/$1/fmu/out/vehicle_attitude rt/$1/fmu/out/sensor_combined rt/$1/fmu/out/vehicle_status" \

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # DDS Security credentials for an SWA swarm: one CA, one identity per participant, the governance document and
-# per-participant permissions, laid out as swa::dds::Participant expects them (deploy/runtime/dds/include/swa/dds/deployment.h).
+# per-participant permissions, laid out as swa::dds::Participant expects them (idl/runtime/dds/include/swa/dds/deployment.h).
 # Run with --help for the layout, the options and the overwrite rules.
 set -euo pipefail
 
@@ -107,7 +107,7 @@ in_range() { [[ $1 =~ ^[0-9]{1,9}$ ]] && ((10#$1 >= $2 && 10#$1 <= $3)); }
 # Globals set by parse_args.
 DIR='' N='' DAYS=365 CA_DAYS=3650 DOMAIN_MIN=0 DOMAIN_MAX=$MAX_DOMAIN ORG=SWA MODE=new BRIDGES=false
 PX4_PREFIX=px4_ NAMING=swa ROS_NS=''
-# The DDS names of SWA's topics (deploy/runtime/dds/include/swa/dds/naming.h): "swa/" or, in the ros2 naming, "rt/[NS/]swa/".
+# The DDS names of SWA's topics (idl/runtime/dds/include/swa/dds/naming.h): "swa/" or, in the ros2 naming, "rt/[NS/]swa/".
 SWA_ROOT=swa/
 
 parse_args() {

@@ -10,7 +10,7 @@ namespace {
 // A loop iteration longer than one poll plus this means the simulator itself did not run (swa/app/stall_watch.h).
 // Generous: on a loaded 2-core machine a wake-up can be a few tens of milliseconds late.
 constexpr auto kStallSlack = std::chrono::milliseconds(150);
-// A stall this long (beyond the slack) may have outlasted the 4 s participant lease (deploy/runtime/dds/profiles.xml)
+// A stall this long (beyond the slack) may have outlasted the 4 s participant lease (idl/runtime/dds/profiles.xml)
 // counted from the simulator's last announcement (every 1 s): the agents dropped the simulator and must find it again,
 // some by re-creating their participant (agent_node.h, peer_book.h). Each then gets kReconnectGrace more for its next
 // answer.

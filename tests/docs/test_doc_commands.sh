@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every command the READMEs give a reader runs (issue #30, "docs that run"):
 #   test_doc_commands.sh BIN_DIR BUILD_DIR
-# The READMEs: README.md, deploy/README.md, deploy/containers/README.md, deploy/runtime/dds/README.md (BENCHMARKS.md is a
+# The READMEs: README.md, deploy/README.md, deploy/containers/README.md, idl/runtime/dds/README.md (BENCHMARKS.md is a
 # record of measurements, each with the command that made it at its commit, not instructions). The commands are the
 # lines of their ```sh blocks (a line ending in '\' goes on; "a; b" and "a && b" are two commands; a trailing
 # "# ..." is a comment); a block with a loop or a background job ('&') is one script, run whole. Each is run in
@@ -172,7 +172,7 @@ check_names() {
       fi
       # shellcheck disable=SC2013  # words: the variable names
       for var in $(grep -oE -- '-e [A-Z_]+=' <<<"$command" | sed -E 's/-e ([A-Z_]+)=/\1/'); do
-        grep -rq "$var" "$root/deploy/containers/swa-entrypoint" "$root/deploy/runtime/dds" "$root/deploy/README.md" ||
+        grep -rq "$var" "$root/deploy/containers/swa-entrypoint" "$root/idl/runtime/dds" "$root/deploy/README.md" ||
           fail "'$command': $var is read by nothing the image runs"
       done
       ;;
@@ -183,7 +183,7 @@ check_names() {
         # shellcheck disable=SC2013  # words: the topic names
         for topic in $(grep -oE '/swa/[a-z0-9_/]+' <<<"$command"); do
           last=${topic##*/}
-          grep -qE "[\"/]$last\"" "$root/deploy/runtime/dds/include/swa/dds/topics.h" ||
+          grep -qE "[\"/]$last\"" "$root/idl/runtime/dds/include/swa/dds/topics.h" ||
             fail "'$command': topic $topic is not one SWA writes (swa/dds/topics.h)"
         done
       fi
@@ -275,6 +275,6 @@ while IFS=$'\t' read -r -u 3 where command; do
       ;;
   esac
   ran=$((ran + 1))
-done 3< <(for doc in README.md deploy/README.md deploy/containers/README.md deploy/runtime/dds/README.md; do commands_of "$doc"; done)
+done 3< <(for doc in README.md deploy/README.md deploy/containers/README.md idl/runtime/dds/README.md; do commands_of "$doc"; done)
 [ "$ran" -gt 20 ] || fail "only $ran command(s) found in the docs (the extraction is broken)"
 log "PASS: $ran documented commands"

@@ -234,7 +234,7 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   EXPECT_GE(commandsAnswering(0, restart_end), 195);
   // AND memory is bounded: 6000 sets of 1000 detections are ~290 MB, which the stamp orderer held before issue #11.
   // Now the agent holds none of them; what grows is the middleware's sample pool, up to its QoS bound (the
-  // detections reader keeps at most 100 samples, deploy/runtime/dds/profiles.xml: 100 x ~48 kB serialised = ~5 MB)
+  // detections reader keeps at most 100 samples, idl/runtime/dds/profiles.xml: 100 x ~48 kB serialised = ~5 MB)
 #ifdef __SANITIZE_ADDRESS__
   // (AddressSanitizer keeps up to 256 MB of freed memory in quarantine, which the first two batches fill: in the
   // sanitizer build the bound is on what the third batch adds, ~80 MB if the sets were held; LeakSanitizer checks at

@@ -12,14 +12,14 @@ import sys
 # Low to high. A layer may include its own and lower layers only. Paths are folders or single files, relative to the
 # source tree; the longest match decides.
 LAYERS = [
-    ("foundation", ["agent/params", "idl/msg_defs", "deploy/runtime/app/cli.cpp", "deploy/runtime/app/help_format.cpp",
-                    "deploy/runtime/app/help_format.h", "deploy/runtime/app/number.cpp",
-                    "deploy/runtime/app/include/swa/app/cli.h", "deploy/runtime/app/include/swa/app/number.h"]),
+    ("foundation", ["agent/params", "idl/msg_defs", "idl/runtime/app/cli.cpp", "idl/runtime/app/help_format.cpp",
+                    "idl/runtime/app/help_format.h", "idl/runtime/app/number.cpp",
+                    "idl/runtime/app/include/swa/app/cli.h", "idl/runtime/app/include/swa/app/number.h"]),
     ("agent core", ["agent/include", "agent/src", "agent/config", "agent/px4", "agent/autopilot"]),
     ("sim core", ["sim/include", "sim/src", "sim/scenario"]),
     ("monitor core", ["monitor/include", "monitor/src", "monitor/svg", "monitor/run_record", "monitor/recording"]),
     ("wire", ["idl"]),
-    ("runtime", ["deploy/runtime"]),
+    ("runtime", ["idl/runtime"]),
     ("processes", ["agent/node", "agent/bridge_node", "agent/examples", "sim/node", "monitor/node", "monitor/live_join",
                    "monitor/live_view", "monitor/recording/taps", "deploy/programs"]),
 ]

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""QoS profile names have one home (issue #47): deploy/runtime/dds/profiles.xml defines the profiles and
-deploy/runtime/dds/include/swa/dds/qos_profiles.h names each once as a constant. Checked: the two lists are the same, and no
+"""QoS profile names have one home (issue #47): idl/runtime/dds/profiles.xml defines the profiles and
+idl/runtime/dds/include/swa/dds/qos_profiles.h names each once as a constant. Checked: the two lists are the same, and no
 other C++ file under agent/, sim/, monitor/, idl/, deploy/ or tests/ writes a profile's name as a string literal.
 
   check_qos_names.py ROOT        exit 0: one home; 1: one line per difference or stray literal
@@ -9,8 +9,8 @@ import os
 import re
 import sys
 
-XML = "deploy/runtime/dds/profiles.xml"
-HEADER = "deploy/runtime/dds/include/swa/dds/qos_profiles.h"
+XML = "idl/runtime/dds/profiles.xml"
+HEADER = "idl/runtime/dds/include/swa/dds/qos_profiles.h"
 TOPS = ["agent", "sim", "monitor", "idl", "deploy", "tests"]
 
 

@@ -10,8 +10,8 @@ python3 "$here/check_layers.py" "$src"
 
 work=$(mktemp -d /tmp/swa_layers.XXXXXX)
 trap 'rm -rf "$work"' EXIT
-mkdir -p "$work/agent/src" "$work/agent/node" "$work/deploy/runtime/dds/include/swa/dds"
-echo '#pragma once' > "$work/deploy/runtime/dds/include/swa/dds/participant.h"
+mkdir -p "$work/agent/src" "$work/agent/node" "$work/idl/runtime/dds/include/swa/dds"
+echo '#pragma once' > "$work/idl/runtime/dds/include/swa/dds/participant.h"
 printf '#include "swa/dds/participant.h"\n' > "$work/agent/src/upward.cpp"
 printf '#include "swa/dds/participant.h"\n' > "$work/agent/node/downward.cpp"
 out=$(python3 "$here/check_layers.py" "$work") && { echo "test_layers: an upward include was accepted" >&2; exit 1; }

@@ -211,7 +211,7 @@ void Px4SwarmTest::expectThroughArdupilotAsCohesiveAsDirect(const std::string& s
     EXPECT_TRUE(agents.empty()) << agents.front() << "\n" << table;
     // AND the recording holds what the agents read from their bridges: re-run in-process on it, every recorded
     // command comes out again, byte for byte (swa_replay --check). The agent's cmd_vel writer keeps only its newest
-    // sample (KEEP_LAST 1, deploy/runtime/dds/profiles.xml): a recorder that falls behind on a loaded host misses one
+    // sample (KEEP_LAST 1, idl/runtime/dds/profiles.xml): a recorder that falls behind on a loaded host misses one
     // now and then (CI: 1 of 6000 for two UAVs), which the replay produces without a recorded twin. That is the
     // recording's gap, not a difference.
     const replay::RecordedRun recorded = replay::readRecordedRun((ap.dir / "run.mcap").string(), std::nullopt, false);

@@ -146,7 +146,7 @@ TEST_F(Ros2ProfileRun, EveryEndpointHasItsRosNameAndEveryPayloadDecodes) {
   const std::vector<TopicSpec> topics = runTopics();
   capture_ = std::make_unique<ros2::RawCapture>(domain_, 2, 3);
   for (const TopicSpec& t : topics) {
-    // The clock is the one VOLATILE writer (deploy/runtime/dds/profiles.xml).
+    // The clock is the one VOLATILE writer (idl/runtime/dds/profiles.xml).
     capture_->read(dds::ddsTopic(kRos2, t.swa_topic), dds::ddsType(kRos2, t.generated_type),
                    t.swa_topic != dds::topics::kClock);
   }

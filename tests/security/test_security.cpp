@@ -62,7 +62,7 @@ const std::string kLaunch = SWA_LAUNCH_BINARY;
 const std::string kSim = SWA_SIM_BINARY;
 const std::string kAgent = SWA_AGENT_BINARY;
 constexpr int kUavs = 4;  // dropout_4.yaml
-// Participant::Participant's message when Fast DDS refuses the credentials (deploy/runtime/dds/src/participant.cpp).
+// Participant::Participant's message when Fast DDS refuses the credentials (idl/runtime/dds/src/participant.cpp).
 const std::string kRefused = "DDS Security refused the credentials of participant 'swa_agent_1'";
 
 double secondsSince(SteadyClock::time_point t0) {

@@ -1,4 +1,4 @@
-// swa::dds::credentialProblem (deploy/runtime/dds/include/swa/dds/security_check.h) on credentials made by
+// swa::dds::credentialProblem (idl/runtime/dds/include/swa/dds/security_check.h) on credentials made by
 // deploy/security/make-credentials.sh in a temporary directory per test, removed afterwards: the genuine files of
 // every role pass; each way of spoiling them (changed signature, widened grant, another CA, another UAV's
 // permissions, another key, another CA's identity, garbage) is named with the file and the concrete cause. Pure

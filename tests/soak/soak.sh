@@ -5,7 +5,7 @@
 # Usage: bash tests/soak/soak.sh [--uavs N] [--duration-s S] [--period-s P] [--warmup-s W] [--out DIR]
 #   defaults: 8 UAVs, 600 s, every 30 s, warm-up 120 s, out/soak. Needs a Release build in build/ (deploy/build.sh).
 # The warm-up covers what fills up by design: the simulator's truth writer keeps the last 100 s for a restarted
-# monitor (deploy/runtime/dds/profiles.xml), so its memory grows for the first ~100 s. The monitor keeps the run's time
+# monitor (idl/runtime/dds/profiles.xml), so its memory grows for the first ~100 s. The monitor keeps the run's time
 # series and trajectories for its summary and report (~2 kB/s at 8 UAVs): that growth is proportional to the run.
 # Writes DIR/samples.csv (t_s,process,pid,rss_kb,threads,fds) and DIR/growth.csv, the launch's run directory in
 # DIR/run, and prints a table: per process the value at the end of the warm-up, at the end, and the growth in

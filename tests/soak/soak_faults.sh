@@ -70,7 +70,7 @@ done
 ensure_packages iptables jq
 
 # The warm-up covers what fills by design: the simulator's truth writer keeps the last 100 s for a restarted monitor
-# (deploy/runtime/dds/profiles.xml), so its memory grows for the first ~100 s (tests/soak/soak.sh).
+# (idl/runtime/dds/profiles.xml), so its memory grows for the first ~100 s (tests/soak/soak.sh).
 readonly WARMUP_S=120 QUEUE=9 SWARM=soak
 ns=swasoak$$
 rm -rf "$out"

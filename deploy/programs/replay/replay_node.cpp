@@ -125,7 +125,7 @@ bool ReplayNode::waitForAnswers(std::int64_t stamp_ns, const std::set<int>& uavs
 void ReplayNode::waitForAcknowledgments(const std::set<int>& uavs) {
   // The agent orders its inputs by stamp (sample_order.h): the commands are the recorded ones only if this stamp's
   // detections and GNSS fix are in its queue before the next stamp's IMU sample. DDS orders samples per topic, not
-  // across topics, and a lost sample is repaired only after the next heartbeat (deploy/runtime/dds/profiles.xml), so
+  // across topics, and a lost sample is repaired only after the next heartbeat (idl/runtime/dds/profiles.xml), so
   // the next IMU sample could overtake it: wait until the agent has acknowledged them, as the simulator does.
   const double wait_s = std::chrono::duration<double>(kAnswerTimeout).count();
   for (const int uav : uavs) {

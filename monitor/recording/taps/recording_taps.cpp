@@ -8,7 +8,7 @@
 namespace swa::recording {
 namespace {
 
-// The reader profiles match each topic's writer (deploy/runtime/dds/profiles.xml): reliable, and transient local where
+// The reader profiles match each topic's writer (idl/runtime/dds/profiles.xml): reliable, and transient local where
 // the writer keeps history, so a recorder that starts late still gets what its writers kept.
 template <class PubSubType>
 dds::Reader<dds::Payload> tap(dds::Participant& p, Recording& recording, const std::string& topic,

@@ -40,7 +40,7 @@ std::uint16_t recordingChannel(Recording& recording, const dds::Participant& par
   return recording.cdrChannel(recordedTopic(participant.wireNames(), swa_topic), msgTypeName(type.getName()));
 }
 
-// The reader profiles of the monitor's own inputs (deploy/runtime/dds/profiles.xml), named once for the monitor and for
+// The reader profiles of the monitor's own inputs (idl/runtime/dds/profiles.xml), named once for the monitor and for
 // the bare-reader baseline of tests/bench/bench_record_reader.cpp.
 
 // The topics the monitor reads only to record them, per UAV, each with the reader profile matching its writer:

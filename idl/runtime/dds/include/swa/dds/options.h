@@ -16,7 +16,7 @@ int resolveDomain(const std::optional<std::string>& cli_value);
 
 // The XML profiles file: the environment variable SWA_DDS_PROFILES if set and non-empty; else, for an installed
 // program (<prefix>/bin/swa_sim), the installed <prefix>/share/swa/profiles.xml when it exists; else the source tree's
-// deploy/runtime/dds/profiles.xml (path compiled in: a program run from its build tree). Existence is checked by the
+// idl/runtime/dds/profiles.xml (path compiled in: a program run from its build tree). Existence is checked by the
 // Participant. A program of your own that links swa::dds lives elsewhere: give it SWA_DDS_PROFILES, or the path
 // find_package(swa) sets in SWA_PROFILES_FILE.
 std::string resolveProfilesFile();

@@ -1,5 +1,5 @@
 #pragma once
-// The QoS profiles of deploy/runtime/dds/profiles.xml by name, the one place a profile name is written in C++: a typo
+// The QoS profiles of idl/runtime/dds/profiles.xml by name, the one place a profile name is written in C++: a typo
 // here fails the build, not a discovery at run time (Fast DDS 2.9 falls back to its defaults for an unknown profile and
 // only logs). tests/layers/check_qos_names.py keeps this list and the XML the same, and finds any literal elsewhere.
 // What each profile does, and why, is said beside it in profiles.xml.

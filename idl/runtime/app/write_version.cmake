@@ -1,6 +1,6 @@
 # Writes OUT (a header defining SWA_VERSION as "VERSION+<commit>[-dirty]") from the checkout at SOURCE_DIR, and
 # only when the text changed, so a build after a commit records the new commit and a build without one recompiles
-# nothing. Run at every build by the swa_version target (deploy/runtime/app/CMakeLists.txt).
+# nothing. Run at every build by the swa_version target (idl/runtime/app/CMakeLists.txt).
 set(commit "unknown")
 find_package(Git QUIET)
 if(GIT_FOUND)
@@ -12,7 +12,7 @@ if(GIT_FOUND)
     set(commit ${described})
   endif()
 endif()
-set(text "#pragma once\n// Generated at build time by deploy/runtime/app/write_version.cmake.\n#define SWA_VERSION \"${VERSION}+${commit}\"\n")
+set(text "#pragma once\n// Generated at build time by idl/runtime/app/write_version.cmake.\n#define SWA_VERSION \"${VERSION}+${commit}\"\n")
 set(old "")
 if(EXISTS ${OUT})
   file(READ ${OUT} old)

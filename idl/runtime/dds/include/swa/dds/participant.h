@@ -6,7 +6,7 @@
 //   auto imu = p.reader<swa::msg::ImuPubSubType>(topics::imu(3), qos::kSensorReader,
 //                                                [&](swa::msg::Imu&& m) { queue.push(std::move(m)); });
 //
-// QoS comes only from the XML profiles (deploy/runtime/dds/profiles.xml, loaded before anything else); the code names a
+// QoS comes only from the XML profiles (idl/runtime/dds/profiles.xml, loaded before anything else); the code names a
 // profile per endpoint and never sets QoS itself. Writer / Reader are non-owning handles, valid while their
 // Participant lives. The participant owns one publisher, one subscriber, the topics, and the reader listeners; its
 // destructor deletes every entity (so no /dev/shm segment survives a clean exit) and only then the listeners.

@@ -56,7 +56,7 @@ std::optional<Transport> parseTransport(const std::string& name);
 // The "Environment:" section shared by every node's --help: domain, profiles, transport, discovery, security.
 std::string environmentHelp();
 
-// The participant profile of deploy/runtime/dds/profiles.xml used for a transport.
+// The participant profile of idl/runtime/dds/profiles.xml used for a transport.
 const char* participantProfile(Transport t);
 
 // Checks one "IP:PORT" list entry by entry (dotted IPv4, port 1..65535); the problems found, empty if fine.

@@ -139,7 +139,7 @@ std::string environmentHelp() {
   return R"(Environment (deploy/README.md):
   SWA_DOMAIN            DDS domain id when --domain is not given (default 0)
   SWA_DDS_PROFILES      Fast DDS XML profiles (default: share/swa/profiles.xml beside an installed program's
-                        bin/, else deploy/runtime/dds/profiles.xml of the source tree)
+                        bin/, else idl/runtime/dds/profiles.xml of the source tree)
   SWA_TRANSPORT         local (default: shared memory + UDP, one host) | network (UDPv4 only, multicast
                         discovery: containers, hosts) | discovery-server (UDPv4, no multicast needed)
   SWA_DISCOVERY_SERVER  IP:PORT[;IP:PORT...] of the Fast DDS Discovery Server(s), with discovery-server
