@@ -144,8 +144,12 @@ std::vector<sim::UavTruth> inProcessFinalTruth(const sim::Scenario& scenario) {
 // A participant in this test process that watches what a monitor would: swa/truth, swa/events, swa/uav<i>/state.
 class Monitor {
  public:
-  Monitor(int domain, int uav_count)
+  // `imu_of`: also read that UAV's swa/uav<I>/imu, the per-topic sensor path (-1: none).
+  Monitor(int domain, int uav_count, int imu_of = -1)
       : participant_(std::make_unique<dds::Participant>("swa_test_monitor", domain, dds::resolveProfilesFile())) {
+    if (imu_of >= 0) {
+      participant_->reader<msg::ImuPubSubType>(dds::topics::imu(imu_of), dds::qos::kSensorReader, imu_.listener());
+    }
     for (int i = 0; i < uav_count; ++i) {
       participant_->reader<msg::AgentStatePubSubType>(dds::topics::state(i), dds::qos::kStateReader,
                                                       states_.listener());
@@ -161,7 +165,10 @@ class Monitor {
     truth_.take(wait);
     events_.take();
     states_.take();
+    imu_.take();
   }
+  // The samples read on swa/uav<imu_of>/imu, in arrival order.
+  const std::vector<msg::Imu>& imu() const { return imu_.seen; }
   // AgentState samples of one UAV, in arrival order.
   std::vector<msg::AgentState> states(int uav) const {
     std::vector<msg::AgentState> out;
@@ -203,6 +210,7 @@ class Monitor {
   Received<msg::SwarmTruth> truth_;
   Received<msg::ScenarioEvent> events_;
   Received<msg::AgentState> states_;
+  Received<msg::Imu> imu_;
   std::unique_ptr<dds::Participant> participant_;
 };
 
@@ -232,7 +240,7 @@ class SwarmRun : public ProcessRun {
              const std::vector<std::string>& env = {}) {
     ASSERT_EQ(exportAgentConfig(simArgs(overrides), dir_), 0) << readFile(dir_ / "export.log");
 
-    monitor_ = std::make_unique<Monitor>(domain_, n);
+    monitor_ = std::make_unique<Monitor>(domain_, n, imu_of_);
     for (int i = 0; i < n; ++i) {
       agents_.push_back(std::make_unique<Child>(agentCommand(SWA_AGENT_BINARY, i, domain_, dir_ / "agent.yaml"),
                                                 dir_ / ("agent" + std::to_string(i) + ".log"), env));
@@ -280,6 +288,7 @@ class SwarmRun : public ProcessRun {
   }
 
   std::unique_ptr<Monitor> monitor_;
+  int imu_of_ = -1;  // the UAV whose swa/uav<I>/imu the monitor also reads (Monitor's imu_of)
   std::vector<int> agent_status_;
   SteadyClock::time_point started_;
   double wall_s_ = 0.0;
@@ -349,6 +358,14 @@ void SwarmRun::lockstepDropout4(const std::vector<std::string>& overrides, doubl
     EXPECT_GE(st.back().neighbour_ids().size(), 2u) << "UAV " << i;
     EXPECT_EQ(st.back().commands_sent(), 2001u) << "UAV " << i;
     EXPECT_EQ(st.back().rejected_out_of_order() + st.back().rejected_nonfinite(), 0u) << "UAV " << i;
+  }
+  // THEN, where the monitor read a UAV's swa/uav<I>/imu, the samples travelled there up to the last step, none missing
+  // from the first one it matched in time for (with sensor frames nothing is written there)
+  if (imu_of_ >= 0) {
+    const std::vector<msg::Imu>& imu = monitor_->imu();
+    ASSERT_FALSE(imu.empty()) << "nothing on swa/uav" << imu_of_ << "/imu";
+    EXPECT_EQ(imu.back().header().stamp_ns(), 20'000'000'000LL);
+    EXPECT_EQ(imu.back().header().seq() - imu.front().header().seq() + 1, imu.size());
   }
   // THEN, once our monitor participant is gone too, no process left shared memory behind (a port stays while any
   // participant that ever sent to it is alive, so this is checked after the monitor)
@@ -497,6 +514,15 @@ TEST_F(SwarmRun, LockstepOverUdpOnlyEqualsTheInProcessLoop) {
   // lost and repaired datagrams can reorder topics
   // THEN the same bit-exact run as over shared memory
   lockstepDropout4({"duration_s=20"}, 10.0, {"SWA_TRANSPORT=network"});
+}
+
+TEST_F(SwarmRun, LockstepWithEachSampleOnItsOwnTopicEqualsTheInProcessLoop) {
+  // GIVEN direct vehicles and SWA's detections, where the simulator would bundle a step's samples in one SensorFrame,
+  // told by SWA_SENSOR_FRAMES=0 to write them on swa/uav<I>/{imu,detections,gnss} as bridges and real sensors do
+  imu_of_ = 0;
+  // THEN the same bit-exact run as with frames
+  // (and lockstepDropout4 checks that UAV 0's IMU did travel on swa/uav0/imu)
+  lockstepDropout4({"duration_s=20"}, 10.0, {"SWA_SENSOR_FRAMES=0"});
 }
 
 TEST_F(SwarmRun, StalledAgentIsDeclaredDeadAndRejoinsCrashedAgentStaysDead) {
