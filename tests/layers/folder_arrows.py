@@ -15,16 +15,10 @@ import os
 import re
 import sys
 
-TOPS = ["agent", "sim", "monitor", "idl", "deploy"]
-INCLUDE = re.compile(r'\s*#\s*include\s+"([^"]+)"')
-
-
-def sources(root):
-    for top in TOPS:
-        for folder, _, files in os.walk(os.path.join(root, top)):
-            for f in sorted(files):
-                if f.endswith((".h", ".cpp")):
-                    yield os.path.relpath(os.path.join(folder, f), root)
+# The tree is walked and its includes matched as the layer check does it, one definition for both.
+sys.dont_write_bytecode = True  # no __pycache__ left in the source tree
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_layers import INCLUDE, TOPS, sources  # noqa: E402
 
 
 def arrows(root):
