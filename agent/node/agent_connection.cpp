@@ -189,14 +189,13 @@ void AgentNode::refuseAsTwin() {
   participant_.reset();
 }
 
-void AgentNode::noteYoungerTwin() {
-  const std::optional<dds::Peer> twin = participant_->twin();
-  if (!twin || twin->key == reported_twin_) return;
-  reported_twin_ = twin->key;
-  std::fprintf(stderr,
-               "swa_agent %d: a second swa_agent %d (pid %ld on host %s) joined this swarm; it started later and must "
-               "refuse to run (if it keeps commanding UAV %d, stop it)\n",
-               id_, id_, twin->card->pid, twin->card->host.c_str(), id_);
+void AgentNode::noteYoungerTwins() {
+  for (const dds::Peer& twin : participant_->takeYoungerTwins()) {
+    std::fprintf(stderr,
+                 "swa_agent %d: a second swa_agent %d (pid %ld on host %s) joined this swarm; it started later and "
+                 "must refuse to run (if it keeps commanding UAV %d, stop it)\n",
+                 id_, id_, twin.card->pid, twin.card->host.c_str(), id_);
+  }
 }
 
 }  // namespace swa::agent_node

@@ -197,7 +197,7 @@ int AgentNode::run() {
       refuseAsTwin();
       return kExitTwin;
     }
-    noteYoungerTwin();
+    noteYoungerTwins();
     reportWaiting(matched);
     // Drained here too, so that the book of departed peers stays short between missions.
     for (const dds::PeerKey& gone : participant_->takePeersGone()) mission_gate_.participantGone(gone);

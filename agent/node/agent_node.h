@@ -105,7 +105,7 @@ class AgentNode : public app::Role {
   // Why the participant must be re-created after a peer came back from an expired lease, if it must.
   std::optional<std::string> endpointsLostAfterPeerReturn(const Matched& matched);
   void reportWaiting(const Matched& matched);  // once per connection: no IMU sample yet, and what has matched
-  void noteYoungerTwin();
+  void noteYoungerTwins();
   void logFinalCounts() const;
 
   const int id_;
@@ -134,8 +134,7 @@ class AgentNode : public app::Role {
   int reconnects_ = 0;
   std::atomic<bool> stop_requested_{false};
   std::condition_variable wake_;  // run()'s wait: stop(), or its next deadline
-  dds::PeerKey reported_twin_{};
-  int peers_back_ = 0;  // PeerBook count of the current participant
+  int peers_back_ = 0;            // PeerBook count of the current participant
   std::optional<std::chrono::steady_clock::time_point> peer_back_at_;
   std::string peer_back_name_;
   dds::PeerKey peer_back_key_{};

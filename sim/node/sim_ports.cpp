@@ -138,7 +138,7 @@ void SimPorts::stepTaken(Clock::time_point t) {
 }
 
 void SimPorts::publishStepOutputs(const AliveFn& alive) {
-  if (world_.step_index() % 10 == 0) noteYoungerTwin();
+  if (world_.step_index() % 10 == 0) noteYoungerTwins();
   world_ports_.publishStepOutputs(alive);
 }
 
@@ -181,7 +181,7 @@ std::string SimPorts::commandTopic(int uav) const {
 
 bool SimPorts::olderTwinRuns() {
   if (!participant_->mustGiveWay()) {
-    noteYoungerTwin();
+    noteYoungerTwins();
     return false;
   }
   const std::optional<dds::Peer> twin = participant_->twin();
@@ -195,14 +195,13 @@ bool SimPorts::olderTwinRuns() {
   return true;
 }
 
-void SimPorts::noteYoungerTwin() {
-  const std::optional<dds::Peer> twin = participant_->twin();
-  if (!twin || twin->key == reported_twin_) return;
-  reported_twin_ = twin->key;
-  std::fprintf(stderr,
-               "swa_sim: a second swa_sim (pid %ld on host %s) joined this swarm; it started later and must "
-               "refuse to run\n",
-               twin->card->pid, twin->card->host.c_str());
+void SimPorts::noteYoungerTwins() {
+  for (const dds::Peer& twin : participant_->takeYoungerTwins()) {
+    std::fprintf(stderr,
+                 "swa_sim: a second swa_sim (pid %ld on host %s) joined this swarm; it started later and must refuse "
+                 "to run\n",
+                 twin.card->pid, twin.card->host.c_str());
+  }
 }
 
 }  // namespace swa::sim_node

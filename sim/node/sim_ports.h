@@ -97,7 +97,7 @@ class SimPorts {
   void admit(Answer&& a);                   // an answer of the commander: checked, timed, into admitted_
   std::string commandTopic(int uav) const;  // where a UAV's setpoints come from (for the log)
   bool olderTwinRuns();                     // another swa_sim older than us in this swarm: refuse (logged)
-  void noteYoungerTwin();
+  void noteYoungerTwins();
   // The participant and every endpoint (the stand-ins' apart), at the start and when re-created.
   void connect(int domain_id, const std::string& profiles_file);
   void sayPorts();  // "listening on shared-memory ports ..." (the tests find them there)
@@ -121,7 +121,6 @@ class SimPorts {
   dds::CommandGate gate_;
   CommandLatencyTracker latency_;
   bool time_latency_ = true;
-  dds::PeerKey reported_twin_{};
   WorldPorts world_ports_;  // opens --truth-out: a bad one stops the simulator before it joins the domain
   SensorPorts sensors_;
   std::vector<Answer> batch_;

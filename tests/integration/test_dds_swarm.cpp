@@ -608,19 +608,18 @@ TEST_F(SwarmRun, AgentsWaitingWithTheLockstepSimulatorForAStoppedAgentKeepTheirP
 // cmd_vel. Now the younger agent refuses to run (exit 3) and the older one logs it; the simulator applies the
 // commands of one writer per UAV and refuses another's while the first is active.
 TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored) {
-  // GIVEN a lockstep run of the 4-UAV scenario
-  const std::vector<std::string> overrides{"duration_s=20"};
-  start(overrides, {"--agent-timeout-s", "10"});
-  ASSERT_FALSE(HasFatalFailure());
-  ASSERT_TRUE(monitor_->waitForSimTime(2.0, 60.0)) << logs();
-
-  // WHEN a rogue in this process answers every IMU sample of UAV 2 at once with a full-speed command
+  // GIVEN a rogue in this process that will answer every IMU sample of UAV 2 at once with a full-speed command, once
+  // told to. It joins before the run: its readers of truth and events make the simulator wait for it before step 0
+  // (--wait-monitors 2, with the test's monitor). Joining mid-run, it sometimes heard no frame and no command of it
+  // reached the simulator before the lockstep run was over (beside a CPU hog: 20 s simulated in 3.5 s of wall time).
+  std::atomic<bool> answering{false};
   std::atomic<int> rogue_commands{0};
   auto rogue = std::make_unique<dds::Participant>("swa_test_rogue", domain_, dds::resolveProfilesFile());
   auto rogue_cmd = rogue->writer<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(2), dds::qos::kCommandWriter);
   std::mutex rogue_mutex;
   // (the simulator writes UAV 2's IMU samples in its frames)
   rogue->reader<msg::SensorFramePubSubType>(dds::topics::sensors(2), dds::qos::kFrameReader, [&](msg::SensorFrame&& f) {
+    if (!answering) return;
     const std::lock_guard<std::mutex> lock(rogue_mutex);
     for (const msg::Imu& imu : f.imu_sample()) {
       msg::VelocitySetpoint sp;
@@ -632,6 +631,17 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
       if (rogue_cmd.write(sp)) ++rogue_commands;
     }
   });
+  rogue->reader<msg::SwarmTruthPubSubType>(dds::topics::kTruth, dds::qos::kTruthReader, [](msg::SwarmTruth&&) {});
+  rogue->reader<msg::ScenarioEventPubSubType>(dds::topics::kEvents, dds::qos::kEventReader,
+                                              [](msg::ScenarioEvent&&) {});
+  // AND a lockstep run of the 4-UAV scenario, 2 s along (UAV 2's own agent has been commanding it since step 0)
+  const std::vector<std::string> overrides{"duration_s=20"};
+  start(overrides, {"--agent-timeout-s", "10", "--wait-monitors", "2"});
+  ASSERT_FALSE(HasFatalFailure());
+  ASSERT_TRUE(monitor_->waitForSimTime(2.0, 60.0)) << logs();
+
+  // WHEN the rogue starts answering
+  answering = true;
   // AND a second agent with id 1 starts in the same swarm
   Child twin(agentCommand(SWA_AGENT_BINARY, 1, domain_, dir_ / "agent.yaml"), dir_ / "twin.log");
   // THEN the second agent refuses to run, saying why
@@ -639,7 +649,11 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
   const std::string twin_log = readFile(dir_ / "twin.log");
   EXPECT_EQ(twin_status.value_or(-1), 3) << twin_log;
   EXPECT_NE(twin_log.find("REFUSING to run: another swa_agent 1"), std::string::npos) << twin_log;
-  ASSERT_TRUE(waitFor([&] { return rogue_commands.load() > 100; }, 20.0)) << "the rogue never got going";
+  // AND the simulator refuses the rogue's commands and says so
+  const auto refused_rogue = [&] {
+    return readFile(dir_ / "sim.log").find("a second writer on swa/uav2/cmd_vel") != std::string::npos;
+  };
+  EXPECT_TRUE(waitFor(refused_rogue, 20.0)) << rogue_commands.load() << " rogue command(s) written\n" << logs();
   rogue.reset();
 
   // THEN the run completes as if neither had been there: the simulator refused the rogue's commands, and the run is
@@ -650,9 +664,35 @@ TEST_F(SwarmRun, SecondAgentWithTheSameIdIsRefusedAndAForeignCommanderIsIgnored)
   EXPECT_GE(jsonNumber(summary, "refused_writers"), 1.0) << summary;
   EXPECT_EQ(jsonNumber(summary, "command_handovers"), 0.0) << summary;
   EXPECT_EQ(jsonNumber(summary, "agent_dead_events"), 0.0) << logs();
-  EXPECT_NE(readFile(dir_ / "sim.log").find("a second writer on swa/uav2/cmd_vel"), std::string::npos) << logs();
   EXPECT_NE(readFile(dir_ / "agent1.log").find("a second swa_agent 1"), std::string::npos) << logs();
   expectFinalTruthOfTheInProcessLoop(overrides, false);
+}
+
+// Two simulators in one swarm would publish two worlds to the same agents. The younger refuses to run; the older says
+// so, though the younger is gone again within a poll or two of it.
+TEST_F(SwarmRun, SecondSimulatorInTheSameSwarmIsRefusedAndTheFirstSaysSo) {
+  // GIVEN a simulator waiting for its agents
+  std::vector<std::string> args = simArgs({});
+  args.insert(args.end(), {"--domain", std::to_string(domain_), "--startup-timeout-s", "60"});
+  Child first(args, dir_ / "sim1.log");
+  ASSERT_TRUE(
+      waitFor([&] { return readFile(dir_ / "sim1.log").find("waiting for 4 agent(s)") != std::string::npos; }, 20.0))
+      << readFile(dir_ / "sim1.log");
+  // WHEN a second one starts in the same swarm
+  Child second(args, dir_ / "sim2.log");
+  // THEN it refuses to run, saying why
+  const std::optional<int> status = second.wait(20.0);
+  const std::string second_log = readFile(dir_ / "sim2.log");
+  EXPECT_EQ(status.value_or(-1), 1) << second_log;
+  EXPECT_NE(second_log.find("swa_sim: REFUSING to run: another swa_sim (pid " + std::to_string(first.pid())),
+            std::string::npos)
+      << second_log;
+  // AND the first names it and keeps waiting
+  const std::string named = "swa_sim: a second swa_sim (pid " + std::to_string(second.pid()) + " on host ";
+  EXPECT_TRUE(waitFor([&] { return readFile(dir_ / "sim1.log").find(named) != std::string::npos; }, 5.0))
+      << readFile(dir_ / "sim1.log");
+  EXPECT_FALSE(first.wait(0.0)) << readFile(dir_ / "sim1.log");
+  first.stop();
 }
 
 TEST_F(SwarmRun, SecondAgentWithTheSameIdInAnotherSwarmIsNotATwin) {

@@ -74,6 +74,49 @@ TEST(PeerBook, TwinIsSameNameSameSwarmAndTheYoungerGivesWay) {
   EXPECT_FALSE(book.mustGiveWay());
 }
 
+// A younger twin gives way at once; on a loaded host it was discovered and gone again between two polls of the agent,
+// whose log then never said that a second agent had tried to run (CI, issue #46).
+TEST(PeerBook, AYoungerTwinIsReportedOnceEvenIfItLeftBeforeTheNodeAsked) {
+  // GIVEN agent 3 of swarm "s", started at t = 100
+  PeerBook book("swa_agent_3", card("s", 100), key(5));
+  // WHEN a younger agent 3 joins and leaves before anyone asks, and others come that are no younger twin
+  book.discovered({key(4), "swa_agent_3", card("s", 200, 77, "drone-3")});
+  book.lost(key(4), false);
+  book.discovered({key(6), "swa_agent_3", card("s", 99)});       // older: we give way, it did not try to join us
+  book.discovered({key(7), "swa_agent_3", card("other", 300)});  // another swarm
+  book.discovered({key(8), "swa_agent_4", card("s", 300)});      // another id
+  book.discovered({key(5), "swa_agent_3", card("s", 100)});      // our own announcement
+  // THEN the one that left is still reported, with its card, and only it
+  const std::vector<Peer> twins = book.takeYoungerTwins();
+  ASSERT_EQ(twins.size(), 1u);
+  EXPECT_EQ(twins[0].key, key(4));
+  EXPECT_EQ(twins[0].card->pid, 77);
+  EXPECT_EQ(twins[0].card->host, "drone-3");
+  // AND once: the next call has nothing
+  EXPECT_TRUE(book.takeYoungerTwins().empty());
+
+  // WHEN a live younger twin announces itself again (a changed QoS) THEN it is not a second one
+  book.discovered({key(9), "swa_agent_3", card("s", 400)});
+  book.discovered({key(9), "swa_agent_3", card("s", 400)});
+  EXPECT_EQ(book.takeYoungerTwins().size(), 1u);
+}
+
+TEST(PeerBook, TheReportOfYoungerTwinsIsBounded) {
+  PeerBook book("swa_sim", card("", 1), key(0));
+  // A restart loop of twins nobody asks about: the book keeps the newest kMaxExpired
+  for (int i = 0; i < 3000; ++i) {
+    PeerKey k{};
+    k[0] = static_cast<std::uint8_t>(i & 0xff);
+    k[1] = static_cast<std::uint8_t>((i >> 8) & 0xff);
+    k[2] = 1;
+    book.discovered({k, "swa_sim", card("", 2 + i)});
+    book.lost(k, false);
+  }
+  const std::vector<Peer> twins = book.takeYoungerTwins();
+  ASSERT_EQ(twins.size(), PeerBook::kMaxExpired);
+  EXPECT_EQ(twins.back().card->started_ns, 2 + 2999);
+}
+
 TEST(PeerBook, EqualStartsAreBrokenByTheKeyTheSameWayOnBothSides) {
   PeerBook a("swa_sim", card("", 7), key(1));
   PeerBook b("swa_sim", card("", 7), key(2));

@@ -84,6 +84,12 @@ void PeerBook::discovered(const Peer& peer) {
     last_returned_key_ = peer.key;
     expired_.erase(it);
   }
+  // A changed QoS announces a live peer again: not a new twin.
+  const bool fresh = live_.count(peer.key) == 0;
+  if (fresh && isTwin(peer) && olderThan(self_card_, self_key_, *peer.card, peer.key)) {
+    if (younger_twins_.size() >= kMaxExpired) younger_twins_.pop_front();
+    younger_twins_.push_back(peer);
+  }
   live_[peer.key] = peer;
 }
 
@@ -112,10 +118,20 @@ std::vector<PeerKey> PeerBook::takeGone() {
 std::optional<Peer> PeerBook::oldestTwin() const {
   std::optional<Peer> oldest;
   for (const auto& [key, peer] : live_) {
-    if (peer.name != self_name_ || !peer.card || peer.card->swarm != self_card_.swarm) continue;
+    if (!isTwin(peer)) continue;
     if (!oldest || olderThan(*peer.card, key, *oldest->card, oldest->key)) oldest = peer;
   }
   return oldest;
+}
+
+std::vector<Peer> PeerBook::takeYoungerTwins() {
+  std::vector<Peer> twins(younger_twins_.begin(), younger_twins_.end());
+  younger_twins_.clear();
+  return twins;
+}
+
+bool PeerBook::isTwin(const Peer& peer) const {
+  return peer.name == self_name_ && peer.card && peer.card->swarm == self_card_.swarm;
 }
 
 bool PeerBook::mustGiveWay() const {

@@ -90,6 +90,10 @@ Participant::PeersBack Participant::peersBackAfterLease() const {
   });
 }
 
+std::vector<Peer> Participant::takeYoungerTwins() {
+  return peer_listener_->withBook([](PeerBook& book) { return book.takeYoungerTwins(); });
+}
+
 std::vector<PeerKey> Participant::takePeersGone() {
   return peer_listener_->withBook([](PeerBook& book) { return book.takeGone(); });
 }

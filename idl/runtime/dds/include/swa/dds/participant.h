@@ -133,6 +133,8 @@ class Participant {
   // older than us (we must give way); how many peers came back after their lease had expired, and the last one's name.
   std::optional<Peer> twin() const;
   bool mustGiveWay() const;
+  // Younger twins discovered since the last call, gone again or not (PeerBook::takeYoungerTwins).
+  std::vector<Peer> takeYoungerTwins();
   struct PeersBack {
     int count = 0;
     std::string last_name;

@@ -60,6 +60,10 @@ class PeerBook {
   std::optional<Peer> oldestTwin() const;
   // Whether some twin is older than us (we must give way).
   bool mustGiveWay() const;
+  // Twins younger than us discovered since the last call, in order (bounded like the expired ones). Kept apart from
+  // the live peers because a younger twin gives way at once: on a loaded host it is often discovered and gone again
+  // between two polls of the node, which must still report that one tried to run.
+  std::vector<Peer> takeYoungerTwins();
   // Peers of our swarm (or without a card) that announced themselves again after their lease had expired, since
   // construction.
   int returnedAfterLease() const { return returned_; }
@@ -73,6 +77,8 @@ class PeerBook {
   static constexpr std::size_t kMaxExpired = 1024;
 
  private:
+  bool isTwin(const Peer& peer) const;  // our name, our swarm
+
   std::string self_name_;
   PeerCard self_card_;
   PeerKey self_key_;
@@ -82,6 +88,7 @@ class PeerBook {
   std::string last_returned_;
   PeerKey last_returned_key_{};
   std::deque<PeerKey> gone_;
+  std::deque<Peer> younger_twins_;
 };
 
 }  // namespace swa::dds
