@@ -203,8 +203,13 @@ int AgentNode::run() {
     for (const dds::PeerKey& gone : participant_->takePeersGone()) mission_gate_.participantGone(gone);
     std::string why;
     // What it needs before it can start: a reader of its commands and a writer of its detections (the simulator, or
-    // the detection source on a drone); through PX4 these are two peers, and either handshake can stall.
-    if (handshake_.stalled(stats_.imu > 0, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now(),
+    // the detection source on a drone); through PX4 these are two peers, and either handshake can stall. Started:
+    // its IMU flows and this participant has matched a detection source. An IMU alone is no start: through an
+    // autopilot it comes from the bridge, and the handshake with the detection source can stall on its own (a
+    // secure launch through PX4 at N = 8: a re-created agent authenticated every peer but the simulator, flew on the
+    // bridge's IMU without a detection, and its UAV left SWA's control; bench_secure_launch.sh).
+    const bool started = stats_.imu > 0 && matched_once_[2];
+    if (handshake_.stalled(started, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now(),
                            participant_->lastAuthentication())) {
       why = "no reader of " + dds::topics::cmdVel(id_) + " or no writer of " + detectionsTopic() +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";

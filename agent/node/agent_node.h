@@ -138,7 +138,8 @@ class AgentNode : public app::Role {
   std::optional<std::chrono::steady_clock::time_point> peer_back_at_;
   std::string peer_back_name_;
   dds::PeerKey peer_back_key_{};
-  // Which of our endpoints (cmd_vel, imu, detections, gnss) have matched since connect(): only those can be lost.
+  // Which of our endpoints (cmd_vel, imu, detections, gnss) have matched since connect(): only those can be lost, and
+  // a detection source matched is part of a start (the handshake watch in run()).
   std::array<bool, 4> matched_once_{};
   std::chrono::steady_clock::time_point connected_at_;
   bool waiting_reported_ = false;

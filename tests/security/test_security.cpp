@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -386,6 +387,45 @@ TEST_F(SecurityTest, Uav2CredentialsCannotReadOrCommandUav1) {
   EXPECT_EQ(tryCreate(*uav2, Kind::kReader, dds::topics::imu(2)), "");
   uav2.reset();
   // AND nothing is left
+  expectNothingLeft();
+}
+
+// Issue #46: through an autopilot an agent's IMU comes from its bridge and its detections from another peer. In a
+// secure launch through PX4 (N = 8, 1 run in 50) a re-created agent authenticated its bridge but never the simulator:
+// its IMU flowed, no detection came, and its UAV left SWA's control. An IMU without a detection source is no start:
+// the agent re-creates its participant as for any stalled handshake.
+TEST_F(SecurityTest, AgentWithItsImuButNoDetectionSourceReCreatesItsParticipant) {
+  // GIVEN agent 1, secured, and UAV 1's bridge in this process, which writes its IMU samples and reads its commands;
+  // no detection source on the domain (from the agent, a handshake with one that never completes looks the same)
+  const fs::path log = dir_ / "agent1.log";
+  auto agent = startAgent(1, "agent1.log");
+  auto bridge = makeParticipant("swa_bridge_1", domain_, creds_);
+  std::atomic<int> commands{0};
+  dds::Writer<msg::Imu> imu = bridge->writer<msg::ImuPubSubType>(dds::topics::imu(1), dds::qos::kSensorWriter);
+  bridge->reader<msg::VelocitySetpointPubSubType>(dds::topics::cmdVel(1), dds::qos::kCommandReader,
+                                                  [&commands](msg::VelocitySetpoint&&) { ++commands; });
+  ASSERT_TRUE(waitFor([&] { return imu.matched() > 0; }, 30.0)) << readFile(log);
+  // WHEN IMU samples flow at 100 Hz
+  const std::string why =
+      "swa_agent 1: no reader of swa/uav1/cmd_vel or no writer of swa/uav1/detections with DDS "
+      "Security on (a stalled authentication handshake";
+  bool recreated = false;
+  for (std::uint32_t k = 0; k < 3000 && !recreated; ++k) {
+    msg::Imu m;
+    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
+    m.accel_z_mps2(9.80665);
+    m.header().stamp_ns(static_cast<std::int64_t>(k) * 10'000'000);
+    m.header().seq(k + 1);
+    m.uav_id(1);
+    imu.write(m);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (k % 50 == 49) recreated = readFile(log).find(why) != std::string::npos;
+  }
+  // THEN the agent answers them, and still re-creates its participant for want of a detection source, saying so
+  EXPECT_GT(commands.load(), 0) << readFile(log);
+  EXPECT_TRUE(recreated) << readFile(log);
+  EXPECT_EQ(agent->stop(), 0) << readFile(log);
+  bridge.reset();
   expectNothingLeft();
 }
 
