@@ -31,6 +31,7 @@
 
 #include "private_shm.h"
 #include "process_test.h"
+#include "resting_imu.h"
 #include "swa/agent/agent.h"
 #include "swa/agent/feed.h"
 #include "swa/dds/options.h"
@@ -773,12 +774,7 @@ TEST_F(SwarmRun, AgentWhoseSamplesStopWhileTheirWriterStaysMatchedReconnects) {
   ASSERT_TRUE(waitFor([&] { return imu.matched() > 0; }, 30.0)) << readFile(log);
   // WHEN it writes 1 s of samples at 100 Hz, then nothing, while it stays matched
   for (std::uint32_t k = 0; k < 100; ++k) {
-    msg::Imu m;
-    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
-    m.accel_z_mps2(9.80665);
-    m.header().stamp_ns(static_cast<agent::StampNs>(k) * 10'000'000);
-    m.header().seq(k + 1);
-    m.uav_id(1);
+    msg::Imu m = restingImu(1, static_cast<agent::StampNs>(k) * 10'000'000, k + 1);
     imu.write(m);
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
@@ -828,12 +824,7 @@ TEST_F(SwarmRun, AgentWhoseDetectionsStopWhileItsImuFlowsReconnects) {
       d.observer_id(1);
       detections.write(d);
     }
-    msg::Imu m;
-    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
-    m.accel_z_mps2(9.80665);
-    m.header().stamp_ns(stamp);
-    m.header().seq(k + 1);
-    m.uav_id(1);
+    msg::Imu m = restingImu(1, stamp, k + 1);
     imu.write(m);
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }

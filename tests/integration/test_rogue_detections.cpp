@@ -20,6 +20,7 @@
 #include <swa/ros/Detection3DArrayPubSubTypes.h>
 #include <swa/ros/PoseWithCovarianceArrayStampedPubSubTypes.h>
 
+#include "resting_imu.h"
 #include "rogue_agent_test.h"
 #include "swa/dds/qos_profiles.h"
 #include "swa/dds/sample_queue.h"
@@ -121,12 +122,7 @@ TEST_P(RogueDetections, BadDetectorOutputGivesNoBadCommand) {
   const auto start = SteadyClock::now();
   for (int i = 0; i < 400; ++i) {
     const agent::StampNs t = 1'000 * kMs + i * 10 * kMs;
-    msg::Imu m;
-    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
-    m.accel_z_mps2(9.80665);
-    m.header().stamp_ns(t);
-    m.header().seq(++seq);
-    m.uav_id(kUav);
+    msg::Imu m = restingImu(kUav, t, ++seq);
     imu_.write(m);
     if (i % 10 == 0) {
       const int k = i / 10;

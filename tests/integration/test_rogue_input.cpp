@@ -24,6 +24,7 @@
 #include <swa/msg/ImuPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
+#include "resting_imu.h"
 #include "rogue_agent_test.h"
 #include "swa/dds/qos_profiles.h"
 #include "swa/dds/sample_queue.h"
@@ -71,12 +72,7 @@ class RogueInput : public RogueAgentTest {
 
   // A genuine-looking step: IMU level, every 10th step detections of three neighbours on a ring around the UAV.
   void genuineStep(agent::StampNs t, std::uint32_t& seq) {
-    msg::Imu m;
-    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
-    m.accel_z_mps2(9.80665);
-    m.header().stamp_ns(t);
-    m.header().seq(++seq);
-    m.uav_id(kUav);
+    msg::Imu m = restingImu(kUav, t, ++seq);
     imu_.write(m);
     if ((t / (10 * kMs)) % 10 == 0) {
       msg::Detections d;
@@ -141,12 +137,8 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   const auto oversizeAttack = [&] {
     for (int i = 0; i < 2000; ++i) {
       if (i % 100 == 0) {
-        msg::Imu m;
-        m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
-        m.accel_z_mps2(9.80665);
-        m.header().stamp_ns(t += 10 * kMs);
-        m.header().seq(++seq);
-        m.uav_id(kUav);
+        t += 10 * kMs;
+        msg::Imu m = restingImu(kUav, t, ++seq);
         imu_.write(m);
       }
       msg::Detections d;
@@ -178,11 +170,9 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   }
   // ... IMU samples with NaN, 1e300 heading, one 60 s ahead, one at INT64_MAX, and GNSS garbage
   for (int i = 0; i < 50; ++i) {
-    msg::Imu m;
-    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
-    m.accel_z_mps2(9.80665);
-    m.uav_id(kUav);
-    m.header().stamp_ns(i == 0 ? t + 60 * kSec : i == 1 ? std::numeric_limits<agent::StampNs>::max() : t + i * kMs);
+    msg::Imu m = restingImu(kUav, i == 0   ? t + 60 * kSec
+                                  : i == 1 ? std::numeric_limits<agent::StampNs>::max()
+                                           : t + i * kMs);
     if (i >= 2) {
       m.roll_rad(i % 2 == 0 ? kNan : 0.0);
       m.heading_rad(i % 2 == 0 ? 0.0 : 1e300);
@@ -205,11 +195,7 @@ TEST_F(RogueInput, AgentStaysAliveBoundedAndHonestUnderAnAdversarialPlan) {
   std::uniform_int_distribution<agent::StampNs> stale(-10 * kSec, -kMs);  // old: before every genuine stamp
   const auto flood_start = SteadyClock::now();
   for (int i = 0; i < 20000; ++i) {
-    msg::Imu m;
-    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
-    m.accel_z_mps2(9.80665);
-    m.uav_id(kUav);
-    m.header().stamp_ns(stale(rng));
+    msg::Imu m = restingImu(kUav, stale(rng));
     imu_.write(m);
   }
   const double flood_s = std::chrono::duration<double>(SteadyClock::now() - flood_start).count();

@@ -47,6 +47,7 @@
 #include <swa/ros/TwistStampedPubSubTypes.h>
 
 #include "../integration/process_test.h"
+#include "../integration/resting_imu.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/options.h"
 #include "swa/dds/participant.h"
@@ -411,12 +412,7 @@ TEST_F(SecurityTest, AgentWithItsImuButNoDetectionSourceReCreatesItsParticipant)
       "Security on (a stalled authentication handshake";
   bool recreated = false;
   for (std::uint32_t k = 0; k < 3000 && !recreated; ++k) {
-    msg::Imu m;
-    m.has_accelerometer(true);  // at rest: +g on body z (message set 5)
-    m.accel_z_mps2(9.80665);
-    m.header().stamp_ns(static_cast<std::int64_t>(k) * 10'000'000);
-    m.header().seq(k + 1);
-    m.uav_id(1);
+    msg::Imu m = restingImu(1, static_cast<std::int64_t>(k) * 10'000'000, k + 1);
     imu.write(m);
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
     if (k % 50 == 49) recreated = readFile(log).find(why) != std::string::npos;
