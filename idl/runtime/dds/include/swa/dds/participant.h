@@ -12,7 +12,7 @@
 // destructor deletes every entity (so no /dev/shm segment survives a clean exit) and only then the listeners.
 // Before deleting, it waits (at most kShutdownAckWaitS) until every writer is acknowledged by its matched readers or
 // the dead ones among them are forgotten (participant lease): Fast DDS 2.9 can hang deleting a reliable writer
-// while it is heartbeating a reader that never answers.
+// while it is heartbeating a reader that never answers. A destruction that outlasts kDeletionLimitS ends the process.
 //
 // Threading: a reader's callback runs on a Fast DDS thread. Keep it to a push into a SampleQueue, and let whatever
 // it captures outlive the Participant.
@@ -57,6 +57,11 @@ class DdsError : public std::runtime_error {
 
 // Longest wait for outstanding acknowledgments on destruction: above the profile's 4 s participant lease.
 constexpr double kShutdownAckWaitS = 6.0;
+// Longest the whole destruction may take, acknowledgments included; beyond it Fast DDS is stuck inside the
+// participant (participant_shutdown.cpp) and the process exits with kExitParticipantStuck, for its supervisor
+// (swa_launch, a container's restart policy) to restart it.
+constexpr double kDeletionLimitS = kShutdownAckWaitS + 6.0;
+constexpr int kExitParticipantStuck = 70;  // EX_SOFTWARE (sysexits.h): an internal error
 
 class Participant {
  public:
