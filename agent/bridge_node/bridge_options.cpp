@@ -198,7 +198,8 @@ app::Cli makeCli(BridgeOptions& o) {
            "p50 / p99) as JSON");
   cli.footer(R"(Runs until SIGINT or SIGTERM, then deletes its DDS entities (the offboard stream stops) and exits 0.
 Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials refused); 2 bad arguments (nothing
-started); 3 refused: an older swa_px4_bridge with this --id runs in this swarm.
+started); 3 refused: an older swa_px4_bridge with this --id runs in this swarm; 70 Fast DDS stuck inside its
+participant (deleting it took over 12 s): restart the bridge.
 
 )" + dds::environmentHelp());
   return cli;

@@ -141,7 +141,8 @@ app::Cli makeCli(MonitorOptions& o) {
   cli.footer(
       R"(Exit status: 0 PASS; 1 FAIL; 3 INCOMPLETE; 2 bad arguments or scenario, output directory not writable, DDS
              participant not created (nothing started). --combine: the verdict of the FIRST run (0, 1 or 3),
-             2 for bad arguments or an unreadable run directory.
+             2 for bad arguments or an unreadable run directory. 70: Fast DDS stuck inside its participant
+             (deleting it took over 12 s).
 
 )" + dds::environmentHelp());
   return cli;

@@ -53,7 +53,8 @@ At the end it publishes EVENT_SCENARIO_END and exits 0.)");
            "starting DDS");
   cli.answer("--parameters", o.list_parameters, "list every scenario parameter and exit");
   cli.footer(R"(Exit status: 0 scenario completed; 1 DDS failure, discovery timeout or interrupted by a signal;
-             2 bad arguments or scenario (nothing started).
+             2 bad arguments or scenario (nothing started); 70 Fast DDS stuck inside its participant (deleting
+             it took over 12 s).
 
 )" + dds::environmentHelp());
   return cli;
