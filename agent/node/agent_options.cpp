@@ -28,8 +28,8 @@ Writes only  swa/uav<I>/cmd_vel (one VelocitySetpoint per IMU sample, echoing it
 One agent per UAV and swarm: when another swa_agent with the same --id runs in the same swarm (SWA_SWARM) on the
 domain, the one started later refuses to run (exit 3) and the other logs it.
 Exit status: 0 stopped by a signal; 1 DDS failure (also: security credentials refused); 2 bad arguments or
-             configuration (nothing started); 3 refused: an older agent with this --id runs in this swarm; 70 Fast DDS stuck
-             inside its participant (deleting it took over 12 s): restart the agent.
+             configuration (nothing started); 3 refused: an older agent with this --id runs in this swarm; 70 Fast
+             DDS stuck inside its participant (deleting it took over 12 s): restart the agent.
 
 )" + dds::environmentHelp());
   return cli;
