@@ -77,8 +77,12 @@ void BridgeNode::connect() {
     const std::lock_guard<std::mutex> lock(mutex_);
     participant_ = std::move(participant);
   }
+  connected_at_ = std::chrono::steady_clock::now();
+  waiting_reported_ = false;
   handshake_.connected(std::chrono::steady_clock::now());
   requests_handshake_.connected(std::chrono::steady_clock::now());
+  dds::sayOwnSharedMemoryPorts("swa_px4_bridge " + std::to_string(id_));
+  deaf_ports_.reset();
   dds::Participant& p = *participant_;
   imu_ = p.writer<msg::ImuPubSubType>(topics::imu(id_), dds::qos::kSensorWriter);
   state_ = p.writer<msg::BridgeStatePubSubType>(topics::bridgeState(id_), dds::qos::kStateWriter);
@@ -314,7 +318,7 @@ void BridgeNode::report() {
 int BridgeNode::run() {
   std::fprintf(stderr, "swa_px4_bridge %d: %s, agent topics %s*\n", id_, vehicle_->description().c_str(),
                topics::uavPrefix(id_).c_str());
-  bool waiting_reported = false, status_missing_reported = false;
+  bool status_missing_reported = false;
   while (!stop_requested_) {
     std::this_thread::sleep_for(kTickPeriod);
     // Matched-status queries outside mutex_ (a listener may hold its reader's lock while it waits for mutex_).
@@ -335,6 +339,13 @@ int BridgeNode::run() {
                    id_, id_, twin ? twin->card->pid : 0L, twin ? twin->card->host.c_str() : "?");
       closeParticipant();
       return kExitTwin;
+    }
+    if (const std::optional<int> deaf = deaf_ports_.poll(std::chrono::steady_clock::now())) {
+      std::fprintf(stderr, "swa_px4_bridge %d: %s: re-creating the participant\n", id_,
+                   dds::deafPortReason(*deaf, "the vehicle and the agent").c_str());
+      participant_->abandonAcknowledgments();  // none can reach a deaf port
+      reconnect();
+      continue;
     }
     // A stalled DDS Security handshake with the vehicle (or the simulator) or with the agent while the loop does not
     // run (handshake_watch.h): a new participant. "Agent lost" with every endpoint matched counts as stalled too: with
@@ -367,9 +378,9 @@ int BridgeNode::run() {
       std::fprintf(stderr, "swa_px4_bridge %d: %s reads %s: streaming\n", id_, core_.autopilot().name,
                    vehicle_->commandTopic().c_str());
       if (pending_) forward(*std::exchange(pending_, std::nullopt), pending_at_);
-    } else if (!vehicle_reads_ && !waiting_reported &&
-               std::chrono::steady_clock::now() - started_ > std::chrono::seconds(5)) {
-      waiting_reported = true;
+    } else if (!vehicle_reads_ && !waiting_reported_ &&
+               std::chrono::steady_clock::now() - connected_at_ > std::chrono::seconds(5)) {
+      waiting_reported_ = true;
       std::fprintf(stderr, "swa_px4_bridge %d: no reader of %s after 5 s: %s\n", id_, vehicle_->commandTopic().c_str(),
                    vehicle_->noReaderHint().c_str());
     }

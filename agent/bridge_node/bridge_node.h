@@ -29,6 +29,7 @@
 #include "swa/autopilot/bridge_core.h"
 #include "swa/autopilot/odometry_feed.h"
 #include "swa/dds/command_gate.h"
+#include "swa/dds/deaf_port_watch.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "vehicle_link.h"
@@ -86,6 +87,10 @@ class BridgeNode : public app::Role {
   const int domain_id_;
   const std::string profiles_file_;
   const std::chrono::steady_clock::time_point started_;
+  // The newest participant's creation (connect): the vehicle gets 5 s from it to read the commands before the bridge
+  // says what it waits for, once per participant (a re-created one is matched again from nothing).
+  std::chrono::steady_clock::time_point connected_at_;
+  bool waiting_reported_ = false;
   const std::unique_ptr<VehicleLink> vehicle_;
 
   std::mutex mutex_;  // guards everything below but the DDS handles
@@ -119,6 +124,9 @@ class BridgeNode : public app::Role {
   // to 17 s late in 2 of 5 secure launches through ArduPilot). Until the vehicle is engaged a new participant costs
   // nothing (the vehicle does not follow the stream yet), so the same policy applies to them up to then.
   dds::HandshakeWatch requests_handshake_;
+  // A shared-memory port of its own re-created under it by a peer: nothing from the vehicle or the agent arrives, even
+  // before the first sample (deaf_port_watch.h).
+  dds::DeafPortWatch deaf_ports_;
   // Once armed and in the control mode (PX4: offboard; ArduPilot: GUIDED): a pilot taking over later is no reason to
   // re-create the participant in flight.
   std::atomic<bool> engaged_{false};

@@ -83,6 +83,8 @@ void AgentNode::connect() {
         const std::lock_guard<std::mutex> lock(mutex_);
         world_pause_.tick(m.step(), std::chrono::steady_clock::now());
       });
+  dds::sayOwnSharedMemoryPorts("swa_agent " + std::to_string(id_));
+  deaf_ports_.reset();
   imu_silence_.restart();
   detections_silence_.restart();
   peers_back_ = 0;

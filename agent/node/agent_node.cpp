@@ -166,6 +166,8 @@ int AgentNode::run() {
     // waits for mutex_ (seen: every agent of a loaded host stuck after its first samples).
     const Matched matched = matchedNow();
     const std::optional<std::string> lost = endpointsLostAfterPeerReturn(matched);
+    // Outside mutex_ as well: a listener delivering a sample would wait while three /proc files are read.
+    const std::optional<int> deaf = deaf_ports_.poll(std::chrono::steady_clock::now());
     std::unique_lock<std::mutex> lock(mutex_);
     const auto now = std::chrono::steady_clock::now();
     // The writer of its IMU samples stays matched (alive to discovery), the agent had samples and keeps running, and
@@ -209,7 +211,9 @@ int AgentNode::run() {
     // secure launch through PX4 at N = 8: a re-created agent authenticated every peer but the simulator, flew on the
     // bridge's IMU without a detection, and its UAV left SWA's control; bench_secure_launch.sh).
     const bool started = stats_.imu > 0 && matched_once_[2];
-    if (handshake_.stalled(started, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now(),
+    if (deaf) {
+      why = dds::deafPortReason(*deaf, "the simulator, a bridge or a detection source");
+    } else if (handshake_.stalled(started, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now(),
                            participant_->lastAuthentication())) {
       why = "no reader of " + dds::topics::cmdVel(id_) + " or no writer of " + detectionsTopic() +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
@@ -229,6 +233,7 @@ int AgentNode::run() {
       ++reconnects_;
       std::fprintf(stderr, "swa_agent %d: %s: re-creating the participant (reconnection %d)\n", id_, why.c_str(),
                    reconnects_);
+      if (deaf) participant_->abandonAcknowledgments();  // none can reach a deaf port
       lock.unlock();  // deleting the participant waits for its listeners, which take the lock
       participant_.reset();
       lock.lock();

@@ -43,6 +43,7 @@
 #include "swa/app/program.h"
 #include "swa/app/stall_watch.h"
 #include "swa/dds/command_gate.h"
+#include "swa/dds/deaf_port_watch.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/wire/agent_feed.h"
@@ -150,6 +151,9 @@ class AgentNode : public app::Role {
   std::optional<std::chrono::steady_clock::time_point> last_imu_at_;  // wall time of the last IMU sample let in
   // The same for SWA's own detections, watched while the IMU flows (agent_node.cpp).
   SilenceWatch detections_silence_{kSilentLimit};
+  // A shared-memory port of its own re-created under it by a peer: nothing sent to it arrives, even before the first
+  // sample, where the silence watches cannot tell (deaf_port_watch.h).
+  dds::DeafPortWatch deaf_ports_;
   WorldPause world_pause_;  // a lockstep simulator waiting for someone: silence owes nothing (world_pause.h)
   std::optional<std::chrono::steady_clock::time_point> last_detections_at_;
   app::StallWatch own_stall_{kPollGapLimit};  // whether run()'s polls come as often as they should

@@ -91,6 +91,8 @@ dds::Reader<dds::Payload> MonitorNode::readAndRecord(const std::string& topic, c
 void MonitorNode::connect() {
   participant_ = std::make_unique<dds::Participant>("swa_monitor", domain_id_, profiles_file_);
   connected_at_ = std::chrono::steady_clock::now();
+  dds::sayOwnSharedMemoryPorts("swa_monitor");
+  deaf_ports_.reset();
   handshake_.connected(connected_at_);
   state_reader_handles_.clear();
   uav_taps_.clear();
@@ -174,6 +176,16 @@ void MonitorNode::reconnectIfHandshakeStalled() {
   connect();
 }
 
+void MonitorNode::reconnectIfDeaf() {
+  const std::optional<int> deaf = deaf_ports_.poll(std::chrono::steady_clock::now());
+  if (!deaf) return;
+  std::fprintf(stderr, "swa_monitor: %s: re-creating the participant\n",
+               dds::deafPortReason(*deaf, "the simulator and the agents").c_str());
+  participant_->abandonAcknowledgments();  // none can reach a deaf port
+  participant_.reset();
+  connect();
+}
+
 RunEnd MonitorNode::run() {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
@@ -189,6 +201,7 @@ RunEnd MonitorNode::run() {
     publishNewMetrics();
     createRunReadersWhenReady();
     reconnectIfHandshakeStalled();
+    reconnectIfDeaf();
     const double now_s = elapsed();
     showStatus(now_s, false);
 

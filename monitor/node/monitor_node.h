@@ -25,6 +25,7 @@
 #include "step_metrics_json.h"
 #include "swa/agent/config.h"
 #include "swa/dds/command_gate.h"
+#include "swa/dds/deaf_port_watch.h"
 #include "swa/dds/handshake_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
@@ -80,6 +81,9 @@ class MonitorNode {
   void subscribeState(int uav);
   void createStateReader(int uav);
   void reconnectIfHandshakeStalled();
+  // A shared-memory port of its own re-created under it by a peer (deaf_port_watch.h): nothing more would reach it,
+  // and the recording would stop while the run goes on.
+  void reconnectIfDeaf();
   void process(Input& input);
   void processMission(const MissionInput& input);
   void showStatus(double wall_s, bool last);
@@ -103,6 +107,7 @@ class MonitorNode {
   bool truth_seen_ = false;
   std::chrono::steady_clock::time_point connected_at_;
   dds::HandshakeWatch handshake_;
+  dds::DeafPortWatch deaf_ports_;
   std::atomic<bool> stop_requested_{false};
   std::atomic<std::uint64_t> undecodable_{0};
   // The ground's mission, through the agents' rule (agent_node.h): one writer, until its participant leaves; the

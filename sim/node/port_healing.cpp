@@ -2,7 +2,6 @@
 // awaited again. Apart from sim_ports.cpp because it is a rare second start, of which the steps need know nothing.
 #include "sim_ports.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <thread>
@@ -13,32 +12,20 @@
 namespace swa::sim_node {
 
 void SimPorts::healDeafness() {
-  const Clock::time_point now = Clock::now();
-  if (now < next_deafness_check_) return;
-  next_deafness_check_ = now + kDeafnessCheckPeriod;
-  std::vector<int> deaf;
-  for (const int port : dds::Participant::deafSharedMemoryPorts()) {
-    if (std::find(deaf_ports_.begin(), deaf_ports_.end(), port) == deaf_ports_.end()) deaf.push_back(port);
-  }
-  if (deaf.empty()) return;
+  const std::optional<int> deaf = deaf_ports_.poll(Clock::now());
+  if (!deaf) return;
   const double t_s = sim::stampSeconds(world_.time_ns());
   if (autopilot_) {
     // The stand-ins' endpoints live on this participant and their vehicles' state with them: not re-created.
-    deaf_ports_.insert(deaf_ports_.end(), deaf.begin(), deaf.end());
     std::fprintf(stderr,
-                 "swa_sim: t = %.2f s: deaf on shared-memory port %d: Fast DDS re-created /dev/shm/fastrtps_port%d "
-                 "under this process (a peer judged it dead, e.g. while the simulator was stopped), so what the "
-                 "bridges send to it is lost; with autopilot stand-ins the simulator does not re-create its "
-                 "participant and the run cannot recover (deploy/README.md)\n",
-                 t_s, deaf.front(), deaf.front());
+                 "swa_sim: t = %.2f s: %s; with autopilot stand-ins the simulator does not re-create its participant "
+                 "and the run cannot recover (deploy/README.md)\n",
+                 t_s, dds::deafPortReason(*deaf, "the bridges").c_str());
     return;
   }
   ++summary_.reconnections;
-  std::fprintf(stderr,
-               "swa_sim: t = %.2f s: deaf on shared-memory port %d: Fast DDS re-created /dev/shm/fastrtps_port%d "
-               "under this process (a peer judged it dead, e.g. while the simulator was stopped), so what agents send "
-               "to it is lost: re-creating the participant (reconnection %d)\n",
-               t_s, deaf.front(), deaf.front(), summary_.reconnections);
+  std::fprintf(stderr, "swa_sim: t = %.2f s: %s: re-creating the participant (reconnection %d)\n", t_s,
+               dds::deafPortReason(*deaf, "agents").c_str(), summary_.reconnections);
   reconnect();
 }
 
@@ -49,9 +36,8 @@ void SimPorts::reconnect() {
   cmd_.clear();
   participant_.reset();
   connect(domain_id, profiles_file_);
-  sayPorts();
-  // The new port files are healthy; a port of the same number found deaf later is a new deafness.
-  deaf_ports_.clear();
+  dds::sayOwnSharedMemoryPorts("swa_sim");
+  deaf_ports_.reset();
   // What the old writers sent last may not have reached everyone before they were deleted: in lockstep, the agents
   // still waited for get the step's samples once more (repeatWhileWaiting).
   resend_after_reconnect_ = true;

@@ -1,5 +1,7 @@
 #include "sim_options.h"
 
+#include <cstdlib>
+
 #include "swa/app/cli.h"
 #include "swa/dds/deployment.h"
 #include "swa/dds/options.h"
@@ -35,8 +37,12 @@ At the end it publishes EVENT_SCENARIO_END and exits 0.)");
   cli.domain(o.domain, dds::kMaxDomainId);
   cli.real("--agent-timeout-s", "T", o.agent_timeout_s, 1e-3, 3600.0, "a timeout in seconds",
            "lockstep: wall seconds to wait for an agent's answer");
+  if (const char* security = std::getenv("SWA_SECURITY_DIR"); security != nullptr && *security != '\0') {
+    o.startup_timeout_s = kSecureStartupTimeoutS;
+  }
   cli.real("--startup-timeout-s", "T", o.startup_timeout_s, 0.0, 3600.0, "a timeout in seconds",
-           "wall seconds to wait for discovery of every agent");
+           "wall seconds to wait for discovery of every agent (120 with DDS Security on, SWA_SECURITY_DIR: a stalled "
+           "handshake or a stuck participant's restart needs the room)");
   cli.integer("--wait-monitors", "N", o.wait_monitors, 0, 64, "a count",
               "also wait until N readers of swa/truth and swa/events are discovered, so a monitor sees the run "
               "from step 0; swa_launch passes 1");

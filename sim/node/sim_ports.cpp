@@ -51,21 +51,13 @@ SimPorts::SimPorts(const sim::Scenario& scenario, const SimOptions& options, sim
       profiles_file_(profiles_file) {
   frames_allowed_ = framesAllowed();  // a bad value stops the simulator before it joins the domain
   connect(domain_id, profiles_file);
-  sayPorts();
+  dds::sayOwnSharedMemoryPorts("swa_sim");
   if (scenario.vehicle.interface == sim::VehicleInterface::kPx4) {
     autopilot_ = std::make_unique<Px4Vehicles>(*participant_, n_, scenario.vehicle, scenario.imu.source);
   } else if (scenario.vehicle.interface == sim::VehicleInterface::kArdupilot) {
     autopilot_ = std::make_unique<ArdupilotVehicles>(*participant_, n_, scenario.vehicle, scenario.imu.source);
   }
   sensors_.attach(autopilot_.get());
-}
-
-void SimPorts::sayPorts() {
-  if (const std::vector<int> ports = dds::Participant::ownSharedMemoryPorts(); !ports.empty()) {
-    std::string list;
-    for (const int port : ports) list += " " + std::to_string(port);
-    std::fprintf(stderr, "swa_sim: listening on shared-memory ports%s\n", list.c_str());
-  }
 }
 
 void SimPorts::connect(int domain_id, const std::string& profiles_file) {

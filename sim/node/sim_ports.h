@@ -26,6 +26,7 @@
 #include "sim_options.h"
 #include "sim_summary.h"
 #include "swa/dds/command_gate.h"
+#include "swa/dds/deaf_port_watch.h"
 #include "swa/dds/participant.h"
 #include "swa/dds/sample_queue.h"
 #include "swa/sim/world.h"
@@ -100,14 +101,12 @@ class SimPorts {
   void noteYoungerTwins();
   // The participant and every endpoint (the stand-ins' apart), at the start and when re-created.
   void connect(int domain_id, const std::string& profiles_file);
-  void sayPorts();  // "listening on shared-memory ports ..." (the tests find them there)
   std::vector<std::string> unmatchedEndpoints() const;  // readable, e.g. "swa/uav2/imu (no reader)"
-  // At most every kDeafnessCheckPeriod: when this process no longer hears one of its shared-memory ports
-  // (shm_ports.h; a peer re-created the port while the simulator was stopped), it re-creates its participant and
-  // waits until every endpoint matched again (reconnect). With autopilot stand-ins it only says so.
+  // When this process no longer hears one of its shared-memory ports (deaf_port_watch.h; a peer re-created the port
+  // while the simulator was stopped), it re-creates its participant and waits until every endpoint matched again
+  // (reconnect). With autopilot stand-ins it only says so.
   void healDeafness();
   void reconnect();
-  static constexpr auto kDeafnessCheckPeriod = std::chrono::milliseconds(250);
   // Agents find a new participant within about a second (a stopped simulator's agents may themselves be re-creating
   // theirs); beyond this the run goes on and the unanswered are declared dead as usual.
   static constexpr auto kRematchTimeout = std::chrono::seconds(20);
@@ -132,9 +131,8 @@ class SimPorts {
   std::unique_ptr<dds::Participant> participant_;
   std::string profiles_file_;
   bool frames_allowed_ = true;
-  Clock::time_point next_deafness_check_{};
   bool resend_after_reconnect_ = false;
-  std::vector<int> deaf_ports_;  // with stand-ins: shared-memory ports found deaf (healDeafness), each said once
+  dds::DeafPortWatch deaf_ports_;  // with stand-ins, each deaf port is said once
   // vehicle.interface = px4 or ardupilot: instead of the IMU writers (sensor_ports.h) and cmd_.
   std::unique_ptr<AutopilotVehicles> autopilot_;
   std::vector<dds::Reader<msg::VelocitySetpoint>> cmd_;

@@ -401,6 +401,18 @@ TEST(SimOptions, ParsesEveryOptionAndReportsEveryProblem) {
   EXPECT_THROW(sim_node::parseSimOptions({"--agent-timeout-s", "nan", "--scenario", "s"}), std::invalid_argument);
 }
 
+// A secured start needs room for a stalled handshake's re-creation and a stuck participant's restart (sim_options.h).
+TEST(SimOptions, StartupTimeoutIsLongerWithSecurityUnlessGiven) {
+  ::unsetenv("SWA_SECURITY_DIR");
+  EXPECT_EQ(sim_node::parseSimOptions({"--scenario", "s"}).startup_timeout_s, 60.0);
+  ::setenv("SWA_SECURITY_DIR", "/nonexistent", 1);
+  EXPECT_EQ(sim_node::parseSimOptions({"--scenario", "s"}).startup_timeout_s, 120.0);
+  EXPECT_EQ(sim_node::parseSimOptions({"--scenario", "s", "--startup-timeout-s", "30"}).startup_timeout_s, 30.0);
+  ::setenv("SWA_SECURITY_DIR", "", 1);  // set but empty: security off
+  EXPECT_EQ(sim_node::parseSimOptions({"--scenario", "s"}).startup_timeout_s, 60.0);
+  ::unsetenv("SWA_SECURITY_DIR");
+}
+
 TEST(DomainResolution, CommandLineThenEnvironmentThenZero) {
   ::unsetenv("SWA_DOMAIN");
   EXPECT_EQ(dds::resolveDomain(std::nullopt), 0);

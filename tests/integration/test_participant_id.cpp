@@ -1,7 +1,7 @@
 // The participant id a new SWA participant takes (swa/dds/participant_id.h): never one whose shared-memory port a
 // killed process left behind, nor one whose ports are taken, past 120 in the next domain's free ports; which UDP port
-// is free (swa/app/udp_port.h); and which of its own ports a process no longer hears (swa/dds/shm_ports.h). No DDS
-// (label unit).
+// is free (swa/app/udp_port.h); and which of its own ports a process no longer hears (swa/dds/shm_ports.h,
+// deaf_port_watch.h). No DDS (label unit).
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -10,12 +10,14 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "swa/app/udp_port.h"
+#include "swa/dds/deaf_port_watch.h"
 #include "swa/dds/participant_id.h"
 #include "swa/dds/shm_ports.h"
 
@@ -113,6 +115,70 @@ TEST(DeafPorts, AnOwnerThatMovedToTheNewSegmentHearsIt) {
   EXPECT_TRUE(deafPorts(maps, {7500}, [](int) { return true; }).empty());
   EXPECT_TRUE(deafPorts("", {7411}, [](int) { return true; }).empty());
   EXPECT_TRUE(deafPorts(maps, {}, [](int) { return true; }).empty());
+}
+
+// ---- DeafPortWatch (deaf_port_watch.h) ---------------------------------------------------------------------------
+
+TEST(DeafPortWatch, NamesEachDeafPortOnceLooksAtMostOncePerPeriodAndForgetsOnReset) {
+  // GIVEN a process listening on 7411, 7412 and 7413, of which 7411 and 7412 are deaf, counting the looks
+  std::vector<int> own{7411, 7412, 7413}, deaf{7411, 7412};
+  int own_looks = 0, looks = 0;
+  DeafPortWatch watch({[&] {
+                         ++own_looks;
+                         return own;
+                       },
+                       [&](const std::vector<int>& among) {
+                         ++looks;
+                         EXPECT_EQ(among, own);
+                         return deaf;
+                       }},
+                      std::chrono::milliseconds(250));
+  const DeafPortWatch::Clock::time_point t0{};
+  // THEN the first poll names one, and a poll within the period does not look again
+  EXPECT_EQ(watch.poll(t0), 7411);
+  EXPECT_EQ(watch.poll(t0 + std::chrono::milliseconds(249)), std::nullopt);
+  EXPECT_EQ(looks, 1);
+  // AND the next period names the other, then neither again while they stay deaf (the caller could not re-create)
+  EXPECT_EQ(watch.poll(t0 + std::chrono::milliseconds(250)), 7412);
+  EXPECT_EQ(watch.poll(t0 + std::chrono::milliseconds(500)), std::nullopt);
+  EXPECT_EQ(looks, 3);
+  // AND its own ports were found once, at the first look
+  EXPECT_EQ(own_looks, 1);
+  // WHEN the participant is re-created (reset) on other ports, and one of them is found deaf THEN that is a new
+  // deafness, among the new ports
+  watch.reset();
+  own = {7421, 7422};
+  deaf = {7421};
+  EXPECT_EQ(watch.poll(t0 + std::chrono::milliseconds(750)), 7421);
+  EXPECT_EQ(own_looks, 2);
+  // AND once re-created on the same numbers, the same port deaf again is named again
+  watch.reset();
+  EXPECT_EQ(watch.poll(t0 + std::chrono::seconds(1)), 7421);
+  // AND a process that hears every port is never told otherwise
+  deaf.clear();
+  watch.reset();
+  EXPECT_EQ(watch.poll(t0 + std::chrono::milliseconds(1250)), std::nullopt);
+}
+
+TEST(DeafPortWatch, AProcessWithoutSharedMemoryPortsIsNotLookedAt) {
+  // GIVEN a process on UDP only: no port of its own
+  int looks = 0;
+  DeafPortWatch watch({[] { return std::vector<int>{}; },
+                       [&](const std::vector<int>&) {
+                         ++looks;
+                         return std::vector<int>{7411};
+                       }});
+  // THEN it is never deaf, and its mappings are not even read
+  EXPECT_EQ(watch.poll(DeafPortWatch::Clock::time_point{}), std::nullopt);
+  EXPECT_EQ(looks, 0);
+}
+
+TEST(DeafPortWatch, ThisProcessWithoutSharedMemoryIsNeverDeaf) {
+  // GIVEN the watch on this very process, which holds no Fast DDS port (no participant here)
+  DeafPortWatch watch;
+  // THEN it names nothing
+  EXPECT_EQ(watch.poll(DeafPortWatch::Clock::now()), std::nullopt);
+  EXPECT_EQ(deafPortReason(7411, "agents").rfind("deaf on shared-memory port 7411: ", 0), 0u);
 }
 
 TEST(OwnPorts, APortIsOwnWhenThisProcessHoldsTheLockOfItsExclusiveReadLockFile) {

@@ -21,6 +21,7 @@
 #include <swa/msg/ScenarioEventPubSubTypes.h>
 
 #include "../integration/launch_support.h"
+#include "../integration/own_ports.h"
 #include "../integration/private_shm.h"
 #include "../integration/process_test.h"
 #include "closed_loop.h"
@@ -257,6 +258,43 @@ TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
   EXPECT_EQ(jsonNumber(summary, "monitor_restarts"), 1.0) << summary;
   EXPECT_EQ(jsonNumber(summary, "agent_restarts"), 0.0) << summary;
   // AND nothing of the run is left
+  expectNothingLeft(&launcher_files);
+}
+
+// A monitor that no longer hears its own shared-memory port (a peer re-created it under it) would record nothing more
+// while the run goes on: it says so, re-creates its participant, and reads the rest of the run (issue #46;
+// swa/dds/deaf_port_watch.h). The state is made directly, as in test_dds_swarm.cpp: its port files deleted and
+// created again under it.
+TEST_F(LaunchTest, MonitorDeafOnItsOwnSharedMemoryPortReCreatesItsParticipantAndMissesNothing) {
+  // GIVEN a lockstep launch of 200 s, and an observer of agent 0's state in this test
+  auto watch = std::make_unique<StateStampWatch>(domain_, 0);
+  ShmJanitor launcher_files;
+  Child launch(launchArgs({"--set", "duration_s=200"}), dir_ / "launch.log");
+  const fs::path monitor_log = dir_ / "out" / "logs" / "monitor.log";
+  // WHEN the monitor's port files are re-created under it once the run is past 50 s
+  ASSERT_TRUE(watch->waitUntil(50'000'000'000LL, launch)) << readFile(dir_ / "launch.log");
+  watch.reset();
+  const int monitor = monitorPid(domain_);
+  ASSERT_GT(monitor, 0);
+  const std::set<int> ports = listedPorts(readFile(monitor_log), "swa_monitor");
+  ASSERT_GE(ports.size(), 2u) << readFile(monitor_log);  // metatraffic and user data
+  for (const int port : ports) EXPECT_TRUE(holdsOpen(monitor, lockFileOf(port))) << port;
+  const std::vector<fs::path> made = recreatePortFiles(ports);
+  const auto status = launch.wait(180.0);
+  removeFiles(made);
+  const std::string log = readFile(dir_ / "launch.log");
+  ASSERT_TRUE(status.has_value()) << log;
+  // THEN it named one of them and re-created its participant, in the same process (no restart)
+  const std::string monitor_said = readFile(monitor_log);
+  EXPECT_EQ(ports.count(deafPortNamed(monitor_said)), 1u) << monitor_said;
+  EXPECT_NE(monitor_said.find("swa_monitor: deaf on shared-memory port"), std::string::npos) << monitor_said;
+  EXPECT_EQ(monitor_said.find("==== swa_launch: restart"), std::string::npos) << monitor_said;
+  // AND the run passed with nothing missed: the new readers got what the old ones missed from the writers' history
+  EXPECT_EQ(*status, 0) << log << monitor_said;
+  const std::string summary = readFile(dir_ / "out" / "summary.json");
+  EXPECT_NE(summary.find("\"verdict\": \"PASS\""), std::string::npos) << summary;
+  EXPECT_EQ(jsonNumber(summary, "truth_missed_ms"), 0.0) << summary;
+  EXPECT_EQ(jsonNumber(summary, "monitor_restarts"), 0.0) << summary;
   expectNothingLeft(&launcher_files);
 }
 

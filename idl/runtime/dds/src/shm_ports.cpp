@@ -105,8 +105,9 @@ std::vector<int> ownSharedMemoryPorts() {
   return own;
 }
 
-std::vector<int> deafSharedMemoryPorts() {
-  const std::vector<int> own = ownSharedMemoryPorts();
+std::vector<int> deafSharedMemoryPorts() { return deafSharedMemoryPorts(ownSharedMemoryPorts()); }
+
+std::vector<int> deafSharedMemoryPorts(const std::vector<int>& own) {
   if (own.empty()) return {};
   return deafPorts(readWhole("/proc/self/maps"), own, [](int port) {
     std::error_code ec;

@@ -36,5 +36,7 @@ std::vector<int> deafPorts(const std::string& maps, const std::vector<int>& own,
 std::vector<int> ownSharedMemoryPorts();
 // Those of them that Fast DDS re-created under it (its /proc/self/maps, /dev/shm).
 std::vector<int> deafSharedMemoryPorts();
+// The same among `own`, found once per participant: finding them takes about 0.2 ms here, a look among them 0.05.
+std::vector<int> deafSharedMemoryPorts(const std::vector<int>& own);
 
 }  // namespace swa::dds
