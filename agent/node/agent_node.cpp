@@ -214,7 +214,7 @@ int AgentNode::run() {
     if (deaf) {
       why = dds::deafPortReason(*deaf, "the simulator, a bridge or a detection source");
     } else if (handshake_.stalled(started, matched[0] > 0 && matched[2] > 0, std::chrono::steady_clock::now(),
-                           participant_->lastAuthentication())) {
+                                  participant_->lastAuthentication())) {
       why = "no reader of " + dds::topics::cmdVel(id_) + " or no writer of " + detectionsTopic() +
             " with DDS Security on (a stalled authentication handshake, see deploy/README.md)";
     } else if (lost) {

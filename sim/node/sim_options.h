@@ -20,12 +20,13 @@ struct SimOptions {
   std::vector<std::string> overrides;  // --set key=value, in order
   std::optional<std::string> domain;   // --domain D (else SWA_DOMAIN, else 0)
   double agent_timeout_s = 2.0;        // lockstep: wall time to wait for an answer before an agent is dead
-  double startup_timeout_s = kStartupTimeoutS;  // wall time to wait for every agent's endpoints to be discovered
-  int truth_every = 10;                // publish swa/truth every N steps (and at the last step)
-  std::string truth_out;               // --truth-out FILE: every published truth sample as CSV
-  std::string summary_out;             // --summary-out FILE: JSON summary of the run
-  std::string export_agent_config;     // --export-agent-config FILE: write the agents' config and exit
-  int wait_monitors = 0;               // --wait-monitors N: also wait for N readers of swa/truth and swa/events
+  // Wall time to wait for every agent's endpoints to be discovered (kSecureStartupTimeoutS with DDS Security).
+  double startup_timeout_s = kStartupTimeoutS;
+  int truth_every = 10;             // publish swa/truth every N steps (and at the last step)
+  std::string truth_out;            // --truth-out FILE: every published truth sample as CSV
+  std::string summary_out;          // --summary-out FILE: JSON summary of the run
+  std::string export_agent_config;  // --export-agent-config FILE: write the agents' config and exit
+  int wait_monitors = 0;            // --wait-monitors N: also wait for N readers of swa/truth and swa/events
   bool help = false;
   bool list_parameters = false;
 };

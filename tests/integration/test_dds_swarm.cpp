@@ -29,8 +29,8 @@
 #include <swa/msg/SwarmTruthPubSubTypes.h>
 #include <swa/msg/VelocitySetpointPubSubTypes.h>
 
-#include "private_shm.h"
 #include "own_ports.h"
+#include "private_shm.h"
 #include "process_test.h"
 #include "resting_imu.h"
 #include "swa/agent/agent.h"

@@ -8,8 +8,7 @@
 
 namespace swa::dds {
 
-DeafPortWatch::DeafPortWatch(Lookups lookups, Clock::duration period)
-    : lookups_(std::move(lookups)), period_(period) {}
+DeafPortWatch::DeafPortWatch(Lookups lookups, Clock::duration period) : lookups_(std::move(lookups)), period_(period) {}
 
 DeafPortWatch::DeafPortWatch()
     : DeafPortWatch(Lookups{[] { return ownSharedMemoryPorts(); },
