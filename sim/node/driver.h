@@ -45,6 +45,10 @@ class Driver {
  protected:
   // Longest single wait in a loop, so a stop is noticed quickly.
   static constexpr auto kPollPeriod = std::chrono::milliseconds(100);
+  // How long an unanswered step's samples wait before they are sent again, where that is needed
+  // (SimPorts::repeatWhileWaiting): far longer than an answer takes (about a millisecond), far shorter than the agent
+  // timeout.
+  static constexpr auto kRepeatPeriod = std::chrono::milliseconds(50);
 
   // Logs and counts a stall of the simulator itself; no commander could be heard meanwhile, and one that outlasted
   // the DDS lease gives the agents time to find the simulator again (reconnect_grace_until_).

@@ -8,9 +8,6 @@
 
 namespace swa::sim_node {
 namespace {
-// How long an unanswered step's samples wait before they are sent again, where that is needed (repeatWhileWaiting):
-// far longer than an answer takes (about a millisecond), far shorter than the agent timeout.
-constexpr auto kRepeatPeriod = std::chrono::milliseconds(50);
 // How many steps the monitors may fall behind in lockstep (awaitSensorAcks): the truth period, 0.1 s of simulated time.
 constexpr std::int64_t kMonitorLagSteps = 10;
 // How often a step that waits longer says so, with its clock tick again: the agents' silence watches take inputs

@@ -31,9 +31,9 @@ namespace fdds = eprosima::fastdds::dds;
 Participant::~Participant() {
   const Deadline deletion(std::chrono::duration<double>(kDeletionLimitS), [this] {
     std::fprintf(stderr,
-                 "%s: deleting the participant took over %.0f s: Fast DDS is stuck inside it (a deadlock of Fast DDS "
-                 "2.9 with DDS Security, see deploy/README.md); exiting with status %d for a supervisor to restart "
-                 "the process\n",
+                 "%s: deleting the participant took over %.0f s: Fast DDS is stuck inside it (seen with DDS Security "
+                 "and once while re-creating a participant deaf on its shared-memory port, see deploy/README.md); "
+                 "exiting with status %d for a supervisor to restart the process\n",
                  name_.c_str(), kDeletionLimitS, kExitParticipantStuck);
     std::fflush(stderr);
     std::_Exit(kExitParticipantStuck);
