@@ -841,8 +841,8 @@ TEST_F(SwarmRun, AgentWhoseDetectionsStopWhileItsImuFlowsReconnects) {
 
 // A process that no longer hears its own shared-memory port says so (swa/dds/deaf_port_watch.h), re-creates its
 // participant, and the run goes on with no agent declared dead (issue #46). The race in Fast DDS 2.9 that leaves it
-// there is rare (1 realtime run in 6 with five 2 s stops of the simulator, here; once in 100 realtime runs beside a CPU
-// hog, a bridge before its first sample), so the test makes the same state directly: it deletes the process's port
+// there is rare (1 realtime run in 6 with five 2 s stops of the simulator, here), so the test makes the same state
+// directly: it deletes the process's port
 // files and creates files of the same names again, as a sender re-creating them would. It plants files in /dev/shm:
 // in the /dev/shm of its own every SwarmRun has (private_shm.h), a test beside it never counts them. `who` is the
 // process's name in its log, `log` its log file, `pid` its process id.

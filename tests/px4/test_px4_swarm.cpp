@@ -592,10 +592,9 @@ TEST_F(Px4SwarmTest, AKilledArdupilotBridgeLetsItsVehicleStopAfterGuidTimeoutThe
 }
 
 // A bridge that no longer hears its own shared-memory port says so (swa/dds/deaf_port_watch.h), re-creates its
-// participant, and its UAV flies on (issue #46). Seen once in 100 realtime runs beside a CPU hog: a bridge that never
-// got its vehicle's first attitude sample while matched, so its agent had no IMU and the simulator never started its
-// clock. The race that leaves a port so is rare, so the test makes the state directly, as for the simulator and the
-// agent (test_dds_swarm.cpp): the bridge's port files deleted and created again under it.
+// participant, and its UAV flies on (issue #46). The race that leaves a port so is rare, so the test makes the state
+// directly, as for the simulator and the agent (test_dds_swarm.cpp): the bridge's port files deleted and created again
+// under it.
 TEST_F(Px4SwarmTest, ABridgeDeafOnItsOwnSharedMemoryPortReCreatesItsParticipantAndItsUavFliesOn) {
   constexpr int kVictim = 1;
   const fs::path out = dir_ / "deaf";

@@ -1,8 +1,8 @@
 #pragma once
 // When a process no longer hears one of its own shared-memory ports (shm_ports.h), polled from its main loop. Every
 // SWA process has one: a peer can re-create a port under any of them, and one that keeps listening on the deleted
-// segment loses everything sent to it while discovery stays matched (seen beside a CPU hog: a bridge that never got
-// its vehicle's first attitude sample, so its agent had no IMU and the realtime simulator never started its clock).
+// segment loses everything sent to it while discovery stays matched (seen for the simulator after a stop; an agent or
+// a bridge deaf before its first sample would not even show in its silence watch).
 // The caller re-creates its participant when a port is named, then calls reset().
 
 #include <chrono>
