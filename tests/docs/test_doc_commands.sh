@@ -105,7 +105,7 @@ plan_of() {
     "bash deploy/test.sh "* | "ctest --test-dir build "*) echo ctest ;;
     "./build/bin/test_"*) echo "run 0" ;;
     *"swa_replay "*"--check --set "*) echo "run 1" ;;  # the README shows where the commands then differ
-    *"swa_replay "*"--lockstep"*) echo "after swa_agent --id 0 --config out/launch/agent.yaml" ;;
+    *"swa_replay "*"--lockstep"*) echo "after swa_agent --id 0 --config out/rec/agent.yaml" ;;
     ./build/bin/swa_* | swa_launch\ *) echo "run 0" ;;
     "bash deploy/security/make-credentials.sh "*) echo "run 0" ;;
     # README "Use SWA in your own stack": install into a prefix, build the example against it, run it.

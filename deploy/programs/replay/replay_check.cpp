@@ -99,6 +99,8 @@ std::string formatChecks(const std::vector<UavCheck>& checks) {
   std::string out;
   char line[512];
   bool all = !checks.empty();
+  bool any_difference = false;
+  std::uint64_t not_recorded = 0;
   for (const UavCheck& c : checks) {
     std::snprintf(line, sizeof line,
                   "uav %d: %llu inputs, %llu commands replayed, %llu recorded: %llu identical, %llu differ (largest "
@@ -125,8 +127,23 @@ std::string formatChecks(const std::vector<UavCheck>& checks) {
       out += line;
     }
     all = all && c.identicalRun();
+    any_difference = any_difference || c.differing > 0 || c.not_replayed > 0 || c.replayed == 0;
+    not_recorded += c.not_recorded;
   }
-  out += all ? "IDENTICAL: every command replayed bit for bit\n" : "DIFFERENT: see the lines above\n";
+  if (all) {
+    out += "IDENTICAL: every command replayed bit for bit\n";
+  } else if (!any_difference && !checks.empty()) {
+    // Nothing differs: the recording lacks commands. In a realtime run the monitor can miss one on a loaded host (the
+    // command writer keeps only its newest sample, idl/runtime/dds/profiles.xml); a lockstep run waits for it.
+    std::snprintf(line, sizeof line,
+                  "INCOMPLETE RECORDING: every recorded command replayed bit for bit, but %llu replayed command(s) are "
+                  "not in the recording (a realtime recording on a loaded host can miss some; a lockstep one does "
+                  "not)\n",
+                  static_cast<unsigned long long>(not_recorded));
+    out += line;
+  } else {
+    out += "DIFFERENT: see the lines above\n";
+  }
   return out;
 }
 

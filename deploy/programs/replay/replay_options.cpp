@@ -18,7 +18,8 @@ const char* const kDetails =
   GNSS), with the parameters the run was flown with (stored in the recording; --scenario FILE instead, --set on
   top), and compares each command with the one the agent sent, byte for byte. With the recorded parameters a
   lockstep run replays IDENTICAL: a regression test from any recorded flight. With other ones it says where the
-  commands change and by how much. No DDS.
+  commands change and by how much. A realtime recording on a loaded host can lack commands (the monitor missed
+  them): the verdict is then INCOMPLETE RECORDING, not DIFFERENT. No DDS.
 
 Without --check it re-publishes the recorded inputs on DDS as the simulator did, on the same topics and QoS
 (SWA_NAMING, SWA_SWARM apply): every UAV's imu, detections and gnss, and with all UAVs also swa/truth, swa/events
