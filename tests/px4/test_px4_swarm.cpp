@@ -127,10 +127,12 @@ class Px4SwarmTest : public ::testing::Test {
   int domain_ = testDomain(11);
 };
 
+// The logs of a run (bridges, agents, simulator), to print beside a failed check.
 std::string logs(const fs::path& run) {
   std::string s;
   for (const auto& e : fs::directory_iterator(run / "logs")) {
-    if (e.path().filename().string().rfind("bridge_", 0) == 0 || e.path().filename() == "sim.log") {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("bridge_", 0) == 0 || name.rfind("agent_", 0) == 0 || name == "sim.log") {
       s += "--- " + e.path().filename().string() + "\n" + readFile(e.path());
     }
   }
