@@ -106,6 +106,9 @@ for ((i = 0; i < n; i++)); do
       - \${SWA_RUN_DIR:?set SWA_RUN_DIR to the run directory}/agent.yaml:/swa/run/agent.yaml:ro
     networks: [swa]
     stop_grace_period: 10s
+    # A crash, or status 70 (Fast DDS stuck inside a participant, deploy/README.md): started again, or the UAV stays
+    # down. A clean stop exits 0 and stays stopped.
+    restart: on-failure
 EOF
   [ "$vehicle" != direct ] || continue
   if [ "$vehicle" = px4 ]; then
@@ -136,5 +139,7 @@ ${autopilot_lines}      # $engage_why
       SWA_BRIDGE_GNSS: "0"
     networks: [swa]
     stop_grace_period: 10s
+    # As the agent's: a bridge that ended leaves its vehicle to the autopilot's failsafe until it is back.
+    restart: on-failure
 EOF
 done

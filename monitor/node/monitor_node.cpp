@@ -78,7 +78,10 @@ dds::Reader<dds::Payload> MonitorNode::readAndRecord(const std::string& topic, c
     channel = recordingChannel<PubSubType>(*options_.recording, *participant_, topic);
   }
   return participant_->rawReader<PubSubType>(topic, profile, [this, channel, push](dds::RawSample&& s) {
-    if (channel) options_.recording->writeCdr(*channel, s.payload, s.source_time_ns);
+    // Once in the recording, also when a re-created reader gets its writer's history again (Recording::firstDelivery).
+    if (channel && options_.recording->firstDelivery(*channel, s.id.writer, s.id.seq)) {
+      options_.recording->writeCdr(*channel, s.payload, s.source_time_ns);
+    }
     typename PubSubType::type m;
     if (dds::decodePayload<PubSubType>(s.payload, m)) {
       push(std::move(m));

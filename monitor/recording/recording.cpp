@@ -135,6 +135,22 @@ std::uint64_t Recording::unstamped() const {
   return unstamped_;
 }
 
+bool Recording::firstDelivery(std::uint16_t reader, const WriterId& writer, std::int64_t seq) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto [it, first] = newest_seq_.try_emplace({reader, writer}, seq);
+  if (first || seq > it->second) {
+    it->second = seq;
+    return true;
+  }
+  ++repeats_;
+  return false;
+}
+
+std::uint64_t Recording::repeats() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return repeats_;
+}
+
 void writeRecordingManifest(const std::string& path, const Recording& recording) {
   nlohmann::ordered_json channels = nlohmann::ordered_json::object();
   for (const Recording::ChannelCount& c : recording.channelCounts()) {
@@ -143,8 +159,11 @@ void writeRecordingManifest(const std::string& path, const Recording& recording)
                          {"message_encoding", c.message_encoding},
                          {"messages", c.messages}};
   }
-  const nlohmann::ordered_json manifest = {
-      {"file", recording.path()}, {"profile", "ros2"}, {"unstamped", recording.unstamped()}, {"channels", channels}};
+  const nlohmann::ordered_json manifest = {{"file", recording.path()},
+                                           {"profile", "ros2"},
+                                           {"unstamped", recording.unstamped()},
+                                           {"repeats", recording.repeats()},
+                                           {"channels", channels}};
   std::ofstream out(path);
   out << manifest.dump(2) << "\n";
   if (!out) throw std::runtime_error("cannot write " + path);

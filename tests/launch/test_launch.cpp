@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 #include <regex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@
 #include "swa/dds/participant.h"
 #include "swa/dds/qos_profiles.h"
 #include "swa/dds/topics.h"
+#include "swa/recording/recording.h"
 #include "swa/sim/scenario_io.h"
 
 namespace swa::testing {
@@ -268,10 +270,10 @@ TEST_F(LaunchTest, KilledMonitorIsRestartedAndSaysWhatItMissed) {
 // swa/dds/deaf_port_watch.h). The state is made directly, as in test_dds_swarm.cpp: its port files deleted and
 // created again under it.
 TEST_F(LaunchTest, MonitorDeafOnItsOwnSharedMemoryPortReCreatesItsParticipantAndMissesNothing) {
-  // GIVEN a lockstep launch of 200 s, and an observer of agent 0's state in this test
+  // GIVEN a recorded lockstep launch of 200 s, and an observer of agent 0's state in this test
   auto watch = std::make_unique<StateStampWatch>(domain_, 0);
   ShmJanitor launcher_files;
-  Child launch(launchArgs({"--set", "duration_s=200"}), dir_ / "launch.log");
+  Child launch(launchArgs({"--set", "duration_s=200", "--record"}), dir_ / "launch.log");
   const fs::path monitor_log = dir_ / "out" / "logs" / "monitor.log";
   // WHEN the monitor's port files are re-created under it once the run is past 50 s
   ASSERT_TRUE(watch->waitUntil(50'000'000'000LL, launch)) << readFile(dir_ / "launch.log");
@@ -297,6 +299,26 @@ TEST_F(LaunchTest, MonitorDeafOnItsOwnSharedMemoryPortReCreatesItsParticipantAnd
   EXPECT_NE(summary.find("\"verdict\": \"PASS\""), std::string::npos) << summary;
   EXPECT_EQ(jsonNumber(summary, "truth_missed_ms"), 0.0) << summary;
   EXPECT_EQ(jsonNumber(summary, "monitor_restarts"), 0.0) << summary;
+  // AND the recording holds no sample twice: the new readers were sent their writers' history again, and what the old
+  // ones had recorded was not recorded again (recording.json counts those repeats: at least the agents' states, whose
+  // writers keep 100 s). What reached only the deaf port and its writer no longer keeps (commands, KEEP_LAST 1) is
+  // not in it: the recording has a gap there, as long as the simulator ran on without the monitor.
+  const replay::RecordedRun recorded =
+      replay::readRecordedRun((dir_ / "out" / "run.mcap").string(), std::nullopt, false);
+  ASSERT_EQ(recorded.uavs.size(), 4u);
+  const auto stampOf = [](const replay::Payload& p) {
+    const auto stamp = recording::payloadStamp(p.data(), p.size());
+    return stamp ? static_cast<std::int64_t>(stamp->stamp_ns) : -1;
+  };
+  for (const auto& [uav, r] : recorded.uavs) {
+    std::set<std::int64_t> commands;
+    for (const replay::Payload& p : r.commands) commands.insert(stampOf(p));
+    EXPECT_EQ(commands.size(), r.commands.size()) << "UAV " << uav << ": a command recorded twice";
+    std::set<std::pair<int, std::int64_t>> inputs;
+    for (const replay::InputSample& in : r.inputs) inputs.insert({static_cast<int>(in.input), stampOf(in.payload)});
+    EXPECT_EQ(inputs.size(), r.inputs.size()) << "UAV " << uav << ": a sensor sample recorded twice";
+  }
+  EXPECT_GT(jsonNumber(readFile(dir_ / "out" / "recording.json"), "repeats"), 0.0);
   expectNothingLeft(&launcher_files);
 }
 

@@ -283,6 +283,26 @@ TEST_F(McapWriterTest, RecordingCountsPerChannelClosesOldChunksAndWritesItsManif
   EXPECT_EQ(manifest["channels"]["/m"]["messages"], 1);
 }
 
+// A reader created again with a re-created participant is sent its writers' history once more: what it took before
+// is not recorded twice, what it missed in between is.
+TEST_F(McapWriterTest, RecordingTakesEachSampleOfAWriterOnceAndCountsTheRepeats) {
+  Recording recording((dir_ / "r.mcap").string(), {1 << 20, 1.0});
+  const Recording::WriterId a{1, 2, 3}, b{9};
+  EXPECT_TRUE(recording.firstDelivery(7, a, 1));
+  EXPECT_TRUE(recording.firstDelivery(7, a, 2));
+  EXPECT_TRUE(recording.firstDelivery(7, b, 1)) << "another writer numbers its own samples";
+  EXPECT_TRUE(recording.firstDelivery(8, a, 1)) << "another reader (channel) keeps its own account";
+  // the history again, then what was missed meanwhile
+  EXPECT_FALSE(recording.firstDelivery(7, a, 1));
+  EXPECT_FALSE(recording.firstDelivery(7, a, 2));
+  EXPECT_TRUE(recording.firstDelivery(7, a, 5));
+  EXPECT_FALSE(recording.firstDelivery(7, a, 4)) << "behind the newest taken: a repeat";
+  EXPECT_EQ(recording.repeats(), 3u);
+  recording.close();
+  writeRecordingManifest((dir_ / "recording.json").string(), recording);
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir_ / "recording.json"))["repeats"], 3);
+}
+
 TEST(StepMetricsJson, EveryColumnOfTheTimeSeriesWithNullForAnUndefinedValue) {
   monitor::TimeSeriesRow row;
   row.t_s = 12.5;

@@ -10,12 +10,18 @@ namespace {
 
 // The reader profiles match each topic's writer (idl/runtime/dds/profiles.xml): reliable, and transient local where
 // the writer keeps history, so a recorder that starts late still gets what its writers kept.
+// Every tap records a sample once: a tap created again with the participant is sent its writers' history once more
+// (Recording::firstDelivery), keyed by the channel it writes (a frame tap: its IMU channel).
+bool firstDelivery(Recording& recording, std::uint16_t channel, const dds::RawSample& s) {
+  return recording.firstDelivery(channel, s.id.writer, s.id.seq);
+}
+
 template <class PubSubType>
 dds::Reader<dds::Payload> tap(dds::Participant& p, Recording& recording, const std::string& topic,
                               const char* profile) {
   const std::uint16_t channel = recordingChannel<PubSubType>(recording, p, topic);
   return p.rawReader<PubSubType>(topic, profile, [&recording, channel](dds::RawSample&& s) {
-    recording.writeCdr(channel, s.payload, s.source_time_ns);
+    if (firstDelivery(recording, channel, s)) recording.writeCdr(channel, s.payload, s.source_time_ns);
   });
 }
 
@@ -31,6 +37,7 @@ dds::Reader<dds::Payload> tapFrames(dds::Participant& p, Recording& recording, c
   const std::string frame_topic = recordedTopic(p.wireNames(), topic);
   return p.rawReader<msg::SensorFramePubSubType>(
       topic, profile, [&recording, imu, det, gnss, frame_topic](dds::RawSample&& s) {
+        if (!firstDelivery(recording, imu, s)) return;
         msg::SensorFrame f;
         if (!dds::decodePayload<msg::SensorFramePubSubType>(s.payload, f)) {
           msg::SensorFramePubSubType type;

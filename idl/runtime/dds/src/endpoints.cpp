@@ -87,6 +87,7 @@ void RawListener::on_data_available(fdds::DataReader* reader) {
   while (reader->take_next_sample(&sample.payload, &info) == ReturnCode_t::RETCODE_OK) {
     if (info.valid_data) {
       sample.source_time_ns = info.source_timestamp.to_ns();
+      sample.id = sampleIdOf(info.sample_identity);
       on_sample_(std::move(sample));
     }
     sample = RawSample();

@@ -11,6 +11,7 @@
 // The monitor also stores the run's effective scenario as metadata kScenarioMetadata {"scenario.yaml": YAML}, so a
 // recording carries the parameters it was flown with (swa_replay --check re-runs the agents with them).
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -66,12 +67,21 @@ class Recording {
   // Finishes the file (summary, footer). Throws McapError; later writes are dropped.
   void close();
 
+  // Whether sample `seq` of writer `writer`, taken by the recording's reader `reader` (a channel it writes to names
+  // it), is new to the recording. A reader created again (the monitor re-created its participant) is sent its
+  // writers' history once more, most of it recorded already. A writer's samples come in sequence order (reliable; a
+  // best-effort reader drops the late ones), so one not past the newest taken from that writer is a repeat: false,
+  // and counted (repeats()).
+  using WriterId = std::array<std::uint8_t, 16>;
+  bool firstDelivery(std::uint16_t reader, const WriterId& writer, std::int64_t seq);
+
   struct ChannelCount {
     std::string topic, schema, message_encoding;
     std::uint64_t messages = 0;
   };
   std::vector<ChannelCount> channelCounts() const;
   std::uint64_t unstamped() const;
+  std::uint64_t repeats() const;
   const std::string& path() const { return path_; }
 
  private:
@@ -85,12 +95,15 @@ class Recording {
   std::map<std::string, std::uint16_t> channel_ids_;  // by topic
   std::vector<ChannelCount> channels_;                // by channel id
   std::uint64_t unstamped_ = 0;
+  std::map<std::pair<std::uint16_t, WriterId>, std::int64_t> newest_seq_;  // by reader and writer
+  std::uint64_t repeats_ = 0;
   std::optional<std::chrono::steady_clock::time_point> chunk_opened_;
   bool closed_ = false;
 };
 
-// recording.json: the file, its profile, and per channel its schema, encodings and how many messages were written
-// (the monitor's own count, which a reader of the file must find again: tests/record/mcap_reader). Throws
+// recording.json: the file, its profile, the payloads without a stamp, the repeats not recorded again, and per channel
+// its schema, encodings and how many messages were written (the monitor's own count, which a reader of the file must
+// find again: tests/record/mcap_reader). Throws
 // std::runtime_error if `path` cannot be written.
 void writeRecordingManifest(const std::string& path, const Recording& recording);
 

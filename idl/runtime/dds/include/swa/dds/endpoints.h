@@ -95,6 +95,7 @@ class CallbackListener : public eprosima::fastdds::dds::DataReaderListener {
 struct RawSample {
   Payload payload;
   std::int64_t source_time_ns = 0;  // the writer's clock (wall time since the epoch), 0 if not known
+  SampleId id;                      // its writer and sequence number
 };
 
 class RawListener : public eprosima::fastdds::dds::DataReaderListener {
